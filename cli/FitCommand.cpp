@@ -1,0 +1,181 @@
+// `vots fit`: volume file -> Vot-Space file; checks every argument before loading, writes only on success.
+#include "Args.h"
+#include "Commands.h"
+#include "FitMeta.h"
+#include "Progress.h"
+#include "RawOptions.h"
+
+#include "vots/fit/Error.h"
+#include "vots/fit/Fitter.h"
+#include "vots/fit/VolumeLoad.h"
+#include "vots/fit/VotSpaceFile.h"
+
+#include <CLI/CLI.hpp>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+namespace vots::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct FitArgs {
+    std::string input;
+    std::string output;
+    std::string eps;
+    int degree = 3;
+    std::string background = "auto";
+    std::string method = "fast";     // checked by CLI11: paper | fast
+    std::string certify = "samples"; // checked by CLI11: samples | cells
+    std::string focus;
+    std::string epsFocus;
+    int threads = 0;
+    bool progress = false;
+    RawArgs raw;
+};
+
+/// What can be checked without the volume; the rest is in validateFitOptions.
+struct CheckedArgs {
+    EpsArg eps;
+    std::optional<fit::FocusRegion> focus;
+    std::optional<fit::RawLayout> raw;
+};
+
+CheckedArgs checkArgs(const FitArgs& a) {
+    CheckedArgs c;
+    c.eps = parseEps(a.eps, "--eps");
+    if (a.degree < 0 || a.degree > 3)
+        throw fit::InputError("--degree " + std::to_string(a.degree) +
+                              " is not supported: the Taylor degree must be 0, 1, 2 or 3");
+    if (a.threads < 0) throw fit::InputError("--threads must be >= 0 (0: all cores)");
+    if (!a.focus.empty()) {
+        const auto parts = a.focus;
+        const auto lastComma = parts.find_last_of(',');
+        if (lastComma == std::string::npos)
+            throw fit::InputError("--focus: '" + a.focus + "' is not x,y,z,r (grid index units)");
+        fit::FocusRegion f;
+        const auto centre = parseTriple(parts.substr(0, lastComma), "--focus");
+        f.centerIndex = centre;
+        f.radius = parseNumber(parts.substr(lastComma + 1), "--focus radius");
+        if (f.radius <= 0) throw fit::InputError("--focus: the radius must be > 0, got '" + a.focus + "'");
+        const EpsArg e0 = parseEps(a.epsFocus, "--eps-focus", /*allowZero=*/true);
+        if (e0.isPercent) throw fit::InputError("--eps-focus takes a value in data units, not a percentage");
+        f.epsFocus = static_cast<float>(e0.value);
+        c.focus = f;
+    }
+    c.raw = rawLayoutFrom(a.raw);
+    return c;
+}
+
+/// Fails before a long fit when the result could not be written anyway.
+void checkOutput(const FitArgs& a) {
+    const fs::path out(a.output);
+    const fs::path dir = out.has_parent_path() ? out.parent_path() : fs::path(".");
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec))
+        throw fit::InputError("cannot write '" + a.output + "': no folder '" + dir.string() + "'");
+    if (::access(dir.c_str(), W_OK) != 0)
+        throw fit::InputError("cannot write '" + a.output + "': folder '" + dir.string() +
+                              "' is not writable");
+    if (fs::is_directory(out, ec)) throw fit::InputError("cannot write '" + a.output + "': it is a folder");
+    if (fs::exists(a.input, ec) && fs::equivalent(a.input, out, ec))
+        throw fit::InputError("the output '" + a.output + "' is the input file");
+}
+
+std::optional<float> resolveBackground(const std::string& text, const fit::Volume& volume) {
+    if (text == "none") return std::nullopt;
+    if (text == "auto") return fit::defaultBackground(volume);
+    return static_cast<float>(parseNumber(text, "--background"));
+}
+
+void runFit(const FitArgs& a) {
+    const CheckedArgs checked = checkArgs(a);
+    checkOutput(a);
+
+    const fit::Volume volume = fit::loadVolume(a.input, checked.raw);
+    const auto range = volume.valueRange();
+    fit::FitOptions options;
+    const double eps = checked.eps.resolve(range[0], range[1]);
+    if (!(eps > 0))
+        throw fit::InputError("--eps " + a.eps + " is 0 for this volume (all values are " +
+                              formatNumber(range[0]) + "); give eps in data units");
+    options.eps = static_cast<float>(eps);
+    options.degree = a.degree;
+    options.background = resolveBackground(a.background, volume);
+    options.method = a.method == "paper" ? fit::FitMethod::Paper : fit::FitMethod::Fast;
+    options.certify = a.certify == "cells" ? fit::Certify::Cells : fit::Certify::Samples;
+    options.focus = checked.focus;
+    options.threads = a.threads;
+    fit::validateFitOptions(volume, options);
+
+    Progress progress(a.progress);
+    if (a.progress)
+        options.progress = [&progress](double f, const char* stage) { progress.update(f, stage); };
+    fit::FitResult result = fit::fitVotSpace(volume, options);
+    progress.finish();
+
+    double maxError = 0.0;
+    for (const fit::Vot& v : result.space.vots)
+        maxError = std::max(maxError, double{v.err});
+    FitRecord record;
+    std::error_code ec;
+    const fs::path absolute = fs::absolute(a.input, ec);
+    record.sourcePath = ec ? a.input : absolute.lexically_normal().string();
+    record.volume = &volume;
+    record.epsArg = a.eps;
+    record.options = options;
+    record.options.progress = nullptr;
+    record.stats = result.stats;
+    record.maxError = maxError;
+    result.space.metaJson = buildFitMeta(record);
+    fit::writeVotSpaceFile(a.output, result.space);
+
+    const std::size_t count = result.space.vots.size();
+    std::cout << "wrote " << a.output << ": " << formatCount(count) << " Vots ("
+              << formatNumber(static_cast<double>(count) / static_cast<double>(volume.sampleCount()), 4)
+              << " per sample), degree " << result.space.degree << ", max error " << formatNumber(maxError)
+              << " (eps " << formatNumber(options.eps) << "), fit in "
+              << formatNumber(result.stats.seconds, 3) << " s\n";
+}
+
+} // namespace
+
+void addFitCommand(CLI::App& app) {
+    auto args = std::make_shared<FitArgs>();
+    CLI::App* cmd = app.add_subcommand("fit", "Fit a Vot-Space to a volume and write it to a .vots file");
+    cmd->add_option("INPUT", args->input,
+                    "Volume file: .nrrd/.nhdr, .nii/.nii.gz, .mhd/.mha, or raw with --raw-*")
+        ->required();
+    cmd->add_option("-o,--output", args->output, "Vot-Space file to write (replaced atomically)")->required();
+    cmd->add_option("--eps", args->eps,
+                    "Error bound in data units (e.g. 20) or percent of the value range (2%)")
+        ->required();
+    cmd->add_option("--degree", args->degree, "Taylor degree 0..3")->capture_default_str();
+    cmd->add_option("--background", args->background,
+                    "Cells with all corners below this value are omitted; 'auto' (min + 1 % of the range) or "
+                    "'none'")
+        ->capture_default_str();
+    cmd->add_option("--method", args->method, "paper (seed, grow, greedy cover) or fast (split and merge)")
+        ->check(CLI::IsMember({"paper", "fast"}))
+        ->capture_default_str();
+    cmd->add_option("--certify", args->certify,
+                    "samples: bound at grid samples; cells: also at cell centres and edge midpoints")
+        ->check(CLI::IsMember({"samples", "cells"}))
+        ->capture_default_str();
+    CLI::Option* focus = cmd->add_option("--focus", args->focus, "Focus sphere x,y,z,r in grid index units");
+    CLI::Option* epsFocus =
+        cmd->add_option("--eps-focus", args->epsFocus, "Error bound inside the focus sphere");
+    epsFocus->needs(focus);
+    focus->needs(epsFocus);
+    cmd->add_option("--threads", args->threads, "Worker threads (0: all cores)")->capture_default_str();
+    cmd->add_flag("--progress", args->progress, "Show progress on stderr");
+    addRawOptions(*cmd, args->raw);
+    cmd->callback([args] { runFit(*args); });
+}
+
+} // namespace vots::cli

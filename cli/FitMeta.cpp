@@ -1,0 +1,114 @@
+// Writes and reads the meta JSON block of `vots fit` files; key names live only here.
+#include "FitMeta.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+
+#ifndef VOTS_VERSION
+#define VOTS_VERSION "unknown"
+#endif
+
+namespace vots::cli {
+namespace {
+
+using json = nlohmann::ordered_json;
+
+// JSON has no NaN or infinity; an absent value is null.
+json finiteOrNull(double v) {
+    return std::isfinite(v) ? json(v) : json(nullptr);
+}
+
+const char* methodName(fit::FitMethod m) {
+    return m == fit::FitMethod::Paper ? "paper" : "fast";
+}
+const char* certifyName(fit::Certify c) {
+    return c == fit::Certify::Cells ? "cells" : "samples";
+}
+
+template <class T> std::optional<T> field(const json& j, const json::json_pointer& ptr) {
+    if (!j.contains(ptr)) return std::nullopt;
+    const json& v = j.at(ptr);
+    if constexpr (std::is_same_v<T, std::string>) {
+        if (v.is_string()) return v.get<std::string>();
+    } else if constexpr (std::is_integral_v<T>) {
+        if (v.is_number_integer() || v.is_number_unsigned()) return v.get<T>();
+    } else {
+        if (v.is_number()) return v.get<T>();
+    }
+    return std::nullopt;
+}
+
+} // namespace
+
+std::string buildFitMeta(const FitRecord& r) {
+    const fit::Volume& vol = *r.volume;
+    const auto range = vol.valueRange();
+    const fit::FitOptions& o = r.options;
+    json focus = nullptr;
+    if (o.focus)
+        focus = {{"center_index", o.focus->centerIndex},
+                 {"radius", o.focus->radius},
+                 {"eps_focus", o.focus->epsFocus}};
+    const fit::FitStats& s = r.stats;
+    const json meta = {
+        {"software", {{"name", "vots"}, {"version", VOTS_VERSION}}},
+        {"source",
+         {{"path", r.sourcePath},
+          {"name", vol.name},
+          {"dims", vol.dims},
+          {"spacing", vol.spacing},
+          {"origin", vol.origin},
+          {"type", fit::scalarTypeName(vol.sourceType)},
+          {"value_range", {range[0], range[1]}}}},
+        {"fit",
+         {{"requested_degree", o.degree},
+          {"eps", o.eps},
+          {"eps_arg", r.epsArg},
+          {"background", o.background ? finiteOrNull(*o.background) : json(nullptr)},
+          {"method", methodName(o.method)},
+          {"certify", certifyName(o.certify)},
+          {"focus", focus},
+          {"threads", o.threads},
+          {"seconds", s.seconds}}},
+        {"stats",
+         {{"seconds", s.seconds},
+          {"box_fits", s.boxFits},
+          {"box_scans", s.boxScans},
+          {"cache_hits", s.cacheHits},
+          {"covered_cells", s.coveredCells},
+          {"background_cells", s.backgroundCells},
+          {"max_error", finiteOrNull(s.maxError)}}},
+        {"max_error", finiteOrNull(r.maxError)},
+    };
+    // File names need not be UTF-8; replace bad bytes rather than fail after a long fit.
+    return meta.dump(-1, ' ', false, json::error_handler_t::replace);
+}
+
+MetaView readMeta(const std::string& metaJson) {
+    MetaView view;
+    const json j = json::parse(metaJson, nullptr, /*allow_exceptions=*/false);
+    if (!j.is_object()) return view;
+    view.isJson = true;
+    view.requestedDegree = field<int>(j, json::json_pointer("/fit/requested_degree"));
+    view.fitSeconds = field<double>(j, json::json_pointer("/fit/seconds"));
+    view.coveredCells = field<std::uint64_t>(j, json::json_pointer("/stats/covered_cells"));
+    view.sourcePath = field<std::string>(j, json::json_pointer("/source/path"));
+    view.method = field<std::string>(j, json::json_pointer("/fit/method"));
+    const auto radius = field<double>(j, json::json_pointer("/fit/focus/radius"));
+    const auto epsFocus = field<double>(j, json::json_pointer("/fit/focus/eps_focus"));
+    const json::json_pointer centre("/fit/focus/center_index");
+    if (radius && epsFocus && j.contains(centre) && j.at(centre).is_array() && j.at(centre).size() == 3) {
+        fit::FocusRegion f;
+        for (std::size_t a = 0; a < 3; ++a) {
+            if (!j.at(centre)[a].is_number()) return view;
+            f.centerIndex[a] = j.at(centre)[a].get<double>();
+        }
+        f.radius = *radius;
+        f.epsFocus = static_cast<float>(*epsFocus);
+        view.focus = f;
+    }
+    return view;
+}
+
+} // namespace vots::cli

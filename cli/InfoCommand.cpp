@@ -1,0 +1,145 @@
+// `vots info`: summary of a .vots file (grid, degree, eps, Vot count, box sizes), as text or JSON.
+#include "Args.h"
+#include "Commands.h"
+#include "FitMeta.h"
+
+#include "vots/fit/VotSpaceFile.h"
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+namespace vots::cli {
+namespace {
+
+using json = nlohmann::ordered_json;
+
+struct InfoArgs {
+    std::string file;
+    bool json = false;
+};
+
+/// Box size classes by largest side in cells.
+constexpr std::array<const char*, 7> SIZE_LABELS{"1", "2", "3-4", "5-8", "9-16", "17-32", "33+"};
+
+std::size_t sizeClass(const fit::Box& box) {
+    const int side = std::max({box.cells(0), box.cells(1), box.cells(2)});
+    std::size_t k = 0;
+    for (int upper = 1; k + 1 < SIZE_LABELS.size() && side > upper; upper *= 2)
+        ++k;
+    return k;
+}
+
+struct Summary {
+    std::array<std::size_t, SIZE_LABELS.size()> histogram{};
+    double maxError = 0.0;
+    double perSample = 0.0;
+    std::optional<double> perNonBackgroundCell;
+};
+
+Summary summarise(const fit::VotSpace& s, const MetaView& meta) {
+    Summary sum;
+    for (const fit::Vot& v : s.vots) {
+        ++sum.histogram[sizeClass(v.box)];
+        sum.maxError = std::max(sum.maxError, double{v.err});
+    }
+    const double samples = double(s.dims[0]) * double(s.dims[1]) * double(s.dims[2]);
+    const auto count = static_cast<double>(s.vots.size());
+    sum.perSample = count / samples;
+    if (meta.coveredCells && *meta.coveredCells > 0)
+        sum.perNonBackgroundCell = count / double(*meta.coveredCells);
+    return sum;
+}
+
+template <class T> json orNull(const std::optional<T>& v) {
+    return v ? json(*v) : json(nullptr);
+}
+
+json toJson(const std::string& path, const fit::VotSpace& s, const MetaView& meta, const Summary& sum) {
+    json hist = json::array();
+    for (std::size_t k = 0; k < SIZE_LABELS.size(); ++k)
+        hist.push_back({{"largest_side_cells", SIZE_LABELS[k]}, {"count", sum.histogram[k]}});
+    return {
+        {"file", path},
+        {"version", fit::VOTS_FILE_VERSION},
+        {"dims", s.dims},
+        {"spacing", s.spacing},
+        {"origin", s.origin},
+        {"degree", s.degree},
+        {"requested_degree", orNull(meta.requestedDegree)},
+        {"eps", s.eps},
+        {"eps_varies", s.epsVaries},
+        {"background", std::isfinite(s.background) ? json(s.background) : json(nullptr)},
+        {"vot_count", s.vots.size()},
+        {"vots_per_sample", sum.perSample},
+        {"vots_per_nonbackground_cell", orNull(sum.perNonBackgroundCell)},
+        {"box_size_histogram", hist},
+        {"max_error", sum.maxError},
+        {"fit_seconds", orNull(meta.fitSeconds)},
+        {"meta", meta.isJson ? json::parse(s.metaJson) : json(nullptr)},
+    };
+}
+
+void printText(const std::string& path, const fit::VotSpace& s, const MetaView& meta, const Summary& sum) {
+    std::ostringstream o;
+    const auto row = [&o](const char* key) -> std::ostream& {
+        return o << std::left << std::setw(12) << key;
+    };
+    row("file") << path << " (Vot-Space v" << fit::VOTS_FILE_VERSION << ")\n";
+    row("grid") << s.dims[0] << " x " << s.dims[1] << " x " << s.dims[2] << " points, spacing "
+                << formatNumber(s.spacing[0]) << " x " << formatNumber(s.spacing[1]) << " x "
+                << formatNumber(s.spacing[2]) << ", origin (" << formatNumber(s.origin[0]) << ", "
+                << formatNumber(s.origin[1]) << ", " << formatNumber(s.origin[2]) << ")\n";
+    row("degree") << s.degree << " (header)";
+    if (meta.requestedDegree) o << ", " << *meta.requestedDegree << " requested";
+    o << "\n";
+    row("eps") << formatNumber(s.eps) << (s.epsVaries ? " (context; varies in space)" : "") << "\n";
+    row("background") << (std::isfinite(s.background) ? formatNumber(s.background) : std::string("none"))
+                      << "\n";
+    row("Vots") << formatCount(s.vots.size()) << " (" << formatNumber(sum.perSample, 4) << " per sample";
+    if (sum.perNonBackgroundCell)
+        o << ", " << formatNumber(*sum.perNonBackgroundCell, 4) << " per non-background cell";
+    o << ")\n";
+    row("max error") << formatNumber(sum.maxError) << "\n";
+    if (meta.fitSeconds) row("fit time") << formatNumber(*meta.fitSeconds, 3) << " s\n";
+    o << "box sizes (largest side in cells):\n";
+    for (std::size_t k = 0; k < SIZE_LABELS.size(); ++k) {
+        const double share = s.vots.empty() ? 0.0 : 100.0 * double(sum.histogram[k]) / double(s.vots.size());
+        o << "  " << std::left << std::setw(6) << SIZE_LABELS[k] << std::right << std::setw(12)
+          << formatCount(sum.histogram[k]) << "  " << std::fixed << std::setprecision(1) << std::setw(5)
+          << share << " %\n";
+        o.unsetf(std::ios::floatfield);
+    }
+    std::cout << o.str();
+}
+
+void runInfo(const InfoArgs& a) {
+    const fit::VotSpace space = fit::readVotSpaceFile(a.file);
+    const MetaView meta = readMeta(space.metaJson);
+    const Summary sum = summarise(space, meta);
+    if (a.json)
+        std::cout << toJson(a.file, space, meta, sum).dump(-1, ' ', false, json::error_handler_t::replace)
+                  << "\n";
+    else
+        printText(a.file, space, meta, sum);
+}
+
+} // namespace
+
+void addInfoCommand(CLI::App& app) {
+    auto args = std::make_shared<InfoArgs>();
+    CLI::App* cmd =
+        app.add_subcommand("info", "Describe a .vots file: grid, degree, eps, Vot count, box sizes");
+    cmd->add_option("FILE", args->file, "Vot-Space file")->required();
+    cmd->add_flag("--json", args->json, "Print one JSON object instead of text");
+    cmd->callback([args] { runInfo(*args); });
+}
+
+} // namespace vots::cli

@@ -1,0 +1,76 @@
+// `vots verify`: re-checks a .vots file against its volume with the independent verifier; exit 1 on failure.
+#include "Args.h"
+#include "Commands.h"
+#include "FitMeta.h"
+#include "RawOptions.h"
+
+#include "vots/fit/Verify.h"
+#include "vots/fit/VolumeLoad.h"
+#include "vots/fit/VotSpaceFile.h"
+
+#include <CLI/CLI.hpp>
+
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+namespace vots::cli {
+namespace {
+
+struct VerifyArgs {
+    std::string file;
+    std::string input;
+    RawArgs raw;
+};
+
+/// The bound the file was fitted against: with a focus region, rebuild the field from the meta block
+/// so samples inside the focus are held to eps_focus, not to the looser header eps.
+std::optional<fit::EpsField> epsFieldOf(const fit::VotSpace& space, const MetaView& meta) {
+    if (space.epsVaries && meta.focus) return fit::EpsField(space.eps, meta.focus);
+    return std::nullopt;
+}
+
+void runVerify(const VerifyArgs& a) {
+    const auto raw = rawLayoutFrom(a.raw);
+    const fit::VotSpace space = fit::readVotSpaceFile(a.file);
+    const fit::Volume volume = fit::loadVolume(a.input, raw);
+    const MetaView meta = readMeta(space.metaJson);
+    const fit::VerifyReport r = fit::verifyVotSpace(space, volume, epsFieldOf(space, meta));
+
+    std::ostringstream o;
+    const auto row = [&o](const char* key) -> std::ostream& {
+        return o << std::left << std::setw(22) << key;
+    };
+    row("Vots") << formatCount(space.vots.size()) << "\n";
+    row("max error") << formatNumber(r.maxError) << " (eps " << formatNumber(space.eps)
+                     << (space.epsVaries && !meta.focus ? ", varies in space but no focus in meta" : "")
+                     << ")\n";
+    row("max cell-centre error") << formatNumber(r.maxCellCentreError) << " (vs trilinear interpolation)\n";
+    row("samples checked") << formatCount(r.samplesChecked) << "\n";
+    row("violations") << formatCount(r.violations) << "\n";
+    row("uncovered cells") << formatCount(r.uncoveredCells) << " of " << formatCount(r.nonBackgroundCells)
+                           << " non-background\n";
+    row("result") << (r.ok ? "OK" : "FAILED") << "\n";
+    std::cout << o.str() << std::flush;
+    if (!r.ok) {
+        std::cerr << "vots: verify failed: "
+                  << (r.firstProblem.empty() ? std::string("see the report above") : oneLine(r.firstProblem))
+                  << "\n";
+        throw CLI::RuntimeError(1); // main returns 1 without printing more
+    }
+}
+
+} // namespace
+
+void addVerifyCommand(CLI::App& app) {
+    auto args = std::make_shared<VerifyArgs>();
+    CLI::App* cmd = app.add_subcommand(
+        "verify", "Check a .vots file against its volume: coverage and error bound (exit 1 when it fails)");
+    cmd->add_option("FILE", args->file, "Vot-Space file")->required();
+    cmd->add_option("INPUT", args->input, "The volume it was fitted to")->required();
+    addRawOptions(*cmd, args->raw);
+    cmd->callback([args] { runVerify(*args); });
+}
+
+} // namespace vots::cli

@@ -1,0 +1,75 @@
+// The `vots` command: subcommand registration and the one place that turns errors into exit codes.
+#include "Args.h"
+#include "Commands.h"
+
+#include "vots/fit/Error.h"
+
+#include <CLI/CLI.hpp>
+
+#include <exception>
+#include <iostream>
+
+#ifndef VOTS_VERSION
+#define VOTS_VERSION "unknown"
+#endif
+
+namespace {
+
+// Exit codes: 0 success, 1 a check failed (verify) or an internal error, 2 bad input or usage.
+constexpr int EXIT_FAILED = 1;
+constexpr int EXIT_BAD_INPUT = 2;
+
+int fail(int code, const std::string& message) {
+    std::cerr << "vots: error: " << vots::cli::oneLine(message) << std::endl;
+    return code;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"vots " VOTS_VERSION
+                 ": fit volumes into Vot-Spaces (Taylor polynomials in boxes), inspect and "
+                 "verify them",
+                 "vots"};
+    app.set_version_flag("--version", VOTS_VERSION);
+    app.require_subcommand(1);
+    app.footer("Exit status: 0 success, 1 verification failed, 2 bad input. Run 'vots COMMAND --help' for a "
+               "command's options.");
+    vots::cli::addFitCommand(app);
+    vots::cli::addInfoCommand(app);
+    vots::cli::addVerifyCommand(app);
+#ifdef VOTS_HAVE_RENDER
+    vots::cli::addRenderCommand(app);
+#endif
+#ifdef VOTS_HAVE_SERVER
+    vots::cli::addServeCommand(app);
+#endif
+
+    // CLI11 would report a mistyped command as "A subcommand is required"; name it instead.
+    if (argc > 1 && argv[1][0] != '-') {
+        const auto known = app.get_subcommands([&](CLI::App* sub) { return sub->check_name(argv[1]); });
+        if (known.empty())
+            return fail(EXIT_BAD_INPUT, std::string("unknown command '") + argv[1] + "' (try: vots --help)");
+    }
+
+    try {
+        app.parse(argc, argv); // runs the chosen subcommand's callback
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+        return app.exit(e);
+    } catch (const CLI::RuntimeError& e) {
+        return e.get_exit_code(); // the command has already reported
+    } catch (const CLI::ParseError& e) {
+        return fail(EXIT_BAD_INPUT, e.what());
+    } catch (const vots::fit::InputError& e) {
+        return fail(EXIT_BAD_INPUT, e.what());
+    } catch (const std::bad_alloc&) {
+        return fail(EXIT_FAILED, "out of memory");
+    } catch (const std::exception& e) {
+        return fail(EXIT_FAILED, e.what());
+    }
+    return 0;
+}

@@ -1,0 +1,89 @@
+// Fitting a Vot-Space to a volume: the paper's seed-grow-cover method and a fast split-merge method.
+#pragma once
+
+#include "vots/fit/EpsField.h"
+#include "vots/fit/Volume.h"
+#include "vots/fit/VotSpace.h"
+
+#include <atomic>
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+
+namespace vots::fit {
+
+enum class FitMethod {
+    Paper, // DESIGN §4: seed every non-background cell, grow face by face, lazy-greedy cover
+    Fast   // top-down split of bricks until each box fits, then merge face-sharing neighbours
+};
+
+/// What a box's error is certified against (DESIGN §3).
+enum class Certify {
+    Samples, // grid samples only (the paper's F(T))
+    Cells    // also the trilinear value at cell centres and edge midpoints inside the box
+};
+
+struct FitOptions {
+    float eps = 1.f;                          // context error bound, data units (HU for CT)
+    int degree = 3;                           // requested Taylor degree 0..3
+    std::optional<float> background;          // cells with all 8 corners below it are omitted
+    FitMethod method = FitMethod::Fast;
+    Certify certify = Certify::Samples;
+    std::optional<FocusRegion> focus;         // tighter eps in a sphere (grid index space)
+    int threads = 0;                          // 0: all hardware threads
+    /// Called now and then from the fitting threads with a fraction in [0,1] and a stage name.
+    std::function<void(double fraction, const char* stage)> progress;
+    const std::atomic<bool>* cancel = nullptr; // set to true to abandon the fit (throws FitCancelled)
+};
+
+struct FitStats {
+    double seconds = 0.0;          // wall time of the fit
+    std::size_t boxFits = 0;       // least-squares solves
+    std::size_t boxScans = 0;      // full residual scans over a box's samples
+    std::size_t cacheHits = 0;     // box errors reused from a FitCache
+    std::size_t coveredCells = 0;  // non-background cells (all covered)
+    std::size_t backgroundCells = 0;
+    double maxError = 0.0;         // max certified |residual| over all chosen Vots
+};
+
+struct FitResult {
+    VotSpace space;
+    FitStats stats;
+};
+
+class FitCancelled : public std::runtime_error {
+public:
+    FitCancelled() : std::runtime_error("fit cancelled") {}
+};
+
+/// Box errors and coefficients from earlier fits of one volume at one degree and certify mode,
+/// so a fit at a new eps reuses them. Thread-safe; tied to the volume it was first used with.
+class FitCache {
+public:
+    FitCache();
+    ~FitCache();
+    FitCache(const FitCache&) = delete;
+    FitCache& operator=(const FitCache&) = delete;
+    std::size_t size() const;
+    struct Impl;
+    Impl& impl() { return *mImpl; }
+
+private:
+    std::unique_ptr<Impl> mImpl;
+};
+
+/// Checks options against the volume; throws InputError (eps <= 0 or not finite, degree outside
+/// 0..3, focus outside the grid, empty volume, NaN samples).
+void validateFitOptions(const Volume& volume, const FitOptions& options);
+
+/// Fits a Vot-Space. Every non-background cell is covered and every grid sample inside a chosen
+/// Vot's box is within eps(sample) of the Vot. A cache, when given, must belong to this volume,
+/// degree and certify mode.
+FitResult fitVotSpace(const Volume& volume, const FitOptions& options, FitCache* cache = nullptr);
+
+/// Default background threshold: min + 1 % of the value range, so flat empty space is omitted.
+float defaultBackground(const Volume& volume);
+
+} // namespace vots::fit

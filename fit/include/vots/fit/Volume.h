@@ -1,0 +1,40 @@
+// A sampled scalar field on a rectilinear grid, with its index-to-world transform; no file I/O here.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace vots::fit {
+
+/// Sample type of the source file; values are always held as float (exact for all of these).
+enum class ScalarType { UInt8, Int8, UInt16, Int16, UInt32, Int32, Float32, Float64 };
+
+std::string scalarTypeName(ScalarType type);
+
+struct Volume {
+    std::array<int, 3> dims{0, 0, 0};              // grid points along x, y, z
+    std::array<double, 3> spacing{1.0, 1.0, 1.0};  // world distance between grid points (mm for CT)
+    std::array<double, 3> origin{0.0, 0.0, 0.0};   // world position of grid point (0,0,0)
+    ScalarType sourceType = ScalarType::Float32;   // what the file stored
+    std::string name;                              // short label (file stem), for meta data and logs
+    std::vector<float> values;                     // x fastest, then y, then z
+
+    std::size_t sampleCount() const {
+        return static_cast<std::size_t>(dims[0]) * static_cast<std::size_t>(dims[1]) *
+               static_cast<std::size_t>(dims[2]);
+    }
+    std::size_t indexOf(int x, int y, int z) const {
+        return static_cast<std::size_t>(x) +
+               static_cast<std::size_t>(dims[0]) *
+                   (static_cast<std::size_t>(y) + static_cast<std::size_t>(dims[1]) * static_cast<std::size_t>(z));
+    }
+    float at(int x, int y, int z) const { return values[indexOf(x, y, z)]; }
+
+    /// Smallest and largest sample value; {0,0} for an empty volume.
+    std::array<float, 2> valueRange() const;
+};
+
+} // namespace vots::fit

@@ -1,0 +1,33 @@
+// Reading volumes from files: NRRD, NIfTI-1, MetaImage, raw; throws InputError on anything malformed.
+#pragma once
+
+#include "vots/fit/Volume.h"
+
+#include <array>
+#include <optional>
+#include <string>
+
+namespace vots::fit {
+
+/// Layout of a headerless raw file, given on the command line.
+struct RawLayout {
+    std::array<int, 3> dims{0, 0, 0};
+    ScalarType type = ScalarType::UInt8;
+    std::array<double, 3> spacing{1.0, 1.0, 1.0};
+    bool bigEndian = false;
+    std::size_t headerBytes = 0; // bytes to skip before the samples
+};
+
+/// Parses "int16", "uint8", "float32", ... (also "short", "float", "uchar"); throws InputError.
+ScalarType parseScalarType(const std::string& text);
+
+/// Loads a volume. The format follows the extension: .nrrd/.nhdr, .nii/.nii.gz, .mhd/.mha;
+/// with a raw layout any file is read as raw samples. Throws InputError with a one-line message.
+Volume loadVolume(const std::string& path, const std::optional<RawLayout>& raw = std::nullopt);
+
+Volume loadNrrd(const std::string& path);
+Volume loadNifti(const std::string& path);
+Volume loadMetaImage(const std::string& path);
+Volume loadRaw(const std::string& path, const RawLayout& layout);
+
+} // namespace vots::fit

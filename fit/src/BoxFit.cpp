@@ -1,0 +1,218 @@
+// Least-squares fit of a box from separable moment sums, and the float32 residual certification scan.
+#include "BoxFit.h"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+
+namespace vots::fit {
+namespace {
+
+bool isSingleCell(const Box& box) { return box.cells(0) == 1 && box.cells(1) == 1 && box.cells(2) == 1; }
+
+/// The polynomial restricted to a slice z = const: q[k][l] multiplies dx^k dy^l.
+using SliceCoefficients = std::array<std::array<double, 4>, 4>;
+
+SliceCoefficients sliceCoefficients(const std::array<float, MONOMIAL_COUNT>& c, double dz) {
+    SliceCoefficients q{};
+    const double pz[4] = {1.0, dz, dz * dz, dz * dz * dz};
+    for (std::size_t i = 0; i < MONOMIAL_COUNT; ++i) {
+        const auto& a = MONOMIAL_EXPONENTS[i];
+        q[static_cast<std::size_t>(a[0])][static_cast<std::size_t>(a[1])] += static_cast<double>(c[i]) * pz[a[2]];
+    }
+    return q;
+}
+
+/// Row polynomial in dx for fixed (dy, dz): r[k] = sum_l q[k][l] dy^l.
+std::array<double, 4> rowCoefficients(const SliceCoefficients& q, double dy) {
+    std::array<double, 4> r{};
+    for (std::size_t k = 0; k < 4; ++k)
+        r[k] = ((q[k][3] * dy + q[k][2]) * dy + q[k][1]) * dy + q[k][0];
+    return r;
+}
+
+double horner(const std::array<double, 4>& r, double dx) { return ((r[3] * dx + r[2]) * dx + r[1]) * dx + r[0]; }
+
+/// The recorded error must stay an upper bound after narrowing to float.
+float roundUpToFloat(double value) {
+    const float f = static_cast<float>(value);
+    return static_cast<double>(f) < value ? std::nextafter(f, INFINITY) : f;
+}
+
+} // namespace
+
+std::uint32_t basisMask(const Box& box, int degree) {
+    const int n = isSingleCell(box) ? 3 : degree;
+    std::uint32_t mask = 0;
+    for (std::size_t i = 0; i < MONOMIAL_COUNT; ++i) {
+        const auto& a = MONOMIAL_EXPONENTS[i];
+        if (monomialDegree(i) <= n && a[0] < box.points(0) && a[1] < box.points(1) && a[2] < box.points(2))
+            mask |= 1u << i;
+    }
+    return mask;
+}
+
+BoxOutcome BoxFitter::fit(const Box& box, const EpsField& eps, FitCounters& counters) const {
+    counters.fits.fetch_add(1, std::memory_order_relaxed);
+    const std::uint32_t mask = basisMask(box, mDegree);
+    std::array<int, MONOMIAL_COUNT> basis{};
+    int nb = 0;
+    for (std::size_t i = 0; i < MONOMIAL_COUNT; ++i)
+        if (mask & (1u << i)) basis[static_cast<std::size_t>(nb++)] = static_cast<int>(i);
+
+    // Scaled coordinates u = (x - centre) / half-extent in [-1, 1] keep the normal matrix well conditioned.
+    std::array<double, 3> centre{}, half{};
+    for (int a = 0; a < 3; ++a) {
+        centre[a] = 0.5 * (box.lo[a] + box.hi[a]);
+        half[a] = 0.5 * (box.hi[a] - box.lo[a]);
+    }
+    // 1D power sums S_a[k] = sum u^k (k <= 6) give the normal matrix without touching the samples.
+    std::array<std::array<double, 7>, 3> powerSums{};
+    // Reused per thread: small boxes are the common case and allocation would dominate them.
+    thread_local std::array<std::vector<std::array<double, 4>>, 3> powers;
+    for (int a = 0; a < 3; ++a) {
+        powers[a].resize(static_cast<std::size_t>(box.points(a)));
+        for (int i = 0; i < box.points(a); ++i) {
+            const double u = (box.lo[a] + i - centre[a]) / half[a];
+            powers[a][static_cast<std::size_t>(i)] = {1.0, u, u * u, u * u * u};
+            double pk = 1.0;
+            for (int k = 0; k <= 6; ++k, pk *= u)
+                powerSums[a][k] += pk;
+        }
+    }
+    // Right-hand side b_a = sum f u^ax v^ay w^az, accumulated separably row by row.
+    double moments[4][4][4] = {};
+    double sumSquares = 0.0;
+    const int nx = box.points(0);
+    const float* values = mVolume.values.data();
+    const auto& ux = powers[0];
+    for (int k = 0; k < box.points(2); ++k) {
+        double slab[4][4] = {};
+        for (int j = 0; j < box.points(1); ++j) {
+            const float* row = values + mVolume.indexOf(box.lo[0], box.lo[1] + j, box.lo[2] + k);
+            double r0 = 0, r1 = 0, r2 = 0, r3 = 0;
+            for (int i = 0; i < nx; ++i) {
+                const double f = row[i];
+                const auto& u = ux[static_cast<std::size_t>(i)];
+                r0 += f;
+                r1 += f * u[1];
+                r2 += f * u[2];
+                r3 += f * u[3];
+                sumSquares += f * f;
+            }
+            const auto& v = powers[1][static_cast<std::size_t>(j)];
+            const double rs[4] = {r0, r1, r2, r3};
+            for (int p = 0; p < 4; ++p)
+                for (int q = 0; q < 4; ++q)
+                    slab[p][q] += rs[p] * v[q];
+        }
+        const auto& w = powers[2][static_cast<std::size_t>(k)];
+        for (int p = 0; p < 4; ++p)
+            for (int q = 0; q < 4; ++q)
+                for (int s = 0; s < 4; ++s)
+                    moments[p][q][s] += slab[p][q] * w[s];
+    }
+
+    using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 20, 20>; // on the stack
+    using Vector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 20, 1>;
+    Matrix normal(nb, nb);
+    Vector rhs(nb);
+    for (int r = 0; r < nb; ++r) {
+        const auto& ea = MONOMIAL_EXPONENTS[static_cast<std::size_t>(basis[static_cast<std::size_t>(r)])];
+        rhs(r) = moments[ea[0]][ea[1]][ea[2]];
+        for (int s = 0; s < nb; ++s) {
+            const auto& eb = MONOMIAL_EXPONENTS[static_cast<std::size_t>(basis[static_cast<std::size_t>(s)])];
+            normal(r, s) = powerSums[0][ea[0] + eb[0]] * powerSums[1][ea[1] + eb[1]] * powerSums[2][ea[2] + eb[2]];
+        }
+    }
+    const Vector solution = normal.ldlt().solve(rhs);
+
+    BoxOutcome outcome;
+    for (int a = 0; a < 3; ++a)
+        outcome.p[a] = static_cast<float>(centre[a]);
+    for (int r = 0; r < nb; ++r) {
+        const auto& e = MONOMIAL_EXPONENTS[static_cast<std::size_t>(basis[static_cast<std::size_t>(r)])];
+        const double scale = std::pow(half[0], e[0]) * std::pow(half[1], e[1]) * std::pow(half[2], e[2]);
+        outcome.c[static_cast<std::size_t>(basis[static_cast<std::size_t>(r)])] =
+            static_cast<float>(solution(r) / scale);
+    }
+
+    // RSS = sum f^2 - c.b for the least-squares solution; rms > eps proves some residual exceeds eps.
+    if (!isSingleCell(box)) {
+        const double rss = std::max(0.0, sumSquares - solution.dot(rhs));
+        const double m = static_cast<double>(box.pointCount());
+        const double epsMax = eps.maxOverBox(box);
+        if (rss > m * epsMax * epsMax * (1.0 + 1e-6) + 1e-9 * sumSquares) {
+            outcome.accepted = false;
+            outcome.exact = false;
+            outcome.errCriterion = static_cast<float>(std::sqrt(rss / m));
+            return outcome;
+        }
+    }
+    certify(box, eps, outcome, counters);
+    return outcome;
+}
+
+void BoxFitter::certify(const Box& box, const EpsField& eps, BoxOutcome& outcome, FitCounters& counters) const {
+    counters.scans.fetch_add(1, std::memory_order_relaxed);
+    const bool alwaysAccept = isSingleCell(box);
+    const bool varies = eps.varies();
+    const double epsMin = eps.minOverBox(box);
+    const double px = outcome.p[0], py = outcome.p[1], pz = outcome.p[2];
+    double maxSample = 0.0;
+    double maxCriterion = 0.0;
+    bool violated = false;
+
+    auto allowed = [&](double x, double y, double z, double absResidual) {
+        if (absResidual <= epsMin) return true;
+        return varies && absResidual <= eps.at(x, y, z);
+    };
+
+    for (int z = box.lo[2]; z <= box.hi[2] && !violated; ++z) {
+        const SliceCoefficients q = sliceCoefficients(outcome.c, z - pz);
+        for (int y = box.lo[1]; y <= box.hi[1] && !violated; ++y) {
+            const auto r = rowCoefficients(q, y - py);
+            const float* row = mVolume.values.data() + mVolume.indexOf(0, y, z);
+            for (int x = box.lo[0]; x <= box.hi[0]; ++x) {
+                const double res = std::abs(horner(r, x - px) - static_cast<double>(row[x]));
+                maxSample = std::max(maxSample, res);
+                if (!alwaysAccept && !allowed(x, y, z, res)) {
+                    violated = true;
+                    break;
+                }
+            }
+        }
+    }
+    maxCriterion = maxSample;
+
+    if (!violated && mCertify == Certify::Cells) {
+        // Trilinear reference at cell centres and at the midpoints of x-, y- and z-edges (DESIGN §3).
+        const Volume& v = mVolume;
+        auto check = [&](double x, double y, double z, double reference) {
+            const auto r = rowCoefficients(sliceCoefficients(outcome.c, z - pz), y - py);
+            const double res = std::abs(horner(r, x - px) - reference);
+            maxCriterion = std::max(maxCriterion, res);
+            if (!alwaysAccept && !allowed(x, y, z, res)) violated = true;
+        };
+        for (int z = box.lo[2]; z <= box.hi[2] && !violated; ++z)
+            for (int y = box.lo[1]; y <= box.hi[1] && !violated; ++y)
+                for (int x = box.lo[0]; x <= box.hi[0] && !violated; ++x) {
+                    if (x < box.hi[0]) check(x + 0.5, y, z, 0.5 * (v.at(x, y, z) + v.at(x + 1, y, z)));
+                    if (y < box.hi[1]) check(x, y + 0.5, z, 0.5 * (v.at(x, y, z) + v.at(x, y + 1, z)));
+                    if (z < box.hi[2]) check(x, y, z + 0.5, 0.5 * (v.at(x, y, z) + v.at(x, y, z + 1)));
+                    if (x < box.hi[0] && y < box.hi[1] && z < box.hi[2]) {
+                        double sum = 0.0;
+                        for (int c = 0; c < 8; ++c)
+                            sum += v.at(x + (c & 1), y + ((c >> 1) & 1), z + ((c >> 2) & 1));
+                        check(x + 0.5, y + 0.5, z + 0.5, sum / 8.0);
+                    }
+                }
+    }
+    outcome.accepted = !violated;
+    outcome.exact = !violated;
+    outcome.errSamples = roundUpToFloat(maxSample);
+    outcome.errCriterion = roundUpToFloat(maxCriterion);
+}
+
+} // namespace vots::fit

@@ -1,0 +1,41 @@
+// Cache-aware box acceptance: an exact cached error answers a uniform eps without any scan.
+#include "BoxTester.h"
+
+namespace vots::fit {
+
+BoxOutcome BoxTester::test(const Box& box) const {
+    const bool singleCell = box.cellCount() == 1;
+    std::optional<CachedBox> cached;
+    if (mCache) cached = mCache->find(box);
+    if (cached) {
+        BoxOutcome o = cached->outcome;
+        const float epsMin = mEps.minOverBox(box);
+        const float epsMax = mEps.maxOverBox(box);
+        if (o.exact && (singleCell || o.errCriterion <= epsMin)) {
+            mCounters.cacheHits.fetch_add(1, std::memory_order_relaxed);
+            o.accepted = true;
+            return o;
+        }
+        if (o.errCriterion > epsMax) {
+            mCounters.cacheHits.fetch_add(1, std::memory_order_relaxed);
+            o.accepted = false;
+            return o;
+        }
+        if (cached->hasCoefficients) {
+            // Between the bounds only a scan with the stored coefficients can decide.
+            mCounters.cacheHits.fetch_add(1, std::memory_order_relaxed);
+            mFitter.certify(box, mEps, o, mCounters);
+            if (o.exact) mCache->store(box, CachedBox{o, true});
+            return o;
+        }
+    }
+    BoxOutcome o = mFitter.fit(box, mEps, mCounters);
+    if (mCache) {
+        // A scan that stopped early still fitted the coefficients; an RSS reject did too, but its
+        // error is only a lower bound, which is all a later, larger eps needs to know.
+        mCache->store(box, CachedBox{o, true});
+    }
+    return o;
+}
+
+} // namespace vots::fit

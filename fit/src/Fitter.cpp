@@ -1,0 +1,102 @@
+// fitVotSpace: validates options, builds the background mask, runs a generator, assembles the Vot-Space.
+#include "vots/fit/Fitter.h"
+
+#include "BoxFit.h"
+#include "BoxTester.h"
+#include "CellMask.h"
+#include "FitCacheImpl.h"
+#include "PaperGrowth.h"
+#include "ParallelFor.h"
+#include "SplitMerge.h"
+#include "vots/fit/Error.h"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace vots::fit {
+
+float defaultBackground(const Volume& volume) {
+    const auto range = volume.valueRange();
+    return range[0] + 0.01f * (range[1] - range[0]);
+}
+
+void validateFitOptions(const Volume& volume, const FitOptions& options) {
+    if (!std::isfinite(options.eps) || options.eps <= 0.f)
+        throw InputError("eps must be a finite number > 0 (got " + std::to_string(options.eps) + ")");
+    if (options.degree < 0 || options.degree > 3)
+        throw InputError("degree must be 0, 1, 2 or 3 (got " + std::to_string(options.degree) + ")");
+    if (options.background && std::isnan(*options.background)) throw InputError("background threshold is NaN");
+    if (options.threads < 0 || options.threads > 256) throw InputError("threads must be between 0 and 256");
+    for (int a = 0; a < 3; ++a)
+        if (volume.dims[a] < 2)
+            throw InputError("volume needs at least 2 grid points along every axis to form a cell");
+    if (volume.values.size() != volume.sampleCount()) throw InputError("volume sample count does not match its dims");
+    if (options.focus) {
+        const auto& f = *options.focus;
+        for (int a = 0; a < 3; ++a)
+            if (!std::isfinite(f.centerIndex[a]) || f.centerIndex[a] < 0.0 || f.centerIndex[a] > volume.dims[a] - 1)
+                throw InputError("focus centre must lie inside the grid (index space)");
+        if (!std::isfinite(f.radius) || f.radius <= 0.0) throw InputError("focus radius must be > 0");
+        if (!std::isfinite(f.epsFocus) || f.epsFocus < 0.f || f.epsFocus > options.eps)
+            throw InputError("eps-focus must be between 0 and eps");
+    }
+}
+
+FitResult fitVotSpace(const Volume& volume, const FitOptions& options, FitCache* cache) {
+    validateFitOptions(volume, options);
+    const auto start = std::chrono::steady_clock::now();
+
+    const CellMask mask(volume, options.background);
+    const EpsField eps(options.eps, options.focus);
+    const BoxFitter fitter(volume, options.degree, options.certify);
+    FitCounters counters;
+    FitCache::Impl* cacheImpl = nullptr;
+    if (cache) {
+        cacheImpl = &cache->impl();
+        cacheImpl->bind(volume, options.degree, options.certify);
+    }
+    const BoxTester tester(fitter, eps, counters, cacheImpl);
+    const FitControl control{resolveThreadCount(options.threads), options.progress, options.cancel};
+
+    std::vector<FittedBox> boxes;
+    if (options.method == FitMethod::Paper) {
+        boxes = greedyCover(growSeeds(mask, tester, control), mask, control);
+    } else {
+        boxes = splitBricks(mask, tester, control);
+        if (control.progress) control.progress(0.9, "merge");
+        mergeNeighbours(boxes, tester, control); // across brick borders
+    }
+    if (control.progress) control.progress(1.0, "done");
+
+    FitResult result;
+    VotSpace& space = result.space;
+    space.dims = volume.dims;
+    space.origin = volume.origin;
+    space.spacing = volume.spacing;
+    space.eps = options.eps;
+    space.background = options.background ? *options.background : std::numeric_limits<float>::lowest();
+    space.epsVaries = eps.varies();
+    space.degree = 0;
+    space.vots.reserve(boxes.size());
+    for (const auto& fb : boxes) {
+        Vot vot;
+        vot.box = fb.box;
+        vot.p = fb.outcome.p;
+        vot.err = fb.outcome.errSamples;
+        vot.c = fb.outcome.c;
+        space.degree = std::max(space.degree, vot.effectiveDegree());
+        result.stats.maxError = std::max(result.stats.maxError, static_cast<double>(vot.err));
+        space.vots.push_back(vot);
+    }
+    result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    result.stats.boxFits = counters.fits.load();
+    result.stats.boxScans = counters.scans.load();
+    result.stats.cacheHits = counters.cacheHits.load();
+    result.stats.coveredCells = static_cast<std::size_t>(mask.totalForeground());
+    result.stats.backgroundCells = static_cast<std::size_t>(mask.totalCells() - mask.totalForeground());
+    return result;
+}
+
+} // namespace vots::fit

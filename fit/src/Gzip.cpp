@@ -1,0 +1,130 @@
+// Private: zlib inflation of gzip or zlib streams with exact, checked sizes; no decompressor of our own.
+#include "Gzip.h"
+
+#include "InputFile.h"
+
+#include <algorithm>
+#include <climits>
+#include <utility>
+#include <zlib.h>
+
+namespace vots::fit::detail {
+
+namespace {
+constexpr std::size_t MAX_CHUNK = UINT_MAX; // zlib counts in uInt
+constexpr std::size_t FIRST_ALLOCATION = std::size_t{1} << 20;
+} // namespace
+
+struct Inflater::State {
+    z_stream stream{};
+    const unsigned char* next = nullptr; // input not yet handed to zlib
+    std::size_t left = 0;
+    bool ended = false;
+};
+
+bool hasGzipMagic(const unsigned char* data, std::size_t size) {
+    return size >= 2 && data[0] == 0x1f && data[1] == 0x8b;
+}
+
+Inflater::Inflater(std::string path, const unsigned char* data, std::size_t size)
+    : mPath(std::move(path)), mState(std::make_unique<State>()) {
+    mState->next = data;
+    mState->left = size;
+    // 15 + 32: window of 32 KiB, and let zlib detect a gzip or zlib header by itself.
+    if (inflateInit2(&mState->stream, 15 + 32) != Z_OK) throwInputError(mPath, "cannot start zlib inflate");
+}
+
+Inflater::~Inflater() {
+    inflateEnd(&mState->stream);
+}
+
+std::size_t Inflater::read(unsigned char* out, std::size_t count) {
+    State& s = *mState;
+    std::size_t done = 0;
+    while (done < count && !s.ended) {
+        if (s.stream.avail_in == 0 && s.left > 0) {
+            const std::size_t chunk = std::min(s.left, MAX_CHUNK);
+            s.stream.next_in = const_cast<unsigned char*>(s.next); // zlib's API is not const-correct
+            s.stream.avail_in = static_cast<uInt>(chunk);
+            s.next += chunk;
+            s.left -= chunk;
+        }
+        const std::size_t room = std::min(count - done, MAX_CHUNK);
+        s.stream.next_out = out + done;
+        s.stream.avail_out = static_cast<uInt>(room);
+        const int rc = inflate(&s.stream, Z_NO_FLUSH);
+        done += room - s.stream.avail_out;
+        if (rc == Z_STREAM_END) {
+            // Another gzip member may follow (as `cat a.gz b.gz` makes); zero padding is tolerated.
+            const std::size_t rest = s.stream.avail_in + s.left;
+            const unsigned char* tail = s.stream.next_in;
+            if (s.stream.avail_in >= 2 && hasGzipMagic(tail, s.stream.avail_in)) {
+                inflateReset(&s.stream);
+                continue;
+            }
+            const bool zeros =
+                std::all_of(tail, tail + s.stream.avail_in, [](unsigned char c) { return c == 0; }) &&
+                std::all_of(s.next, s.next + s.left, [](unsigned char c) { return c == 0; });
+            if (!zeros)
+                throwInputError(mPath,
+                                "unexpected " + std::to_string(rest) + " bytes after the compressed stream");
+            s.ended = true;
+        } else if (rc == Z_BUF_ERROR ||
+                   (rc == Z_OK && s.stream.avail_in == 0 && s.left == 0 && s.stream.avail_out > 0)) {
+            if (s.stream.avail_in == 0 && s.left == 0)
+                throwInputError(mPath, "compressed data is truncated (stream ends after " +
+                                           std::to_string(mProduced + done) + " decompressed bytes)");
+        } else if (rc != Z_OK) {
+            const std::string why = s.stream.msg ? s.stream.msg : "error " + std::to_string(rc);
+            throwInputError(mPath, "corrupt compressed data (zlib: " + why + ")");
+        }
+    }
+    mProduced += done;
+    return done;
+}
+
+std::vector<unsigned char> Inflater::readExactly(std::size_t count) {
+    std::vector<unsigned char> out;
+    std::size_t have = 0;
+    while (have < count) {
+        // Grow by doubling, so memory follows real data rather than the header's claim.
+        const std::size_t target = std::min(count, std::max(FIRST_ALLOCATION, have * 2));
+        out.resize(target);
+        const std::size_t got = read(out.data() + have, target - have);
+        have += got;
+        if (have < target) break;
+    }
+    if (have < count)
+        throwInputError(mPath, "decompressed data is too short: " + std::to_string(mProduced) +
+                                   " bytes in all, needed " + std::to_string(mProduced - have + count));
+    return out;
+}
+
+void Inflater::skip(std::size_t count) {
+    std::vector<unsigned char> scratch(std::min<std::size_t>(count, 1 << 16));
+    std::size_t left = count;
+    while (left > 0) {
+        const std::size_t want = std::min(left, scratch.size());
+        if (read(scratch.data(), want) < want)
+            throwInputError(mPath, "decompressed data ends after " + std::to_string(mProduced) +
+                                       " bytes, before the data starts");
+        left -= want;
+    }
+}
+
+void Inflater::expectEnd() {
+    unsigned char extra = 0;
+    if (read(&extra, 1) != 0)
+        throwInputError(mPath, "decompressed data is longer than the header says (" +
+                                   std::to_string(mProduced - 1) + " bytes expected)");
+}
+
+std::vector<unsigned char> inflateExact(const std::string& path, const unsigned char* data, std::size_t size,
+                                        std::size_t expected) {
+    Inflater inflater(path, data, size);
+    std::vector<unsigned char> out = inflater.readExactly(expected);
+    inflater.expectEnd();
+    return out;
+}
+
+} // namespace vots::fit::detail

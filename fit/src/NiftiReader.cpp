@@ -1,0 +1,204 @@
+// Reads single-file NIfTI-1 volumes (.nii, .nii.gz) of either byte order; no NIfTI-2, pairs or 4D series.
+#include "vots/fit/VolumeLoad.h"
+
+#include "Gzip.h"
+#include "InputFile.h"
+#include "SampleDecode.h"
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+
+namespace vots::fit {
+
+namespace {
+
+using namespace detail;
+
+constexpr std::size_t HEADER_BYTES = 348;
+constexpr double MAX_VOX_OFFSET = 1 << 30;
+
+// The NIfTI-1 header fields we use, read at their fixed offsets with the file's byte order.
+class HeaderView {
+public:
+    HeaderView(const unsigned char* bytes, bool swap) : mBytes(bytes), mSwap(swap) {}
+
+    std::int16_t int16(std::size_t offset) const {
+        return std::bit_cast<std::int16_t>(bits<std::uint16_t>(offset));
+    }
+    std::int32_t int32(std::size_t offset) const {
+        return std::bit_cast<std::int32_t>(bits<std::uint32_t>(offset));
+    }
+    float float32(std::size_t offset) const { return std::bit_cast<float>(bits<std::uint32_t>(offset)); }
+
+private:
+    template <typename U> U bits(std::size_t offset) const {
+        U value;
+        std::memcpy(&value, mBytes + offset, sizeof(U));
+        return mSwap ? byteSwapped(value) : value;
+    }
+
+    const unsigned char* mBytes;
+    bool mSwap;
+};
+
+struct NiftiInfo {
+    CheckedShape shape;
+    ScalarType type = ScalarType::UInt8;
+    bool bigEndian = false;
+    std::size_t voxOffset = 0;
+    double slope = 0.0; // 0: no scaling
+    double inter = 0.0;
+    std::array<double, 3> spacing{1.0, 1.0, 1.0};
+    std::array<double, 3> origin{0.0, 0.0, 0.0};
+};
+
+ScalarType niftiType(const std::string& path, int datatype) {
+    switch (datatype) {
+    case 2:
+        return ScalarType::UInt8;
+    case 4:
+        return ScalarType::Int16;
+    case 8:
+        return ScalarType::Int32;
+    case 16:
+        return ScalarType::Float32;
+    case 64:
+        return ScalarType::Float64;
+    case 256:
+        return ScalarType::Int8;
+    case 512:
+        return ScalarType::UInt16;
+    case 768:
+        return ScalarType::UInt32;
+    default:
+        break;
+    }
+    throwInputError(path, "unsupported NIfTI datatype " + std::to_string(datatype) +
+                              " (supported: 2, 4, 8, 16, 64, 256, 512, 768: scalar integers and floats)");
+}
+
+NiftiInfo parseHeader(const std::string& path, const unsigned char* bytes) {
+    // sizeof_hdr is 348 in the file's byte order: that is how NIfTI marks endianness.
+    const bool hostBig = std::endian::native == std::endian::big;
+    NiftiInfo info;
+    bool swap = false;
+    if (HeaderView(bytes, false).int32(0) == 348)
+        swap = false;
+    else if (HeaderView(bytes, true).int32(0) == 348)
+        swap = true;
+    else if (HeaderView(bytes, false).int32(0) == 540 || HeaderView(bytes, true).int32(0) == 540)
+        throwInputError(path, "is NIfTI-2, which is not supported (only NIfTI-1)");
+    else
+        throwInputError(path, "not a NIfTI-1 file (sizeof_hdr is not 348)");
+    info.bigEndian = swap != hostBig;
+    const HeaderView h(bytes, swap);
+
+    if (std::memcmp(bytes + 344, "ni1", 4) == 0)
+        throwInputError(path, "is a NIfTI .hdr/.img pair; only single-file .nii/.nii.gz is supported");
+    if (std::memcmp(bytes + 344, "n+1", 4) != 0)
+        throwInputError(path, "bad NIfTI-1 magic (expected \"n+1\")");
+
+    const int rank = h.int16(40);
+    if (rank < 3 || rank > 7)
+        throwInputError(path, "has " + std::to_string(rank) + " dimensions; only 3D volumes are supported");
+    for (int a = 4; a <= rank; ++a)
+        if (h.int16(40 + 2 * a) != 1)
+            throwInputError(path, "dim[" + std::to_string(a) + "] is " + std::to_string(h.int16(40 + 2 * a)) +
+                                      "; only 3D volumes are supported");
+
+    info.type = niftiType(path, h.int16(70));
+    const int bitpix = h.int16(72);
+    if (bitpix != static_cast<int>(8 * scalarTypeSize(info.type)))
+        throwInputError(path, "bitpix " + std::to_string(bitpix) + " does not match datatype " +
+                                  std::to_string(h.int16(70)));
+    info.shape = checkShape(path, {h.int16(42), h.int16(44), h.int16(46)}, info.type);
+
+    for (int a = 0; a < 3; ++a) {
+        const float pixdim = h.float32(80 + 4 * static_cast<std::size_t>(a));
+        if (!std::isfinite(pixdim) || pixdim == 0.0f)
+            throwInputError(path, "pixdim[" + std::to_string(a + 1) + "] is zero or not finite");
+        info.spacing[a] = std::fabs(static_cast<double>(pixdim));
+    }
+
+    const double voxOffset = h.float32(108);
+    if (!(voxOffset >= HEADER_BYTES && voxOffset <= MAX_VOX_OFFSET) || voxOffset != std::floor(voxOffset))
+        throwInputError(path, "bad vox_offset " + std::to_string(voxOffset));
+    info.voxOffset = static_cast<std::size_t>(voxOffset);
+
+    // Scaling applies when scl_slope is a finite non-zero number other than the identity (1, 0).
+    const double slope = h.float32(112);
+    const double inter = h.float32(116);
+    if (std::isfinite(slope) && slope != 0.0 && !(slope == 1.0 && inter == 0.0)) {
+        if (!std::isfinite(inter)) throwInputError(path, "scl_inter is not finite");
+        info.slope = slope;
+        info.inter = inter;
+    }
+
+    // Origin: sform translation when present, else the qform offset, else 0 (NIfTI method 1).
+    if (h.int16(254) > 0)
+        info.origin = {h.float32(292), h.float32(308), h.float32(324)};
+    else if (h.int16(252) > 0)
+        info.origin = {h.float32(268), h.float32(272), h.float32(276)};
+    for (const double o : info.origin)
+        if (!std::isfinite(o)) throwInputError(path, "origin (qoffset/srow) is not finite");
+    return info;
+}
+
+std::vector<unsigned char> readPlain(const std::string& path, std::uint64_t fileSize, NiftiInfo& info) {
+    if (fileSize < HEADER_BYTES)
+        throwInputError(path, "too short for a NIfTI-1 header (" + std::to_string(fileSize) + " bytes)");
+    const std::vector<unsigned char> header = readFileBytes(path, 0, HEADER_BYTES);
+    info = parseHeader(path, header.data());
+    const std::uint64_t expected = info.voxOffset + static_cast<std::uint64_t>(info.shape.bytes);
+    if (fileSize > expected)
+        throwInputError(path, "holds " + std::to_string(fileSize) + " bytes but the header describes " +
+                                  std::to_string(expected) + " (wrong dims or datatype?)");
+    return readFileBytes(path, info.voxOffset, info.shape.bytes);
+}
+
+std::vector<unsigned char> readGzipped(const std::string& path, std::uint64_t fileSize, NiftiInfo& info) {
+    const std::vector<unsigned char> packed = readFileBytes(path, 0, static_cast<std::size_t>(fileSize));
+    Inflater inflater(path, packed.data(), packed.size());
+    const std::vector<unsigned char> header = inflater.readExactly(HEADER_BYTES);
+    info = parseHeader(path, header.data());
+    inflater.skip(info.voxOffset - HEADER_BYTES);
+    std::vector<unsigned char> payload = inflater.readExactly(info.shape.bytes);
+    inflater.expectEnd();
+    return payload;
+}
+
+} // namespace
+
+Volume loadNifti(const std::string& path) {
+    const std::uint64_t fileSize = regularFileSize(path);
+    const std::vector<unsigned char> magic = readFileBytes(path, 0, fileSize < 2 ? 0 : 2);
+    NiftiInfo info;
+    const std::vector<unsigned char> payload = hasGzipMagic(magic.data(), magic.size())
+                                                   ? readGzipped(path, fileSize, info)
+                                                   : readPlain(path, fileSize, info);
+    Volume volume;
+    volume.dims = info.shape.dims;
+    volume.spacing = info.spacing;
+    volume.origin = info.origin;
+    volume.sourceType = info.type;
+    volume.name = fileStem(path);
+    volume.values = decodeSamples(path, payload.data(), info.shape.samples, info.type, info.bigEndian);
+    if (info.slope != 0.0) {
+        std::size_t bad = 0;
+        for (float& v : volume.values) {
+            const double scaled = v * info.slope + info.inter;
+            const bool ok = std::fabs(scaled) <= std::numeric_limits<float>::max();
+            bad += ok ? 0 : 1;
+            v = ok ? static_cast<float>(scaled) : 0.0f;
+        }
+        if (bad > 0)
+            throwInputError(path,
+                            std::to_string(bad) + " samples leave float range after scl_slope/scl_inter");
+    }
+    return volume;
+}
+
+} // namespace vots::fit

@@ -1,0 +1,307 @@
+// Reads NRRD volumes: attached (.nrrd) or detached (.nhdr) headers, raw or gzip encoding, 3D scalars only.
+#include "vots/fit/VolumeLoad.h"
+
+#include "vots/fit/Error.h"
+
+#include "Gzip.h"
+#include "HeaderText.h"
+#include "InputFile.h"
+#include "SampleDecode.h"
+
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <utility>
+
+namespace vots::fit {
+
+namespace {
+
+using namespace detail;
+
+constexpr std::size_t MAX_HEADER_BYTES = std::size_t{1} << 20;
+constexpr long long MAX_DATA_FILES = 100000;
+
+struct NrrdHeader {
+    std::string type, sizes, spacings, directions, origin, endian, encoding, dataFile;
+    long long dimension = 0;
+    long long lineSkip = 0;
+    long long byteSkip = 0;
+    std::vector<std::string> listedFiles;    // the names after "data file: LIST"
+    std::optional<std::uint64_t> dataOffset; // attached data starts here, just past the blank line
+};
+
+// Field names have old spellings without blanks ("datafile", "lineskip").
+std::string canonicalKey(const std::string& key) {
+    const std::string lower = toLower(trim(key));
+    if (lower == "datafile") return "data file";
+    if (lower == "lineskip") return "line skip";
+    if (lower == "byteskip") return "byte skip";
+    return lower;
+}
+
+long long integerField(const std::string& path, const std::string& key, const std::string& value) {
+    return parseIntegers(path, key, value, 1)[0];
+}
+
+NrrdHeader parseHeader(const std::string& path, const std::string& text, std::uint64_t fileSize) {
+    if (text.size() < 8 || text.compare(0, 7, "NRRD000") != 0)
+        throwInputError(path, "not a NRRD file (it does not start with NRRD000x)");
+    NrrdHeader header;
+    HeaderLine line = lineAt(text, 0);
+    bool inList = false;
+    while (line.next < text.size()) {
+        line = lineAt(text, line.next);
+        if (!line.complete && text.size() < fileSize)
+            throwInputError(path, "header is longer than " + std::to_string(MAX_HEADER_BYTES) + " bytes");
+        if (line.text.empty()) {
+            header.dataOffset = line.next;
+            break;
+        }
+        if (inList) {
+            header.listedFiles.push_back(trim(line.text));
+            continue;
+        }
+        if (line.text.front() == '#' || line.text.find(":=") != std::string::npos)
+            continue; // comment, key/value
+        const std::size_t colon = line.text.find(':');
+        if (colon == std::string::npos)
+            throwInputError(path, "bad header line '" + quotable(line.text) + "'");
+        const std::string key = canonicalKey(line.text.substr(0, colon));
+        const std::string value = trim(line.text.substr(colon + 1));
+        if (key == "type")
+            header.type = value;
+        else if (key == "dimension")
+            header.dimension = integerField(path, key, value);
+        else if (key == "sizes")
+            header.sizes = value;
+        else if (key == "spacings")
+            header.spacings = value;
+        else if (key == "space directions")
+            header.directions = value;
+        else if (key == "space origin")
+            header.origin = value;
+        else if (key == "endian")
+            header.endian = toLower(value);
+        else if (key == "encoding")
+            header.encoding = toLower(value);
+        else if (key == "line skip")
+            header.lineSkip = integerField(path, key, value);
+        else if (key == "byte skip")
+            header.byteSkip = integerField(path, key, value);
+        else if (key == "data file") {
+            header.dataFile = value;
+            const std::vector<std::string> words = splitWords(value);
+            inList = !words.empty() && words[0] == "LIST";
+        }
+        // Other fields (kinds, centers, space, units, content, ...) do not change the samples.
+    }
+    return header;
+}
+
+// "(1,0,0) (0,1.5,0) none" -> one vector per entry; "none" gives an empty vector.
+std::vector<std::vector<double>> parseVectors(const std::string& path, const std::string& field,
+                                              const std::string& value) {
+    std::vector<std::vector<double>> vectors;
+    std::size_t i = 0;
+    while (i < value.size()) {
+        if (value[i] == ' ' || value[i] == '\t') {
+            ++i;
+        } else if (value[i] == '(') {
+            const std::size_t close = value.find(')', i);
+            if (close == std::string::npos) throwInputError(path, "'" + field + "' has an unclosed '('");
+            std::string inner = value.substr(i + 1, close - i - 1);
+            for (char& c : inner)
+                if (c == ',') c = ' ';
+            const std::vector<std::string> words = splitWords(inner);
+            vectors.push_back(parseReals(path, field, inner, words.size()));
+            i = close + 1;
+        } else if (value.compare(i, 4, "none") == 0) {
+            vectors.emplace_back();
+            i += 4;
+        } else {
+            throwInputError(path,
+                            "'" + field + "' is not a list of (x,y,z) vectors: '" + quotable(value) + "'");
+        }
+    }
+    return vectors;
+}
+
+std::array<double, 3> readSpacing(const std::string& path, const NrrdHeader& header) {
+    std::array<double, 3> spacing{1.0, 1.0, 1.0};
+    if (!header.directions.empty()) {
+        const auto vectors = parseVectors(path, "space directions", header.directions);
+        if (vectors.size() != 3) throwInputError(path, "'space directions' needs 3 vectors");
+        for (int a = 0; a < 3; ++a) {
+            if (vectors[a].empty()) throwInputError(path, "'space directions' has 'none' for a spatial axis");
+            double squares = 0.0;
+            for (const double v : vectors[a])
+                squares += v * v;
+            spacing[a] = checkedSpacing(path, "space directions", std::sqrt(squares));
+        }
+    } else if (!header.spacings.empty()) {
+        const std::vector<double> values = parseReals(path, "spacings", header.spacings, 3);
+        for (int a = 0; a < 3; ++a) // NRRD writes "nan" for an axis without spacing
+            spacing[a] = std::isnan(values[a]) ? 1.0 : checkedSpacing(path, "spacings", values[a]);
+    }
+    return spacing;
+}
+
+std::array<double, 3> readOrigin(const std::string& path, const NrrdHeader& header) {
+    std::array<double, 3> origin{0.0, 0.0, 0.0};
+    if (header.origin.empty()) return origin;
+    const auto vectors = parseVectors(path, "space origin", header.origin);
+    if (vectors.size() != 1 || vectors[0].size() != 3)
+        throwInputError(path, "'space origin' must be one (x,y,z)");
+    for (int a = 0; a < 3; ++a) {
+        if (!std::isfinite(vectors[0][a])) throwInputError(path, "'space origin' is not finite");
+        origin[a] = vectors[0][a];
+    }
+    return origin;
+}
+
+// "slice%03d.raw 1 93 1 [subdim]" -> slice001.raw ... slice093.raw. Only %d with an optional
+// zero flag and width is accepted, so a hostile format string is never handed to printf.
+std::vector<std::string> expandPattern(const std::string& path, const std::vector<std::string>& words) {
+    const std::string& format = words[0];
+    const std::size_t percent = format.find('%');
+    std::size_t i = percent + 1;
+    const bool zeroPad = i < format.size() && format[i] == '0';
+    std::size_t width = 0;
+    while (i < format.size() && format[i] >= '0' && format[i] <= '9' && width < 100)
+        width = width * 10 + static_cast<std::size_t>(format[i++] - '0');
+    if (i >= format.size() || format[i] != 'd' || format.find('%', i) != std::string::npos)
+        throwInputError(path, "'data file' pattern '" + quotable(format) + "' must contain exactly one %d");
+    const std::string prefix = format.substr(0, percent);
+    const std::string suffix = format.substr(i + 1);
+    const auto first = parseInteger(words[1]);
+    const auto last = parseInteger(words[2]);
+    const auto step = parseInteger(words[3]);
+    if (!first || !last || !step || *step == 0 || (*last - *first) / *step < 0 ||
+        (*last - *first) / *step >= MAX_DATA_FILES)
+        throwInputError(path, "'data file' pattern needs <min> <max> <step> describing 1 to " +
+                                  std::to_string(MAX_DATA_FILES) + " files");
+    std::vector<std::string> names;
+    for (long long n = *first; *step > 0 ? n <= *last : n >= *last; n += *step) {
+        std::string number = std::to_string(n);
+        if (number.size() < width) // printf pads zeros after the sign, blanks before it
+            number.insert(zeroPad && n < 0 ? 1 : 0, width - number.size(), zeroPad ? '0' : ' ');
+        names.push_back(prefix + number + suffix);
+    }
+    return names;
+}
+
+// The files holding the samples and where each one's data starts.
+std::vector<std::pair<std::string, std::uint64_t>> dataSources(const std::string& path,
+                                                               const NrrdHeader& header) {
+    std::vector<std::pair<std::string, std::uint64_t>> sources;
+    if (header.dataFile.empty()) {
+        if (!header.dataOffset)
+            throwInputError(path,
+                            "no data: neither a blank line before attached data nor a 'data file' field");
+        sources.emplace_back(path, *header.dataOffset);
+        return sources;
+    }
+    const std::vector<std::string> words = splitWords(header.dataFile);
+    std::vector<std::string> names;
+    if (words[0] == "LIST")
+        names = header.listedFiles;
+    else if (words.size() >= 4 && words[0].find('%') != std::string::npos)
+        names = expandPattern(path, words);
+    else
+        names.push_back(header.dataFile);
+    if (names.empty()) throwInputError(path, "'data file: LIST' names no files");
+    for (const std::string& name : names) {
+        const std::string file = pathBesideHeader(path, name);
+        try {
+            regularFileSize(file);
+        } catch (const InputError& error) {
+            throwInputError(path, "data file '" + name + "' cannot be used (" + error.what() + ")");
+        }
+        sources.emplace_back(file, 0);
+    }
+    return sources;
+}
+
+// Reads one data file's share of the payload (`bytes` long) and appends it.
+void appendData(const NrrdHeader& header, bool gzip, const std::string& file, std::uint64_t offset,
+                std::size_t bytes, std::vector<unsigned char>& payload) {
+    const std::uint64_t size = regularFileSize(file);
+    if (header.lineSkip > 0) offset = skipLines(file, offset, header.lineSkip);
+    std::vector<unsigned char> part;
+    if (gzip) {
+        if (header.byteSkip < 0) throwInputError(file, "'byte skip: -1' cannot be used with gzip encoding");
+        const std::vector<unsigned char> packed =
+            readFileBytes(file, offset, static_cast<std::size_t>(size - offset));
+        Inflater inflater(file, packed.data(), packed.size());
+        inflater.skip(static_cast<std::size_t>(header.byteSkip)); // byte skip counts decompressed bytes
+        part = inflater.readExactly(bytes);
+        inflater.expectEnd();
+    } else {
+        // byte skip -1: the samples are the last bytes of the file, whatever precedes them.
+        const std::uint64_t start = header.byteSkip < 0
+                                        ? (size >= bytes ? size - bytes : 0)
+                                        : offset + static_cast<std::uint64_t>(header.byteSkip);
+        const std::uint64_t have = size > start ? size - start : 0;
+        if (have > bytes)
+            throwInputError(file, "holds " + std::to_string(have) + " data bytes but the header describes " +
+                                      std::to_string(bytes) + " (wrong sizes or type?)");
+        part = readFileBytes(file, start, bytes);
+    }
+    if (payload.empty())
+        payload = std::move(part);
+    else
+        payload.insert(payload.end(), part.begin(), part.end());
+}
+
+} // namespace
+
+Volume loadNrrd(const std::string& path) {
+    const std::uint64_t fileSize = regularFileSize(path);
+    const std::string text = readFilePrefix(path, MAX_HEADER_BYTES);
+    const NrrdHeader header = parseHeader(path, text, fileSize);
+
+    if (header.dimension != 3)
+        throwInputError(path, "dimension is " + std::to_string(header.dimension) +
+                                  "; only 3D volumes are supported");
+    if (header.type.empty()) throwInputError(path, "missing 'type' field");
+    const std::optional<ScalarType> type = findScalarType(header.type);
+    if (!type)
+        throwInputError(path, "unsupported type '" + quotable(header.type) +
+                                  "' (supported: int8, uint8, int16, uint16, int32, uint32, float, double)");
+    if (header.sizes.empty()) throwInputError(path, "missing 'sizes' field");
+    const std::vector<long long> sizes = parseIntegers(path, "sizes", header.sizes, 3);
+    const CheckedShape shape = checkShape(path, {sizes[0], sizes[1], sizes[2]}, *type);
+
+    const bool gzip = header.encoding == "gzip" || header.encoding == "gz";
+    if (!gzip && header.encoding != "raw")
+        throwInputError(path, header.encoding.empty() ? "missing 'encoding' field"
+                                                      : "unsupported encoding '" + quotable(header.encoding) +
+                                                            "' (supported: raw, gzip)");
+    if (scalarTypeSize(*type) > 1 && header.endian != "little" && header.endian != "big")
+        throwInputError(path, header.endian.empty() ? "missing 'endian' field for a multi-byte type"
+                                                    : "bad 'endian' value '" + quotable(header.endian) + "'");
+    if (header.lineSkip < 0) throwInputError(path, "'line skip' is negative");
+    if (header.byteSkip < -1) throwInputError(path, "'byte skip' must be -1 or at least 0");
+
+    Volume volume;
+    volume.dims = shape.dims;
+    volume.spacing = readSpacing(path, header);
+    volume.origin = readOrigin(path, header);
+    volume.sourceType = *type;
+    volume.name = fileStem(path);
+
+    const auto sources = dataSources(path, header);
+    if (shape.bytes % sources.size() != 0)
+        throwInputError(path, std::to_string(sources.size()) + " data files cannot split " +
+                                  std::to_string(shape.bytes) + " bytes evenly");
+    const std::size_t perFile = shape.bytes / sources.size();
+    std::vector<unsigned char> payload;
+    for (const auto& [file, offset] : sources)
+        appendData(header, gzip, file, offset, perFile, payload);
+
+    volume.values = decodeSamples(path, payload.data(), shape.samples, *type, header.endian == "big");
+    return volume;
+}
+
+} // namespace vots::fit

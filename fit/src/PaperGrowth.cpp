@@ -1,0 +1,91 @@
+// Seed-and-grow, faithful to the paper: extend one face by one layer, keep it if F(T) <= eps, until stuck.
+#include "PaperGrowth.h"
+
+#include "ParallelFor.h"
+
+#include <algorithm>
+#include <mutex>
+
+namespace vots::fit {
+namespace {
+
+FittedBox growSeed(const Box& seed, const std::array<int, 3>& pointDims, const BoxTester& tester) {
+    FittedBox current{seed, tester.test(seed)};
+    bool blocked[6] = {false, false, false, false, false, false};
+    bool grew = true;
+    while (grew) {
+        grew = false;
+        // Faces in the fixed order +x, -x, +y, -y, +z, -z, one layer per attempt.
+        for (int face = 0; face < 6; ++face) {
+            if (blocked[face]) continue;
+            const int axis = face / 2;
+            const bool high = face % 2 == 0;
+            Box candidate = current.box;
+            if (high) {
+                if (candidate.hi[axis] + 1 >= pointDims[axis]) {
+                    blocked[face] = true;
+                    continue;
+                }
+                ++candidate.hi[axis];
+            } else {
+                if (candidate.lo[axis] == 0) {
+                    blocked[face] = true;
+                    continue;
+                }
+                --candidate.lo[axis];
+            }
+            BoxOutcome outcome = tester.test(candidate);
+            if (outcome.accepted) {
+                current = {candidate, outcome};
+                grew = true;
+            } else {
+                blocked[face] = true;
+            }
+        }
+    }
+    return current;
+}
+
+bool boxLess(const Box& a, const Box& b) {
+    if (a.lo != b.lo) return a.lo < b.lo;
+    return a.hi < b.hi;
+}
+
+} // namespace
+
+std::vector<FittedBox> growSeeds(const CellMask& mask, const BoxTester& tester, const FitControl& control) {
+    const auto cells = mask.cellDims();
+    const std::array<int, 3> pointDims{cells[0] + 1, cells[1] + 1, cells[2] + 1};
+    const std::size_t slabs = static_cast<std::size_t>(cells[2]);
+    std::vector<std::vector<FittedBox>> perSlab(slabs);
+    std::atomic<std::size_t> done{0};
+    std::mutex progressMutex;
+    parallelFor(slabs, control.threads, [&](std::size_t k, int) {
+        auto& out = perSlab[k];
+        for (int j = 0; j < cells[1]; ++j)
+            for (int i = 0; i < cells[0]; ++i) {
+                if (mask.isBackground(i, j, static_cast<int>(k))) continue;
+                control.checkCancel();
+                const Box seed{{i, j, static_cast<int>(k)}, {i + 1, j + 1, static_cast<int>(k) + 1}};
+                out.push_back(growSeed(seed, pointDims, tester));
+            }
+        // Neighbouring seeds often grow into the same box; keep one of each.
+        std::sort(out.begin(), out.end(), [](const FittedBox& a, const FittedBox& b) { return boxLess(a.box, b.box); });
+        out.erase(std::unique(out.begin(), out.end(), [](const FittedBox& a, const FittedBox& b) { return a.box == b.box; }),
+                  out.end());
+        const std::size_t finished = done.fetch_add(1) + 1;
+        if (control.progress) {
+            std::lock_guard lock(progressMutex);
+            control.progress(0.9 * static_cast<double>(finished) / static_cast<double>(slabs), "grow");
+        }
+    });
+    std::vector<FittedBox> all;
+    for (auto& v : perSlab)
+        all.insert(all.end(), v.begin(), v.end());
+    std::sort(all.begin(), all.end(), [](const FittedBox& a, const FittedBox& b) { return boxLess(a.box, b.box); });
+    all.erase(std::unique(all.begin(), all.end(), [](const FittedBox& a, const FittedBox& b) { return a.box == b.box; }),
+              all.end());
+    return all;
+}
+
+} // namespace vots::fit

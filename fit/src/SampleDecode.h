@@ -1,0 +1,50 @@
+// Private: sample type sizes and spellings, size limits, and bytes -> float decoding for every reader.
+#pragma once
+
+#include "vots/fit/Volume.h"
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace vots::fit::detail {
+
+/// Sanity caps: beyond these a header is taken to be lying (or the volume is not for this tool).
+inline constexpr std::uint64_t MAX_SAMPLES = std::uint64_t{1} << 31;
+inline constexpr std::uint64_t MAX_PAYLOAD_BYTES = std::uint64_t{16} << 30;
+
+/// Grid dimensions that passed the checks, with the payload size they imply.
+struct CheckedShape {
+    std::array<int, 3> dims{0, 0, 0};
+    std::size_t samples = 0;
+    std::size_t bytes = 0;
+};
+
+std::size_t scalarTypeSize(ScalarType type);
+
+/// Every spelling we accept ("uint8", "uchar", "unsigned char", "short", "float32", "double", ...),
+/// case-insensitive; nullopt when unknown.
+std::optional<ScalarType> findScalarType(const std::string& text);
+
+/// Checks that each dimension is positive and the sample count and byte size stay under the caps.
+CheckedShape checkShape(const std::string& path, const std::array<long long, 3>& dims, ScalarType type);
+
+/// The value with its bytes in reverse order (to read data of the other endianness).
+template <typename U> U byteSwapped(U value) {
+    U out = 0;
+    for (std::size_t i = 0; i < sizeof(U); ++i) {
+        out = static_cast<U>((out << 8) | (value & 0xFF));
+        value = static_cast<U>(value >> 8);
+    }
+    return out;
+}
+
+/// Decodes `count` samples stored as `type` with the given byte order. Throws InputError naming how
+/// many samples are NaN/Inf (or, for double, beyond float range).
+std::vector<float> decodeSamples(const std::string& path, const unsigned char* bytes, std::size_t count,
+                                 ScalarType type, bool bigEndian);
+
+} // namespace vots::fit::detail

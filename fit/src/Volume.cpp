@@ -1,0 +1,47 @@
+// Sample type names and the value range of a Volume; file reading lives in VolumeLoad.cpp and the readers.
+#include "vots/fit/Volume.h"
+
+#include "vots/fit/Error.h"
+#include "vots/fit/VolumeLoad.h"
+
+#include "SampleDecode.h"
+
+#include <algorithm>
+
+namespace vots::fit {
+
+std::string scalarTypeName(ScalarType type) {
+    switch (type) {
+    case ScalarType::UInt8:
+        return "uint8";
+    case ScalarType::Int8:
+        return "int8";
+    case ScalarType::UInt16:
+        return "uint16";
+    case ScalarType::Int16:
+        return "int16";
+    case ScalarType::UInt32:
+        return "uint32";
+    case ScalarType::Int32:
+        return "int32";
+    case ScalarType::Float32:
+        return "float32";
+    case ScalarType::Float64:
+        return "float64";
+    }
+    return "unknown";
+}
+
+ScalarType parseScalarType(const std::string& text) {
+    if (const auto type = detail::findScalarType(text)) return *type;
+    throw InputError("unknown sample type '" + text +
+                     "' (expected uint8, int8, uint16, int16, uint32, int32, float32 or float64)");
+}
+
+std::array<float, 2> Volume::valueRange() const {
+    if (values.empty()) return {0.0f, 0.0f};
+    const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
+    return {*lo, *hi};
+}
+
+} // namespace vots::fit

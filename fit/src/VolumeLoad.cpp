@@ -1,0 +1,21 @@
+// Picks the volume reader from the file extension (or the raw layout); the readers do the parsing.
+#include "vots/fit/VolumeLoad.h"
+
+#include "InputFile.h"
+
+namespace vots::fit {
+
+Volume loadVolume(const std::string& path, const std::optional<RawLayout>& raw) {
+    if (raw) return loadRaw(path, *raw);
+    const std::string extension = detail::volumeExtension(path);
+    if (extension == ".nrrd" || extension == ".nhdr") return loadNrrd(path);
+    if (extension == ".nii" || extension == ".nii.gz") return loadNifti(path);
+    if (extension == ".mhd" || extension == ".mha") return loadMetaImage(path);
+    // Existence first: "no such file" is the more useful message for a mistyped path.
+    detail::regularFileSize(path);
+    detail::throwInputError(path,
+                            "unknown volume format '" + extension +
+                                "' (expected .nrrd, .nhdr, .nii, .nii.gz, .mhd, .mha, or a raw layout)");
+}
+
+} // namespace vots::fit

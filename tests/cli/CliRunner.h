@@ -1,0 +1,81 @@
+// Runs the real `vots` binary as a child process and captures exit code, stdout and stderr.
+#pragma once
+
+#include "TempDir.h"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <cerrno>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+extern char** environ;
+
+namespace vots::test {
+
+struct CliResult {
+    int exitCode = -1; // -1: killed by a signal
+    std::string out;
+    std::string err;
+
+    /// stderr split into lines (without the newlines).
+    std::vector<std::string> errLines() const {
+        std::vector<std::string> lines;
+        std::istringstream in(err);
+        for (std::string line; std::getline(in, line);)
+            lines.push_back(line);
+        return lines;
+    }
+};
+
+inline std::string slurpText(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+/// Runs VOTS_CLI_BINARY with `args`; output goes through files so a chatty child can never block.
+inline CliResult runVots(const std::vector<std::string>& args) {
+    TempDir capture;
+    const std::string outPath = capture.file("stdout"), errPath = capture.file("stderr");
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, 1, outPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&actions, 2, errPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+
+    std::vector<std::string> all{VOTS_CLI_BINARY};
+    all.insert(all.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (std::string& a : all)
+        argv.push_back(a.data());
+    argv.push_back(nullptr);
+
+    pid_t pid = 0;
+    const int rc = posix_spawn(&pid, VOTS_CLI_BINARY, &actions, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    if (rc != 0) throw std::runtime_error(std::string("cannot start ") + VOTS_CLI_BINARY);
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0)
+        if (errno != EINTR) throw std::runtime_error("waitpid failed");
+    CliResult r;
+    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = slurpText(outPath);
+    r.err = slurpText(errPath);
+    return r;
+}
+
+/// For failure messages: the command line and what it printed.
+inline std::string describe(const std::vector<std::string>& args, const CliResult& r) {
+    std::string s = "vots";
+    for (const std::string& a : args)
+        s += " " + a;
+    return s + "\n  exit " + std::to_string(r.exitCode) + "\n  stdout: " + r.out + "\n  stderr: " + r.err;
+}
+
+} // namespace vots::test

@@ -1,0 +1,180 @@
+// End to end through the real `vots` binary on a real MRI volume: fit -> info --json -> verify.
+#include "CliRunner.h"
+#include "TempDir.h"
+#include "VotSpaceBytes.h"
+
+#include "vots/fit/Verify.h"
+#include "vots/fit/VolumeLoad.h"
+#include "vots/fit/VotSpaceFile.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <memory>
+
+namespace vots::test {
+namespace {
+
+using nlohmann::json;
+
+const std::string HEAD = std::string(VOTS_SHARED_DATA_DIR) + "/HeadMRVolume_48x62x42_uint8.nrrd";
+const std::string NEGHIP = std::string(VOTS_SHARED_DATA_DIR) + "/neghip_64x64x64_uint8.nrrd";
+
+/// One fit of the head MRI shared by the suite (the fit is the slow part).
+class CliEndToEnd : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        sDir = std::make_unique<TempDir>();
+        sVots = sDir->file("head.vots");
+        sFitArgs = {"fit", HEAD, "-o", sVots, "--eps", "3%", "--degree", "2", "--threads", "2"};
+        sFit = runVots(sFitArgs);
+    }
+    static void TearDownTestSuite() { sDir.reset(); }
+
+    static json infoJson(const std::string& file) {
+        const CliResult r = runVots({"info", file, "--json"});
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        return json::parse(r.out);
+    }
+
+    static inline std::unique_ptr<TempDir> sDir;
+    static inline std::string sVots;
+    static inline std::vector<std::string> sFitArgs;
+    static inline CliResult sFit;
+};
+
+TEST_F(CliEndToEnd, FitWritesTheFileAndASummary) {
+    ASSERT_EQ(sFit.exitCode, 0) << describe(sFitArgs, sFit);
+    EXPECT_TRUE(std::filesystem::is_regular_file(sVots));
+    EXPECT_NE(sFit.out.find("Vots"), std::string::npos) << sFit.out;
+    EXPECT_NE(sFit.out.find("max error"), std::string::npos) << sFit.out;
+    EXPECT_EQ(sFit.err, "");
+    // Only the result is left in the folder: no temp files.
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(sDir->path()), {}), 1);
+}
+
+TEST_F(CliEndToEnd, InfoJsonDescribesTheFit) {
+    ASSERT_EQ(sFit.exitCode, 0) << describe(sFitArgs, sFit);
+    const json j = infoJson(sVots);
+    EXPECT_EQ(j.at("dims"), json({48, 62, 42}));
+    EXPECT_EQ(j.at("spacing"), json({4.0, 4.0, 4.0}));
+    EXPECT_EQ(j.at("requested_degree"), 2);
+    EXPECT_GE(j.at("degree").get<int>(), 2); // cell Vots may lift the header degree to 3 (DESIGN §3)
+    const double eps = j.at("eps").get<double>();
+    EXPECT_NEAR(eps, 0.03 * 255, 1e-4); // 3 % of the value range 0..255
+    const auto count = j.at("vot_count").get<std::size_t>();
+    EXPECT_GT(count, 0u);
+    EXPECT_NEAR(j.at("vots_per_sample").get<double>(), double(count) / (48.0 * 62 * 42), 1e-12);
+    EXPECT_TRUE(j.at("vots_per_nonbackground_cell").is_number());
+    std::size_t histogramTotal = 0;
+    for (const json& bin : j.at("box_size_histogram"))
+        histogramTotal += bin.at("count").get<std::size_t>();
+    EXPECT_EQ(histogramTotal, count);
+    EXPECT_LE(j.at("max_error").get<double>(), eps * (1 + 1e-6));
+    EXPECT_TRUE(j.at("fit_seconds").is_number());
+    EXPECT_EQ(j.at("meta").at("source").at("name"), "HeadMRVolume_48x62x42_uint8");
+    EXPECT_EQ(j.at("meta").at("fit").at("eps_arg"), "3%");
+    EXPECT_EQ(j.at("meta").at("fit").at("method"), "fast");
+    EXPECT_TRUE(j.at("meta").at("max_error").is_number());
+}
+
+TEST_F(CliEndToEnd, InfoTextNamesEachField) {
+    ASSERT_EQ(sFit.exitCode, 0);
+    const CliResult r = runVots({"info", sVots});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    for (const char* key : {"grid", "48 x 62 x 42", "degree", "2 requested", "eps", "background", "Vots",
+                            "per sample", "max error", "fit time", "box sizes", "33+"})
+        EXPECT_NE(r.out.find(key), std::string::npos) << key << " missing from:\n" << r.out;
+}
+
+TEST_F(CliEndToEnd, VerifyPassesOnTheFit) {
+    ASSERT_EQ(sFit.exitCode, 0);
+    const CliResult r = runVots({"verify", sVots, HEAD});
+    EXPECT_EQ(r.exitCode, 0) << describe({"verify", sVots, HEAD}, r);
+    EXPECT_NE(r.out.find("result"), std::string::npos);
+    EXPECT_NE(r.out.find("OK"), std::string::npos);
+    EXPECT_NE(r.out.find("max cell-centre error"), std::string::npos);
+    EXPECT_EQ(r.err, "");
+}
+
+TEST_F(CliEndToEnd, VerifyFailsOnATamperedVot) {
+    ASSERT_EQ(sFit.exitCode, 0);
+    fit::VotSpace space = fit::readVotSpaceFile(sVots);
+    ASSERT_FALSE(space.vots.empty());
+    space.vots[space.vots.size() / 2].c[0] += 10 * space.eps; // a valid file that is wrong
+    const std::string bad = sDir->file("tampered.vots");
+    fit::writeVotSpaceFile(bad, space);
+    const CliResult r = runVots({"verify", bad, HEAD});
+    EXPECT_EQ(r.exitCode, 1) << describe({"verify", bad, HEAD}, r);
+    EXPECT_NE(r.out.find("FAILED"), std::string::npos) << r.out;
+    ASSERT_EQ(r.errLines().size(), 1u) << r.err;
+    EXPECT_EQ(r.errLines()[0].rfind("vots: verify failed", 0), 0u) << r.err;
+    std::filesystem::remove(bad);
+}
+
+TEST_F(CliEndToEnd, VerifyAgainstAnotherVolumeIsBadInput) {
+    ASSERT_EQ(sFit.exitCode, 0);
+    const CliResult r = runVots({"verify", sVots, NEGHIP});
+    EXPECT_EQ(r.exitCode, 2) << describe({"verify", sVots, NEGHIP}, r);
+    EXPECT_EQ(r.errLines().size(), 1u) << r.err;
+}
+
+TEST(CliFit, RawInputWithFocusAndCellCertificationVerifies) {
+    // The same MRI as headerless raw bytes, fitted with every option that changes the bound.
+    const fit::Volume volume = fit::loadVolume(HEAD);
+    TempDir dir;
+    std::string bytes(volume.values.size(), '\0');
+    for (std::size_t i = 0; i < volume.values.size(); ++i)
+        bytes[i] = static_cast<char>(static_cast<unsigned char>(volume.values[i]));
+    const std::string raw = dir.write("head.raw", std::string(16, 'h') + bytes); // 16-byte junk header
+    const std::string out = dir.file("focus.vots");
+    const std::vector<std::string> rawArgs{"--raw-dims",    "48,62,42", "--raw-type",         "uint8",
+                                           "--raw-spacing", "4,4,4",    "--raw-header-bytes", "16"};
+    std::vector<std::string> fitArgs{"fit",         raw, "-o",           out,     "--eps",   "12",
+                                     "--degree",    "1", "--certify",    "cells", "--focus", "24,31,21,8",
+                                     "--eps-focus", "2", "--background", "none"};
+    fitArgs.insert(fitArgs.end(), rawArgs.begin(), rawArgs.end());
+    const CliResult fitRun = runVots(fitArgs);
+    ASSERT_EQ(fitRun.exitCode, 0) << describe(fitArgs, fitRun);
+
+    const fit::VotSpace space = fit::readVotSpaceFile(out);
+    EXPECT_TRUE(space.epsVaries);
+    EXPECT_EQ(space.spacing, (std::array<double, 3>{4, 4, 4}));
+    const json meta = json::parse(space.metaJson);
+    EXPECT_EQ(meta.at("fit").at("focus").at("radius"), 8.0);
+    EXPECT_EQ(meta.at("fit").at("certify"), "cells");
+    EXPECT_TRUE(meta.at("fit").at("background").is_null());
+
+    std::vector<std::string> verifyArgs{"verify", out, raw};
+    verifyArgs.insert(verifyArgs.end(), rawArgs.begin(), rawArgs.end());
+    const CliResult verifyRun = runVots(verifyArgs);
+    EXPECT_EQ(verifyRun.exitCode, 0) << describe(verifyArgs, verifyRun);
+}
+
+TEST(CliFit, ProgressGoesToStderrOnly) {
+    TempDir dir;
+    const std::string out = dir.file("p.vots");
+    const std::vector<std::string> args{"fit", HEAD, "-o", out, "--eps", "10%", "--progress"};
+    const CliResult r = runVots(args);
+    ASSERT_EQ(r.exitCode, 0) << describe(args, r);
+    EXPECT_NE(r.err.find("fit:"), std::string::npos) << r.err; // not a terminal: plain lines
+    EXPECT_EQ(r.err.find('\r'), std::string::npos);
+    EXPECT_EQ(r.out.find("fit:"), std::string::npos);
+}
+
+TEST(CliHelp, EveryCommandHasHelp) {
+    for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
+             {"--help"}, {"fit", "--help"}, {"info", "--help"}, {"verify", "--help"}}) {
+        const CliResult r = runVots(args);
+        EXPECT_EQ(r.exitCode, 0) << describe(args, r);
+        EXPECT_NE(r.out.find("Usage"), std::string::npos) << describe(args, r);
+    }
+    const CliResult v = runVots({"--version"});
+    EXPECT_EQ(v.exitCode, 0);
+    EXPECT_FALSE(v.out.empty());
+}
+
+} // namespace
+} // namespace vots::test

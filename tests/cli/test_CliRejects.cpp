@@ -1,0 +1,107 @@
+// Bad input through the real `vots` binary: exit 2, one "vots: error:" line, and no output file.
+#include "CliRunner.h"
+#include "TempDir.h"
+#include "VotSpaceBytes.h"
+
+#include "vots/fit/VotSpaceFile.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+namespace vots::test {
+namespace {
+
+const std::string HEAD = std::string(VOTS_SHARED_DATA_DIR) + "/HeadMRVolume_48x62x42_uint8.nrrd";
+
+/// A bad command: exit code 2, exactly one stderr line that starts "vots: error:" and contains
+/// `needle`, nothing on stdout, and the folder unchanged (no output, no temp files).
+void expectBadInput(const TempDir& dir, const std::vector<std::string>& args, const std::string& needle) {
+    const auto before = std::distance(std::filesystem::directory_iterator(dir.path()), {});
+    const CliResult r = runVots(args);
+    const std::string what = describe(args, r);
+    EXPECT_EQ(r.exitCode, 2) << what;
+    const auto lines = r.errLines();
+    ASSERT_EQ(lines.size(), 1u) << what;
+    EXPECT_EQ(lines[0].rfind("vots: error: ", 0), 0u) << what;
+    EXPECT_NE(lines[0].find(needle), std::string::npos) << "expected '" << needle << "' in: " << what;
+    EXPECT_EQ(r.out, "") << what;
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), before) << what;
+}
+
+std::vector<std::string> fitWith(const std::string& out, std::vector<std::string> extra,
+                                 const std::string& input = HEAD) {
+    std::vector<std::string> args{"fit", input, "-o", out};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return args;
+}
+
+TEST(CliRejects, BadFitArguments) {
+    TempDir dir;
+    const std::string out = dir.file("out.vots");
+    expectBadInput(dir, fitWith(out, {"--eps", "2"}, dir.file("missing.nrrd")), "missing.nrrd");
+    expectBadInput(dir, fitWith(out, {"--eps", "0"}), "--eps");
+    expectBadInput(dir, fitWith(out, {"--eps", "0%"}), "--eps");
+    expectBadInput(dir, fitWith(out, {"--eps=-1"}), "--eps");
+    expectBadInput(dir, fitWith(out, {"--eps", "-1"}), "eps");
+    expectBadInput(dir, fitWith(out, {"--eps", "nan"}), "--eps");
+    expectBadInput(dir, fitWith(out, {"--eps", "inf"}), "--eps");
+    expectBadInput(dir, fitWith(out, {"--eps", "2x"}), "--eps");
+    expectBadInput(dir, fitWith(out, {}), "--eps");
+    expectBadInput(dir, fitWith(out, {"--eps", "2", "--degree", "4"}), "degree 4");
+    expectBadInput(dir, fitWith(out, {"--eps", "2", "--degree=-1"}), "degree");
+    expectBadInput(dir, fitWith(out, {"--eps", "2", "--focus", "10,10,10,5"}), "--eps-focus");
+    expectBadInput(dir, fitWith(out, {"--eps", "2", "--eps-focus", "1"}), "--focus");
+    expectBadInput(dir, fitWith(out, {"--eps", "2", "--focus", "10,10,10,0", "--eps-focus", "1"}), "radius");
+    expectBadInput(dir, fitWith(out, {"--eps", "2", "--focus", "10,10,5", "--eps-focus", "1"}), "--focus");
+    expectBadInput(dir, fitWith(out, {"--eps", "2", "--focus", "1,2,3,4", "--eps-focus", "nan"}),
+                   "--eps-focus");
+    expectBadInput(dir, fitWith(out, {"--eps", "2", "--method", "slow"}), "--method");
+    expectBadInput(dir, fitWith(out, {"--eps", "2", "--certify", "pixels"}), "--certify");
+    expectBadInput(dir, fitWith(out, {"--eps", "2", "--background", "dark"}), "--background");
+    expectBadInput(dir, fitWith(out, {"--eps", "2", "--raw-dims", "4,4,4"}), "--raw-type");
+    expectBadInput(dir, fitWith(out, {"--eps", "2", "--raw-dims", "4,4", "--raw-type", "uint8"}),
+                   "--raw-dims");
+    expectBadInput(dir, fitWith(dir.file("no/such/folder/out.vots"), {"--eps", "2"}), "no/such/folder");
+}
+
+TEST(CliRejects, ArgumentsAreCheckedBeforeTheInputIsRead) {
+    TempDir dir;
+    // The input does not exist, yet the message is about eps: arguments come first.
+    expectBadInput(dir, fitWith(dir.file("out.vots"), {"--eps", "0"}, dir.file("missing.nrrd")), "--eps");
+    expectBadInput(dir,
+                   fitWith(dir.file("out.vots"), {"--eps", "2", "--degree", "4"}, dir.file("missing.nrrd")),
+                   "degree 4");
+}
+
+TEST(CliRejects, BrokenVotsFiles) {
+    TempDir dir;
+    const Bytes good = fit::encodeVotSpace(makeSampleSpace(3));
+    const std::string truncated = dir.write(
+        "truncated.vots", std::string(good.begin(), good.begin() + static_cast<long>(good.size() / 2)));
+    Bytes flipped = good;
+    flipped[200] ^= 0x04;
+    const std::string corrupt = dir.write("corrupt.vots", std::string(flipped.begin(), flipped.end()));
+    const std::string notVots = dir.write("text.vots", "hello\n");
+
+    expectBadInput(dir, {"info", truncated}, "truncated.vots");
+    expectBadInput(dir, {"info", truncated, "--json"}, "does not match");
+    expectBadInput(dir, {"info", corrupt}, "checksum");
+    expectBadInput(dir, {"info", notVots}, "not a Vot-Space file");
+    expectBadInput(dir, {"info", dir.file("missing.vots")}, "missing.vots");
+    expectBadInput(dir, {"verify", truncated, HEAD}, "truncated.vots");
+    expectBadInput(dir, {"verify", corrupt, HEAD}, "checksum");
+    expectBadInput(dir, {"verify", dir.file("missing.vots"), HEAD}, "missing.vots");
+}
+
+TEST(CliRejects, BadUsage) {
+    TempDir dir;
+    expectBadInput(dir, {}, "subcommand");
+    expectBadInput(dir, {"frobnicate"}, "frobnicate");
+    expectBadInput(dir, {"info"}, "FILE");
+    expectBadInput(dir, {"verify", dir.file("a.vots")}, "INPUT");
+    expectBadInput(dir, {"fit", HEAD, "--eps", "2"}, "--output");
+}
+
+} // namespace
+} // namespace vots::test

@@ -1,0 +1,455 @@
+// Volume input: the shared test volumes, the Cranium CT, and exact round trips of every format we read.
+#include "vots/fit/Error.h"
+#include "vots/fit/VolumeLoad.h"
+
+#include "TempDir.h"
+#include "VolumeFixtures.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+namespace {
+
+using namespace vots::fit;
+using vots::test::encode;
+using vots::test::FIXTURE_DIMS;
+using vots::test::niftiHeader;
+using vots::test::TempDir;
+
+std::string sharedData(const std::string& name) {
+    return std::string(VOTS_SHARED_DATA_DIR) + "/" + name;
+}
+
+double meanOf(const Volume& volume) {
+    double sum = 0.0;
+    for (const float v : volume.values)
+        sum += v;
+    return sum / static_cast<double>(volume.values.size());
+}
+
+// Coarse histogram as data/README.md lists it: 16 equal bins from min to max, max in the last bin.
+std::vector<long> histogram16(const Volume& volume) {
+    const auto [lo, hi] = volume.valueRange();
+    std::vector<long> bins(16, 0);
+    for (const float v : volume.values) {
+        const int bin =
+            static_cast<int>((static_cast<double>(v) - lo) / (static_cast<double>(hi) - lo) * 16.0);
+        ++bins[static_cast<std::size_t>(std::min(bin, 15))];
+    }
+    return bins;
+}
+
+// Asserts every fixture sample arrived exactly, in x-fastest order.
+void expectFixtureSamples(const Volume& volume, ScalarType type, double slope = 1.0, double inter = 0.0) {
+    ASSERT_EQ(volume.dims, FIXTURE_DIMS);
+    ASSERT_EQ(volume.values.size(), static_cast<std::size_t>(vots::test::FIXTURE_SAMPLES));
+    EXPECT_EQ(volume.sourceType, type);
+    const std::vector<double> expected = vots::test::fixtureValues(type);
+    for (std::size_t i = 0; i < expected.size(); ++i) {
+        const float stored = static_cast<float>(expected[i]);
+        const float want = slope == 1.0 && inter == 0.0 ? stored : static_cast<float>(stored * slope + inter);
+        ASSERT_EQ(volume.values[i], want) << "sample " << i << " of " << scalarTypeName(type);
+    }
+}
+
+const ScalarType ALL_TYPES[] = {ScalarType::UInt8,   ScalarType::Int8,   ScalarType::UInt16,
+                                ScalarType::Int16,   ScalarType::UInt32, ScalarType::Int32,
+                                ScalarType::Float32, ScalarType::Float64};
+
+struct SharedVolume {
+    const char* file;
+    std::array<int, 3> dims;
+    ScalarType type;
+    std::array<double, 3> spacing;
+    float min, max;
+    double mean, meanTolerance; // README rounds the mean
+    std::vector<long> histogram;
+};
+
+const std::vector<SharedVolume>& sharedVolumes() {
+    static const std::vector<SharedVolume> table = {
+        {"neghip_64x64x64_uint8.nrrd",
+         {64, 64, 64},
+         ScalarType::UInt8,
+         {1, 1, 1},
+         0,
+         255,
+         18.40,
+         0.006,
+         {202885, 19591, 10545, 6301, 4379, 3288, 2674, 1839, 1526, 1339, 1055, 802, 734, 588, 508, 4090}},
+        {"ironProt_68x68x68_uint8.nrrd",
+         {68, 68, 68},
+         ScalarType::UInt8,
+         {1, 1, 1},
+         0,
+         255,
+         13.14,
+         0.006,
+         {266516, 13761, 8106, 5605, 4049, 3030, 2292, 1735, 1301, 1039, 842, 672, 618, 564, 452, 3850}},
+        {"hydrogen-3d-orbital_64x64x64_float32.nrrd",
+         {64, 64, 64},
+         ScalarType::Float32,
+         {1, 1, 1},
+         0.0f,
+         1.0f,
+         0.0185,
+         0.00006,
+         {242768, 8832, 4360, 2408, 1296, 528, 480, 288, 272, 232, 152, 160, 80, 120, 72, 96}},
+        {"headsq-quarter_64x64x93_int16.nrrd",
+         {64, 64, 93},
+         ScalarType::Int16,
+         {3.2, 3.2, 1.5},
+         0,
+         3926,
+         507.69,
+         0.006,
+         {227408, 8343, 5452, 17505, 91818, 8417, 7093, 5459, 4678, 3356, 1026, 126, 109, 77, 49, 12}},
+        {"HeadMRVolume_48x62x42_uint8.nrrd",
+         {48, 62, 42},
+         ScalarType::UInt8,
+         {4, 4, 4},
+         0,
+         255,
+         24.47,
+         0.006,
+         {76698, 12414, 8223, 10864, 6421, 4344, 2289, 1351, 843, 524, 281, 154, 123, 153, 152, 158}},
+        {"avg152T1-RL_91x109x91_uint8.nrrd",
+         {91, 109, 91},
+         ScalarType::UInt8,
+         {2, 2, 2},
+         0,
+         255,
+         82.90,
+         0.006,
+         {341860, 54726, 36610, 36405, 33843, 34246, 36185, 43904, 52241, 88134, 36835, 17276, 7421, 741, 373,
+          81829}},
+        {"embryo_256x256x256_uint8.nrrd",
+         {256, 256, 256},
+         ScalarType::UInt8,
+         {1, 1, 1},
+         0,
+         197,
+         3.80,
+         0.006,
+         {15691247, 203857, 143149, 149327, 146096, 143013, 139136, 88285, 44292, 19422, 6367, 2048, 720, 192,
+          42, 23}},
+        {"lobster_approx-zfp8_301x324x56_uint8.nrrd",
+         {301, 324, 56},
+         ScalarType::UInt8,
+         {1, 1, 1.4},
+         0,
+         255,
+         13.14,
+         0.006,
+         {4028359, 1124419, 66502, 46172, 36310, 28661, 23729, 23687, 49328, 27849, 3174, 1240, 709, 468, 400,
+          337}},
+    };
+    return table;
+}
+
+TEST(SharedData, AllEightMatchTheReadmeTable) {
+    for (const SharedVolume& row : sharedVolumes()) {
+        SCOPED_TRACE(row.file);
+        const Volume volume = loadVolume(sharedData(row.file));
+        EXPECT_EQ(volume.dims, row.dims);
+        EXPECT_EQ(volume.sourceType, row.type);
+        for (int a = 0; a < 3; ++a)
+            EXPECT_DOUBLE_EQ(volume.spacing[a], row.spacing[a]);
+        EXPECT_EQ(volume.origin, (std::array<double, 3>{0, 0, 0}));
+        EXPECT_EQ(volume.name, std::filesystem::path(row.file).stem().string());
+        ASSERT_EQ(volume.values.size(), volume.sampleCount());
+        const auto [lo, hi] = volume.valueRange();
+        EXPECT_EQ(lo, row.min);
+        EXPECT_EQ(hi, row.max);
+        EXPECT_NEAR(meanOf(volume), row.mean, row.meanTolerance);
+        EXPECT_EQ(histogram16(volume), row.histogram);
+    }
+}
+
+TEST(SharedData, NrrdLoaderAndDispatchAgree) {
+    const Volume direct = loadNrrd(sharedData("headsq-quarter_64x64x93_int16.nrrd"));
+    const Volume dispatched = loadVolume(sharedData("headsq-quarter_64x64x93_int16.nrrd"));
+    EXPECT_EQ(direct.values, dispatched.values);
+    // x runs fastest: the sample at (x, y, z) is values[x + 64 * (y + 64 * z)].
+    EXPECT_EQ(direct.at(10, 20, 30), direct.values[10 + 64 * (20 + 64 * 30)]);
+}
+
+TEST(CraniumCt, FetchedHeaderLoadsTheCt) {
+    const std::string header = std::string(VOTS_SOURCE_DIR) + "/data/cranium.nhdr";
+    if (!std::filesystem::exists(header)) GTEST_SKIP() << "run scripts/fetch-ct to get " << header;
+    const Volume volume = loadVolume(header);
+    EXPECT_EQ(volume.dims, (std::array<int, 3>{256, 256, 108}));
+    EXPECT_EQ(volume.sourceType, ScalarType::Int16);
+    EXPECT_NEAR(volume.spacing[0], 0.9570312, 1e-9);
+    EXPECT_NEAR(volume.spacing[1], 0.9570312, 1e-9);
+    EXPECT_DOUBLE_EQ(volume.spacing[2], 1.5);
+    const auto [lo, hi] = volume.valueRange();
+    EXPECT_EQ(lo, -1024.0f);
+    EXPECT_EQ(hi, 2986.0f);
+    EXPECT_NEAR(meanOf(volume), -585.96, 0.006);
+    EXPECT_EQ(volume.name, "cranium");
+}
+
+TEST(NiftiRoundTrip, EveryDatatypeInBothByteOrdersPlainAndGzipped) {
+    const std::pair<short, ScalarType> datatypes[] = {{2, ScalarType::UInt8},    {4, ScalarType::Int16},
+                                                      {8, ScalarType::Int32},    {16, ScalarType::Float32},
+                                                      {64, ScalarType::Float64}, {256, ScalarType::Int8},
+                                                      {512, ScalarType::UInt16}, {768, ScalarType::UInt32}};
+    TempDir dir;
+    for (const auto& [datatype, type] : datatypes) {
+        for (const bool bigEndian : {false, true}) {
+            vots::test::NiftiSpec spec;
+            spec.datatype = datatype;
+            spec.bitpix = static_cast<short>(8 * encode({0.0}, type, false).size());
+            spec.bigEndian = bigEndian;
+            const std::string bytes =
+                niftiHeader(spec) + encode(vots::test::fixtureValues(type), type, bigEndian);
+            const std::string stem = "t" + std::to_string(datatype) + (bigEndian ? "be" : "le");
+            const std::string plain = dir.write(stem + ".nii", bytes);
+            const std::string gz = dir.file(stem + ".nii.gz");
+            vots::test::appendGzip(gz, bytes);
+            for (const std::string& path : {plain, gz}) {
+                SCOPED_TRACE(path);
+                const Volume volume = loadVolume(path);
+                expectFixtureSamples(volume, type);
+                EXPECT_EQ(volume.spacing, (std::array<double, 3>{0.5, 1.25, 3.0}));
+                EXPECT_EQ(volume.name, stem);
+            }
+        }
+    }
+}
+
+TEST(NiftiRoundTrip, AppliesSlopeAndInterceptAndNegativePixdim) {
+    TempDir dir;
+    vots::test::NiftiSpec spec;
+    spec.sclSlope = 2.5f;
+    spec.sclInter = -10.0f;
+    spec.pixdim = {-2.0f, 2.0f, 2.0f}; // a flipped axis still has spacing 2
+    const auto values = vots::test::fixtureValues(ScalarType::Int16);
+    const Volume volume =
+        loadNifti(dir.write("s.nii", niftiHeader(spec) + encode(values, ScalarType::Int16, false)));
+    expectFixtureSamples(volume, ScalarType::Int16, 2.5, -10.0);
+    EXPECT_EQ(volume.spacing, (std::array<double, 3>{2.0, 2.0, 2.0}));
+}
+
+TEST(NiftiRoundTrip, OriginFromSformElseQform) {
+    TempDir dir;
+    const std::string data = encode(vots::test::fixtureValues(ScalarType::Int16), ScalarType::Int16, true);
+    vots::test::NiftiSpec spec;
+    spec.bigEndian = true;
+    spec.qformCode = 1;
+    spec.qoffset = {1.0f, 2.0f, 3.0f};
+    EXPECT_EQ(loadNifti(dir.write("q.nii", niftiHeader(spec) + data)).origin,
+              (std::array<double, 3>{1, 2, 3}));
+    spec.sformCode = 1;
+    spec.srowOffset = {-90.0f, -126.0f, -72.0f};
+    EXPECT_EQ(loadNifti(dir.write("s.nii", niftiHeader(spec) + data)).origin,
+              (std::array<double, 3>{-90, -126, -72}));
+    spec.sformCode = 0;
+    spec.qformCode = 0; // NIfTI method 1: no transform, origin 0
+    EXPECT_EQ(loadNifti(dir.write("n.nii", niftiHeader(spec) + data)).origin,
+              (std::array<double, 3>{0, 0, 0}));
+}
+
+TEST(NiftiRoundTrip, FourDimensionalHeaderWithOneVolumeIsThreeD) {
+    TempDir dir;
+    vots::test::NiftiSpec spec;
+    spec.dim[0] = 5;
+    const auto values = vots::test::fixtureValues(ScalarType::Int16);
+    const Volume volume =
+        loadNifti(dir.write("f.nii", niftiHeader(spec) + encode(values, ScalarType::Int16, false)));
+    expectFixtureSamples(volume, ScalarType::Int16);
+}
+
+TEST(MetaImageRoundTrip, HeaderAndRawPairInASubfolder) {
+    TempDir dir;
+    std::filesystem::create_directory(dir.path() / "data");
+    const auto values = vots::test::fixtureValues(ScalarType::Int16);
+    dir.write("data/head.raw", encode(values, ScalarType::Int16, false));
+    const std::string header =
+        dir.write("data/head.mhd", "ObjectType = Image\nNDims = 3\nDimSize = 5 4 3\n"
+                                   "ElementSpacing = 0.5 0.75 2\nOffset = -1 2.5 3\n"
+                                   "BinaryData = True\nElementByteOrderMSB = False\n"
+                                   "ElementType = MET_SHORT\nElementDataFile = head.raw\n");
+    const Volume volume = loadVolume(header);
+    expectFixtureSamples(volume, ScalarType::Int16);
+    EXPECT_EQ(volume.spacing, (std::array<double, 3>{0.5, 0.75, 2.0}));
+    EXPECT_EQ(volume.origin, (std::array<double, 3>{-1.0, 2.5, 3.0}));
+    EXPECT_EQ(volume.name, "head");
+}
+
+TEST(MetaImageRoundTrip, EveryElementTypeLocalBigEndian) {
+    const std::pair<const char*, ScalarType> types[] = {
+        {"MET_UCHAR", ScalarType::UInt8},   {"MET_CHAR", ScalarType::Int8},
+        {"MET_USHORT", ScalarType::UInt16}, {"MET_SHORT", ScalarType::Int16},
+        {"MET_UINT", ScalarType::UInt32},   {"MET_INT", ScalarType::Int32},
+        {"MET_FLOAT", ScalarType::Float32}, {"MET_DOUBLE", ScalarType::Float64}};
+    TempDir dir;
+    for (const auto& [name, type] : types) {
+        SCOPED_TRACE(name);
+        const std::string header = std::string("NDims = 3\nDimSize = 5 4 3\nElementSize = 1 2 3\n"
+                                               "BinaryDataByteOrderMSB = True\nElementType = ") +
+                                   name + "\nElementDataFile = LOCAL\n";
+        const std::string path = dir.write(std::string(name) + ".mha",
+                                           header + encode(vots::test::fixtureValues(type), type, true));
+        const Volume volume = loadVolume(path);
+        expectFixtureSamples(volume, type);
+        EXPECT_EQ(volume.spacing, (std::array<double, 3>{1.0, 2.0, 3.0}));
+    }
+}
+
+TEST(MetaImageRoundTrip, CompressedLocalData) {
+    TempDir dir;
+    const auto values = vots::test::fixtureValues(ScalarType::UInt16);
+    const std::string packed = vots::test::zlibBytes(encode(values, ScalarType::UInt16, false));
+    const std::string path =
+        dir.write("c.mha", "NDims = 3\nDimSize = 5 4 3\nElementType = MET_USHORT\n"
+                           "CompressedData = True\nCompressedDataSize = " +
+                               std::to_string(packed.size()) + "\nElementDataFile = LOCAL\n" + packed);
+    expectFixtureSamples(loadMetaImage(path), ScalarType::UInt16);
+}
+
+TEST(NrrdRoundTrip, EveryTypeSpellingDetachedRaw) {
+    const std::pair<const char*, ScalarType> spellings[] = {{"uchar", ScalarType::UInt8},
+                                                            {"unsigned char", ScalarType::UInt8},
+                                                            {"uint8", ScalarType::UInt8},
+                                                            {"uint8_t", ScalarType::UInt8},
+                                                            {"signed char", ScalarType::Int8},
+                                                            {"int8", ScalarType::Int8},
+                                                            {"int8_t", ScalarType::Int8},
+                                                            {"short", ScalarType::Int16},
+                                                            {"short int", ScalarType::Int16},
+                                                            {"signed short", ScalarType::Int16},
+                                                            {"signed short int", ScalarType::Int16},
+                                                            {"int16", ScalarType::Int16},
+                                                            {"int16_t", ScalarType::Int16},
+                                                            {"ushort", ScalarType::UInt16},
+                                                            {"unsigned short", ScalarType::UInt16},
+                                                            {"unsigned short int", ScalarType::UInt16},
+                                                            {"uint16", ScalarType::UInt16},
+                                                            {"uint16_t", ScalarType::UInt16},
+                                                            {"int", ScalarType::Int32},
+                                                            {"signed int", ScalarType::Int32},
+                                                            {"int32", ScalarType::Int32},
+                                                            {"int32_t", ScalarType::Int32},
+                                                            {"uint", ScalarType::UInt32},
+                                                            {"unsigned int", ScalarType::UInt32},
+                                                            {"uint32", ScalarType::UInt32},
+                                                            {"uint32_t", ScalarType::UInt32},
+                                                            {"float", ScalarType::Float32},
+                                                            {"double", ScalarType::Float64}};
+    TempDir dir;
+    int n = 0;
+    for (const auto& [spelling, type] : spellings) {
+        SCOPED_TRACE(spelling);
+        const bool bigEndian = (n++ % 2) == 1;
+        const std::string data = "d" + std::to_string(n) + ".raw";
+        dir.write(data, encode(vots::test::fixtureValues(type), type, bigEndian));
+        const std::string header =
+            dir.write("h" + std::to_string(n) + ".nhdr",
+                      vots::test::nrrdHeader(spelling, "raw",
+                                             std::string("endian: ") + (bigEndian ? "big" : "little") +
+                                                 "\ndata file: " + data + "\n"));
+        expectFixtureSamples(loadVolume(header), type);
+    }
+}
+
+TEST(NrrdRoundTrip, AttachedGzipWithSpaceDirectionsAndOrigin) {
+    TempDir dir;
+    const std::string path =
+        dir.write("a.nrrd", vots::test::nrrdHeader("float", "gzip",
+                                                   "endian: big\nspace: left-posterior-superior\n"
+                                                   "space directions: (0,0.5,0) (-1.5,0,0) (0,0,2)\n"
+                                                   "space origin: (10,-20.5,30)\n\n"));
+    vots::test::appendGzip(path,
+                           encode(vots::test::fixtureValues(ScalarType::Float32), ScalarType::Float32, true));
+    const Volume volume = loadVolume(path);
+    expectFixtureSamples(volume, ScalarType::Float32);
+    EXPECT_EQ(volume.spacing, (std::array<double, 3>{0.5, 1.5, 2.0}));
+    EXPECT_EQ(volume.origin, (std::array<double, 3>{10.0, -20.5, 30.0}));
+}
+
+TEST(NrrdRoundTrip, MultiMemberGzipIsOneStream) {
+    TempDir dir;
+    const std::string data = encode(vots::test::fixtureValues(ScalarType::Int16), ScalarType::Int16, false);
+    const std::string path =
+        dir.write("m.nrrd", vots::test::nrrdHeader("int16", "gzip", "endian: little\n\n"));
+    vots::test::appendGzip(path, data.substr(0, 50));
+    vots::test::appendGzip(path, data.substr(50));
+    expectFixtureSamples(loadNrrd(path), ScalarType::Int16);
+}
+
+TEST(NrrdRoundTrip, SkipsAndMultiFileData) {
+    TempDir dir;
+    const auto values = vots::test::fixtureValues(ScalarType::UInt16);
+    const std::string data = encode(values, ScalarType::UInt16, false);
+    const std::string slab = data.substr(0, data.size() / 3);
+    // line skip + byte skip on one file
+    dir.write("skip.raw", "first line\nsecond\nXYZ" + data);
+    expectFixtureSamples(
+        loadNrrd(dir.write("skip.nhdr", vots::test::nrrdHeader("ushort", "raw",
+                                                               "endian: little\nline skip: 2\nbyte skip: 3\n"
+                                                               "data file: skip.raw\n"))),
+        ScalarType::UInt16);
+    // byte skip -1: the data are the last bytes
+    dir.write("tail.raw", std::string(17, '?') + data);
+    expectFixtureSamples(
+        loadNrrd(dir.write("tail.nhdr", vots::test::nrrdHeader("ushort", "raw",
+                                                               "endian: little\nbyte skip: -1\n"
+                                                               "datafile: tail.raw\n"))),
+        ScalarType::UInt16);
+    // one file per z slab, by pattern and by LIST
+    for (int z = 0; z < 3; ++z)
+        dir.write("slab" + std::to_string(z + 1) + ".raw", data.substr(z * slab.size(), slab.size()));
+    expectFixtureSamples(
+        loadNrrd(dir.write("pattern.nhdr", vots::test::nrrdHeader("ushort", "raw",
+                                                                  "endian: little\n"
+                                                                  "data file: slab%d.raw 1 3 1 2\n"))),
+        ScalarType::UInt16);
+    expectFixtureSamples(
+        loadNrrd(dir.write("list.nhdr", vots::test::nrrdHeader("ushort", "raw",
+                                                               "endian: little\n"
+                                                               "data file: LIST 2\nslab1.raw\n"
+                                                               "slab2.raw\nslab3.raw\n"))),
+        ScalarType::UInt16);
+}
+
+TEST(RawRoundTrip, LayoutWithHeaderSkipAndBothByteOrders) {
+    TempDir dir;
+    for (const ScalarType type : ALL_TYPES) {
+        for (const bool bigEndian : {false, true}) {
+            SCOPED_TRACE(scalarTypeName(type) + (bigEndian ? " big" : " little"));
+            RawLayout layout;
+            layout.dims = FIXTURE_DIMS;
+            layout.type = type;
+            layout.spacing = {0.9, 0.9, 1.5};
+            layout.bigEndian = bigEndian;
+            layout.headerBytes = 7;
+            const std::string path = dir.write(
+                "v.dat", std::string(7, 'h') + encode(vots::test::fixtureValues(type), type, bigEndian));
+            const Volume volume = loadVolume(path, layout);
+            expectFixtureSamples(volume, type);
+            EXPECT_EQ(volume.spacing, layout.spacing);
+            EXPECT_EQ(volume.name, "v");
+        }
+    }
+}
+
+TEST(ScalarTypes, ParseEverySpellingAndNameRoundTrips) {
+    for (const ScalarType type : ALL_TYPES)
+        EXPECT_EQ(parseScalarType(scalarTypeName(type)), type);
+    EXPECT_EQ(parseScalarType("short"), ScalarType::Int16);
+    EXPECT_EQ(parseScalarType("Unsigned  Char"), ScalarType::UInt8);
+    EXPECT_EQ(parseScalarType("float"), ScalarType::Float32);
+    EXPECT_EQ(parseScalarType("double"), ScalarType::Float64);
+    EXPECT_THROW(parseScalarType("int64"), InputError);
+    EXPECT_THROW(parseScalarType(""), InputError);
+}
+
+TEST(ScalarTypes, EmptyVolumeRangeIsZero) {
+    EXPECT_EQ(Volume{}.valueRange(), (std::array<float, 2>{0.0f, 0.0f}));
+}
+
+} // namespace
