@@ -54,14 +54,12 @@ CheckedArgs checkArgs(const FitArgs& a) {
                               " is not supported: the Taylor degree must be 0, 1, 2 or 3");
     if (a.threads < 0) throw fit::InputError("--threads must be >= 0 (0: all cores)");
     if (!a.focus.empty()) {
-        const auto parts = a.focus;
-        const auto lastComma = parts.find_last_of(',');
-        if (lastComma == std::string::npos)
+        const auto lastComma = a.focus.find_last_of(',');
+        if (std::count(a.focus.begin(), a.focus.end(), ',') != 3)
             throw fit::InputError("--focus: '" + a.focus + "' is not x,y,z,r (grid index units)");
         fit::FocusRegion f;
-        const auto centre = parseTriple(parts.substr(0, lastComma), "--focus");
-        f.centerIndex = centre;
-        f.radius = parseNumber(parts.substr(lastComma + 1), "--focus radius");
+        f.centerIndex = parseTriple(a.focus.substr(0, lastComma), "--focus");
+        f.radius = parseNumber(a.focus.substr(lastComma + 1), "--focus radius");
         if (f.radius <= 0) throw fit::InputError("--focus: the radius must be > 0, got '" + a.focus + "'");
         const EpsArg e0 = parseEps(a.epsFocus, "--eps-focus", /*allowZero=*/true);
         if (e0.isPercent) throw fit::InputError("--eps-focus takes a value in data units, not a percentage");

@@ -104,7 +104,8 @@ void writeVotSpaceFile(const std::string& path, const VotSpace& space) {
 }
 
 VotSpace readVotSpaceFile(const std::string& path) {
-    Fd fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC));
+    // O_NONBLOCK: opening a FIFO must not hang; it has no effect on reading a regular file.
+    Fd fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK));
     if (fd.get() < 0) failErrno("read", path, errno);
     struct stat st {};
     if (::fstat(fd.get(), &st) != 0) failErrno("read", path, errno);

@@ -1,0 +1,58 @@
+// Refit benchmark: time a fit at one eps, then refits at other eps values reusing a FitCache, vs fresh fits.
+#include "vots/fit/Fitter.h"
+#include "vots/fit/VolumeLoad.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+using namespace vots::fit;
+
+namespace {
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 3) {
+        std::fprintf(stderr, "usage: fit_refit VOLUME BASE_PERCENT [PERCENT...]\n"
+                             "  fits at BASE_PERCENT of the value range, then refits at each PERCENT with the cache\n");
+        return 2;
+    }
+    try {
+        const Volume volume = loadVolume(argv[1]);
+        const auto range = volume.valueRange();
+        auto optionsAt = [&](double percent) {
+            FitOptions o;
+            o.eps = static_cast<float>(percent / 100.0 * (range[1] - range[0]));
+            o.background = defaultBackground(volume);
+            return o;
+        };
+        std::printf("| volume | from eps | to eps | refit (s) | fresh fit (s, median of 3) | Vots | cache hits |\n");
+        std::printf("|---|---|---|---|---|---|---|\n");
+        for (int i = 3; i < argc; ++i) {
+            const double base = std::atof(argv[2]), target = std::atof(argv[i]);
+            std::vector<double> fresh;
+            FitResult freshResult;
+            for (int run = 0; run < 3; ++run) {
+                freshResult = fitVotSpace(volume, optionsAt(target));
+                fresh.push_back(freshResult.stats.seconds);
+            }
+            FitCache cache;
+            fitVotSpace(volume, optionsAt(base), &cache);
+            const FitResult refit = fitVotSpace(volume, optionsAt(target), &cache);
+            std::printf("| %s | %g %% | %g %% | %.3f | %.3f | %zu | %zu |\n", volume.name.c_str(), base, target,
+                        refit.stats.seconds, median(fresh), refit.space.vots.size(), refit.stats.cacheHits);
+        }
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "fit_refit: %s\n", e.what());
+        return 2;
+    }
+    return 0;
+}

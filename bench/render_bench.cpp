@@ -1,0 +1,217 @@
+// render_bench: steady-state frame times of Vot MIP (walk and raster strategies) vs the reference ray
+// caster, measured interleaved in one run, as markdown rows.
+//
+//   render_bench VOLUME [--vots FILE | --eps-percent P[,P...] | --eps E] [--degree N] [--size N]
+//                [--frames N] [--warmup N] [--strategy both|walk|raster] [--no-cull] [--png-dir DIR]
+// Each round renders one frame with every renderer being compared (reference, raster, walk), so load
+// from other processes hits all of them alike; the table gives per-renderer medians over --frames
+// rounds after --warmup rounds, each frame glFinish-synchronised, and the ratios of those medians.
+// Readback (R32F), display pass + RGBA readback and PNG encoding are timed separately for the default
+// strategy. Prints LP_NUM_THREADS and the GL renderer. --png-dir writes each view's images there.
+#include "vots/fit/Error.h"
+#include "vots/fit/Fitter.h"
+#include "vots/fit/VolumeLoad.h"
+#include "vots/fit/VotSpaceFile.h"
+#include "vots/render/Camera.h"
+#include "vots/render/CameraText.h"
+#include "vots/render/DisplayPass.h"
+#include "vots/render/EglContext.h"
+#include "vots/render/GridRenderer.h"
+#include "vots/render/Png.h"
+#include "vots/render/VotRenderer.h"
+
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using vots::render::VotRenderer;
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
+double msOf(const std::function<void()>& fn) {
+    const auto t0 = Clock::now();
+    fn();
+    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+// Runs the functions round-robin (warm-up rounds first) and returns each one's median wall time, ms.
+std::vector<double> interleavedMedians(int warmup, int frames, const std::vector<std::function<void()>>& fns) {
+    std::vector<std::vector<double>> ms(fns.size());
+    for (int round = 0; round < warmup + frames; ++round)
+        for (std::size_t i = 0; i < fns.size(); ++i) {
+            const double t = msOf(fns[i]);
+            if (round >= warmup) ms[i].push_back(t);
+        }
+    std::vector<double> out;
+    for (const auto& m : ms)
+        out.push_back(median(m));
+    return out;
+}
+
+// Pixels where two MIP images differ by more than tol (finite vs non-finite counts as different).
+std::size_t countDifferent(const vots::render::FloatImage& a, const vots::render::FloatImage& b, float tol) {
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+        const float x = a.pixels[i], y = b.pixels[i];
+        if (std::isfinite(x) != std::isfinite(y) || (std::isfinite(x) && std::abs(x - y) > tol)) ++n;
+    }
+    return n;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"Vot MIP (walk, raster) vs reference ray caster frame times"};
+    std::string volumePath, votsPath, strategyName = "both", pngDir;
+    std::vector<double> epsPercents;
+    double epsAbs = 0.0;
+    int degree = 3, size = 512, frames = 11, warmup = 2;
+    bool noCull = false;
+    app.add_option("volume", volumePath, "volume file (reference renderer, and fitting)")->required();
+    app.add_option("--vots", votsPath, ".vots file to render instead of fitting");
+    app.add_option("--eps-percent", epsPercents, "fit at these percentages of the value range (comma list)")
+        ->delimiter(',');
+    app.add_option("--eps", epsAbs, "fit at this absolute eps (data units)");
+    app.add_option("--degree", degree, "fit degree");
+    app.add_option("--size", size, "image side in pixels");
+    app.add_option("--frames", frames, "timed rounds (median over them)");
+    app.add_option("--warmup", warmup, "untimed rounds first");
+    app.add_option("--strategy", strategyName, "Vot MIP strategies to time: both, walk or raster")
+        ->check(CLI::IsMember({"both", "walk", "raster"}));
+    app.add_flag("--no-cull", noCull, "no bound culling (raster draws every Vot, walk evaluates every Vot)");
+    app.add_option("--png-dir", pngDir, "write reference / raster / walk PNGs of each view here");
+    CLI11_PARSE(app, argc, argv);
+    const bool timeWalk = strategyName != "raster", timeRaster = strategyName != "walk";
+
+    try {
+        auto context = vots::render::EglContext::createOrThrow();
+        const vots::fit::Volume volume = vots::fit::loadVolume(volumePath);
+        const auto range = volume.valueRange();
+        vots::render::GridRenderer grid;
+        grid.upload(volume);
+        const char* threads = std::getenv("LP_NUM_THREADS");
+        std::cout << "renderer: " << context->renderer()
+                  << ", LP_NUM_THREADS=" << (threads ? threads : "(unset)") << ", volume " << volumePath << " "
+                  << volume.dims[0] << "x" << volume.dims[1] << "x" << volume.dims[2] << ", " << size << "x"
+                  << size << ", medians of " << frames << " interleaved rounds after " << warmup
+                  << ", culling " << (noCull ? "off" : "on") << "\n\n";
+        std::cout << "| eps | view | Vots | strategy used | reference ms | raster ms | walk ms | ref / walk | "
+                     "raster / walk | pixels walk != raster | readback ms | display+readback ms | PNG ms |\n"
+                     "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+
+        std::vector<double> epsList;
+        if (!votsPath.empty()) epsList.push_back(-1.0);
+        else if (epsAbs > 0) epsList.push_back(epsAbs);
+        else
+            for (double p : epsPercents.empty() ? std::vector<double>{1.0} : epsPercents)
+                epsList.push_back(p * 0.01 * (range[1] - range[0]));
+
+        for (const double epsWanted : epsList) {
+            vots::fit::VotSpace space;
+            double fitSeconds = 0.0, eps = epsWanted;
+            if (epsWanted < 0) {
+                space = vots::fit::readVotSpaceFile(votsPath);
+                eps = space.eps;
+            } else {
+                vots::fit::FitOptions options;
+                options.eps = static_cast<float>(eps);
+                options.degree = degree;
+                options.background = vots::fit::defaultBackground(volume);
+                const auto t0 = Clock::now();
+                space = vots::fit::fitVotSpace(volume, options).space;
+                fitSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
+            }
+            VotRenderer walk, raster;
+            const double walkUploadMs = msOf([&] { walk.upload(space); });
+            const double rasterUploadMs = msOf([&] { raster.upload(space); });
+            walk.setStrategy(VotRenderer::Strategy::Walk);
+            raster.setStrategy(VotRenderer::Strategy::Raster);
+            walk.setCulling(!noCull);
+            raster.setCulling(!noCull);
+            std::cerr << "eps " << eps << ": " << space.vots.size() << " Vots, fit " << fitSeconds
+                      << " s, upload " << walkUploadMs << " ms (walk), " << rasterUploadMs << " ms (raster)\n";
+            const bool walks = walk.mipStrategy() == VotRenderer::Strategy::Walk;
+
+            const std::pair<const char*, const char*> views[] = {
+                {"anterior", "anterior"},
+                {"oblique", "az=30,el=20,zoom=1,pan=0:0,proj=ortho,fov=30"},
+                {"persp", "az=-40,el=15,zoom=1.5,proj=persp,fov=40"}};
+            for (const auto& [name, text] : views) {
+                const vots::render::Camera camera = vots::render::parseCamera(text);
+                std::vector<std::function<void()>> fns{[&] { grid.render(camera, size, size); }};
+                if (timeRaster) fns.emplace_back([&] { raster.render(camera, size, size); });
+                if (timeWalk) fns.emplace_back([&] { walk.render(camera, size, size); });
+                const std::vector<double> ms = interleavedMedians(warmup, frames, fns);
+                const double refMs = ms[0];
+                const double rasterMs = timeRaster ? ms[1] : NAN;
+                const double walkMs = timeWalk ? ms.back() : NAN;
+
+                VotRenderer& main = timeWalk ? walk : raster;
+                std::vector<double> readback;
+                for (int i = 0; i < 5; ++i) {
+                    (void)main.render(camera, size, size);
+                    readback.push_back(main.lastFrameStats().readbackMs);
+                }
+                const auto display = vots::render::windowForRange(range[0], range[1]);
+                vots::render::RgbaImage rgba;
+                std::vector<double> displayMs, pngMs;
+                for (int i = 0; i < 5; ++i) {
+                    rgba = main.renderRgba(camera, size, size, display);
+                    displayMs.push_back(main.lastFrameStats().readbackMs);
+                    pngMs.push_back(msOf([&] { (void)vots::render::encodePng(rgba); }));
+                }
+                if (std::getenv("VOTS_PROBE")) { // TEMP
+                    std::vector<std::function<void()>> f2{[&] { grid.render(camera, size, size); }, [&] { walk.render(camera, size, size); },
+                       [&] { setenv("VOTS_WALK_DEBUG", "9", 1); walk.render(camera, size, size); setenv("VOTS_WALK_DEBUG", "0", 1);}};
+                    auto r = interleavedMedians(1, 5, f2);
+                    std::printf("probe: ref %.1f walk %.1f walk-noeval %.1f\n", r[0], r[1], r[2]);
+                }
+                if (std::getenv("VOTS_WALK_DEBUG")) { // TEMP
+                    for (int k = 1; k <= 5; ++k) {
+                        setenv("VOTS_WALK_DEBUG", std::to_string(k).c_str(), 1);
+                        auto im = walk.render(camera, size, size);
+                        double sum = 0, mx = 0; std::size_t n = 0;
+                        for (float v : im.pixels) if (std::isfinite(v)) { sum += v; mx = std::max(mx, double(v)); ++n; }
+                        std::printf("debug %d: mean %.2f max %.0f over %zu pixels\n", k, sum / std::max<std::size_t>(n, 1), mx, n);
+                    }
+                    setenv("VOTS_WALK_DEBUG", "0", 1);
+                }
+                std::string differ = "-";
+                if (timeWalk && timeRaster) {
+                    const auto a = walk.render(camera, size, size), b = raster.render(camera, size, size);
+                    differ = std::to_string(countDifferent(a, b, 1e-3f * float(range[1] - range[0])));
+                    if (!pngDir.empty()) {
+                        const std::string stem = pngDir + "/eps" + std::to_string(int(std::lround(eps))) + "_" + name;
+                        vots::render::writePng(stem + "_walk.png", vots::render::applyDisplay(a, display));
+                        vots::render::writePng(stem + "_raster.png", vots::render::applyDisplay(b, display));
+                        vots::render::writePng(stem + "_reference.png",
+                                               vots::render::applyDisplay(grid.render(camera, size, size), display));
+                    }
+                }
+                std::printf("| %.4g | %s | %zu | %s | %.1f | %.1f | %.1f | %.2f | %.2f | %s | %.2f | %.2f | %.1f |\n",
+                            eps, name, space.vots.size(), timeWalk ? (walks ? "walk" : "raster (fallback)") : "raster",
+                            refMs, rasterMs, walkMs, refMs / walkMs, rasterMs / walkMs, differ.c_str(),
+                            median(readback), median(displayMs), median(pngMs));
+                std::fflush(stdout);
+            }
+        }
+    } catch (const std::exception& e) {
+        std::cerr << "render_bench: " << e.what() << '\n';
+        return 1;
+    }
+    return 0;
+}

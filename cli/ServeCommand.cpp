@@ -1,0 +1,104 @@
+// `vots serve`: options -> vots::server::Server, then serve until SIGINT/SIGTERM; no HTTP logic here.
+#include "Commands.h"
+
+#include "vots/fit/Error.h"
+#include "vots/server/Server.h"
+
+#include <CLI/CLI.hpp>
+
+#include <pthread.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <iostream>
+#include <memory>
+#include <thread>
+
+namespace vots::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct ServeArgs {
+    std::string host = "127.0.0.1";
+    int port = 8080;
+    std::vector<std::string> data;
+    std::string web;
+    std::string cacheDir = "data/cache";
+};
+
+bool isLoopback(const std::string& host) {
+    return host == "127.0.0.1" || host == "localhost" || host == "::1";
+}
+
+std::string joined(const std::vector<fs::path>& dirs) {
+    std::string out;
+    for (const auto& d : dirs)
+        out += (out.empty() ? "" : ", ") + d.string();
+    return out.empty() ? "(none)" : out;
+}
+
+void runServe(const ServeArgs& a) {
+    server::ServerOptions options;
+    for (const auto& d : a.data)
+        options.dataDirs.emplace_back(d);
+    if (options.dataDirs.empty()) options.dataDirs = server::defaultDataDirs();
+    options.webDir = a.web.empty() ? server::defaultWebDir() : fs::path(a.web);
+    options.cacheDir = a.cacheDir;
+    if (!isLoopback(a.host))
+        std::cerr << "vots serve: warning: listening on " << a.host
+                  << " exposes the server to the network; it has no authentication\n";
+
+    // Signals are taken by sigwait below, so every thread the server starts must have them blocked.
+    sigset_t stopSignals;
+    sigemptyset(&stopSignals);
+    sigaddset(&stopSignals, SIGINT);
+    sigaddset(&stopSignals, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &stopSignals, nullptr);
+
+    server::Server srv(options);
+    int port = a.port;
+    if (port == 0) {
+        port = srv.bindToAnyPort(a.host);
+        if (port < 0) throw fit::InputError("cannot listen on " + a.host + " (any port)");
+    } else if (!srv.bindToPort(a.host, port)) {
+        throw fit::InputError("cannot listen on " + a.host + ":" + std::to_string(port) +
+                              " (in use, or not an address of this machine)");
+    }
+    std::cout << "vots serve: listening on http://" << a.host << ":" << port << "/\n"
+              << "  data:  " << joined(options.dataDirs) << "\n"
+              << "  web:   " << (options.webDir.empty() ? "(none)" : options.webDir.string()) << "\n"
+              << "  cache: " << options.cacheDir.string() << "\n"
+              << "  " << srv.rendererSummary() << std::endl;
+
+    std::thread listener([&srv] {
+        srv.listenAfterBind();
+        ::kill(::getpid(), SIGTERM); // listening ended by itself: wake the sigwait below
+    });
+    int signal = 0;
+    sigwait(&stopSignals, &signal);
+    std::cout << "vots serve: stopping" << std::endl;
+    srv.stop();
+    listener.join();
+}
+
+} // namespace
+
+void addServeCommand(CLI::App& app) {
+    auto args = std::make_shared<ServeArgs>();
+    CLI::App* cmd =
+        app.add_subcommand("serve", "Serve datasets, fits and MIP images over HTTP (see docs/API.md)");
+    cmd->add_option("--host", args->host, "Address to listen on (0.0.0.0: every interface)")
+        ->capture_default_str();
+    cmd->add_option("--port", args->port, "TCP port (0: any free port)")
+        ->check(CLI::Range(0, 65535))
+        ->capture_default_str();
+    cmd->add_option("--data", args->data,
+                    "Folder with volumes (repeatable); default ./data and ../shared/data");
+    cmd->add_option("--web", args->web,
+                    "Folder with the web viewer; default ./web or the source tree's web/");
+    cmd->add_option("--cache-dir", args->cacheDir, "Folder for fitted Vot-Spaces")->capture_default_str();
+    cmd->callback([args] { runServe(*args); });
+}
+
+} // namespace vots::cli

@@ -1,0 +1,83 @@
+// Orbit camera around the volume centre (world coordinates), six anatomical presets, ortho/perspective.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string_view>
+
+namespace vots::fit {
+struct Volume;
+struct VotSpace;
+} // namespace vots::fit
+
+namespace vots::render {
+
+/// World convention (DICOM LPS): +x = patient left, +y = posterior, +z = superior. Index space
+/// maps to world by world = origin + spacing * index (per axis), so anisotropic grids keep their
+/// proportions.
+///
+/// The camera orbits the centre of the volume's world box. With e the unit vector from the centre
+/// to the eye:  e = (sin(az) cos(el), -cos(az) cos(el), sin(el)).
+///   az = 0,   el = 0   anterior view  (eye at -y, looking along +y, patient left on image right)
+///   az = 180, el = 0   posterior view
+///   az = 90,  el = 0   left view      (eye at +x, looking along -x)
+///   az = -90, el = 0   right view
+///   el = 90            superior view (eye above, looking down -z; posterior at the image top)
+///   el = -90           inferior view (anterior at the image top)
+/// Image up is d e / d el (= +z for el = 0); image right = forward x up.
+///
+/// Framing: R is the radius of the world box's bounding sphere. zoom = 1 fits that sphere into the
+/// image height; zoom = 2 shows half as much. Orthographic: visible half-height R / zoom.
+/// Perspective: eye distance R / (zoom * sin(fov/2)); large zoom puts the eye inside the volume.
+/// pan = (px, py) moves the look-at point by px, py visible half-heights along image right / up.
+enum class Projection { Orthographic, Perspective };
+
+enum class ViewPreset { Anterior, Posterior, Left, Right, Superior, Inferior };
+
+struct Camera {
+    double azimuthDeg = 0.0;   // [-360, 360]
+    double elevationDeg = 0.0; // [-90, 90]
+    double zoom = 1.0;         // [0.01, 1000]
+    double panX = 0.0;         // [-100, 100] visible half-heights
+    double panY = 0.0;         // [-100, 100]
+    Projection projection = Projection::Orthographic;
+    double fovDeg = 30.0; // vertical field of view for perspective, [1, 150]; kept for ortho too
+
+    friend bool operator==(const Camera&, const Camera&) = default;
+};
+
+/// az/el of a preset, everything else default.
+Camera cameraForView(ViewPreset view);
+/// "anterior", "posterior", "left", "right", "superior", "inferior".
+std::string_view viewName(ViewPreset view);
+/// The preset with this name, or nullopt.
+std::optional<ViewPreset> findView(std::string_view name);
+
+/// Axis-aligned world-space box the camera frames: from origin to origin + spacing * (dims - 1).
+struct SceneBounds {
+    std::array<double, 3> lo{0.0, 0.0, 0.0};
+    std::array<double, 3> hi{1.0, 1.0, 1.0};
+    std::array<double, 3> origin{0.0, 0.0, 0.0}; // index -> world: world = origin + spacing * index
+    std::array<double, 3> spacing{1.0, 1.0, 1.0};
+    std::array<int, 3> dims{2, 2, 2}; // grid points per axis
+};
+
+SceneBounds sceneBounds(const fit::VotSpace& space);
+SceneBounds sceneBounds(const fit::Volume& volume);
+
+/// Column-major 4x4 matrices (OpenGL convention) for one camera, scene and image size.
+struct CameraMatrices {
+    std::array<double, 16> indexToClip{}; // projection * view * (index -> world)
+    std::array<double, 16> clipToIndex{}; // its inverse: rays are rebuilt from it per pixel
+    std::array<double, 3> eyeWorld{};     // eye position (perspective) or a point behind the view (ortho)
+    double nearWorld = 0.0;               // near plane distance from the eye, world units
+    double farWorld = 0.0;
+};
+
+/// Throws vots::fit::InputError for an invalid camera or image size.
+CameraMatrices computeCameraMatrices(const Camera& camera, const SceneBounds& bounds, int width, int height);
+
+/// Throws vots::fit::InputError naming the first field out of range or not finite.
+void validateCamera(const Camera& camera);
+
+} // namespace vots::render

@@ -1,0 +1,19 @@
+// PNG encoding of RGBA8 images through stb_image_write, and an atomic file write.
+#pragma once
+
+#include "vots/render/Image.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace vots::render {
+
+/// PNG bytes (RGBA, 8 bit). Deterministic: the same image always gives the same bytes.
+std::vector<std::uint8_t> encodePng(const RgbaImage& image);
+
+/// Writes "<path>.tmp-<pid>" and renames it over path, so readers never see half a file.
+/// Throws vots::fit::InputError when the file cannot be written.
+void writePng(const std::string& path, const RgbaImage& image);
+
+} // namespace vots::render

@@ -1,0 +1,84 @@
+// Vot MIP and Vot density images of a Vot-Space: per-pixel walk through a cell -> Vot grid, or one
+// instanced unit cube per Vot into R32F with GL_MAX/GL_MIN.
+#pragma once
+
+#include "vots/render/Camera.h"
+#include "vots/render/DisplaySettings.h"
+#include "vots/render/FrameStats.h"
+#include "vots/render/Image.h"
+#include "vots/render/RenderMode.h"
+
+#include <array>
+#include <memory>
+
+namespace vots::fit {
+struct VotSpace;
+}
+
+namespace vots::render {
+
+/// Keeps the Vots in GPU buffers, so frames after upload() are cheap. Needs a current EglContext
+/// for its whole life (construct, use and destroy it on the context's thread).
+///
+/// Two MIP strategies give the same image (up to rays grazing a face within 5e-5 voxel); both use a
+/// certified upper bound of each Vot over its box (Bernstein form), computed at upload.
+///
+/// Walk (default): one fullscreen-like pass; each pixel walks its ray front to back through a grid
+/// holding, per cell, the Vot covering it, and per brick of 8^3 cells the largest bound of the Vots
+/// touching it. Bricks and Vot boxes whose bound cannot beat the pixel's current max are stepped over
+/// whole; the others are evaluated (the same analytic maximum as Raster). Needs disjoint boxes (the
+/// fast fit method); a Vot-Space with overlapping boxes (paper method) is drawn with Raster instead,
+/// see mipStrategy(). Density images always use Raster.
+///
+/// Raster: one instanced unit cube per Vot. With culling, Vots are drawn in descending order of
+/// their bound, in batches; between batches the current max image is read back; a Vot whose bound
+/// cannot exceed the smallest max over the pixels its box covers is not drawn, and fragments whose
+/// Vot bound is below the pixel's max stop early.
+///
+/// Culling never changes the image (dropped work could only produce values <= the pixel's max); a
+/// test checks it for both strategies.
+class VotRenderer {
+public:
+    enum class Strategy {
+        Walk,  // per-pixel ray walk through the cell -> Vot grid (default)
+        Raster // instanced boxes, MAX blending
+    };
+
+    VotRenderer();
+    ~VotRenderer();
+    VotRenderer(const VotRenderer&) = delete;
+    VotRenderer& operator=(const VotRenderer&) = delete;
+
+    /// Replaces the current Vot-Space (copies what it needs; the argument may be freed afterwards).
+    void upload(const fit::VotSpace& space);
+    bool hasData() const;
+    const SceneBounds& bounds() const;
+    /// [min lower bound, max upper bound] of the polynomials over their boxes (default window).
+    std::array<float, 2> valueRange() const;
+    /// [0, log2 of the largest box's geometric-mean edge in cells] (default density window).
+    std::array<float, 2> densityRange() const;
+
+    /// RenderMode::Mip or RenderMode::Density (Reference throws fit::InputError).
+    FloatImage render(const Camera& camera, int width, int height, RenderMode mode = RenderMode::Mip);
+    /// render() followed by the display pass on the GPU; only RGBA8 is read back.
+    RgbaImage renderRgba(const Camera& camera, int width, int height, const DisplaySettings& display,
+                         RenderMode mode = RenderMode::Mip);
+
+    /// Culling on (default) or off; off draws every Vot in one instanced draw (Raster) or evaluates
+    /// every Vot along the ray (Walk); for tests and bench.
+    void setCulling(bool enabled);
+    /// The MIP strategy asked for (default Walk); takes effect with the next frame.
+    void setStrategy(Strategy strategy);
+    Strategy strategy() const;
+    /// The strategy MIP frames of the uploaded Vot-Space use: Raster when Walk was asked for but the
+    /// space cannot be walked (overlapping boxes, or too large for the GL limits).
+    Strategy mipStrategy() const;
+    const FrameStats& lastFrameStats() const;
+
+    struct Impl;
+
+private:
+    std::unique_ptr<Impl> mImpl;
+};
+
+} // namespace vots::render

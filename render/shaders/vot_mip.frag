@@ -1,0 +1,24 @@
+#version 450 core
+// Raster strategy: analytic MIP of one Vot along the pixel's ray (DESIGN §5), max of a cubic over [tIn, tOut].
+#include "vot_common.glsl"
+#include "ray_common.glsl"
+#include "vot_ray_max.glsl"
+
+uniform sampler2D uPrevMax; // the max image after the previous batch (culling), or -inf
+uniform int uUsePrevMax;
+
+flat in uint vVot;
+layout(location = 0) out float outValue;
+
+void main() {
+    // A Vot whose bound cannot beat what the pixel already holds changes nothing: stop early.
+    if (uUsePrevMax != 0 && vots[vVot].upperBound <= texelFetch(uPrevMax, ivec2(gl_FragCoord.xy), 0).r)
+        discard;
+
+    vec3 origin, dir;
+    float farT;
+    pixelRay(origin, dir, farT);
+    float value;
+    if (!votRayMax(vVot, origin, dir, farT, value)) discard;
+    outValue = value;
+}

@@ -1,0 +1,29 @@
+// The display pass as a reusable GL object: R32F texture -> window/level + colour map -> RGBA8 readback.
+#pragma once
+
+#include "GlObjects.h"
+
+#include "vots/render/DisplaySettings.h"
+#include "vots/render/Image.h"
+
+#include <array>
+
+namespace vots::render {
+
+class DisplayPass {
+public:
+    DisplayPass();
+    /// Maps the float texture (width x height) and reads RGBA8 back, top row first.
+    RgbaImage apply(GLuint floatTexture, int width, int height, const DisplaySettings& settings);
+
+private:
+    GlProgram mProgram;
+    GlVertexArray mVertexArray;
+    std::array<GlTexture, 4> mColormaps; // one 256x1 RGBA8 texture per Colormap
+    GlTexture mTarget;
+    GlFramebuffer mFramebuffer;
+    int mWidth = 0;
+    int mHeight = 0;
+};
+
+} // namespace vots::render

@@ -1,0 +1,446 @@
+// Vot MIP / density: a per-pixel walk through a cell -> Vot grid, or instanced boxes into R32F with
+// MAX/MIN blending in bound-sorted batches with CPU culling.
+#include "vots/render/VotRenderer.h"
+
+#include "DisplayPass.h"
+#include "FloatTarget.h"
+#include "GlObjects.h"
+#include "MaxPyramid.h"
+#include "Shaders.h"
+#include "VotBounds.h"
+#include "VotWalkGrid.h"
+
+#include "vots/fit/Error.h"
+#include "vots/fit/VotSpace.h"
+#include "vots/render/Error.h"
+#include "vots/render/GpuLayout.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <cmath>
+#include <numeric>
+#include <optional>
+#include <string>
+
+namespace vots::render {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+constexpr std::size_t FIRST_BATCH = 1024; // Vots drawn before the first culling readback
+constexpr std::size_t BATCH_GROWTH = 4;   // each later batch considers 4x as many Vots
+constexpr int WALK_BRICK_SHIFT = 3;       // Walk: bricks of 8^3 cells (bench/RESULTS.md compares 4, 8, 16)
+constexpr float WALK_BOX_SLACK = 1e-3f;   // Walk: the grid box drawn is grown like Raster's (BOX_SLACK)
+
+// Pixel rectangle (GL window coordinates, bottom-up) that may hold the centres of pixels the box
+// covers. Returns false when the box covers no pixel; a box crossing the eye plane gets the screen.
+bool projectBox(const float m[16], const GpuVot& v, int width, int height, int rect[4]) {
+    float base[4], axis[3][4];
+    for (int r = 0; r < 4; ++r) {
+        base[r] = m[r] * v.lo[0] + m[4 + r] * v.lo[1] + m[8 + r] * v.lo[2] + m[12 + r];
+        for (int a = 0; a < 3; ++a)
+            axis[a][r] = m[4 * a + r] * (v.hi[a] - v.lo[a]);
+    }
+    float xMin = INFINITY, xMax = -INFINITY, yMin = INFINITY, yMax = -INFINITY;
+    for (int corner = 0; corner < 8; ++corner) {
+        float c[4];
+        for (int r = 0; r < 4; ++r)
+            c[r] = base[r] + ((corner & 1) ? axis[0][r] : 0.f) + ((corner & 2) ? axis[1][r] : 0.f) +
+                   ((corner & 4) ? axis[2][r] : 0.f);
+        if (!(c[3] > 1e-6f * (std::abs(c[0]) + std::abs(c[1]) + std::abs(c[2]) + 1e-20f))) {
+            rect[0] = 0, rect[1] = 0, rect[2] = width - 1, rect[3] = height - 1;
+            return true;
+        }
+        const float x = (c[0] / c[3] * 0.5f + 0.5f) * static_cast<float>(width);
+        const float y = (c[1] / c[3] * 0.5f + 0.5f) * static_cast<float>(height);
+        xMin = std::min(xMin, x), xMax = std::max(xMax, x), yMin = std::min(yMin, y),
+        yMax = std::max(yMax, y);
+    }
+    // One pixel of margin on each side covers rounding in the rasteriser.
+    const float limit = 4.f * MAX_IMAGE_SIDE;
+    rect[0] = static_cast<int>(std::floor(std::max(xMin, -limit))) - 1;
+    rect[1] = static_cast<int>(std::floor(std::max(yMin, -limit))) - 1;
+    rect[2] = static_cast<int>(std::ceil(std::min(xMax, limit))) + 1;
+    rect[3] = static_cast<int>(std::ceil(std::min(yMax, limit))) + 1;
+    if (rect[2] < 0 || rect[3] < 0 || rect[0] >= width || rect[1] >= height) return false;
+    rect[0] = std::max(rect[0], 0), rect[1] = std::max(rect[1], 0);
+    rect[2] = std::min(rect[2], width - 1), rect[3] = std::min(rect[3], height - 1);
+    return true;
+}
+
+} // namespace
+
+struct VotRenderer::Impl {
+    GlProgram mipProgram = buildProgram(shaders::VOT_BOX_VERT, shaders::VOT_MIP_FRAG, "vot_mip");
+    GlProgram densityProgram = buildProgram(shaders::VOT_BOX_VERT, shaders::VOT_DENSITY_FRAG, "vot_density");
+    GlProgram walkProgram = buildProgram(shaders::WALK_BOX_VERT, shaders::VOT_WALK_FRAG, "vot_walk");
+    GlTexture cellVot;  // Walk: R32UI, one texel per cell
+    GlTexture brickMax; // Walk: R32F, one texel per brick
+    GlBuffer votBoxBuffer; // Walk: RGBA32UI per Vot, box corners (16 bits each) and bound
+    GlTexture votBox;      // Walk: buffer texture over votBoxBuffer
+    bool walkable = false;
+    std::array<int, 3> walkCells{0, 0, 0};
+    int brickShift = std::getenv("VOTS_WALK_BRICK_SHIFT") ? std::atoi(std::getenv("VOTS_WALK_BRICK_SHIFT")) : WALK_BRICK_SHIFT; // TEMP
+    GlVertexArray vertexArray = createVertexArray();
+    GlBuffer votBuffer;
+    GlBuffer indexBuffer;
+    FloatTarget target;
+    GlTexture prevMax; // copy of the max image after the last batch, same size as target
+    int prevMaxWidth = 0, prevMaxHeight = 0;
+    DisplayPass display;
+
+    bool hasData = false;
+    SceneBounds bounds;
+    std::vector<GpuVot> vots; // sorted by descending upperBound
+    std::vector<std::uint32_t> visible;
+    std::size_t chunkRecords = 1; // Vots per SSBO binding (GL_MAX_SHADER_STORAGE_BLOCK_SIZE)
+    std::array<float, 2> valueRange{0.f, 0.f};
+    std::array<float, 2> densityRange{0.f, 1.f};
+    bool culling = true;
+    Strategy strategy = Strategy::Walk;
+    FrameStats stats;
+
+    Strategy mipStrategy() const {
+        return strategy == Strategy::Walk && walkable ? Strategy::Walk : Strategy::Raster;
+    }
+
+    void bindChunk(std::size_t chunk) {
+        const std::size_t first = chunk * chunkRecords;
+        const std::size_t count = std::min(chunkRecords, vots.size() - first);
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, VOT_BUFFER_BINDING, votBuffer.get(),
+                          static_cast<GLintptr>(first * sizeof(GpuVot)),
+                          static_cast<GLsizeiptr>(count * sizeof(GpuVot)));
+    }
+
+    void setCommonState(GLuint program, const CameraMatrices& m, int width, int height) {
+        glUseProgram(program);
+        setMatrixUniform(program, "uIndexToClip", m.indexToClip);
+        setMatrixUniform(program, "uClipToIndex", m.clipToIndex);
+        glProgramUniform2f(program, glGetUniformLocation(program, "uViewport"), float(width), float(height));
+        glBindVertexArray(vertexArray.get());
+        glEnable(GL_CULL_FACE);
+        glCullFace(GL_FRONT); // back faces only: one fragment per box and pixel, also from inside a box
+        glFrontFace(GL_CCW);
+        glDisable(GL_DEPTH_TEST);
+        glEnable(GL_BLEND);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, INDEX_BUFFER_BINDING, indexBuffer.get());
+    }
+
+    void drawRange(GLuint program, std::size_t first, std::size_t count, bool useList) {
+        glProgramUniform1ui(program, glGetUniformLocation(program, "uFirst"), static_cast<GLuint>(first));
+        glProgramUniform1i(program, glGetUniformLocation(program, "uUseList"), useList ? 1 : 0);
+        glDrawArraysInstanced(GL_TRIANGLES, 0, 36, static_cast<GLsizei>(count));
+        ++stats.batches;
+    }
+
+    // Every Vot, chunk by chunk, no culling.
+    void drawAll(GLuint program) {
+        for (std::size_t chunk = 0; chunk * chunkRecords < vots.size(); ++chunk) {
+            bindChunk(chunk);
+            drawRange(program, 0, std::min(chunkRecords, vots.size() - chunk * chunkRecords), false);
+        }
+        stats.votsDrawn = vots.size();
+    }
+
+    void ensurePrevMax(int width, int height) {
+        if (prevMax.get() && prevMaxWidth == width && prevMaxHeight == height) return;
+        prevMax = createTexture(GL_TEXTURE_2D);
+        glTextureStorage2D(prevMax.get(), 1, GL_R32F, width, height);
+        glTextureParameteri(prevMax.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(prevMax.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        prevMaxWidth = width;
+        prevMaxHeight = height;
+    }
+
+    // Batches in descending bound order; between batches the max image is read back, Vots that
+    // cannot raise any pixel under their box are skipped, and the rest stop early per fragment.
+    void drawCulled(const CameraMatrices& m, int width, int height) {
+        const GLuint program = mipProgram.get();
+        ensurePrevMax(width, height);
+        const float minusInf = -INFINITY;
+        glClearTexImage(prevMax.get(), 0, GL_RED, GL_FLOAT, &minusInf);
+        glBindTextureUnit(0, prevMax.get());
+        glProgramUniform1i(program, glGetUniformLocation(program, "uPrevMax"), 0);
+        glProgramUniform1i(program, glGetUniformLocation(program, "uUsePrevMax"), 1);
+
+        float matrix[16];
+        for (int i = 0; i < 16; ++i)
+            matrix[i] = static_cast<float>(m.indexToClip[static_cast<std::size_t>(i)]);
+        std::vector<float> pixels(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+        MaxPyramid pyramid;
+        bool havePyramid = false;
+        std::size_t next = 0, batch = FIRST_BATCH;
+        stats.votsDrawn = 0;
+        while (next < vots.size()) {
+            // A batch stays inside one SSBO chunk; indices in `visible` are relative to the chunk.
+            const std::size_t chunk = next / chunkRecords;
+            const std::size_t chunkFirst = chunk * chunkRecords;
+            const std::size_t end = std::min({next + batch, vots.size(), chunkFirst + chunkRecords});
+            std::size_t count = 0;
+            for (std::size_t i = next; i < end; ++i) {
+                int rect[4];
+                if (!projectBox(matrix, vots[i], width, height, rect)) continue;
+                if (havePyramid && vots[i].upperBound <= pyramid.minOver(rect[0], rect[1], rect[2], rect[3]))
+                    continue;
+                visible[count++] = static_cast<std::uint32_t>(i - chunkFirst);
+            }
+            if (count > 0) {
+                glNamedBufferSubData(indexBuffer.get(), 0,
+                                     static_cast<GLsizeiptr>(count * sizeof(std::uint32_t)), visible.data());
+                bindChunk(chunk);
+                drawRange(program, 0, count, true);
+                stats.votsDrawn += count;
+            }
+            next = end;
+            batch *= BATCH_GROWTH;
+            if (next < vots.size() && count > 0) {
+                glGetTextureImage(target.texture(), 0, GL_RED, GL_FLOAT,
+                                  static_cast<GLsizei>(pixels.size() * sizeof(float)), pixels.data());
+                pyramid.build(pixels.data(), width, height);
+                havePyramid = true;
+                glCopyImageSubData(target.texture(), GL_TEXTURE_2D, 0, 0, 0, 0, prevMax.get(), GL_TEXTURE_2D,
+                                   0, 0, 0, 0, width, height, 1);
+            }
+        }
+    }
+
+    // One pass over the back faces of the grid box; each pixel walks its ray (vot_walk.frag).
+    void drawWalk(const CameraMatrices& m, int width, int height) {
+        const GLuint p = walkProgram.get();
+        glUseProgram(p);
+        setMatrixUniform(p, "uIndexToClip", m.indexToClip);
+        setMatrixUniform(p, "uClipToIndex", m.clipToIndex);
+        glProgramUniform2f(p, glGetUniformLocation(p, "uViewport"), float(width), float(height));
+        glProgramUniform3f(p, glGetUniformLocation(p, "uBoxLo"), -WALK_BOX_SLACK, -WALK_BOX_SLACK,
+                           -WALK_BOX_SLACK);
+        glProgramUniform3f(p, glGetUniformLocation(p, "uBoxHi"), float(walkCells[0]) + WALK_BOX_SLACK,
+                           float(walkCells[1]) + WALK_BOX_SLACK, float(walkCells[2]) + WALK_BOX_SLACK);
+        glProgramUniform3i(p, glGetUniformLocation(p, "uCells"), walkCells[0], walkCells[1], walkCells[2]);
+        glProgramUniform1i(p, glGetUniformLocation(p, "uBrickShift"), brickShift);
+        glProgramUniform1i(p, glGetUniformLocation(p, "uCull"), culling ? 1 : 0);
+        glProgramUniform1i(p, glGetUniformLocation(p, "uDebug"), std::getenv("VOTS_WALK_DEBUG") ? std::atoi(std::getenv("VOTS_WALK_DEBUG")) : 0); // TEMP
+        glProgramUniform1i(p, glGetUniformLocation(p, "uCellVot"), 0);
+        glProgramUniform1i(p, glGetUniformLocation(p, "uBrickMax"), 1);
+        glProgramUniform1i(p, glGetUniformLocation(p, "uVotBox"), 2);
+        glBindTextureUnit(0, cellVot.get());
+        glBindTextureUnit(1, brickMax.get());
+        glBindTextureUnit(2, votBox.get());
+        bindChunk(0);
+        glBindVertexArray(vertexArray.get());
+        glEnable(GL_CULL_FACE);
+        glCullFace(GL_FRONT); // back faces: every pixel whose ray meets the box, once, eye inside or not
+        glFrontFace(GL_CCW);
+        glDisable(GL_DEPTH_TEST);
+        glDisable(GL_BLEND);
+        if (std::getenv("VOTS_WALK_FULLSCREEN")) { // TEMP
+            static GlProgram fs = buildProgram(shaders::FULLSCREEN_VERT, shaders::VOT_WALK_FRAG, "fs");
+            GLuint q = fs.get();
+            glUseProgram(q);
+            setMatrixUniform(q, "uClipToIndex", m.clipToIndex);
+            glProgramUniform2f(q, glGetUniformLocation(q, "uViewport"), float(width), float(height));
+            glProgramUniform3i(q, glGetUniformLocation(q, "uCells"), walkCells[0], walkCells[1], walkCells[2]);
+            glProgramUniform1i(q, glGetUniformLocation(q, "uBrickShift"), brickShift);
+            glProgramUniform1i(q, glGetUniformLocation(q, "uCull"), culling ? 1 : 0);
+            glProgramUniform1i(q, glGetUniformLocation(q, "uCellVot"), 0);
+            glProgramUniform1i(q, glGetUniformLocation(q, "uBrickMax"), 1);
+            glDisable(GL_CULL_FACE);
+            glDrawArrays(GL_TRIANGLES, 0, 3);
+        } else
+        glDrawArrays(GL_TRIANGLES, 0, 36);
+        stats.batches = 1;
+        stats.votsDrawn = 0;
+    }
+
+    // Uploads the Walk grid, or leaves walkable false (the reason goes nowhere: Raster draws it).
+    void uploadWalkGrid(const std::array<int, 3>& dims) {
+        walkable = false;
+        cellVot.reset();
+        brickMax.reset();
+        votBox.reset();
+        votBoxBuffer.reset();
+        if (vots.size() > chunkRecords) return; // the walk reads all Vots through one SSBO binding
+        GLint maxSide = 0, maxTexels = 0;
+        glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &maxSide);
+        glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
+        if (vots.size() >= static_cast<std::size_t>(maxTexels)) return;
+        for (int a = 0; a < 3; ++a)
+            if (dims[a] - 1 > maxSide) return;
+        std::string whyNot;
+        const std::optional<VotWalkGrid> grid = buildVotWalkGrid(vots, dims, brickShift, &whyNot);
+        if (!grid) return;
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        cellVot = createTexture(GL_TEXTURE_3D);
+        glTextureStorage3D(cellVot.get(), 1, GL_R32UI, grid->cells[0], grid->cells[1], grid->cells[2]);
+        glTextureSubImage3D(cellVot.get(), 0, 0, 0, 0, grid->cells[0], grid->cells[1], grid->cells[2],
+                            GL_RED_INTEGER, GL_UNSIGNED_INT, grid->cellVot.data());
+        brickMax = createTexture(GL_TEXTURE_3D);
+        glTextureStorage3D(brickMax.get(), 1, GL_R32F, grid->bricks[0], grid->bricks[1], grid->bricks[2]);
+        glTextureSubImage3D(brickMax.get(), 0, 0, 0, 0, grid->bricks[0], grid->bricks[1], grid->bricks[2],
+                            GL_RED, GL_FLOAT, grid->brickMax.data());
+        for (GLuint t : {cellVot.get(), brickMax.get()}) {
+            glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+            glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        }
+        std::vector<std::uint32_t> boxes(std::max<std::size_t>(vots.size(), 1) * 4, 0);
+        for (std::size_t i = 0; i < vots.size(); ++i) {
+            const auto corner = [&](const float* c, int a) { return static_cast<std::uint32_t>(c[a]); };
+            const GpuVot& v = vots[i];
+            boxes[4 * i] = corner(v.lo, 0) | corner(v.lo, 1) << 16;
+            boxes[4 * i + 1] = corner(v.lo, 2) | corner(v.hi, 0) << 16;
+            boxes[4 * i + 2] = corner(v.hi, 1) | corner(v.hi, 2) << 16;
+            std::memcpy(&boxes[4 * i + 3], &v.upperBound, sizeof(float));
+        }
+        votBoxBuffer = createBuffer();
+        glNamedBufferStorage(votBoxBuffer.get(), static_cast<GLsizeiptr>(boxes.size() * sizeof(std::uint32_t)),
+                             boxes.data(), 0);
+        votBox = createTexture(GL_TEXTURE_BUFFER);
+        glTextureBuffer(votBox.get(), GL_RGBA32UI, votBoxBuffer.get());
+        checkGl("VotRenderer walk grid upload");
+        walkCells = grid->cells;
+        walkable = true;
+    }
+
+    void draw(const Camera& camera, int width, int height, RenderMode mode) {
+        if (mode == RenderMode::Reference)
+            throw fit::InputError(
+                "VotRenderer draws mip or density; reference needs the volume (GridRenderer)");
+        if (!hasData) throw RenderError("VotRenderer: render() before upload()");
+        const CameraMatrices m = computeCameraMatrices(camera, bounds, width, height);
+        const auto t0 = Clock::now();
+        stats = FrameStats{};
+        stats.votsTotal = vots.size();
+        target.bind(width, height);
+        if (mode == RenderMode::Mip && mipStrategy() == Strategy::Walk) {
+            target.clear(-INFINITY);
+            drawWalk(m, width, height);
+            glDisable(GL_CULL_FACE);
+            glFinish();
+            stats.gpuMs = msSince(t0);
+            checkGl("VotRenderer walk");
+            return;
+        }
+        const GLuint program = mode == RenderMode::Mip ? mipProgram.get() : densityProgram.get();
+        setCommonState(program, m, width, height);
+        if (mode == RenderMode::Mip) {
+            target.clear(-INFINITY);
+            glBlendEquation(GL_MAX); // exact for R32F (EGL_NOTES); order-independent, no sorting needed
+            if (culling && vots.size() > FIRST_BATCH) {
+                drawCulled(m, width, height);
+            } else {
+                glProgramUniform1i(program, glGetUniformLocation(program, "uUsePrevMax"), 0);
+                drawAll(program);
+            }
+        } else {
+            target.clear(INFINITY);
+            glBlendEquation(GL_MIN);
+            drawAll(program);
+        }
+        glDisable(GL_BLEND);
+        glDisable(GL_CULL_FACE);
+        glFinish();
+        stats.gpuMs = msSince(t0);
+        checkGl("VotRenderer draw");
+    }
+};
+
+VotRenderer::VotRenderer() : mImpl(std::make_unique<Impl>()) {}
+VotRenderer::~VotRenderer() = default;
+
+void VotRenderer::upload(const fit::VotSpace& space) {
+    Impl& d = *mImpl;
+    std::vector<VotBounds> bounds(space.vots.size());
+    std::vector<std::size_t> order(space.vots.size());
+    for (std::size_t i = 0; i < space.vots.size(); ++i)
+        bounds[i] = computeVotBounds(space.vots[i]);
+    std::iota(order.begin(), order.end(), std::size_t{0});
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return bounds[a].upper > bounds[b].upper; });
+    d.vots.resize(space.vots.size());
+    float lo = INFINITY, hi = -INFINITY, maxLogSize = 0.f;
+    for (std::size_t i = 0; i < order.size(); ++i) {
+        d.vots[i] = makeGpuVot(space.vots[order[i]], bounds[order[i]]);
+        lo = std::min(lo, static_cast<float>(bounds[order[i]].lower));
+        hi = std::max(hi, static_cast<float>(bounds[order[i]].upper));
+        maxLogSize = std::max(maxLogSize, d.vots[i].logSize);
+    }
+    if (d.vots.empty()) lo = hi = 0.f;
+    d.valueRange = {lo, hi};
+    d.densityRange = {0.f, std::max(maxLogSize, 1.f)};
+
+    GLint maxBlock = 0, alignment = 1;
+    glGetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
+    glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &alignment);
+    std::size_t chunk = static_cast<std::size_t>(maxBlock) / sizeof(GpuVot);
+    const std::size_t alignRecords =
+        std::max<std::size_t>(1, static_cast<std::size_t>(alignment) / sizeof(GpuVot));
+    chunk -= chunk % alignRecords;
+    if (chunk == 0) throw RenderError("GL shader storage blocks are too small for one Vot");
+    d.chunkRecords = chunk;
+
+    d.votBuffer = createBuffer();
+    glNamedBufferStorage(d.votBuffer.get(),
+                         static_cast<GLsizeiptr>(std::max<std::size_t>(d.vots.size(), 1) * sizeof(GpuVot)),
+                         d.vots.empty() ? nullptr : d.vots.data(), 0);
+    d.visible.assign(std::max<std::size_t>(std::min(d.vots.size(), chunk), 1), 0);
+    d.indexBuffer = createBuffer();
+    glNamedBufferStorage(d.indexBuffer.get(),
+                         static_cast<GLsizeiptr>(d.visible.size() * sizeof(std::uint32_t)), nullptr,
+                         GL_DYNAMIC_STORAGE_BIT);
+    checkGl("VotRenderer upload");
+    d.uploadWalkGrid(space.dims);
+    d.bounds = sceneBounds(space);
+    d.hasData = true;
+}
+
+bool VotRenderer::hasData() const {
+    return mImpl->hasData;
+}
+const SceneBounds& VotRenderer::bounds() const {
+    return mImpl->bounds;
+}
+std::array<float, 2> VotRenderer::valueRange() const {
+    return mImpl->valueRange;
+}
+std::array<float, 2> VotRenderer::densityRange() const {
+    return mImpl->densityRange;
+}
+void VotRenderer::setCulling(bool enabled) {
+    mImpl->culling = enabled;
+}
+void VotRenderer::setStrategy(Strategy strategy) {
+    mImpl->strategy = strategy;
+}
+VotRenderer::Strategy VotRenderer::strategy() const {
+    return mImpl->strategy;
+}
+VotRenderer::Strategy VotRenderer::mipStrategy() const {
+    return mImpl->mipStrategy();
+}
+const FrameStats& VotRenderer::lastFrameStats() const {
+    return mImpl->stats;
+}
+
+FloatImage VotRenderer::render(const Camera& camera, int width, int height, RenderMode mode) {
+    mImpl->draw(camera, width, height, mode);
+    const auto t0 = Clock::now();
+    FloatImage image = mImpl->target.readback();
+    mImpl->stats.readbackMs = msSince(t0);
+    return image;
+}
+
+RgbaImage VotRenderer::renderRgba(const Camera& camera, int width, int height, const DisplaySettings& display,
+                                  RenderMode mode) {
+    mImpl->draw(camera, width, height, mode);
+    const auto t0 = Clock::now();
+    RgbaImage image = mImpl->display.apply(mImpl->target.texture(), width, height, display);
+    mImpl->stats.readbackMs = msSince(t0);
+    return image;
+}
+
+} // namespace vots::render

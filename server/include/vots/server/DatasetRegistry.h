@@ -1,0 +1,63 @@
+// The volumes the server offers: found by name in the data folders, loaded lazily once, then kept.
+#pragma once
+
+#include "vots/fit/Volume.h"
+#include "vots/render/DisplaySettings.h"
+
+#include <array>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+namespace vots::server {
+
+/// A named window (level/width, data units).
+struct WindowPreset {
+    float level = 0.f;
+    float width = 1.f;
+};
+
+/// A loaded volume plus what the API reports about it.
+struct Dataset {
+    std::string name;           // file stem, a plain identifier
+    std::filesystem::path path; // the file it came from
+    std::shared_ptr<const fit::Volume> volume;
+    std::array<float, 2> range{0, 0};            // min and max sample, data units
+    float background = 0.f;                      // fit::defaultBackground(volume)
+    float defaultEps = 0.f;                      // 2 % of the range, data units
+    bool isCt = false;                           // range looks like Hounsfield units (min <= -900)
+    std::map<std::string, WindowPreset> presets; // "bone", "soft", "full"
+};
+
+/// Window presets for a value range: HU presets when it looks like CT, else fractions of the range.
+std::map<std::string, WindowPreset> windowPresets(std::array<float, 2> range, bool isCt);
+
+/// Thread-safe. Scans the folders once at construction for .nrrd/.nhdr/.nii/.nii.gz/.mhd/.mha files;
+/// the first folder that has a name wins. Loading happens on the first find() of a name.
+class DatasetRegistry {
+public:
+    explicit DatasetRegistry(const std::vector<std::filesystem::path>& dataDirs);
+
+    /// All names found, sorted.
+    std::vector<std::string> names() const;
+    /// The dataset, loading it on first use. Throws HttpError 400 for a name that is not a plain
+    /// identifier, 404 for an unknown one, 500 when the file cannot be read (the reason is kept).
+    std::shared_ptr<const Dataset> find(const std::string& name);
+    /// Already loaded datasets only (never loads), for stats.
+    std::vector<std::shared_ptr<const Dataset>> loaded() const;
+
+private:
+    struct Entry {
+        std::filesystem::path path;
+        std::mutex loadMutex; // held while this one file loads, so others load in parallel
+        std::shared_ptr<const Dataset> dataset;
+        std::string loadError;
+    };
+    mutable std::mutex mMutex;
+    std::map<std::string, std::unique_ptr<Entry>> mEntries;
+};
+
+} // namespace vots::server

@@ -1,0 +1,23 @@
+// Identity of a fitted Vot-Space: dataset, eps, degree, background and focus, with a canonical text form.
+#pragma once
+
+#include "vots/fit/EpsField.h"
+
+#include <optional>
+#include <string>
+
+namespace vots::server {
+
+struct FitKey {
+    std::string dataset; // plain identifier
+    float eps = 0.f;     // resolved, data units
+    int degree = 3;
+    float background = 0.f;                // cells with all corners below it are omitted
+    std::optional<fit::FocusRegion> focus; // grid index space
+
+    /// Canonical, exact text (floats as hex bits), safe as a file stem: [A-Za-z0-9_-] only.
+    /// Equal keys give equal text and vice versa.
+    std::string text() const;
+};
+
+} // namespace vots::server

@@ -1,0 +1,74 @@
+// Parsing and validation of /render query parameters and /api/fit bodies into typed requests; no HTTP types.
+#pragma once
+
+#include "vots/fit/EpsField.h"
+#include "vots/render/Camera.h"
+#include "vots/render/Colormap.h"
+#include "vots/render/DisplaySettings.h"
+#include "vots/render/RenderMode.h"
+
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace vots::server {
+
+/// Query parameters as httplib hands them over (already percent-decoded; a key may repeat).
+using QueryParams = std::multimap<std::string, std::string>;
+
+inline constexpr int MAX_RENDER_SIDE = 4096;        // size= accepts 1..4096 per side
+inline constexpr std::size_t MAX_PARAM_CHARS = 512; // any single query value longer than this is refused
+inline constexpr int DEFAULT_SIZE = 512;
+inline constexpr double DEFAULT_EPS_PERCENT = 2.0;
+inline constexpr int DEFAULT_DEGREE = 3;
+
+/// An error bound as the client wrote it: data units, or a percentage of the value range ("2%").
+struct EpsSpec {
+    double value = DEFAULT_EPS_PERCENT;
+    bool isPercent = true;
+    /// The bound in data units for values spanning [lo, hi], as float (what the fitter gets).
+    float resolve(float lo, float hi) const;
+};
+
+/// A typed /render request. Every field is validated; dataset is a plain identifier.
+struct RenderParams {
+    std::string dataset;
+    render::Camera camera = render::cameraForView(render::ViewPreset::Anterior);
+    int width = DEFAULT_SIZE;
+    int height = DEFAULT_SIZE;
+    EpsSpec eps;
+    int degree = DEFAULT_DEGREE;
+    render::RenderMode mode = render::RenderMode::Mip;
+    std::optional<render::DisplaySettings> window; // nullopt: the full range (see RenderQueue)
+    render::Colormap colormap = render::Colormap::Grey;
+    std::string client; // optional id; a newer request from the same client supersedes a waiting one
+};
+
+/// A typed POST /api/fit body.
+struct FitParams {
+    std::string dataset;
+    EpsSpec eps;
+    int degree = DEFAULT_DEGREE;
+    std::optional<fit::FocusRegion> focus; // {x,y,z,r} grid index units, eps in data units
+};
+
+/// Splits a raw query string ("a=1&cam=az=30,el=20") at '&' and each pair at its FIRST '=', then
+/// percent-decodes ('+' is a space; a '%' not followed by two hex digits stays as it is, so "eps=2%"
+/// works unencoded). httplib's own parser keeps only the text after the last '=', which breaks cam=.
+QueryParams parseQueryString(std::string_view query);
+
+/// True for names made of [A-Za-z0-9_-] only, 1..128 characters (never a path).
+bool isDatasetName(std::string_view name);
+
+/// Parses "20" (data units) or "2%" (of the value range); > 0 and finite. Throws HttpError 400.
+EpsSpec parseEpsSpec(std::string_view text);
+/// Parses "WxH" with both sides in 1..MAX_RENDER_SIDE. Throws HttpError 400.
+std::pair<int, int> parseSize(std::string_view text);
+
+/// Throws HttpError 400 naming the parameter for anything missing, unknown, repeated or malformed.
+RenderParams parseRenderParams(const QueryParams& query);
+/// Parses the JSON body of POST /api/fit; throws HttpError 400 for bad JSON or bad fields.
+FitParams parseFitParams(const std::string& body);
+
+} // namespace vots::server

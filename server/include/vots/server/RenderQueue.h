@@ -1,0 +1,78 @@
+// The one render thread: owns the EglContext and renderers; handlers post jobs and wait on a future.
+#pragma once
+
+#include "vots/fit/Volume.h"
+#include "vots/fit/VotSpace.h"
+#include "vots/server/Params.h"
+
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <future>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace vots::server {
+
+class ServerStats;
+
+/// What to draw. The Vot-Space is needed for mip and density, the volume for reference and the
+/// default window (full data range).
+struct RenderJob {
+    RenderParams params;
+    std::shared_ptr<const fit::VotSpace> space;
+    std::shared_ptr<const fit::Volume> volume;
+};
+
+struct RenderResult {
+    std::vector<std::uint8_t> png;
+    double frameMs = 0.0;     // render + display pass on the GPU, without PNG encoding
+    std::size_t votCount = 0; // Vots in the Vot-Space drawn (0 for reference)
+};
+
+/// Thread-safe. If no EGL context can be made, every submit() gives HttpError 503.
+class RenderQueue {
+public:
+    /// Starts the thread and waits until it has (or has failed to get) a context.
+    RenderQueue(ServerStats& stats, std::size_t maxWaiting = 64);
+    ~RenderQueue(); // answers waiting jobs with 503 and joins
+
+    RenderQueue(const RenderQueue&) = delete;
+    RenderQueue& operator=(const RenderQueue&) = delete;
+
+    bool hasContext() const { return mHasContext; }
+    const std::string& contextError() const { return mContextError; }
+    const std::string& rendererName() const { return mRendererName; }
+
+    /// Queues a job. The future throws HttpError 409 ("superseded") when a newer job with the same
+    /// non-empty client id arrived while this one waited, 503 without a context or when the queue is
+    /// full, 400 for input the renderer refuses.
+    std::future<RenderResult> submit(RenderJob job);
+    std::size_t waiting() const;
+
+private:
+    struct Item {
+        RenderJob job;
+        std::promise<RenderResult> promise;
+    };
+    struct Renderers; // VotRenderer + GridRenderer + what they hold, render thread only
+    void threadMain();
+    RenderResult draw(Renderers& renderers, const RenderJob& job);
+
+    ServerStats& mStats;
+    const std::size_t mMaxWaiting;
+    mutable std::mutex mMutex;
+    std::condition_variable mWake;
+    std::deque<Item> mQueue;
+    bool mStopping = false;
+    bool mReady = false;
+    bool mHasContext = false;
+    std::string mContextError;
+    std::string mRendererName;
+    std::thread mThread;
+};
+
+} // namespace vots::server

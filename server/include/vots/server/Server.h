@@ -1,0 +1,52 @@
+// The Vots HTTP server: routes over a dataset registry, fit jobs, a Vot-Space cache and the render thread.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace vots::server {
+
+struct ServerOptions {
+    std::vector<std::filesystem::path> dataDirs;         // searched in order for volumes
+    std::filesystem::path webDir;                        // static files; empty: none served
+    std::filesystem::path cacheDir;                      // .vots cache; empty: memory only
+    std::size_t memoryCacheBytes = std::size_t{1} << 30; // fitted Vot-Spaces kept in memory
+    int maxRunningFits = 2;
+    int maxQueuedFits = 8;
+    int httpThreads = 32;     // connections served at once (SSE holds one)
+    bool withRenderer = true; // false: never try EGL (tests of the 503 path)
+};
+
+/// The folders `vots serve` uses when none are given: ./data and ../shared/data when present.
+std::vector<std::filesystem::path> defaultDataDirs();
+/// ./web when present, else <source tree>/web when present, else empty.
+std::filesystem::path defaultWebDir();
+
+class Server {
+public:
+    explicit Server(ServerOptions options); // starts the render thread and fit workers
+    ~Server();                              // stop()s, then joins everything
+    Server(const Server&) = delete;
+    Server& operator=(const Server&) = delete;
+
+    /// Binds; returns false (bindToPort) or -1 (bindToAnyPort) on failure.
+    bool bindToPort(const std::string& host, int port);
+    int bindToAnyPort(const std::string& host);
+    /// Serves until stop(); blocks the calling thread.
+    bool listenAfterBind();
+    void stop();
+    bool isRunning() const;
+
+    /// One line about the renderer ("llvmpipe ..." or why there is none).
+    std::string rendererSummary() const;
+
+    struct Impl;
+
+private:
+    std::unique_ptr<Impl> mImpl;
+};
+
+} // namespace vots::server

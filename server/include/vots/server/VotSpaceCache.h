@@ -1,0 +1,67 @@
+// Fitted Vot-Spaces kept in memory (LRU, bounded by bytes) and on disk (one .vots file per FitKey).
+#pragma once
+
+#include "vots/fit/VotSpace.h"
+#include "vots/server/FitKey.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <list>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+namespace vots::server {
+
+/// Thread-safe. A disk folder that cannot be created or written logs one warning and is then ignored.
+class VotSpaceCache {
+public:
+    /// cacheDir empty: memory only.
+    VotSpaceCache(std::filesystem::path cacheDir, std::size_t memoryBudgetBytes);
+
+    /// Memory first, then disk (a disk hit is validated, must carry the same key, and enters memory).
+    std::shared_ptr<const fit::VotSpace> find(const FitKey& key);
+    std::shared_ptr<const fit::VotSpace> findInMemory(const FitKey& key);
+    /// Adds to memory (evicting least recently used entries over the budget) and writes the disk file.
+    void store(const FitKey& key, std::shared_ptr<const fit::VotSpace> space);
+
+    struct MemoryEntry {
+        std::string key;
+        std::size_t votCount = 0;
+        std::size_t bytes = 0;
+    };
+    struct DiskEntry {
+        std::string file; // name inside the cache folder
+        std::uintmax_t bytes = 0;
+    };
+    std::vector<MemoryEntry> memoryEntries() const; // most recently used first
+    std::vector<DiskEntry> diskEntries() const;
+    const std::filesystem::path& directory() const { return mDir; }
+    bool diskEnabled() const;
+
+    /// The meta JSON block that ties a cache file to its key and records how long the fit took.
+    static std::string metaFor(const FitKey& key, double fitSeconds);
+    /// The fit time recorded by metaFor, 0 when absent.
+    static double fitSecondsOf(const fit::VotSpace& space);
+
+private:
+    struct Slot {
+        std::string key;
+        std::shared_ptr<const fit::VotSpace> space;
+        std::size_t bytes = 0;
+    };
+    std::filesystem::path fileFor(const std::string& keyText) const;
+    void insertLocked(const std::string& keyText, std::shared_ptr<const fit::VotSpace> space);
+    void disableDisk(const std::string& reason);
+
+    std::filesystem::path mDir;
+    std::size_t mBudget;
+    mutable std::mutex mMutex;
+    std::list<Slot> mLru; // front: most recently used
+    std::size_t mBytes = 0;
+    bool mDiskEnabled = false;
+};
+
+} // namespace vots::server

@@ -1,0 +1,54 @@
+// GET /api/datasets: every volume in the data folders with its grid, value range, windows and defaults.
+#include "HttpJson.h"
+#include "ServerImpl.h"
+#include "vots/server/HttpError.h"
+
+namespace vots::server {
+namespace {
+
+nlohmann::json windowJson(const WindowPreset& w) {
+    return {{"level", w.level}, {"width", w.width}};
+}
+
+nlohmann::json datasetJson(const Dataset& d) {
+    const fit::Volume& v = *d.volume;
+    const auto window = render::windowForRange(d.range[0], d.range[1]);
+    nlohmann::json presets = nlohmann::json::object();
+    for (const auto& [name, preset] : d.presets)
+        presets[name] = windowJson(preset);
+    return {{"name", d.name},
+            {"dims", v.dims},
+            {"spacing", v.spacing},
+            {"range", d.range},
+            {"window", windowJson({window.level, window.width})},
+            {"presets", presets},
+            {"defaultEps", d.defaultEps},
+            {"background", d.background},
+            {"modality", d.isCt ? "CT" : "other"}};
+}
+
+} // namespace
+
+float resolveEps(const Dataset& dataset, const EpsSpec& eps) {
+    const float value = eps.resolve(dataset.range[0], dataset.range[1]);
+    if (!(value > 0.f) || !std::isfinite(value))
+        throw HttpError(400, "eps resolves to " + std::to_string(value) + " for dataset '" + dataset.name +
+                                 "' (its values are constant); give eps in data units");
+    return value;
+}
+
+void installDatasetRoutes(Server::Impl& s) {
+    s.http.Get("/api/datasets", [&s](const httplib::Request&, httplib::Response& res) {
+        nlohmann::json list = nlohmann::json::array();
+        for (const std::string& name : s.registry.names()) {
+            try {
+                list.push_back(datasetJson(*s.registry.find(name))); // loads on first use
+            } catch (const HttpError&) {
+                // A file that does not load is left out (and was logged once by the registry).
+            }
+        }
+        sendJson(res, 200, {{"datasets", list}});
+    });
+}
+
+} // namespace vots::server

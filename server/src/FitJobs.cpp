@@ -1,0 +1,175 @@
+// FitJobs: a bounded queue of fits served by a fixed set of worker threads; results go to the cache.
+#include "vots/server/FitJobs.h"
+
+#include "vots/fit/Error.h"
+#include "vots/server/HttpError.h"
+#include "vots/server/ServerStats.h"
+#include "vots/server/VotSpaceCache.h"
+
+#include <algorithm>
+#include <iostream>
+
+namespace vots::server {
+namespace {
+
+constexpr std::size_t MAX_FIT_CACHES = 4; // per-(dataset, degree) box caches kept; each can grow large
+
+fit::FitOptions optionsFor(const FitKey& key, int threads) {
+    fit::FitOptions options;
+    options.eps = key.eps;
+    options.degree = key.degree;
+    options.background = key.background;
+    options.focus = key.focus;
+    options.threads = threads;
+    // Same rule as `vots render`: a MIP picks up overshoot between samples, so certify cells too.
+    options.certify = fit::Certify::Cells;
+    return options;
+}
+
+FitRecord recordFor(const JobSnapshot& job, const char* source) {
+    return FitRecord{job.key, job.dataset, job.eps, job.degree, job.votCount, job.fitSeconds, source};
+}
+
+} // namespace
+
+FitJobs::FitJobs(VotSpaceCache& cache, ServerStats& stats, FitJobLimits limits)
+    : mCache(cache), mStats(stats), mLimits(limits) {
+    for (int i = 0; i < std::max(1, mLimits.maxRunning); ++i)
+        mWorkers.emplace_back([this] { workerLoop(); });
+}
+
+FitJobs::~FitJobs() {
+    shutdown();
+    for (std::thread& worker : mWorkers)
+        worker.join();
+}
+
+void FitJobs::shutdown() {
+    {
+        std::lock_guard lock(mMutex);
+        mStopping = true;
+        for (const Pending& pending : mQueue)
+            pending.job->fail("server is stopping");
+        mQueue.clear();
+    }
+    mCancel = true; // running fits throw FitCancelled at their next check
+    mWake.notify_all();
+}
+
+std::shared_ptr<FitJob> FitJobs::submit(std::shared_ptr<const Dataset> dataset, const FitKey& key) {
+    const std::string text = key.text();
+    {
+        std::lock_guard lock(mMutex);
+        if (mStopping) throw HttpError(503, "server is stopping");
+        if (const auto it = mActiveByKey.find(text); it != mActiveByKey.end()) return it->second;
+    }
+    // Checked here so a bad focus is a 400 for the POST rather than a failed job later.
+    fit::validateFitOptions(*dataset->volume, optionsFor(key, 0));
+
+    std::lock_guard lock(mMutex);
+    if (const auto it = mActiveByKey.find(text); it != mActiveByKey.end()) return it->second; // raced
+    if (auto space = mCache.findInMemory(key)) {
+        auto job = std::make_shared<FitJob>(mNextId++, key);
+        const double seconds = VotSpaceCache::fitSecondsOf(*space);
+        job->finish(std::move(space), seconds);
+        mById[job->id()] = job;
+        rememberLocked(job);
+        return job;
+    }
+    if (static_cast<int>(mQueue.size()) + mRunning >= mLimits.maxRunning + mLimits.maxQueued)
+        throw HttpError(429, "too many fit jobs; try again when one has finished");
+    auto job = std::make_shared<FitJob>(mNextId++, key);
+    mQueue.push_back(Pending{job, std::move(dataset)});
+    mActiveByKey[text] = job;
+    mById[job->id()] = job;
+    mWake.notify_one();
+    return job;
+}
+
+std::shared_ptr<FitJob> FitJobs::find(std::uint64_t id) const {
+    std::lock_guard lock(mMutex);
+    const auto it = mById.find(id);
+    if (it == mById.end()) throw HttpError(404, "unknown job " + std::to_string(id));
+    return it->second;
+}
+
+int FitJobs::activeCount() const {
+    std::lock_guard lock(mMutex);
+    return static_cast<int>(mQueue.size()) + mRunning;
+}
+
+void FitJobs::rememberLocked(const std::shared_ptr<FitJob>& job) {
+    mFinishedOrder.push_back(job->id());
+    while (mFinishedOrder.size() > static_cast<std::size_t>(std::max(1, mLimits.keepFinished))) {
+        mById.erase(mFinishedOrder.front());
+        mFinishedOrder.pop_front();
+    }
+}
+
+std::shared_ptr<fit::FitCache> FitJobs::fitCacheFor(const std::string& dataset, int degree) {
+    const std::string name = dataset + "/" + std::to_string(degree);
+    std::lock_guard lock(mMutex);
+    auto& slot = mFitCaches[name];
+    if (!slot) {
+        slot = std::make_shared<fit::FitCache>();
+        if (mFitCaches.size() > MAX_FIT_CACHES) // drop another one; a running fit keeps its own alive
+            mFitCaches.erase(mFitCaches.begin()->first == name ? std::next(mFitCaches.begin())
+                                                               : mFitCaches.begin());
+    }
+    return slot;
+}
+
+void FitJobs::workerLoop() {
+    for (;;) {
+        Pending pending;
+        {
+            std::unique_lock lock(mMutex);
+            mWake.wait(lock, [this] { return mStopping || !mQueue.empty(); });
+            if (mStopping) return;
+            pending = std::move(mQueue.front());
+            mQueue.pop_front();
+            ++mRunning;
+        }
+        run(pending);
+        std::lock_guard lock(mMutex);
+        --mRunning;
+        mActiveByKey.erase(pending.job->key().text());
+        rememberLocked(pending.job);
+    }
+}
+
+void FitJobs::run(const Pending& pending) {
+    FitJob& job = *pending.job;
+    const FitKey& key = job.key();
+    job.setRunning();
+    try {
+        if (auto space = mCache.find(key)) { // fitted by an earlier run of the server
+            const double seconds = VotSpaceCache::fitSecondsOf(*space);
+            job.finish(std::move(space), seconds);
+            mStats.addFit(recordFor(job.snapshot(), "disk"));
+            return;
+        }
+        const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+        fit::FitOptions options =
+            optionsFor(key, static_cast<int>(std::max(1u, cores / static_cast<unsigned>(mWorkers.size()))));
+        options.progress = [&job](double fraction, const char* stage) { job.setProgress(fraction, stage); };
+        options.cancel = &mCancel;
+        // The box cache answers only uniform eps exactly; focus fits run without it.
+        const auto boxCache = key.focus ? nullptr : fitCacheFor(key.dataset, key.degree);
+        fit::FitResult result = fit::fitVotSpace(*pending.dataset->volume, options, boxCache.get());
+        result.space.metaJson = VotSpaceCache::metaFor(key, result.stats.seconds);
+        auto space = std::make_shared<const fit::VotSpace>(std::move(result.space));
+        mCache.store(key, space);
+        job.finish(std::move(space), result.stats.seconds);
+        mStats.addFit(recordFor(job.snapshot(), "fit"));
+    } catch (const fit::FitCancelled&) {
+        job.fail("fit cancelled: the server is stopping");
+    } catch (const std::bad_alloc&) {
+        job.fail("out of memory while fitting");
+    } catch (const std::exception& e) {
+        std::cerr << "vots serve: fit " << key.text() << " failed: " << e.what() << "\n";
+        job.fail(e.what());
+    }
+}
+
+} // namespace vots::server

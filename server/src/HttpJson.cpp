@@ -1,0 +1,59 @@
+// JSON response helpers and the one place that decides which exception becomes which HTTP status.
+#include "HttpJson.h"
+
+#include "vots/fit/Error.h"
+#include "vots/server/HttpError.h"
+
+#include <iostream>
+
+namespace vots::server {
+
+void sendJson(httplib::Response& res, int status, const nlohmann::json& body) {
+    res.status = status;
+    // replace: invalid UTF-8 in a message (from a file name, say) must not throw while answering
+    res.set_content(body.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace), "application/json");
+}
+
+void sendError(httplib::Response& res, int status, const std::string& message) {
+    sendJson(res, status, nlohmann::json{{"error", message}});
+}
+
+std::string statusText(int status) {
+    switch (status) {
+    case 400:
+        return "bad request";
+    case 404:
+        return "not found";
+    case 405:
+        return "method not allowed";
+    case 413:
+        return "request body too large";
+    case 414:
+        return "request target too long";
+    case 416:
+        return "range not satisfiable";
+    case 503:
+        return "service unavailable";
+    default:
+        return "HTTP status " + std::to_string(status);
+    }
+}
+
+void sendException(httplib::Response& res, std::exception_ptr error) {
+    try {
+        std::rethrow_exception(error);
+    } catch (const HttpError& e) {
+        sendError(res, e.status(), e.what());
+    } catch (const fit::InputError& e) {
+        sendError(res, 400, e.what());
+    } catch (const std::bad_alloc&) {
+        sendError(res, 503, "out of memory");
+    } catch (const std::exception& e) {
+        std::cerr << "vots serve: internal error: " << e.what() << "\n";
+        sendError(res, 500, std::string("internal error: ") + e.what());
+    } catch (...) {
+        sendError(res, 500, "internal error");
+    }
+}
+
+} // namespace vots::server

@@ -1,0 +1,151 @@
+// RenderQueue: the render thread owns the GL context; jobs wait in a queue where newer frames replace older
+// ones.
+#include "vots/server/RenderQueue.h"
+
+#include "RenderDefaults.h"
+#include "vots/fit/Error.h"
+#include "vots/render/EglContext.h"
+#include "vots/render/Error.h"
+#include "vots/render/GridRenderer.h"
+#include "vots/render/Png.h"
+#include "vots/render/VotRenderer.h"
+#include "vots/server/HttpError.h"
+#include "vots/server/ServerStats.h"
+
+#include <chrono>
+#include <iostream>
+
+namespace vots::server {
+
+/// Everything GL lives here and is created, used and destroyed on the render thread only.
+/// Members are destroyed bottom-up, so the context outlives the renderers.
+struct RenderQueue::Renderers {
+    std::unique_ptr<render::EglContext> context;
+    std::unique_ptr<render::VotRenderer> vots;
+    std::unique_ptr<render::GridRenderer> grid;
+    std::shared_ptr<const fit::VotSpace> uploadedSpace; // kept alive so the pointer compare is sound
+    std::shared_ptr<const fit::Volume> uploadedVolume;
+};
+
+RenderQueue::RenderQueue(ServerStats& stats, std::size_t maxWaiting)
+    : mStats(stats), mMaxWaiting(maxWaiting) {
+    mThread = std::thread([this] { threadMain(); });
+    std::unique_lock lock(mMutex);
+    mWake.wait(lock, [this] { return mReady; });
+}
+
+RenderQueue::~RenderQueue() {
+    {
+        std::lock_guard lock(mMutex);
+        mStopping = true;
+    }
+    mWake.notify_all();
+    mThread.join();
+    for (Item& item : mQueue) // left by a thread that had no context, or by the stop
+        item.promise.set_exception(std::make_exception_ptr(HttpError(503, "server is stopping")));
+}
+
+std::size_t RenderQueue::waiting() const {
+    std::lock_guard lock(mMutex);
+    return mQueue.size();
+}
+
+std::future<RenderResult> RenderQueue::submit(RenderJob job) {
+    Item item{std::move(job), {}};
+    auto future = item.promise.get_future();
+    std::lock_guard lock(mMutex);
+    if (!mHasContext) throw HttpError(503, "rendering is unavailable: " + mContextError);
+    if (mStopping) throw HttpError(503, "server is stopping");
+    const std::string& client = item.job.params.client;
+    if (!client.empty()) {
+        for (auto it = mQueue.begin(); it != mQueue.end(); ++it) {
+            if (it->job.params.client != client) continue;
+            // The client has moved on: it wants this newer frame, not the one still waiting.
+            it->promise.set_exception(std::make_exception_ptr(HttpError(409, "superseded")));
+            mQueue.erase(it);
+            mStats.addSuperseded();
+            break; // at most one can wait per client, since each arrival replaces the previous
+        }
+    }
+    if (mQueue.size() >= mMaxWaiting) throw HttpError(503, "render queue is full; try again");
+    mQueue.push_back(std::move(item));
+    mWake.notify_one();
+    return future;
+}
+
+void RenderQueue::threadMain() {
+    Renderers renderers;
+    std::string error;
+    try {
+        renderers.context = render::EglContext::create(&error);
+        if (renderers.context) {
+            renderers.vots = std::make_unique<render::VotRenderer>();
+            renderers.grid = std::make_unique<render::GridRenderer>();
+        }
+    } catch (const std::exception& e) { // a shader that does not compile on this driver, say
+        error = e.what();
+        renderers = Renderers{};
+    }
+    {
+        std::lock_guard lock(mMutex);
+        mHasContext = renderers.context != nullptr;
+        mContextError = mHasContext ? "" : (error.empty() ? "no EGL context" : error);
+        mRendererName = mHasContext ? renderers.context->renderer() : "";
+        mReady = true;
+    }
+    mWake.notify_all();
+    if (!mHasContext) {
+        std::cerr << "vots serve: warning: no renderer, /render answers 503: " << mContextError << "\n";
+        return;
+    }
+
+    for (;;) {
+        Item item;
+        {
+            std::unique_lock lock(mMutex);
+            mWake.wait(lock, [this] { return mStopping || !mQueue.empty(); });
+            if (mStopping) return;
+            item = std::move(mQueue.front());
+            mQueue.pop_front();
+        }
+        try {
+            item.promise.set_value(draw(renderers, item.job));
+        } catch (const HttpError&) {
+            item.promise.set_exception(std::current_exception());
+        } catch (const fit::InputError& e) {
+            item.promise.set_exception(std::make_exception_ptr(HttpError(400, e.what())));
+        } catch (const std::exception& e) {
+            std::cerr << "vots serve: render failed: " << e.what() << "\n";
+            item.promise.set_exception(
+                std::make_exception_ptr(HttpError(500, std::string("render failed: ") + e.what())));
+        }
+    }
+}
+
+RenderResult RenderQueue::draw(Renderers& r, const RenderJob& job) {
+    const RenderParams& p = job.params;
+    RenderResult result;
+    const auto start = std::chrono::steady_clock::now();
+    render::RgbaImage image;
+    if (p.mode == render::RenderMode::Reference) {
+        if (r.uploadedVolume != job.volume) {
+            r.grid->upload(*job.volume);
+            r.uploadedVolume = job.volume;
+        }
+        image = r.grid->renderRgba(p.camera, p.width, p.height, displayFor(p, *job.volume, *r.vots));
+    } else {
+        if (r.uploadedSpace != job.space) {
+            r.vots->upload(*job.space);
+            r.uploadedSpace = job.space;
+        }
+        image = r.vots->renderRgba(p.camera, p.width, p.height, displayFor(p, *job.volume, *r.vots), p.mode);
+        result.votCount = job.space->vots.size();
+    }
+    result.frameMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    mStats.addFrame(result.frameMs);
+    result.png = render::encodePng(image);
+    return result;
+}
+
+} // namespace vots::server

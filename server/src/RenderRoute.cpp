@@ -1,0 +1,66 @@
+// GET /render: parse, find the dataset, wait for its Vot-Space (fitting if needed), render on the GL thread.
+#include "HttpJson.h"
+#include "ServerImpl.h"
+#include "vots/server/HttpError.h"
+
+#include <chrono>
+#include <cstdio>
+
+namespace vots::server {
+namespace {
+
+constexpr auto FIT_WAIT = std::chrono::minutes(10); // a /render waits this long for its fit at most
+
+std::string formatMs(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3f", value);
+    return text;
+}
+
+/// The Vot-Space for this request: from memory, else from the (possibly new) fit job.
+std::shared_ptr<const fit::VotSpace> spaceFor(Server::Impl& s, const std::shared_ptr<const Dataset>& dataset,
+                                              const RenderParams& p) {
+    FitKey key;
+    key.dataset = dataset->name;
+    key.eps = resolveEps(*dataset, p.eps);
+    key.degree = p.degree;
+    key.background = dataset->background;
+    if (auto space = s.cache.findInMemory(key)) return space;
+    const auto job = s.fitJobs.submit(dataset, key);
+    const JobSnapshot done = job->waitFinished(FIT_WAIT);
+    if (done.state == JobState::Failed) throw HttpError(500, "fit failed: " + done.error);
+    if (done.state != JobState::Done)
+        throw HttpError(503, "fit still running; try again later (job " + std::to_string(done.id) + ")");
+    return job->space();
+}
+
+} // namespace
+
+void installRenderRoute(Server::Impl& s) {
+    s.http.Get("/render", [&s](const httplib::Request& req, httplib::Response& res) {
+        RenderJob job;
+        const auto question = req.target.find('?');
+        const std::string_view query = question == std::string::npos
+                                           ? std::string_view()
+                                           : std::string_view(req.target).substr(question + 1);
+        job.params = parseRenderParams(parseQueryString(query));
+        const auto dataset = s.registry.find(job.params.dataset);
+        job.volume = dataset->volume;
+        // Checked before a possibly long fit: without a context the answer is 503 either way.
+        if (!s.renderQueue || !s.renderQueue->hasContext())
+            throw HttpError(503, s.renderQueue ? "rendering is unavailable: " + s.renderQueue->contextError()
+                                               : "rendering is disabled");
+        if (job.params.mode != render::RenderMode::Reference) job.space = spaceFor(s, dataset, job.params);
+
+        const RenderResult result = s.renderQueue->submit(job).get(); // throws HttpError (409, 503, ...)
+        res.status = 200;
+        res.set_header("X-Vots-Vot-Count", std::to_string(result.votCount));
+        res.set_header("X-Vots-Frame-Ms", formatMs(result.frameMs));
+        res.set_header("X-Vots-Fit-Seconds",
+                       formatMs(job.space ? VotSpaceCache::fitSecondsOf(*job.space) : 0.0));
+        res.set_header("Cache-Control", "no-cache");
+        res.set_content(std::string(result.png.begin(), result.png.end()), "image/png");
+    });
+}
+
+} // namespace vots::server

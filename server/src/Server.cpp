@@ -1,0 +1,124 @@
+// Server: wires the parts together, installs the routes and the guards every request passes through.
+#include "vots/server/Server.h"
+
+#include "HttpJson.h"
+#include "ServerImpl.h"
+#include "vots/server/StaticFiles.h"
+
+namespace vots::server {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr std::size_t MAX_BODY_BYTES = 64 * 1024; // POST bodies (a fit request is ~100 bytes)
+constexpr std::size_t MAX_TARGET_CHARS = 4096;    // httplib itself answers 414 above 8192
+
+FitJobLimits limitsFrom(const ServerOptions& o) {
+    FitJobLimits limits;
+    limits.maxRunning = o.maxRunningFits;
+    limits.maxQueued = o.maxQueuedFits;
+    return limits;
+}
+
+bool isApiPath(const std::string& path) {
+    return path.rfind("/api/", 0) == 0 || path == "/api" || path == "/render";
+}
+
+} // namespace
+
+Server::Impl::Impl(ServerOptions opts)
+    : options(std::move(opts)), registry(options.dataDirs), cache(options.cacheDir, options.memoryCacheBytes),
+      fitJobs(cache, stats, limitsFrom(options)) {
+    if (options.withRenderer) renderQueue = std::make_unique<RenderQueue>(stats);
+}
+
+std::vector<fs::path> defaultDataDirs() {
+    std::vector<fs::path> dirs;
+    std::error_code ec;
+    for (const char* dir : {"data", "../shared/data"})
+        if (fs::is_directory(dir, ec)) dirs.emplace_back(dir);
+    return dirs;
+}
+
+fs::path defaultWebDir() {
+    std::error_code ec;
+    if (fs::is_directory("web", ec)) return "web";
+#ifdef VOTS_SOURCE_DIR
+    const fs::path source = fs::path(VOTS_SOURCE_DIR) / "web";
+    if (fs::is_directory(source, ec)) return source;
+#endif
+    return {};
+}
+
+Server::Server(ServerOptions options) : mImpl(std::make_unique<Impl>(std::move(options))) {
+    Impl& s = *mImpl;
+    httplib::Server& http = s.http;
+    const int threads = std::max(4, s.options.httpThreads);
+    http.new_task_queue = [threads] { return new httplib::ThreadPool(static_cast<std::size_t>(threads)); };
+    http.set_payload_max_length(MAX_BODY_BYTES);
+
+    // Every request passes here first: hostile targets are refused before any route sees them, and
+    // non-API paths are static files.
+    http.set_pre_routing_handler([&s](const httplib::Request& req, httplib::Response& res) {
+        if (req.target.size() > MAX_TARGET_CHARS) {
+            sendError(res, 414, "request target too long");
+            return httplib::Server::HandlerResponse::Handled;
+        }
+        if (isHostileTarget(req.target) || req.path.find('\0') != std::string::npos) {
+            sendError(res, 400, "path-like or encoded characters ('..', backslash, NUL) are not accepted");
+            return httplib::Server::HandlerResponse::Handled;
+        }
+        if (isApiPath(req.path)) return httplib::Server::HandlerResponse::Unhandled;
+        if (req.method != "GET" && req.method != "HEAD") {
+            sendError(res, 405, "static files are GET only");
+            return httplib::Server::HandlerResponse::Handled;
+        }
+        if (!serveStatic(s, req, res)) sendError(res, 404, "not found: " + req.path.substr(0, 200));
+        return httplib::Server::HandlerResponse::Handled;
+    });
+    // Any 4xx/5xx without a body (httplib's own 404, 413, 414, ...) gets a JSON one.
+    const httplib::Server::HandlerWithResponse onError = [](const httplib::Request&, httplib::Response& res) {
+        if (!res.body.empty()) return httplib::Server::HandlerResponse::Unhandled;
+        sendError(res, res.status, statusText(res.status));
+        return httplib::Server::HandlerResponse::Handled;
+    };
+    http.set_error_handler(onError);
+    http.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr error) {
+        sendException(res, error);
+    });
+
+    installDatasetRoutes(s);
+    installStatsRoute(s);
+    installRenderRoute(s);
+    installJobRoutes(s);
+}
+
+Server::~Server() {
+    stop();
+}
+
+bool Server::bindToPort(const std::string& host, int port) {
+    return mImpl->http.bind_to_port(host, port);
+}
+int Server::bindToAnyPort(const std::string& host) {
+    return mImpl->http.bind_to_any_port(host);
+}
+bool Server::listenAfterBind() {
+    return mImpl->http.listen_after_bind();
+}
+bool Server::isRunning() const {
+    return mImpl->http.is_running();
+}
+
+void Server::stop() {
+    mImpl->fitJobs.shutdown(); // handlers waiting on fits are answered at once
+    mImpl->http.stop();
+}
+
+std::string Server::rendererSummary() const {
+    const auto& queue = mImpl->renderQueue;
+    if (!queue) return "renderer disabled";
+    if (!queue->hasContext()) return "no renderer (/render answers 503): " + queue->contextError();
+    return "renderer: " + queue->rendererName();
+}
+
+} // namespace vots::server

@@ -1,0 +1,44 @@
+// Server internals shared by the route files: the parts a request touches, in construction order.
+#pragma once
+
+#include "vots/server/DatasetRegistry.h"
+#include "vots/server/FitJobs.h"
+#include "vots/server/Params.h"
+#include "vots/server/RenderQueue.h"
+#include "vots/server/Server.h"
+#include "vots/server/ServerStats.h"
+#include "vots/server/VotSpaceCache.h"
+
+#include <httplib.h>
+
+#include <memory>
+
+namespace vots::server {
+
+struct Server::Impl {
+    explicit Impl(ServerOptions opts);
+
+    ServerOptions options;
+    ServerStats stats;
+    DatasetRegistry registry;
+    VotSpaceCache cache;
+    FitJobs fitJobs;
+    std::unique_ptr<RenderQueue> renderQueue; // null when options.withRenderer is false
+    httplib::Server http;                     // destroyed first: no handler runs after the rest is gone
+};
+
+// Route installers, one file each.
+void installDatasetRoutes(Server::Impl& s); // GET /api/datasets
+void installStatsRoute(Server::Impl& s);    // GET /api/stats
+void installRenderRoute(Server::Impl& s);   // GET /render
+void installJobRoutes(Server::Impl& s);     // POST /api/fit, GET /api/jobs/{id}, GET /api/jobs/{id}/events
+/// Static files from the web folder, answered in the pre-routing step for non-API paths.
+bool serveStatic(const Server::Impl& s, const httplib::Request& req, httplib::Response& res);
+
+/// Resolved eps for a dataset, or HttpError 400 when it comes out 0 (a constant volume with "N%").
+float resolveEps(const Dataset& dataset, const EpsSpec& eps);
+
+/// The job's visible state as JSON (GET /api/jobs/{id}, SSE data).
+nlohmann::json jobJson(const JobSnapshot& job);
+
+} // namespace vots::server

@@ -1,0 +1,56 @@
+// GET /api/stats: frame times, recent fits with their Vot counts, fit jobs, and what the caches hold.
+#include "HttpJson.h"
+#include "ServerImpl.h"
+
+namespace vots::server {
+
+void installStatsRoute(Server::Impl& s) {
+    s.http.Get("/api/stats", [&s](const httplib::Request&, httplib::Response& res) {
+        const FrameSummary frames = s.stats.frames();
+        nlohmann::json fits = nlohmann::json::array();
+        for (const FitRecord& f : s.stats.fits())
+            fits.push_back({{"key", f.key},
+                            {"dataset", f.dataset},
+                            {"eps", f.eps},
+                            {"degree", f.degree},
+                            {"votCount", f.votCount},
+                            {"fitSeconds", f.fitSeconds},
+                            {"source", f.source}});
+        nlohmann::json memory = nlohmann::json::array();
+        std::size_t memoryBytes = 0;
+        for (const auto& e : s.cache.memoryEntries()) {
+            memory.push_back({{"key", e.key}, {"votCount", e.votCount}, {"bytes", e.bytes}});
+            memoryBytes += e.bytes;
+        }
+        nlohmann::json disk = nlohmann::json::array();
+        for (const auto& e : s.cache.diskEntries())
+            disk.push_back({{"file", e.file}, {"bytes", e.bytes}});
+        nlohmann::json loaded = nlohmann::json::array();
+        for (const auto& d : s.registry.loaded())
+            loaded.push_back(d->name);
+
+        const RenderQueue* queue = s.renderQueue.get();
+        nlohmann::json renderer = {{"available", queue && queue->hasContext()},
+                                   {"name", queue ? queue->rendererName() : ""},
+                                   {"error", queue ? queue->contextError() : "renderer disabled"},
+                                   {"waiting", queue ? queue->waiting() : 0}};
+        sendJson(res, 200,
+                 {{"frames",
+                   {{"count", frames.frames},
+                    {"lastMs", frames.lastMs},
+                    {"medianMs", frames.medianMs},
+                    {"superseded", frames.superseded}}},
+                  {"renderer", renderer},
+                  {"fits", fits},
+                  {"fitJobs", {{"active", s.fitJobs.activeCount()}}},
+                  {"cache",
+                   {{"memory", memory},
+                    {"memoryBytes", memoryBytes},
+                    {"disk", disk},
+                    {"diskEnabled", s.cache.diskEnabled()},
+                    {"dir", s.cache.directory().string()}}},
+                  {"datasets", {{"available", s.registry.names().size()}, {"loaded", loaded}}}});
+    });
+}
+
+} // namespace vots::server

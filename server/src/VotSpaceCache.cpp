@@ -1,0 +1,153 @@
+// VotSpaceCache: LRU in memory by bytes, plus atomic .vots files named by the key's canonical text.
+#include "vots/server/VotSpaceCache.h"
+
+#include "vots/fit/VotSpaceFile.h"
+
+#include <nlohmann/json.hpp>
+
+#include <unistd.h>
+
+#include <iostream>
+
+namespace vots::server {
+namespace fs = std::filesystem;
+namespace {
+
+std::size_t bytesOf(const fit::VotSpace& space) {
+    return sizeof(fit::VotSpace) + space.vots.size() * sizeof(fit::Vot) + space.metaJson.size();
+}
+
+bool carriesKey(const fit::VotSpace& space, const std::string& keyText) {
+    const auto meta = nlohmann::json::parse(space.metaJson, nullptr, false);
+    if (meta.is_discarded() || !meta.is_object()) return false;
+    const auto key = meta.find("key");
+    return key != meta.end() && key->is_string() && key->get<std::string>() == keyText;
+}
+
+} // namespace
+
+VotSpaceCache::VotSpaceCache(fs::path cacheDir, std::size_t memoryBudgetBytes)
+    : mDir(std::move(cacheDir)), mBudget(memoryBudgetBytes) {
+    if (mDir.empty()) return;
+    std::error_code ec;
+    fs::create_directories(mDir, ec);
+    if (ec) {
+        disableDisk("cannot create it: " + ec.message());
+    } else if (::access(mDir.c_str(), W_OK) != 0) {
+        disableDisk("it is not writable");
+    } else {
+        mDiskEnabled = true;
+    }
+}
+
+std::string VotSpaceCache::metaFor(const FitKey& key, double fitSeconds) {
+    return nlohmann::json{{"source", "vots serve"}, {"key", key.text()}, {"fitSeconds", fitSeconds}}.dump();
+}
+
+double VotSpaceCache::fitSecondsOf(const fit::VotSpace& space) {
+    const auto meta = nlohmann::json::parse(space.metaJson, nullptr, false);
+    if (!meta.is_object()) return 0.0;
+    const auto it = meta.find("fitSeconds");
+    return it != meta.end() && it->is_number() ? it->get<double>() : 0.0;
+}
+
+bool VotSpaceCache::diskEnabled() const {
+    std::lock_guard lock(mMutex);
+    return mDiskEnabled;
+}
+
+void VotSpaceCache::disableDisk(const std::string& reason) {
+    // Called once at most while enabled (and from the constructor): one warning, then memory only.
+    std::cerr << "vots serve: warning: cache folder '" << mDir.string() << "' is not used (" << reason
+              << "); fitted Vot-Spaces are kept in memory only\n";
+    mDiskEnabled = false;
+}
+
+fs::path VotSpaceCache::fileFor(const std::string& keyText) const {
+    return mDir / (keyText + ".vots");
+}
+
+std::shared_ptr<const fit::VotSpace> VotSpaceCache::findInMemory(const FitKey& key) {
+    const std::string text = key.text();
+    std::lock_guard lock(mMutex);
+    for (auto it = mLru.begin(); it != mLru.end(); ++it) {
+        if (it->key != text) continue;
+        mLru.splice(mLru.begin(), mLru, it); // now most recently used
+        return mLru.front().space;
+    }
+    return nullptr;
+}
+
+std::shared_ptr<const fit::VotSpace> VotSpaceCache::find(const FitKey& key) {
+    if (auto space = findInMemory(key)) return space;
+    if (!diskEnabled()) return nullptr;
+    const std::string text = key.text();
+    const fs::path file = fileFor(text);
+    std::error_code ec;
+    if (!fs::is_regular_file(file, ec)) return nullptr;
+    try {
+        auto space = std::make_shared<const fit::VotSpace>(fit::readVotSpaceFile(file.string()));
+        if (!carriesKey(*space, text)) return nullptr; // a stranger's file under our name: refit
+        std::lock_guard lock(mMutex);
+        insertLocked(text, space);
+        return space;
+    } catch (const std::exception& e) { // truncated or corrupt file: refit and overwrite it
+        std::cerr << "vots serve: warning: ignoring cache file '" << file.string() << "': " << e.what()
+                  << "\n";
+        return nullptr;
+    }
+}
+
+void VotSpaceCache::insertLocked(const std::string& keyText, std::shared_ptr<const fit::VotSpace> space) {
+    for (auto it = mLru.begin(); it != mLru.end(); ++it) {
+        if (it->key != keyText) continue;
+        mBytes -= it->bytes;
+        mLru.erase(it);
+        break;
+    }
+    const std::size_t bytes = bytesOf(*space);
+    mLru.push_front(Slot{keyText, std::move(space), bytes});
+    mBytes += bytes;
+    while (mBytes > mBudget && mLru.size() > 1) { // the newest entry always stays
+        mBytes -= mLru.back().bytes;
+        mLru.pop_back();
+    }
+}
+
+void VotSpaceCache::store(const FitKey& key, std::shared_ptr<const fit::VotSpace> space) {
+    const std::string text = key.text();
+    {
+        std::lock_guard lock(mMutex);
+        insertLocked(text, space);
+        if (!mDiskEnabled) return;
+    }
+    try {
+        fit::writeVotSpaceFile(fileFor(text).string(), *space);
+    } catch (const std::exception& e) {
+        std::lock_guard lock(mMutex);
+        if (mDiskEnabled) disableDisk(e.what());
+    }
+}
+
+std::vector<VotSpaceCache::MemoryEntry> VotSpaceCache::memoryEntries() const {
+    std::lock_guard lock(mMutex);
+    std::vector<MemoryEntry> out;
+    for (const Slot& slot : mLru)
+        out.push_back({slot.key, slot.space->vots.size(), slot.bytes});
+    return out;
+}
+
+std::vector<VotSpaceCache::DiskEntry> VotSpaceCache::diskEntries() const {
+    std::vector<DiskEntry> out;
+    if (mDir.empty()) return out;
+    std::error_code ec;
+    fs::directory_iterator it(mDir, ec);
+    if (ec) return out;
+    for (const auto& entry : it) {
+        if (entry.path().extension() != ".vots" || !entry.is_regular_file(ec)) continue;
+        out.push_back({entry.path().filename().string(), entry.file_size(ec)});
+    }
+    return out;
+}
+
+} // namespace vots::server

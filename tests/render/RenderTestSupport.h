@@ -1,0 +1,50 @@
+// Shared helpers for renderer tests: one GL context per process, hand-built Vot-Spaces, CPU ray oracle.
+#pragma once
+
+#include "vots/fit/Volume.h"
+#include "vots/fit/VotSpace.h"
+#include "vots/render/Camera.h"
+#include "vots/render/EglContext.h"
+#include "vots/render/Image.h"
+
+#include <array>
+#include <functional>
+#include <random>
+#include <string>
+
+namespace vots::test {
+
+/// The process-wide context (created by main before any test); skips would hide bugs, so a missing
+/// context fails every GL test with the EGL reason.
+render::EglContext& glContext();
+
+/// Polynomial of degree <= 3 in index coordinates, stored as Taylor coefficients around `centre`.
+struct Polynomial {
+    std::array<double, 3> centre{0, 0, 0};
+    std::array<float, 20> c{};
+    double operator()(double x, double y, double z) const;
+};
+
+/// Random polynomial of the given degree with coefficients scaled so values stay O(amplitude) over
+/// a grid of side n.
+Polynomial randomPolynomial(int degree, int n, double amplitude, std::uint32_t seed);
+
+/// Samples f at every grid point.
+fit::Volume sampleVolume(const std::array<int, 3>& dims,
+                         const std::function<double(double, double, double)>& f,
+                         const std::array<double, 3>& spacing = {1, 1, 1});
+
+/// Exact cell Vots (DESIGN §2): one per 2x2x2 cell, reproducing trilinear interpolation.
+fit::VotSpace cellVotSpace(const fit::Volume& volume);
+
+/// The polynomial split into boxes of `side` cells, each Vot expanded around its own box centre.
+fit::VotSpace polynomialVotSpace(const Polynomial& p, const std::array<int, 3>& dims, int side);
+
+/// Max of f along a pixel's ray within the index box [0, dims-1], by dense sampling on the CPU (double).
+double cpuRayMax(const render::CameraMatrices& m, const std::array<int, 3>& dims, int width, int height,
+                 int px, int py, const std::function<double(double, double, double)>& f, int samples);
+
+/// Writes a PNG under /tmp/vots_render_tests/ for looking at (grey, full range of finite values).
+void saveForInspection(const render::FloatImage& image, const std::string& name);
+
+} // namespace vots::test

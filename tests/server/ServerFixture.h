@@ -1,0 +1,85 @@
+// A test world for the server: a temp data folder with two small volumes, a web folder, a cache folder.
+#pragma once
+
+#include "LoopbackServer.h"
+#include "TempDir.h"
+
+#include <gtest/gtest.h>
+#include <httplib.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <memory>
+#include <string>
+
+namespace vots::test {
+
+inline constexpr const char* NEGHIP = "neghip_64x64x64_uint8";
+inline constexpr const char* HEAD_MR = "HeadMRVolume_48x62x42_uint8";
+
+/// Owns the folders; makeServer() starts a server over them with the given tweaks.
+class ServerWorld {
+public:
+    ServerWorld() {
+        namespace fs = std::filesystem;
+        fs::create_directories(data());
+        fs::create_directories(web() / "js");
+        for (const char* name : {NEGHIP, HEAD_MR})
+            fs::create_symlink(fs::path(VOTS_SHARED_DATA_DIR) / (std::string(name) + ".nrrd"),
+                               data() / (std::string(name) + ".nrrd"));
+        mDir.write("web/index.html", "<!doctype html><title>Vots</title>");
+        mDir.write("web/js/app.js", "console.log('vots');");
+        mDir.write("web/style.css", "body{}");
+        mDir.write("secret.txt", "outside the web folder");
+        fs::create_symlink(mDir.path() / "secret.txt", web() / "link.txt"); // a link out of the web folder
+    }
+
+    std::filesystem::path data() const { return mDir.path() / "data"; }
+    std::filesystem::path web() const { return mDir.path() / "web"; }
+    std::filesystem::path cache() const { return mDir.path() / "cache"; }
+    const TempDir& dir() const { return mDir; }
+
+    server::ServerOptions options() const {
+        server::ServerOptions o;
+        o.dataDirs = {data()};
+        o.webDir = web();
+        o.cacheDir = cache();
+        return o;
+    }
+
+private:
+    TempDir mDir;
+};
+
+/// Parses a response body as JSON; a test failure (not an exception) when it is not.
+inline nlohmann::json bodyJson(const httplib::Result& res) {
+    if (!res) {
+        ADD_FAILURE() << "no response: " << httplib::to_string(res.error());
+        return {};
+    }
+    auto json = nlohmann::json::parse(res->body, nullptr, false);
+    if (json.is_discarded()) ADD_FAILURE() << "not JSON: " << res->body.substr(0, 200);
+    return json;
+}
+
+/// One shared server per test suite, so the EGL context and fits are paid once.
+class SharedServerTest : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        sWorld = new ServerWorld();
+        sServer = new LoopbackServer(sWorld->options());
+    }
+    static void TearDownTestSuite() {
+        delete sServer;
+        delete sWorld;
+        sServer = nullptr;
+        sWorld = nullptr;
+    }
+    static std::unique_ptr<httplib::Client> client() { return sServer->client(); }
+    static ServerWorld& world() { return *sWorld; }
+
+    static inline ServerWorld* sWorld = nullptr;
+    static inline LoopbackServer* sServer = nullptr;
+};
+
+} // namespace vots::test

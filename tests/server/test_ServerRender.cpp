@@ -1,0 +1,135 @@
+// GET /render over loopback: same bytes as `vots render`, headers, concurrent clients, superseded frames.
+#include "ServerFixture.h"
+
+#include <chrono>
+#include <cstdlib>
+#include <fstream>
+#include <future>
+#include <sstream>
+#include <thread>
+
+namespace vots::test {
+namespace {
+
+class ServerRender : public SharedServerTest {
+protected:
+    /// Runs the real CLI and returns the PNG bytes it wrote.
+    static std::string cliRender(const std::string& dataset, const std::string& args) {
+        const std::string out = world().dir().file("cli-" + std::to_string(sCount++) + ".png");
+        const std::string command = std::string(VOTS_CLI) + " render '" + VOTS_SHARED_DATA_DIR + "/" +
+                                    dataset + ".nrrd' -o '" + out + "' " + args + " 2>/dev/null";
+        EXPECT_EQ(std::system(command.c_str()), 0) << command;
+        std::ifstream in(out, std::ios::binary);
+        std::ostringstream bytes;
+        bytes << in.rdbuf();
+        return bytes.str();
+    }
+    static std::string serverRender(const std::string& query) {
+        const auto res = client()->Get(("/render?" + query).c_str());
+        if (!res) return "no response";
+        EXPECT_EQ(res->status, 200) << query << ": " << res->body;
+        EXPECT_EQ(res->get_header_value("Content-Type"), "image/png");
+        return res->body;
+    }
+    static inline int sCount = 0;
+};
+
+TEST_F(ServerRender, MipMatchesCliBytes) {
+    const std::string png =
+        serverRender("dataset=neghip_64x64x64_uint8&cam=az=30,el=20&size=128x96&eps=2%25");
+    EXPECT_EQ(png, cliRender(NEGHIP, "--cam az=30,el=20 --size 128x96 --eps 2%"));
+}
+
+TEST_F(ServerRender, WindowColormapAndDegreeMatchCliBytes) {
+    const std::string png = serverRender("dataset=HeadMRVolume_48x62x42_uint8&cam=view%3Dleft&size=96x96&eps="
+                                         "8&degree=2&window=100,150&colormap=hot");
+    EXPECT_EQ(png,
+              cliRender(HEAD_MR,
+                        "--cam view=left --size 96x96 --eps 8 --degree 2 --window 100,150 --colormap hot"));
+}
+
+TEST_F(ServerRender, DensityAndReferenceMatchCliBytes) {
+    EXPECT_EQ(serverRender("dataset=neghip_64x64x64_uint8&size=80x80&eps=3%25&mode=density"),
+              cliRender(NEGHIP, "--size 80x80 --eps 3% --mode density"));
+    EXPECT_EQ(
+        serverRender("dataset=neghip_64x64x64_uint8&cam=az=-40,el=10,zoom=1.5&size=80x80&mode=reference"),
+        cliRender(NEGHIP, "--cam az=-40,el=10,zoom=1.5 --size 80x80 --mode reference"));
+}
+
+TEST_F(ServerRender, RefitAtNewEpsThroughBoxCacheMatchesCliBytes) {
+    // The first fit fills the per-(dataset, degree) box cache; the second reuses it and must not differ.
+    serverRender("dataset=neghip_64x64x64_uint8&size=32x32&eps=7%25");
+    EXPECT_EQ(serverRender("dataset=neghip_64x64x64_uint8&size=64x64&eps=4%25&cam=superior"),
+              cliRender(NEGHIP, "--size 64x64 --eps 4% --cam superior"));
+}
+
+TEST_F(ServerRender, SameUrlSameBytesAndHeaders) {
+    const std::string query = "/render?dataset=neghip_64x64x64_uint8&size=64x64";
+    auto c = client();
+    const auto a = c->Get(query.c_str());
+    const auto b = c->Get(query.c_str());
+    ASSERT_TRUE(a && b);
+    ASSERT_EQ(a->status, 200) << a->body;
+    EXPECT_EQ(a->body, b->body);
+    EXPECT_GT(std::stoi(a->get_header_value("X-Vots-Vot-Count")), 0);
+    EXPECT_GT(std::stod(a->get_header_value("X-Vots-Frame-Ms")), 0.0);
+    EXPECT_GE(std::stod(a->get_header_value("X-Vots-Fit-Seconds")), 0.0);
+    EXPECT_EQ(a->body.substr(1, 3), "PNG");
+}
+
+TEST_F(ServerRender, TwoClientsAtOnceGetTheirOwnImages) {
+    const std::string left = "/render?dataset=neghip_64x64x64_uint8&size=64x64&cam=left&client=a";
+    const std::string right = "/render?dataset=neghip_64x64x64_uint8&size=64x64&cam=right&client=b";
+    auto fetch = [](const std::string& path) {
+        const auto res = client()->Get(path.c_str());
+        return res && res->status == 200 ? res->body : std::string("failed");
+    };
+    auto a = std::async(std::launch::async, fetch, left);
+    auto b = std::async(std::launch::async, fetch, right);
+    const std::string pngA = a.get();
+    const std::string pngB = b.get();
+    EXPECT_EQ(pngA, fetch(left));
+    EXPECT_EQ(pngB, fetch(right));
+    EXPECT_NE(pngA, pngB);
+}
+
+TEST_F(ServerRender, NewerFrameFromSameClientSupersedesWaitingOne) {
+    serverRender("dataset=neghip_64x64x64_uint8&size=16x16"); // fitted, so the next requests queue at once
+    // Occupy the render thread with a large reference frame, then queue two frames from one client.
+    auto busy = std::async(std::launch::async, [] {
+        return client()->Get(
+            "/render?dataset=neghip_64x64x64_uint8&mode=reference&size=2048x2048&client=busy");
+    });
+    auto waitForQueue = [](int n) {
+        for (int i = 0; i < 2000; ++i) {
+            const auto stats = bodyJson(client()->Get("/api/stats"));
+            if (stats["renderer"]["waiting"].get<int>() >= n) return true;
+            std::this_thread::sleep_for(std::chrono::milliseconds(2));
+        }
+        return false;
+    };
+    std::this_thread::sleep_for(std::chrono::milliseconds(200)); // the idle render thread has taken it
+    auto older = std::async(std::launch::async, [] {
+        return client()->Get("/render?dataset=neghip_64x64x64_uint8&size=64x64&cam=az=10&client=viewer");
+    });
+    if (!waitForQueue(1)) { // on a fast GPU the busy frame may be over already: nothing to supersede
+        busy.get();
+        older.get();
+        GTEST_SKIP() << "the busy frame finished before a second frame could queue behind it";
+    }
+    auto newer = std::async(std::launch::async, [] {
+        return client()->Get("/render?dataset=neghip_64x64x64_uint8&size=64x64&cam=az=20&client=viewer");
+    });
+    const auto oldRes = older.get();
+    const auto newRes = newer.get();
+    const auto busyRes = busy.get();
+    ASSERT_TRUE(oldRes && newRes && busyRes);
+    EXPECT_EQ(busyRes->status, 200);
+    EXPECT_EQ(oldRes->status, 409);
+    EXPECT_EQ(bodyJson(oldRes)["error"], "superseded");
+    EXPECT_EQ(newRes->status, 200);
+    EXPECT_GE(bodyJson(client()->Get("/api/stats"))["frames"]["superseded"].get<int>(), 1);
+}
+
+} // namespace
+} // namespace vots::test

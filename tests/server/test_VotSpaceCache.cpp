@@ -1,0 +1,79 @@
+// VotSpaceCache and FitKey: exact keys, LRU eviction by bytes, disk round trip, foreign files ignored.
+#include "vots/fit/VotSpaceFile.h"
+#include "vots/server/VotSpaceCache.h"
+
+#include "TempDir.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace vots::server {
+namespace {
+
+std::shared_ptr<const fit::VotSpace> spaceWith(std::size_t vots, const FitKey& key) {
+    fit::VotSpace space;
+    space.dims = {4, 4, 4};
+    space.eps = key.eps;
+    fit::Vot vot{};
+    vot.box.lo = {0, 0, 0};
+    vot.box.hi = {3, 3, 3};
+    space.vots.assign(vots, vot);
+    space.metaJson = VotSpaceCache::metaFor(key, 1.5);
+    return std::make_shared<const fit::VotSpace>(std::move(space));
+}
+
+TEST(FitKey, TextIsExactAndFileSafe) {
+    FitKey a{"neghip", 5.1f, 3, 2.55f, std::nullopt};
+    FitKey b = a;
+    b.eps = std::nextafter(5.1f, 6.f);
+    EXPECT_NE(a.text(), b.text());
+    FitKey c = a;
+    c.focus = fit::FocusRegion{{1, 2, 3}, 4, 0.5f};
+    EXPECT_NE(a.text(), c.text());
+    EXPECT_EQ(c.text().find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_-"),
+              std::string::npos);
+}
+
+TEST(VotSpaceCache, EvictsLeastRecentlyUsedOverBudget) {
+    const FitKey k1{"a", 1.f, 3, 0.f, std::nullopt}, k2{"a", 2.f, 3, 0.f, std::nullopt},
+        k3{"a", 3.f, 3, 0.f, std::nullopt};
+    const std::size_t one =
+        sizeof(fit::VotSpace) + 100 * sizeof(fit::Vot) + VotSpaceCache::metaFor(k1, 1.5).size();
+    VotSpaceCache cache({}, 2 * one + 10);
+    cache.store(k1, spaceWith(100, k1));
+    cache.store(k2, spaceWith(100, k2));
+    ASSERT_TRUE(cache.findInMemory(k1)); // k1 is now the most recent
+    cache.store(k3, spaceWith(100, k3));
+    EXPECT_TRUE(cache.findInMemory(k1));
+    EXPECT_FALSE(cache.findInMemory(k2));
+    EXPECT_TRUE(cache.findInMemory(k3));
+}
+
+TEST(VotSpaceCache, DiskRoundTripAndForeignFilesIgnored) {
+    test::TempDir dir;
+    const FitKey key{"a", 1.f, 3, 0.f, std::nullopt};
+    {
+        VotSpaceCache cache(dir.path(), 1 << 20);
+        cache.store(key, spaceWith(5, key));
+        EXPECT_EQ(cache.diskEntries().size(), 1u);
+    }
+    VotSpaceCache cache(dir.path(), 1 << 20);
+    EXPECT_FALSE(cache.findInMemory(key));
+    const auto space = cache.find(key);
+    ASSERT_TRUE(space);
+    EXPECT_EQ(space->vots.size(), 5u);
+    EXPECT_EQ(VotSpaceCache::fitSecondsOf(*space), 1.5);
+
+    // A file under another key's name (copied or renamed) is not trusted.
+    const FitKey other{"a", 2.f, 3, 0.f, std::nullopt};
+    fit::writeVotSpaceFile((dir.path() / (other.text() + ".vots")).string(), *space);
+    EXPECT_FALSE(cache.find(other));
+    // A truncated file is ignored too.
+    const FitKey third{"a", 3.f, 3, 0.f, std::nullopt};
+    dir.write(third.text() + ".vots", "VOTS");
+    EXPECT_FALSE(cache.find(third));
+}
+
+} // namespace
+} // namespace vots::server

@@ -1,0 +1,74 @@
+// Mouse interaction: left-drag orbits (right = +az, up = +el), shift-drag pans, the wheel zooms; drafts while moving.
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { withPage, pickDataset } from './support/browser.mjs';
+import { ViewerPage } from './pages/ViewerPage.mjs';
+
+const START_CAM = 'az=10,el=5,zoom=1,pan=0:0,proj=ortho,fov=30';
+
+test('left-drag orbits: hash cam and image change, drafts while dragging, full frame on release', async (t) => {
+  const ds = await pickDataset();
+  await withPage(t, async (page) => {
+    const viewer = new ViewerPage(page);
+    await viewer.open({ dataset: ds.name, cam: START_CAM });
+    await viewer.waitForIdle();
+    const before = await viewer.framePixels();
+    await viewer.screenshotView('orbit-before');
+
+    const sizes = [];
+    page.on('request', (r) => {
+      if (r.url().includes('/render?')) sizes.push(new URL(r.url()).searchParams.get('size'));
+    });
+    await viewer.drag(150, -80);
+    await viewer.waitForIdle();
+    await viewer.screenshotView('orbit-after');
+
+    const cam = await viewer.camValues();
+    assert.ok(cam.az > 10 + 5, `dragging right should increase az, got ${cam.az}`);
+    assert.ok(cam.el > 5 + 5, `dragging up should increase el, got ${cam.el}`);
+    const after = await viewer.framePixels();
+    assert.notDeepEqual(after.data, before.data, 'the image did not change after orbiting');
+
+    const full = `${before.width}x${before.height}`;
+    assert.ok(sizes.length >= 2, `expected several frames during the drag, saw ${sizes.join(' ')}`);
+    assert.ok(sizes.some((s) => s !== full), `no reduced-size draft frame while dragging: ${sizes.join(' ')}`);
+    assert.equal(sizes.at(-1), full, 'the last request must be the full-quality frame');
+  });
+});
+
+test('elevation clamps at +90 when dragging far up', async (t) => {
+  const ds = await pickDataset();
+  await withPage(t, async (page) => {
+    const viewer = new ViewerPage(page);
+    await viewer.open({ dataset: ds.name, cam: START_CAM });
+    await viewer.waitForIdle();
+    await viewer.drag(0, -700);
+    await viewer.waitForIdle();
+    assert.equal((await viewer.camValues()).el, 90);
+  });
+});
+
+test('shift-drag pans and the wheel zooms', async (t) => {
+  const ds = await pickDataset();
+  await withPage(t, async (page) => {
+    const viewer = new ViewerPage(page);
+    await viewer.open({ dataset: ds.name, cam: START_CAM });
+    await viewer.waitForIdle();
+    const before = await viewer.framePixels();
+
+    await viewer.drag(120, 60, { shift: true });
+    await viewer.waitForIdle();
+    const panned = await viewer.camValues();
+    // pan moves the look-at point, so content dragged right/down means pan x < 0 and pan y > 0.
+    assert.ok(panned.panX < -0.1 && panned.panY > 0.1, `content should follow the pointer: pan=${panned.panX}:${panned.panY}`);
+    assert.equal(panned.az, 10, 'panning must not orbit');
+    const afterPan = await viewer.framePixels();
+    assert.notDeepEqual(afterPan.data, before.data, 'the image did not change after panning');
+
+    await viewer.wheel(-300);
+    await viewer.waitForIdle();
+    const zoomed = await viewer.camValues();
+    assert.ok(zoomed.zoom > 1.2, `wheel up should zoom in, zoom=${zoomed.zoom}`);
+    await viewer.screenshotView('pan-zoom');
+  });
+});
