@@ -21,8 +21,10 @@ double median(std::vector<double> v) {
 
 int main(int argc, char** argv) {
     if (argc < 3) {
-        std::fprintf(stderr, "usage: fit_refit VOLUME BASE_PERCENT [PERCENT...]\n"
-                             "  fits at BASE_PERCENT of the value range, then refits at each PERCENT with the cache\n");
+        std::fprintf(
+            stderr,
+            "usage: fit_refit VOLUME BASE_PERCENT [PERCENT...]\n"
+            "  fits at BASE_PERCENT of the value range, then refits at each PERCENT with the cache\n");
         return 2;
     }
     try {
@@ -34,7 +36,8 @@ int main(int argc, char** argv) {
             o.background = defaultBackground(volume);
             return o;
         };
-        std::printf("| volume | from eps | to eps | refit (s) | fresh fit (s, median of 3) | Vots | cache hits |\n");
+        std::printf(
+            "| volume | from eps | to eps | refit (s) | fresh fit (s, median of 3) | Vots | cache hits |\n");
         std::printf("|---|---|---|---|---|---|---|\n");
         for (int i = 3; i < argc; ++i) {
             const double base = std::atof(argv[2]), target = std::atof(argv[i]);
@@ -47,8 +50,9 @@ int main(int argc, char** argv) {
             FitCache cache;
             fitVotSpace(volume, optionsAt(base), &cache);
             const FitResult refit = fitVotSpace(volume, optionsAt(target), &cache);
-            std::printf("| %s | %g %% | %g %% | %.3f | %.3f | %zu | %zu |\n", volume.name.c_str(), base, target,
-                        refit.stats.seconds, median(fresh), refit.space.vots.size(), refit.stats.cacheHits);
+            std::printf("| %s | %g %% | %g %% | %.3f | %.3f | %zu | %zu |\n", volume.name.c_str(), base,
+                        target, refit.stats.seconds, median(fresh), refit.space.vots.size(),
+                        refit.stats.cacheHits);
         }
     } catch (const std::exception& e) {
         std::fprintf(stderr, "fit_refit: %s\n", e.what());

@@ -49,7 +49,8 @@ double msOf(const std::function<void()>& fn) {
 }
 
 // Runs the functions round-robin (warm-up rounds first) and returns each one's median wall time, ms.
-std::vector<double> interleavedMedians(int warmup, int frames, const std::vector<std::function<void()>>& fns) {
+std::vector<double> interleavedMedians(int warmup, int frames,
+                                       const std::vector<std::function<void()>>& fns) {
     std::vector<std::vector<double>> ms(fns.size());
     for (int round = 0; round < warmup + frames; ++round)
         for (std::size_t i = 0; i < fns.size(); ++i) {
@@ -105,17 +106,20 @@ int main(int argc, char** argv) {
         grid.upload(volume);
         const char* threads = std::getenv("LP_NUM_THREADS");
         std::cout << "renderer: " << context->renderer()
-                  << ", LP_NUM_THREADS=" << (threads ? threads : "(unset)") << ", volume " << volumePath << " "
-                  << volume.dims[0] << "x" << volume.dims[1] << "x" << volume.dims[2] << ", " << size << "x"
-                  << size << ", medians of " << frames << " interleaved rounds after " << warmup
+                  << ", LP_NUM_THREADS=" << (threads ? threads : "(unset)") << ", volume " << volumePath
+                  << " " << volume.dims[0] << "x" << volume.dims[1] << "x" << volume.dims[2] << ", " << size
+                  << "x" << size << ", medians of " << frames << " interleaved rounds after " << warmup
                   << ", culling " << (noCull ? "off" : "on") << "\n\n";
-        std::cout << "| eps | view | Vots | strategy used | reference ms | raster ms | walk ms | ref / walk | "
-                     "raster / walk | pixels walk != raster | readback ms | display+readback ms | PNG ms |\n"
-                     "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+        std::cout
+            << "| eps | view | Vots | strategy used | reference ms | raster ms | walk ms | ref / walk | "
+               "raster / walk | pixels walk != raster | readback ms | display+readback ms | PNG ms |\n"
+               "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
 
         std::vector<double> epsList;
-        if (!votsPath.empty()) epsList.push_back(-1.0);
-        else if (epsAbs > 0) epsList.push_back(epsAbs);
+        if (!votsPath.empty())
+            epsList.push_back(-1.0);
+        else if (epsAbs > 0)
+            epsList.push_back(epsAbs);
         else
             for (double p : epsPercents.empty() ? std::vector<double>{1.0} : epsPercents)
                 epsList.push_back(p * 0.01 * (range[1] - range[0]));
@@ -143,7 +147,8 @@ int main(int argc, char** argv) {
             walk.setCulling(!noCull);
             raster.setCulling(!noCull);
             std::cerr << "eps " << eps << ": " << space.vots.size() << " Vots, fit " << fitSeconds
-                      << " s, upload " << walkUploadMs << " ms (walk), " << rasterUploadMs << " ms (raster)\n";
+                      << " s, upload " << walkUploadMs << " ms (walk), " << rasterUploadMs
+                      << " ms (raster)\n";
             const bool walks = walk.mipStrategy() == VotRenderer::Strategy::Walk;
 
             const std::pair<const char*, const char*> views[] = {
@@ -174,38 +179,26 @@ int main(int argc, char** argv) {
                     displayMs.push_back(main.lastFrameStats().readbackMs);
                     pngMs.push_back(msOf([&] { (void)vots::render::encodePng(rgba); }));
                 }
-                if (std::getenv("VOTS_PROBE")) { // TEMP
-                    std::vector<std::function<void()>> f2{[&] { grid.render(camera, size, size); }, [&] { walk.render(camera, size, size); },
-                       [&] { setenv("VOTS_WALK_DEBUG", "9", 1); walk.render(camera, size, size); setenv("VOTS_WALK_DEBUG", "0", 1);}};
-                    auto r = interleavedMedians(1, 5, f2);
-                    std::printf("probe: ref %.1f walk %.1f walk-noeval %.1f\n", r[0], r[1], r[2]);
-                }
-                if (std::getenv("VOTS_WALK_DEBUG")) { // TEMP
-                    for (int k = 1; k <= 5; ++k) {
-                        setenv("VOTS_WALK_DEBUG", std::to_string(k).c_str(), 1);
-                        auto im = walk.render(camera, size, size);
-                        double sum = 0, mx = 0; std::size_t n = 0;
-                        for (float v : im.pixels) if (std::isfinite(v)) { sum += v; mx = std::max(mx, double(v)); ++n; }
-                        std::printf("debug %d: mean %.2f max %.0f over %zu pixels\n", k, sum / std::max<std::size_t>(n, 1), mx, n);
-                    }
-                    setenv("VOTS_WALK_DEBUG", "0", 1);
-                }
                 std::string differ = "-";
                 if (timeWalk && timeRaster) {
                     const auto a = walk.render(camera, size, size), b = raster.render(camera, size, size);
                     differ = std::to_string(countDifferent(a, b, 1e-3f * float(range[1] - range[0])));
                     if (!pngDir.empty()) {
-                        const std::string stem = pngDir + "/eps" + std::to_string(int(std::lround(eps))) + "_" + name;
+                        const std::string stem =
+                            pngDir + "/eps" + std::to_string(int(std::lround(eps))) + "_" + name;
                         vots::render::writePng(stem + "_walk.png", vots::render::applyDisplay(a, display));
                         vots::render::writePng(stem + "_raster.png", vots::render::applyDisplay(b, display));
-                        vots::render::writePng(stem + "_reference.png",
-                                               vots::render::applyDisplay(grid.render(camera, size, size), display));
+                        vots::render::writePng(
+                            stem + "_reference.png",
+                            vots::render::applyDisplay(grid.render(camera, size, size), display));
                     }
                 }
-                std::printf("| %.4g | %s | %zu | %s | %.1f | %.1f | %.1f | %.2f | %.2f | %s | %.2f | %.2f | %.1f |\n",
-                            eps, name, space.vots.size(), timeWalk ? (walks ? "walk" : "raster (fallback)") : "raster",
-                            refMs, rasterMs, walkMs, refMs / walkMs, rasterMs / walkMs, differ.c_str(),
-                            median(readback), median(displayMs), median(pngMs));
+                std::printf(
+                    "| %.4g | %s | %zu | %s | %.1f | %.1f | %.1f | %.2f | %.2f | %s | %.2f | %.2f | %.1f |\n",
+                    eps, name, space.vots.size(),
+                    timeWalk ? (walks ? "walk" : "raster (fallback)") : "raster", refMs, rasterMs, walkMs,
+                    refMs / walkMs, rasterMs / walkMs, differ.c_str(), median(readback), median(displayMs),
+                    median(pngMs));
                 std::fflush(stdout);
             }
         }

@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <csignal>
 #include <exception>
 #include <iostream>
 
@@ -27,6 +28,9 @@ int fail(int code, const std::string& message) {
 } // namespace
 
 int main(int argc, char** argv) {
+    // A write past RLIMIT_FSIZE (a file-size quota) then fails with EFBIG, which every writer reports as
+    // a one-line error; by default SIGXFSZ would kill `vots fit` or a running `vots serve` instead.
+    std::signal(SIGXFSZ, SIG_IGN);
     CLI::App app{"vots " VOTS_VERSION
                  ": fit volumes into Vot-Spaces (Taylor polynomials in boxes), inspect and "
                  "verify them",

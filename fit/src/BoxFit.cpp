@@ -9,7 +9,9 @@
 namespace vots::fit {
 namespace {
 
-bool isSingleCell(const Box& box) { return box.cells(0) == 1 && box.cells(1) == 1 && box.cells(2) == 1; }
+bool isSingleCell(const Box& box) {
+    return box.cells(0) == 1 && box.cells(1) == 1 && box.cells(2) == 1;
+}
 
 /// The polynomial restricted to a slice z = const: q[k][l] multiplies dx^k dy^l.
 using SliceCoefficients = std::array<std::array<double, 4>, 4>;
@@ -19,7 +21,8 @@ SliceCoefficients sliceCoefficients(const std::array<float, MONOMIAL_COUNT>& c, 
     const double pz[4] = {1.0, dz, dz * dz, dz * dz * dz};
     for (std::size_t i = 0; i < MONOMIAL_COUNT; ++i) {
         const auto& a = MONOMIAL_EXPONENTS[i];
-        q[static_cast<std::size_t>(a[0])][static_cast<std::size_t>(a[1])] += static_cast<double>(c[i]) * pz[a[2]];
+        q[static_cast<std::size_t>(a[0])][static_cast<std::size_t>(a[1])] +=
+            static_cast<double>(c[i]) * pz[a[2]];
     }
     return q;
 }
@@ -32,7 +35,9 @@ std::array<double, 4> rowCoefficients(const SliceCoefficients& q, double dy) {
     return r;
 }
 
-double horner(const std::array<double, 4>& r, double dx) { return ((r[3] * dx + r[2]) * dx + r[1]) * dx + r[0]; }
+double horner(const std::array<double, 4>& r, double dx) {
+    return ((r[3] * dx + r[2]) * dx + r[1]) * dx + r[0];
+}
 
 /// The recorded error must stay an upper bound after narrowing to float.
 float roundUpToFloat(double value) {
@@ -123,7 +128,8 @@ BoxOutcome BoxFitter::fit(const Box& box, const EpsField& eps, FitCounters& coun
         rhs(r) = moments[ea[0]][ea[1]][ea[2]];
         for (int s = 0; s < nb; ++s) {
             const auto& eb = MONOMIAL_EXPONENTS[static_cast<std::size_t>(basis[static_cast<std::size_t>(s)])];
-            normal(r, s) = powerSums[0][ea[0] + eb[0]] * powerSums[1][ea[1] + eb[1]] * powerSums[2][ea[2] + eb[2]];
+            normal(r, s) =
+                powerSums[0][ea[0] + eb[0]] * powerSums[1][ea[1] + eb[1]] * powerSums[2][ea[2] + eb[2]];
         }
     }
     const Vector solution = normal.ldlt().solve(rhs);
@@ -154,7 +160,8 @@ BoxOutcome BoxFitter::fit(const Box& box, const EpsField& eps, FitCounters& coun
     return outcome;
 }
 
-void BoxFitter::certify(const Box& box, const EpsField& eps, BoxOutcome& outcome, FitCounters& counters) const {
+void BoxFitter::certify(const Box& box, const EpsField& eps, BoxOutcome& outcome,
+                        FitCounters& counters) const {
     counters.scans.fetch_add(1, std::memory_order_relaxed);
     const bool alwaysAccept = isSingleCell(box);
     const bool varies = eps.varies();

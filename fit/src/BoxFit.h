@@ -31,7 +31,8 @@ struct BoxOutcome {
 /// Fits boxes of one volume at one requested degree. Stateless apart from the volume; thread-safe.
 class BoxFitter {
 public:
-    BoxFitter(const Volume& volume, int degree, Certify certify) : mVolume(volume), mDegree(degree), mCertify(certify) {}
+    BoxFitter(const Volume& volume, int degree, Certify certify)
+        : mVolume(volume), mDegree(degree), mCertify(certify) {}
 
     /// Solves the least-squares problem on the box and certifies the float coefficients.
     /// A single-cell box is always accepted: its 8-term trilinear basis is exact (DESIGN §2/§3).

@@ -27,10 +27,12 @@ CellMask::CellMask(const Volume& volume, std::optional<float> background) {
                     mBackground[index(i, j, k)] = all ? 1 : 0;
                 }
     }
-    const std::size_t px = static_cast<std::size_t>(mCells[0]) + 1, py = static_cast<std::size_t>(mCells[1]) + 1;
+    const std::size_t px = static_cast<std::size_t>(mCells[0]) + 1,
+                      py = static_cast<std::size_t>(mCells[1]) + 1;
     mPrefix.assign(px * py * (static_cast<std::size_t>(mCells[2]) + 1), 0);
     auto at = [&](int i, int j, int k) -> std::uint32_t& {
-        return mPrefix[static_cast<std::size_t>(i) + px * (static_cast<std::size_t>(j) + py * static_cast<std::size_t>(k))];
+        return mPrefix[static_cast<std::size_t>(i) +
+                       px * (static_cast<std::size_t>(j) + py * static_cast<std::size_t>(k))];
     };
     for (int k = 1; k <= mCells[2]; ++k)
         for (int j = 1; j <= mCells[1]; ++j)
@@ -42,8 +44,10 @@ CellMask::CellMask(const Volume& volume, std::optional<float> background) {
 }
 
 std::int64_t CellMask::prefix(int i, int j, int k) const {
-    const std::size_t px = static_cast<std::size_t>(mCells[0]) + 1, py = static_cast<std::size_t>(mCells[1]) + 1;
-    return mPrefix[static_cast<std::size_t>(i) + px * (static_cast<std::size_t>(j) + py * static_cast<std::size_t>(k))];
+    const std::size_t px = static_cast<std::size_t>(mCells[0]) + 1,
+                      py = static_cast<std::size_t>(mCells[1]) + 1;
+    return mPrefix[static_cast<std::size_t>(i) +
+                   px * (static_cast<std::size_t>(j) + py * static_cast<std::size_t>(k))];
 }
 
 std::int64_t CellMask::countCells(const std::array<int, 3>& lo, const std::array<int, 3>& hi) const {
@@ -53,7 +57,9 @@ std::int64_t CellMask::countCells(const std::array<int, 3>& lo, const std::array
            prefix(hi[0], lo[1], lo[2]) - prefix(lo[0], lo[1], lo[2]);
 }
 
-std::int64_t CellMask::countForeground(const Box& box) const { return countCells(box.lo, box.hi); }
+std::int64_t CellMask::countForeground(const Box& box) const {
+    return countCells(box.lo, box.hi);
+}
 
 std::optional<Box> CellMask::tightBox(const Box& box) const {
     std::array<int, 3> lo = box.lo, hi = box.hi; // cells [lo, hi)

@@ -29,7 +29,8 @@ private:
     std::size_t index(int i, int j, int k) const {
         return static_cast<std::size_t>(i) +
                static_cast<std::size_t>(mCells[0]) *
-                   (static_cast<std::size_t>(j) + static_cast<std::size_t>(mCells[1]) * static_cast<std::size_t>(k));
+                   (static_cast<std::size_t>(j) +
+                    static_cast<std::size_t>(mCells[1]) * static_cast<std::size_t>(k));
     }
     std::int64_t prefix(int i, int j, int k) const; // count over cells [0,i) x [0,j) x [0,k)
     std::int64_t countCells(const std::array<int, 3>& lo, const std::array<int, 3>& hiExclusive) const;

@@ -6,7 +6,8 @@
 
 namespace vots::fit {
 
-EpsField::EpsField(float epsContext, std::optional<FocusRegion> focus) : mContext(epsContext), mFocus(focus) {}
+EpsField::EpsField(float epsContext, std::optional<FocusRegion> focus)
+    : mContext(epsContext), mFocus(focus) {}
 
 float EpsField::epsAtDistance(double distance) const {
     // distance is measured from the sphere surface outward; the ramp is one radius wide.

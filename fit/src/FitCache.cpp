@@ -5,10 +5,14 @@ namespace vots::fit {
 
 FitCache::FitCache() : mImpl(std::make_unique<Impl>()) {}
 FitCache::~FitCache() = default;
-std::size_t FitCache::size() const { return mImpl->size(); }
+std::size_t FitCache::size() const {
+    return mImpl->size();
+}
 
 void FitCache::Impl::bind(const Volume& volume, int degreeIn, Certify certifyIn) {
-    if (volumeData == volume.values.data() && dims == volume.dims && degree == degreeIn && certify == certifyIn) return;
+    if (volumeData == volume.values.data() && dims == volume.dims && degree == degreeIn &&
+        certify == certifyIn)
+        return;
     for (auto& shard : shards) {
         std::lock_guard lock(shard.mutex);
         shard.boxes.clear();

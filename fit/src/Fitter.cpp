@@ -27,16 +27,19 @@ void validateFitOptions(const Volume& volume, const FitOptions& options) {
         throw InputError("eps must be a finite number > 0 (got " + std::to_string(options.eps) + ")");
     if (options.degree < 0 || options.degree > 3)
         throw InputError("degree must be 0, 1, 2 or 3 (got " + std::to_string(options.degree) + ")");
-    if (options.background && std::isnan(*options.background)) throw InputError("background threshold is NaN");
+    if (options.background && std::isnan(*options.background))
+        throw InputError("background threshold is NaN");
     if (options.threads < 0 || options.threads > 256) throw InputError("threads must be between 0 and 256");
     for (int a = 0; a < 3; ++a)
         if (volume.dims[a] < 2)
             throw InputError("volume needs at least 2 grid points along every axis to form a cell");
-    if (volume.values.size() != volume.sampleCount()) throw InputError("volume sample count does not match its dims");
+    if (volume.values.size() != volume.sampleCount())
+        throw InputError("volume sample count does not match its dims");
     if (options.focus) {
         const auto& f = *options.focus;
         for (int a = 0; a < 3; ++a)
-            if (!std::isfinite(f.centerIndex[a]) || f.centerIndex[a] < 0.0 || f.centerIndex[a] > volume.dims[a] - 1)
+            if (!std::isfinite(f.centerIndex[a]) || f.centerIndex[a] < 0.0 ||
+                f.centerIndex[a] > volume.dims[a] - 1)
                 throw InputError("focus centre must lie inside the grid (index space)");
         if (!std::isfinite(f.radius) || f.radius <= 0.0) throw InputError("focus radius must be > 0");
         if (!std::isfinite(f.epsFocus) || f.epsFocus < 0.f || f.epsFocus > options.eps)

@@ -10,7 +10,8 @@ std::vector<FittedBox> greedyCover(std::vector<FittedBox> candidates, const Cell
     const auto cells = mask.cellDims();
     auto cellIndex = [&](int i, int j, int k) {
         return static_cast<std::size_t>(i) +
-               static_cast<std::size_t>(cells[0]) * (static_cast<std::size_t>(j) + static_cast<std::size_t>(cells[1]) * k);
+               static_cast<std::size_t>(cells[0]) *
+                   (static_cast<std::size_t>(j) + static_cast<std::size_t>(cells[1]) * k);
     };
     // Background cells need no cover: start them as covered.
     std::vector<std::uint8_t> covered(static_cast<std::size_t>(mask.totalCells()), 0);
@@ -40,8 +41,8 @@ std::vector<FittedBox> greedyCover(std::vector<FittedBox> candidates, const Cell
         if ((++pops & 1023) == 0) {
             control.checkCancel();
             if (control.progress)
-                control.progress(0.9 + 0.1 * (1.0 - static_cast<double>(remaining) / static_cast<double>(total)),
-                                 "cover");
+                control.progress(
+                    0.9 + 0.1 * (1.0 - static_cast<double>(remaining) / static_cast<double>(total)), "cover");
         }
         const auto [weight, c] = queue.top();
         queue.pop();

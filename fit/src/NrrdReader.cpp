@@ -177,12 +177,18 @@ std::vector<std::string> expandPattern(const std::string& path, const std::vecto
     const auto first = parseInteger(words[1]);
     const auto last = parseInteger(words[2]);
     const auto step = parseInteger(words[3]);
-    if (!first || !last || !step || *step == 0 || (*last - *first) / *step < 0 ||
-        (*last - *first) / *step >= MAX_DATA_FILES)
+    // Unsigned arithmetic: last - first and first + k * step overflow long long for extreme values.
+    using U = unsigned long long;
+    const bool up = step && *step > 0;
+    const bool ordered = first && last && step && *step != 0 && (up ? *last >= *first : *last <= *first);
+    const U span = !ordered ? 0 : up ? U(*last) - U(*first) : U(*first) - U(*last);
+    const U stride = !ordered ? 1 : up ? U(*step) : U(0) - U(*step);
+    if (!ordered || span / stride >= static_cast<U>(MAX_DATA_FILES))
         throwInputError(path, "'data file' pattern needs <min> <max> <step> describing 1 to " +
                                   std::to_string(MAX_DATA_FILES) + " files");
     std::vector<std::string> names;
-    for (long long n = *first; *step > 0 ? n <= *last : n >= *last; n += *step) {
+    for (U k = 0; k <= span / stride; ++k) {
+        const long long n = static_cast<long long>(up ? U(*first) + k * stride : U(*first) - k * stride);
         std::string number = std::to_string(n);
         if (number.size() < width) // printf pads zeros after the sign, blanks before it
             number.insert(zeroPad && n < 0 ? 1 : 0, width - number.size(), zeroPad ? '0' : ' ');

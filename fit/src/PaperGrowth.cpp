@@ -70,8 +70,10 @@ std::vector<FittedBox> growSeeds(const CellMask& mask, const BoxTester& tester, 
                 out.push_back(growSeed(seed, pointDims, tester));
             }
         // Neighbouring seeds often grow into the same box; keep one of each.
-        std::sort(out.begin(), out.end(), [](const FittedBox& a, const FittedBox& b) { return boxLess(a.box, b.box); });
-        out.erase(std::unique(out.begin(), out.end(), [](const FittedBox& a, const FittedBox& b) { return a.box == b.box; }),
+        std::sort(out.begin(), out.end(),
+                  [](const FittedBox& a, const FittedBox& b) { return boxLess(a.box, b.box); });
+        out.erase(std::unique(out.begin(), out.end(),
+                              [](const FittedBox& a, const FittedBox& b) { return a.box == b.box; }),
                   out.end());
         const std::size_t finished = done.fetch_add(1) + 1;
         if (control.progress) {
@@ -82,8 +84,10 @@ std::vector<FittedBox> growSeeds(const CellMask& mask, const BoxTester& tester, 
     std::vector<FittedBox> all;
     for (auto& v : perSlab)
         all.insert(all.end(), v.begin(), v.end());
-    std::sort(all.begin(), all.end(), [](const FittedBox& a, const FittedBox& b) { return boxLess(a.box, b.box); });
-    all.erase(std::unique(all.begin(), all.end(), [](const FittedBox& a, const FittedBox& b) { return a.box == b.box; }),
+    std::sort(all.begin(), all.end(),
+              [](const FittedBox& a, const FittedBox& b) { return boxLess(a.box, b.box); });
+    all.erase(std::unique(all.begin(), all.end(),
+                          [](const FittedBox& a, const FittedBox& b) { return a.box == b.box; }),
               all.end());
     return all;
 }

@@ -13,6 +13,7 @@ namespace vots::fit {
 std::vector<FittedBox> growSeeds(const CellMask& mask, const BoxTester& tester, const FitControl& control);
 
 /// DESIGN §4 step 3: lazy-greedy cover of the foreground cells; returns the chosen candidates.
-std::vector<FittedBox> greedyCover(std::vector<FittedBox> candidates, const CellMask& mask, const FitControl& control);
+std::vector<FittedBox> greedyCover(std::vector<FittedBox> candidates, const CellMask& mask,
+                                   const FitControl& control);
 
 } // namespace vots::fit

@@ -72,7 +72,8 @@ std::vector<FittedBox> splitBricks(const CellMask& mask, const BoxTester& tester
     std::mutex progressMutex;
     parallelFor(brickCount, control.threads, [&](std::size_t b, int) {
         const int bx = static_cast<int>(b % static_cast<std::size_t>(bricks[0]));
-        const int by = static_cast<int>((b / static_cast<std::size_t>(bricks[0])) % static_cast<std::size_t>(bricks[1]));
+        const int by =
+            static_cast<int>((b / static_cast<std::size_t>(bricks[0])) % static_cast<std::size_t>(bricks[1]));
         const int bz = static_cast<int>(b / (static_cast<std::size_t>(bricks[0]) * bricks[1]));
         Box brick;
         const int index[3] = {bx, by, bz};

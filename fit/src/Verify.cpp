@@ -51,15 +51,18 @@ void checkVot(const Vot& vot, std::size_t index, const Volume& volume, const Eps
 
 } // namespace
 
-VerifyReport verifyVotSpace(const VotSpace& space, const Volume& volume, const std::optional<EpsField>& epsIn) {
-    if (space.dims != volume.dims) throw InputError("the Vot-Space was not fitted to this volume (dims differ)");
+VerifyReport verifyVotSpace(const VotSpace& space, const Volume& volume,
+                            const std::optional<EpsField>& epsIn) {
+    if (space.dims != volume.dims)
+        throw InputError("the Vot-Space was not fitted to this volume (dims differ)");
     const EpsField eps = epsIn ? *epsIn : EpsField(space.eps);
     VerifyReport report;
 
     const std::array<int, 3> cells{volume.dims[0] - 1, volume.dims[1] - 1, volume.dims[2] - 1};
     auto cellIndex = [&](int i, int j, int k) {
         return static_cast<std::size_t>(i) +
-               static_cast<std::size_t>(cells[0]) * (static_cast<std::size_t>(j) + static_cast<std::size_t>(cells[1]) * k);
+               static_cast<std::size_t>(cells[0]) *
+                   (static_cast<std::size_t>(j) + static_cast<std::size_t>(cells[1]) * k);
     };
     std::vector<std::uint8_t> covered(static_cast<std::size_t>(cells[0]) * cells[1] * cells[2], 0);
     for (std::size_t v = 0; v < space.vots.size(); ++v) {

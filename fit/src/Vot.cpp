@@ -57,7 +57,8 @@ double Vot::evaluate(const std::array<double, 3>& xIndex) const {
 
 std::array<double, 3> Vot::computeGradient(const std::array<double, 3>& xIndex) const {
     const auto d = localOffset(*this, xIndex);
-    return {derivative(*this, d, {1, 0, 0}), derivative(*this, d, {0, 1, 0}), derivative(*this, d, {0, 0, 1})};
+    return {derivative(*this, d, {1, 0, 0}), derivative(*this, d, {0, 1, 0}),
+            derivative(*this, d, {0, 0, 1})};
 }
 
 std::array<double, 9> Vot::computeHessian(const std::array<double, 3>& xIndex) const {

@@ -1,5 +1,10 @@
 // Analytic maximum of one Vot's cubic along a ray (DESIGN §5), shared by the raster and walk MIP shaders.
-// Needs vot_common.glsl (vots[], CLIP_SLACK) and ray_common.glsl (clipRayToBox) included before it.
+// Needs vot_common.glsl (CLIP_SLACK) and ray_common.glsl (clipRayToBox) included before it.
+
+// The Vot records of vots[] (GpuLayout.h) seen as a buffer texture, 8 RGBA32F texels per Vot: texel
+// fetches gather all pixels' records at once, where llvmpipe loads SSBO data pixel by pixel.
+uniform samplerBuffer uVotData;
+const int VOT_TEXELS = 8;
 
 // vec4 linearProductN(...): coefficients in u of a product of N linear factors (a_i + b_i u).
 vec4 linearProduct1(float a, float b) { return vec4(a, b, 0.0, 0.0); }
@@ -14,17 +19,27 @@ vec4 linearProduct3(float a0, float b0, float a1, float b1, float a2, float b2) 
 
 float cubicAt(vec4 g, float u) { return g.x + u * (g.y + u * (g.z + u * g.w)); }
 
-// Max of Vot `vot` along origin + t dir, t in [0, farT], over its box grown by CLIP_SLACK. Returns
-// false (value untouched) when the ray misses the box.
-bool votRayMax(uint vot, vec3 origin, vec3 dir, float farT, out float value) {
-    vec2 span = clipRayToBox(origin, dir, vots[vot].lo - CLIP_SLACK, vots[vot].hi + CLIP_SLACK);
+// Max of Vot `vot`, whose box is [lo, hi], along origin + t dir, t in [0, farT], over the box grown by
+// CLIP_SLACK. Returns false (value untouched) when the ray misses the box.
+bool votRayMaxInBox(uint vot, vec3 lo, vec3 hi, vec3 origin, vec3 dir, float farT, out float value) {
+    int base = int(vot) * VOT_TEXELS;
+    vec3 p = texelFetch(uVotData, base + 2).xyz;
+    float c[TAYLOR_TERMS];
+    for (int k = 0; k < TAYLOR_TERMS / 4; ++k) {
+        vec4 q = texelFetch(uVotData, base + 3 + k);
+        c[4 * k] = q.x;
+        c[4 * k + 1] = q.y;
+        c[4 * k + 2] = q.z;
+        c[4 * k + 3] = q.w;
+    }
+    vec2 span = clipRayToBox(origin, dir, lo - CLIP_SLACK, hi + CLIP_SLACK);
     float tIn = max(span.x, 0.0); // the near plane clips boxes the camera sits in
     float tOut = min(span.y, farT);
     if (tIn > tOut) return false;
 
     // Expand from the box entry point, not the near plane: float cancellation (EGL_NOTES).
-    vec3 s = origin + tIn * dir - vots[vot].p;
-    vec4 g = taylorAlongRay(vot, s, dir); // g(u) = g0 + g1 u + g2 u^2 + g3 u^3, u in [0, len]
+    vec3 s = origin + tIn * dir - p;
+    vec4 g = taylorAlongRay(c, s, dir); // g(u) = g0 + g1 u + g2 u^2 + g3 u^3, u in [0, len]
     float len = tOut - tIn;
 
     float best = max(g.x, cubicAt(g, len));
@@ -42,4 +57,11 @@ bool votRayMax(uint vot, vec3 origin, vec3 dir, float farT, out float value) {
     }
     value = best;
     return true;
+}
+
+// votRayMaxInBox with the box read from the record.
+bool votRayMax(uint vot, vec3 origin, vec3 dir, float farT, out float value) {
+    int base = int(vot) * VOT_TEXELS;
+    vec3 lo = texelFetch(uVotData, base).xyz, hi = texelFetch(uVotData, base + 1).xyz;
+    return votRayMaxInBox(vot, lo, hi, origin, dir, farT, value);
 }

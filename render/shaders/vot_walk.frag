@@ -5,15 +5,19 @@
 #include "ray_common.glsl"
 #include "vot_ray_max.glsl"
 
-uniform usampler3D uCellVot; // R32UI, one texel per cell: index into vots[], or EMPTY_CELL (background)
-uniform sampler3D uBrickMax; // R32F, one texel per brick: max upperBound of the Vots touching it, or -inf
-uniform ivec3 uCells;        // cells per axis (grid points - 1)
-uniform usamplerBuffer uVotBox; // RGBA32UI per Vot: lo.x | lo.y << 16, lo.z | hi.x << 16, hi.y | hi.z << 16, bound bits
-uniform int uBrickShift;     // a brick is (1 << uBrickShift)^3 cells
-uniform int uDebug; // TEMP
-uniform int uCull;           // 1: step over bricks and Vots whose bound cannot beat the pixel's max
-
-const uint EMPTY_CELL = 0xffffffffu;
+// Buffer textures, not 3D textures or SSBOs: llvmpipe gathers texel fetches for all lanes at once.
+uniform usamplerBuffer uCellVot; // R32UI per cell, brick by brick (VotWalkGrid.h): a Vot index below
+                                 // uVotCount, else uVotCount + the index of an empty block
+uniform samplerBuffer uBrickMax; // R32F per brick, x fastest: max upperBound of the Vots touching it,
+                                 // or -inf
+uniform usamplerBuffer uVotBox;  // RGBA32UI per Vot, then per empty block: box [lo, hi) in cells, 16 bits
+                                 // each (lo.x | lo.y << 16, lo.z | hi.x << 16, hi.y | hi.z << 16), and
+                                 // the bound's bits (-inf for empty blocks)
+uniform uint uVotCount;
+uniform ivec3 uCells;    // cells per axis (grid points - 1)
+uniform ivec3 uBricks;   // bricks per axis
+uniform int uBrickShift; // a brick is (1 << uBrickShift)^3 cells
+uniform int uCull;       // 1: step over bricks and Vots whose bound cannot beat the pixel's max
 
 layout(location = 0) out float outValue;
 
@@ -25,7 +29,6 @@ void main() {
     float tIn = max(span.x, 0.0);
     float tOut = min(span.y, farT);
     float best = NEG_INF;
-    int nIter = 0, nEval = 0, nBrick = 0, nEmpty = 0, nVotSkip = 0; // TEMP
     bool walking = tIn <= tOut;
     vec3 safeDir = mix(dir, vec3(1e-30), lessThan(abs(dir), vec3(1e-30)));
     vec3 invDir = 1.0 / safeDir;
@@ -34,57 +37,42 @@ void main() {
     // Every step moves at least one axis past the block it leaves and none backwards, so the walk ends
     // within the sum of the sides; the budget only guards against the unforeseen.
     int budget = uCells.x + uCells.y + uCells.z + 3;
-    // Two nested loops (walk to the next Vot worth evaluating, then evaluate it) rather than one loop
-    // that may evaluate at any step: the rasteriser shades several pixels in lockstep, and this way they
-    // evaluate together instead of each paying for its neighbours' evaluations at every step.
+    // One loop that may evaluate at any step, not a walk-then-evaluate pair of loops: the rasteriser
+    // shades 8 pixels in lockstep, and nested loops made each wait for the slowest at every Vot
+    // (measured 1.3x slower on the CT, bench/RESULTS.md).
     while (walking) {
-        uint candidate = EMPTY_CELL;
-        while (walking && candidate == EMPTY_CELL) {
-            ++nIter;
-            ivec3 lo, hi; // the block of cells [lo, hi) the ray leaves next; it contains `cell`
-            ivec3 brick = cell >> uBrickShift;
-            float brickMax = texelFetch(uBrickMax, brick, 0).r;
-            if (brickMax == NEG_INF || (uCull != 0 && brickMax <= best)) {
-                lo = brick << uBrickShift;
-                hi = min(lo + (1 << uBrickShift), uCells);
-                ++nBrick;
-            } else {
-                uint id = texelFetch(uCellVot, cell, 0).r;
-                if (id == EMPTY_CELL) {
-                    lo = cell;
-                    hi = cell + 1;
-                    ++nEmpty;
-                } else {
-                    uvec4 box = texelFetch(uVotBox, int(id));
-                    lo = ivec3(box.x & 0xffffu, box.x >> 16, box.y & 0xffffu);
-                    hi = ivec3(box.y >> 16, box.z & 0xffffu, box.z >> 16);
-                    if (uCull == 0 || uintBitsToFloat(box.w) > best) candidate = id; else ++nVotSkip;
-                }
-            }
-            // Leave the block: the first face crossed sets the axis that moves past it; the other axes
-            // follow the ray, clamped into the block and never backwards (rounding cannot skip cells).
-            vec3 tFace = (vec3(mix(lo, hi, up)) - origin) * invDir;
-            float tExit = min(min(tFace.x, tFace.y), tFace.z);
-            int axis = tFace.x <= tFace.y && tFace.x <= tFace.z ? 0 : (tFace.y <= tFace.z ? 1 : 2);
-            ivec3 at = ivec3(floor(origin + tExit * dir));
-            cell = mix(clamp(at, lo, cell), clamp(at, cell, hi - 1), up);
-            cell[axis] = up[axis] ? hi[axis] : lo[axis] - 1;
-            if (tExit > tOut || any(lessThan(cell, ivec3(0))) || any(greaterThanEqual(cell, uCells)) ||
-                --budget <= 0)
-                walking = false;
+        ivec3 lo, hi; // the block of cells [lo, hi) the ray leaves next; it contains `cell`
+        ivec3 brick = cell >> uBrickShift;
+        int brickIndex = brick.x + uBricks.x * (brick.y + uBricks.y * brick.z);
+        float brickMax = texelFetch(uBrickMax, brickIndex).r;
+        if (brickMax == NEG_INF || (uCull != 0 && brickMax <= best)) {
+            lo = brick << uBrickShift;
+            hi = min(lo + (1 << uBrickShift), uCells);
+        } else {
+            ivec3 local = cell - (brick << uBrickShift);
+            int inBrick = (((local.z << uBrickShift) | local.y) << uBrickShift) | local.x;
+            uint id = texelFetch(uCellVot, (brickIndex << (3 * uBrickShift)) | inBrick).r;
+            uvec4 box = texelFetch(uVotBox, int(id));
+            lo = ivec3(box.x & 0xffffu, box.x >> 16, box.y & 0xffffu);
+            hi = ivec3(box.y >> 16, box.z & 0xffffu, box.z >> 16);
+            float value;
+            // The whole box is evaluated, exactly as the raster strategy does for this Vot.
+            if (id < uVotCount && (uCull == 0 || uintBitsToFloat(box.w) > best) &&
+                votRayMaxInBox(id, vec3(lo), vec3(hi), origin, dir, farT, value))
+                best = max(best, value);
         }
-        float value;
-        // The whole box is evaluated, exactly as the raster strategy does for this Vot.
-        if (uDebug == 9 && candidate != EMPTY_CELL) { best = max(best, vots[candidate].lowerBound); ++nEval; } else
-        if (candidate != EMPTY_CELL && votRayMax(candidate, origin, dir, farT, value)) {
-            best = max(best, value);
-            ++nEval;
-        }
+        // Leave the block: the first face crossed sets the axis that moves past it; the other axes
+        // follow the ray, clamped into the block and never backwards (rounding cannot skip cells).
+        vec3 tFace = (vec3(mix(lo, hi, up)) - origin) * invDir;
+        float tExit = min(min(tFace.x, tFace.y), tFace.z);
+        bvec3 first = bvec3(tFace.x == tExit, tFace.y == tExit && tFace.x != tExit,
+                            tFace.z == tExit && tFace.x != tExit && tFace.y != tExit);
+        ivec3 at = ivec3(floor(origin + tExit * dir));
+        cell = mix(clamp(at, lo, cell), clamp(at, cell, hi - 1), up);
+        cell = mix(cell, mix(lo - 1, hi, up), first);
+        if (tExit > tOut || any(lessThan(cell, ivec3(0))) || any(greaterThanEqual(cell, uCells)) ||
+            --budget <= 0)
+            walking = false;
     }
     outValue = best;
-    if (uDebug == 1) outValue = float(nIter);
-    if (uDebug == 2) outValue = float(nEval);
-    if (uDebug == 3) outValue = float(nBrick);
-    if (uDebug == 4) outValue = float(nEmpty);
-    if (uDebug == 5) outValue = float(nVotSkip);
 }

@@ -17,9 +17,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdlib>
-#include <cstring>
 #include <cmath>
+#include <cstring>
 #include <numeric>
 #include <optional>
 #include <string>
@@ -35,7 +34,7 @@ double msSince(Clock::time_point t0) {
 
 constexpr std::size_t FIRST_BATCH = 1024; // Vots drawn before the first culling readback
 constexpr std::size_t BATCH_GROWTH = 4;   // each later batch considers 4x as many Vots
-constexpr int WALK_BRICK_SHIFT = 3;       // Walk: bricks of 8^3 cells (bench/RESULTS.md compares 4, 8, 16)
+constexpr int WALK_BRICK_SHIFT = 4;       // Walk: bricks of 16^3 cells (bench/RESULTS.md compares 8, 16, 32)
 constexpr float WALK_BOX_SLACK = 1e-3f;   // Walk: the grid box drawn is grown like Raster's (BOX_SLACK)
 
 // Pixel rectangle (GL window coordinates, bottom-up) that may hold the centres of pixels the box
@@ -80,16 +79,18 @@ struct VotRenderer::Impl {
     GlProgram mipProgram = buildProgram(shaders::VOT_BOX_VERT, shaders::VOT_MIP_FRAG, "vot_mip");
     GlProgram densityProgram = buildProgram(shaders::VOT_BOX_VERT, shaders::VOT_DENSITY_FRAG, "vot_density");
     GlProgram walkProgram = buildProgram(shaders::WALK_BOX_VERT, shaders::VOT_WALK_FRAG, "vot_walk");
-    GlTexture cellVot;  // Walk: R32UI, one texel per cell
-    GlTexture brickMax; // Walk: R32F, one texel per brick
-    GlBuffer votBoxBuffer; // Walk: RGBA32UI per Vot, box corners (16 bits each) and bound
-    GlTexture votBox;      // Walk: buffer texture over votBoxBuffer
-    bool walkable = false;
+    // Walk strategy (vot_walk.frag): buffer textures over their own buffers.
+    GlBuffer cellVotBuffer, brickMaxBuffer, votBoxBuffer;
+    GlTexture cellVot;  // R32UI per cell, brick by brick: Vot index, or Vot count + empty block index
+    GlTexture brickMax; // R32F per brick, x fastest
+    GlTexture votBox;   // RGBA32UI per Vot, then per empty block: packed box and bound
     std::array<int, 3> walkCells{0, 0, 0};
-    int brickShift = std::getenv("VOTS_WALK_BRICK_SHIFT") ? std::atoi(std::getenv("VOTS_WALK_BRICK_SHIFT")) : WALK_BRICK_SHIFT; // TEMP
+    std::array<int, 3> walkBricks{0, 0, 0};
+    bool walkable = false;
     GlVertexArray vertexArray = createVertexArray();
     GlBuffer votBuffer;
     GlBuffer indexBuffer;
+    GlTexture votData = createTexture(GL_TEXTURE_BUFFER); // RGBA32F view of the bound chunk (uVotData)
     FloatTarget target;
     GlTexture prevMax; // copy of the max image after the last batch, same size as target
     int prevMaxWidth = 0, prevMaxHeight = 0;
@@ -112,14 +113,19 @@ struct VotRenderer::Impl {
 
     void bindChunk(std::size_t chunk) {
         const std::size_t first = chunk * chunkRecords;
-        const std::size_t count = std::min(chunkRecords, vots.size() - first);
-        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, VOT_BUFFER_BINDING, votBuffer.get(),
-                          static_cast<GLintptr>(first * sizeof(GpuVot)),
-                          static_cast<GLsizeiptr>(count * sizeof(GpuVot)));
+        // The buffer holds at least one record, so an empty space still binds a valid range.
+        const std::size_t count = std::max<std::size_t>(std::min(chunkRecords, vots.size() - first), 1);
+        const auto offset = static_cast<GLintptr>(first * sizeof(GpuVot));
+        const auto bytes = static_cast<GLsizeiptr>(count * sizeof(GpuVot));
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, VOT_BUFFER_BINDING, votBuffer.get(), offset, bytes);
+        glTextureBufferRange(votData.get(), GL_RGBA32F, votBuffer.get(), offset, bytes);
+        glBindTextureUnit(VOT_TEXTURE_UNIT, votData.get());
     }
 
     void setCommonState(GLuint program, const CameraMatrices& m, int width, int height) {
         glUseProgram(program);
+        if (program == mipProgram.get())
+            glProgramUniform1i(program, glGetUniformLocation(program, "uVotData"), VOT_TEXTURE_UNIT);
         setMatrixUniform(program, "uIndexToClip", m.indexToClip);
         setMatrixUniform(program, "uClipToIndex", m.clipToIndex);
         glProgramUniform2f(program, glGetUniformLocation(program, "uViewport"), float(width), float(height));
@@ -222,12 +228,15 @@ struct VotRenderer::Impl {
         glProgramUniform3f(p, glGetUniformLocation(p, "uBoxHi"), float(walkCells[0]) + WALK_BOX_SLACK,
                            float(walkCells[1]) + WALK_BOX_SLACK, float(walkCells[2]) + WALK_BOX_SLACK);
         glProgramUniform3i(p, glGetUniformLocation(p, "uCells"), walkCells[0], walkCells[1], walkCells[2]);
-        glProgramUniform1i(p, glGetUniformLocation(p, "uBrickShift"), brickShift);
+        glProgramUniform3i(p, glGetUniformLocation(p, "uBricks"), walkBricks[0], walkBricks[1],
+                           walkBricks[2]);
+        glProgramUniform1i(p, glGetUniformLocation(p, "uBrickShift"), WALK_BRICK_SHIFT);
         glProgramUniform1i(p, glGetUniformLocation(p, "uCull"), culling ? 1 : 0);
-        glProgramUniform1i(p, glGetUniformLocation(p, "uDebug"), std::getenv("VOTS_WALK_DEBUG") ? std::atoi(std::getenv("VOTS_WALK_DEBUG")) : 0); // TEMP
+        glProgramUniform1ui(p, glGetUniformLocation(p, "uVotCount"), static_cast<GLuint>(vots.size()));
         glProgramUniform1i(p, glGetUniformLocation(p, "uCellVot"), 0);
         glProgramUniform1i(p, glGetUniformLocation(p, "uBrickMax"), 1);
         glProgramUniform1i(p, glGetUniformLocation(p, "uVotBox"), 2);
+        glProgramUniform1i(p, glGetUniformLocation(p, "uVotData"), VOT_TEXTURE_UNIT);
         glBindTextureUnit(0, cellVot.get());
         glBindTextureUnit(1, brickMax.get());
         glBindTextureUnit(2, votBox.get());
@@ -238,71 +247,63 @@ struct VotRenderer::Impl {
         glFrontFace(GL_CCW);
         glDisable(GL_DEPTH_TEST);
         glDisable(GL_BLEND);
-        if (std::getenv("VOTS_WALK_FULLSCREEN")) { // TEMP
-            static GlProgram fs = buildProgram(shaders::FULLSCREEN_VERT, shaders::VOT_WALK_FRAG, "fs");
-            GLuint q = fs.get();
-            glUseProgram(q);
-            setMatrixUniform(q, "uClipToIndex", m.clipToIndex);
-            glProgramUniform2f(q, glGetUniformLocation(q, "uViewport"), float(width), float(height));
-            glProgramUniform3i(q, glGetUniformLocation(q, "uCells"), walkCells[0], walkCells[1], walkCells[2]);
-            glProgramUniform1i(q, glGetUniformLocation(q, "uBrickShift"), brickShift);
-            glProgramUniform1i(q, glGetUniformLocation(q, "uCull"), culling ? 1 : 0);
-            glProgramUniform1i(q, glGetUniformLocation(q, "uCellVot"), 0);
-            glProgramUniform1i(q, glGetUniformLocation(q, "uBrickMax"), 1);
-            glDisable(GL_CULL_FACE);
-            glDrawArrays(GL_TRIANGLES, 0, 3);
-        } else
         glDrawArrays(GL_TRIANGLES, 0, 36);
         stats.batches = 1;
         stats.votsDrawn = 0;
     }
 
-    // Uploads the Walk grid, or leaves walkable false (the reason goes nowhere: Raster draws it).
+    // Uploads the Walk grid, or leaves walkable false so that MIP frames use Raster: boxes that overlap
+    // (the walk sees one Vot per cell), or more than the GL limits hold.
     void uploadWalkGrid(const std::array<int, 3>& dims) {
         walkable = false;
-        cellVot.reset();
-        brickMax.reset();
-        votBox.reset();
-        votBoxBuffer.reset();
-        if (vots.size() > chunkRecords) return; // the walk reads all Vots through one SSBO binding
-        GLint maxSide = 0, maxTexels = 0;
-        glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &maxSide);
-        glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
-        if (vots.size() >= static_cast<std::size_t>(maxTexels)) return;
+        for (GlTexture* t : {&cellVot, &brickMax, &votBox})
+            t->reset();
+        for (GlBuffer* b : {&cellVotBuffer, &brickMaxBuffer, &votBoxBuffer})
+            b->reset();
+        if (vots.size() > chunkRecords) return; // the walk reads every Vot through one binding
         for (int a = 0; a < 3; ++a)
-            if (dims[a] - 1 > maxSide) return;
-        std::string whyNot;
-        const std::optional<VotWalkGrid> grid = buildVotWalkGrid(vots, dims, brickShift, &whyNot);
+            if (dims[a] - 1 > 0xffff) return; // box corners are packed in 16 bits
+        const std::optional<VotWalkGrid> grid = buildVotWalkGrid(vots, dims, WALK_BRICK_SHIFT, nullptr);
         if (!grid) return;
-        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-        cellVot = createTexture(GL_TEXTURE_3D);
-        glTextureStorage3D(cellVot.get(), 1, GL_R32UI, grid->cells[0], grid->cells[1], grid->cells[2]);
-        glTextureSubImage3D(cellVot.get(), 0, 0, 0, 0, grid->cells[0], grid->cells[1], grid->cells[2],
-                            GL_RED_INTEGER, GL_UNSIGNED_INT, grid->cellVot.data());
-        brickMax = createTexture(GL_TEXTURE_3D);
-        glTextureStorage3D(brickMax.get(), 1, GL_R32F, grid->bricks[0], grid->bricks[1], grid->bricks[2]);
-        glTextureSubImage3D(brickMax.get(), 0, 0, 0, 0, grid->bricks[0], grid->bricks[1], grid->bricks[2],
-                            GL_RED, GL_FLOAT, grid->brickMax.data());
-        for (GLuint t : {cellVot.get(), brickMax.get()}) {
-            glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-            glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        }
-        std::vector<std::uint32_t> boxes(std::max<std::size_t>(vots.size(), 1) * 4, 0);
+        const std::vector<std::uint32_t> cells = brickOrderedCells(*grid);
+        const std::size_t blocks = vots.size() + grid->emptyBlocks.size();
+        GLint maxTexels = 0;
+        glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
+        if (std::max(cells.size(), blocks) >= static_cast<std::size_t>(maxTexels)) return;
+
+        // One RGBA32UI texel per block the cell grid names: the Vots' boxes, then the empty blocks
+        // (bound -inf).
+        std::vector<std::uint32_t> boxes(std::max<std::size_t>(blocks, 1) * 4, 0);
+        auto pack = [&](std::size_t i, const std::array<int, 3>& lo, const std::array<int, 3>& hi,
+                        float bound) {
+            const auto u = [](int v) { return static_cast<std::uint32_t>(v); };
+            boxes[4 * i] = u(lo[0]) | u(lo[1]) << 16;
+            boxes[4 * i + 1] = u(lo[2]) | u(hi[0]) << 16;
+            boxes[4 * i + 2] = u(hi[1]) | u(hi[2]) << 16;
+            std::memcpy(&boxes[4 * i + 3], &bound, sizeof(float));
+        };
         for (std::size_t i = 0; i < vots.size(); ++i) {
-            const auto corner = [&](const float* c, int a) { return static_cast<std::uint32_t>(c[a]); };
             const GpuVot& v = vots[i];
-            boxes[4 * i] = corner(v.lo, 0) | corner(v.lo, 1) << 16;
-            boxes[4 * i + 1] = corner(v.lo, 2) | corner(v.hi, 0) << 16;
-            boxes[4 * i + 2] = corner(v.hi, 1) | corner(v.hi, 2) << 16;
-            std::memcpy(&boxes[4 * i + 3], &v.upperBound, sizeof(float));
+            pack(i, {int(v.lo[0]), int(v.lo[1]), int(v.lo[2])}, {int(v.hi[0]), int(v.hi[1]), int(v.hi[2])},
+                 v.upperBound);
         }
-        votBoxBuffer = createBuffer();
-        glNamedBufferStorage(votBoxBuffer.get(), static_cast<GLsizeiptr>(boxes.size() * sizeof(std::uint32_t)),
-                             boxes.data(), 0);
-        votBox = createTexture(GL_TEXTURE_BUFFER);
-        glTextureBuffer(votBox.get(), GL_RGBA32UI, votBoxBuffer.get());
+        for (std::size_t i = 0; i < grid->emptyBlocks.size(); ++i)
+            pack(vots.size() + i, grid->emptyBlocks[i].lo, grid->emptyBlocks[i].hi, -INFINITY);
+
+        auto bufferTexture = [](GlBuffer& buffer, GlTexture& texture, GLenum format, const void* data,
+                                std::size_t bytes) {
+            buffer = createBuffer();
+            glNamedBufferStorage(buffer.get(), static_cast<GLsizeiptr>(bytes), data, 0);
+            texture = createTexture(GL_TEXTURE_BUFFER);
+            glTextureBuffer(texture.get(), format, buffer.get());
+        };
+        bufferTexture(cellVotBuffer, cellVot, GL_R32UI, cells.data(), cells.size() * sizeof(std::uint32_t));
+        bufferTexture(brickMaxBuffer, brickMax, GL_R32F, grid->brickMax.data(),
+                      grid->brickMax.size() * sizeof(float));
+        bufferTexture(votBoxBuffer, votBox, GL_RGBA32UI, boxes.data(), boxes.size() * sizeof(std::uint32_t));
         checkGl("VotRenderer walk grid upload");
         walkCells = grid->cells;
+        walkBricks = grid->bricks;
         walkable = true;
     }
 
@@ -373,12 +374,15 @@ void VotRenderer::upload(const fit::VotSpace& space) {
     d.valueRange = {lo, hi};
     d.densityRange = {0.f, std::max(maxLogSize, 1.f)};
 
-    GLint maxBlock = 0, alignment = 1;
+    GLint maxBlock = 0, alignment = 1, maxTexels = 0, textureAlignment = 1;
     glGetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
     glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &alignment);
-    std::size_t chunk = static_cast<std::size_t>(maxBlock) / sizeof(GpuVot);
-    const std::size_t alignRecords =
-        std::max<std::size_t>(1, static_cast<std::size_t>(alignment) / sizeof(GpuVot));
+    glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
+    glGetIntegerv(GL_TEXTURE_BUFFER_OFFSET_ALIGNMENT, &textureAlignment);
+    std::size_t chunk = std::min(static_cast<std::size_t>(maxBlock) / sizeof(GpuVot),
+                                 static_cast<std::size_t>(maxTexels) / VOT_TEXELS);
+    const std::size_t alignRecords = std::max<std::size_t>(
+        1, static_cast<std::size_t>(std::max(alignment, textureAlignment)) / sizeof(GpuVot));
     chunk -= chunk % alignRecords;
     if (chunk == 0) throw RenderError("GL shader storage blocks are too small for one Vot");
     d.chunkRecords = chunk;

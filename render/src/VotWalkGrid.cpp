@@ -6,6 +6,51 @@
 
 namespace vots::render {
 
+namespace {
+
+// Covers every EMPTY_CELL of grid.cellVot with disjoint blocks, grown from the first free cell in scan
+// order one layer at a time along +x, +y, +z in turn while the new layer is all free (near-cubic
+// blocks suit rays from any direction). Each covered cell gets base + block index.
+void coverEmptyCells(VotWalkGrid& grid, std::uint32_t base) {
+    const auto& n = grid.cells;
+    const std::size_t nx = static_cast<std::size_t>(n[0]);
+    const std::size_t nxy = nx * static_cast<std::size_t>(n[1]);
+    auto at = [&](int x, int y, int z) -> std::uint32_t& {
+        return grid.cellVot[static_cast<std::size_t>(z) * nxy + static_cast<std::size_t>(y) * nx +
+                            static_cast<std::size_t>(x)];
+    };
+    auto layerFree = [&](const CellBlock& b, int axis) {
+        CellBlock layer = b;
+        layer.lo[axis] = b.hi[axis];
+        layer.hi[axis] = b.hi[axis] + 1;
+        if (layer.hi[axis] > n[axis]) return false;
+        for (int z = layer.lo[2]; z < layer.hi[2]; ++z)
+            for (int y = layer.lo[1]; y < layer.hi[1]; ++y)
+                for (int x = layer.lo[0]; x < layer.hi[0]; ++x)
+                    if (at(x, y, z) != EMPTY_CELL) return false;
+        return true;
+    };
+    for (int z = 0; z < n[2]; ++z)
+        for (int y = 0; y < n[1]; ++y)
+            for (int x = 0; x < n[0]; ++x) {
+                if (at(x, y, z) != EMPTY_CELL) continue;
+                CellBlock b{{x, y, z}, {x + 1, y + 1, z + 1}};
+                for (bool grown = true; grown;) {
+                    grown = false;
+                    for (int axis = 0; axis < 3; ++axis)
+                        if (layerFree(b, axis)) ++b.hi[axis], grown = true;
+                }
+                const auto index = base + static_cast<std::uint32_t>(grid.emptyBlocks.size());
+                for (int k = b.lo[2]; k < b.hi[2]; ++k)
+                    for (int j = b.lo[1]; j < b.hi[1]; ++j)
+                        for (int i = b.lo[0]; i < b.hi[0]; ++i)
+                            at(i, j, k) = index;
+                grid.emptyBlocks.push_back(b);
+            }
+}
+
+} // namespace
+
 std::optional<VotWalkGrid> buildVotWalkGrid(const std::vector<GpuVot>& vots, const std::array<int, 3>& dims,
                                             int brickShift, std::string* whyNot) {
     auto fail = [&](std::string reason) -> std::optional<VotWalkGrid> {
@@ -60,7 +105,40 @@ std::optional<VotWalkGrid> buildVotWalkGrid(const std::vector<GpuVot>& vots, con
                     m = std::max(m, v.upperBound);
                 }
     }
+    coverEmptyCells(grid, static_cast<std::uint32_t>(vots.size()));
+    if (vots.size() + grid.emptyBlocks.size() >= EMPTY_CELL)
+        return fail("too many blocks for 32-bit indices");
     return grid;
+}
+
+} // namespace vots::render
+
+namespace vots::render {
+
+std::vector<std::uint32_t> brickOrderedCells(const VotWalkGrid& grid) {
+    const int side = 1 << grid.brickShift;
+    const std::size_t brickCells = std::size_t{1} << (3 * grid.brickShift);
+    std::vector<std::uint32_t> out(grid.brickMax.size() * brickCells, EMPTY_CELL);
+    const std::size_t nx = static_cast<std::size_t>(grid.cells[0]);
+    const std::size_t nxy = nx * static_cast<std::size_t>(grid.cells[1]);
+    for (int z = 0; z < grid.cells[2]; ++z)
+        for (int y = 0; y < grid.cells[1]; ++y)
+            for (int x = 0; x < grid.cells[0]; ++x) {
+                const std::size_t brick = static_cast<std::size_t>(x >> grid.brickShift) +
+                                          static_cast<std::size_t>(grid.bricks[0]) *
+                                              (static_cast<std::size_t>(y >> grid.brickShift) +
+                                               static_cast<std::size_t>(grid.bricks[1]) *
+                                                   static_cast<std::size_t>(z >> grid.brickShift));
+                const std::size_t local =
+                    static_cast<std::size_t>(x & (side - 1)) +
+                    static_cast<std::size_t>(side) *
+                        (static_cast<std::size_t>(y & (side - 1)) +
+                         static_cast<std::size_t>(side) * static_cast<std::size_t>(z & (side - 1)));
+                out[brick * brickCells + local] =
+                    grid.cellVot[static_cast<std::size_t>(z) * nxy + static_cast<std::size_t>(y) * nx +
+                                 static_cast<std::size_t>(x)];
+            }
+    return out;
 }
 
 } // namespace vots::render

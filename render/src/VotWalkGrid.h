@@ -13,18 +13,32 @@ namespace vots::render {
 
 inline constexpr std::uint32_t EMPTY_CELL = 0xffffffffu; // a background cell: no Vot covers it
 
+/// A block of cells [lo, hi) (cell coordinates; hi exclusive).
+struct CellBlock {
+    std::array<int, 3> lo{0, 0, 0};
+    std::array<int, 3> hi{0, 0, 0};
+};
+
 /// What vot_walk.frag reads besides the Vot records. Cells and bricks are stored x fastest.
 struct VotWalkGrid {
     std::array<int, 3> cells{0, 0, 0};  // cells per axis: grid points - 1
     std::array<int, 3> bricks{0, 0, 0}; // bricks per axis: ceil(cells / brick side)
     int brickShift = 3;                 // brick side = 1 << brickShift cells
-    std::vector<std::uint32_t> cellVot; // index into the Vot array covering the cell, or EMPTY_CELL
+    std::vector<std::uint32_t> cellVot; // < Vot count: the Vot covering the cell; else Vot count + index
+                                        // into emptyBlocks
     std::vector<float> brickMax;        // max upperBound over the Vots touching the brick, or -inf
+    std::vector<CellBlock> emptyBlocks; // disjoint blocks covering every background cell, so the walk
+                                        // crosses empty space in a few steps
 };
+
+/// cellVot reordered brick by brick (bricks x fastest, cells x fastest inside a brick, padded to whole
+/// bricks with EMPTY_CELL): the layout vot_walk.frag reads, so a ray stays in few cache lines.
+std::vector<std::uint32_t> brickOrderedCells(const VotWalkGrid& grid);
 
 /// Builds the grid for Vots (in their GPU order) on a grid of `dims` points. Returns nullopt, with the
 /// reason in *whyNot, when the walk could not see every Vot: boxes that overlap (a cell covered twice,
-/// as the paper method produces) or leave the grid.
+/// as the paper method produces) or leave the grid. Background cells are covered greedily with
+/// near-cubic empty blocks.
 std::optional<VotWalkGrid> buildVotWalkGrid(const std::vector<GpuVot>& vots, const std::array<int, 3>& dims,
                                             int brickShift, std::string* whyNot);
 

@@ -31,8 +31,9 @@ std::string generateTaylor() {
         out << vots::fit::MONOMIAL_NAMES[i] << ' ';
     out << "\n";
     out << "const int TAYLOR_TERMS = " << MONOMIAL_COUNT << ";\n\n";
-    out << "// Coefficients g0..g3 of g(u) = f~(P + s + u*dir) for the Vot at index `vot` (DESIGN §5).\n";
-    out << "vec4 taylorAlongRay(uint vot, vec3 s, vec3 dir) {\n";
+    out << "// Coefficients g0..g3 of g(u) = f~(P + s + u*dir) for a Vot with Taylor coefficients c (DESIGN "
+           "§5).\n";
+    out << "vec4 taylorAlongRay(float c[TAYLOR_TERMS], vec3 s, vec3 dir) {\n";
     out << "    vec4 g = vec4(0.0);\n";
     for (std::size_t i = 0; i < MONOMIAL_COUNT; ++i) {
         std::string factors;
@@ -42,7 +43,7 @@ std::string generateTaylor() {
                 factors += std::string(n ? ", " : "") + "s." + AXIS[axis] + ", dir." + AXIS[axis];
                 ++n;
             }
-        out << "    g += vots[vot].c[" << i << "] * ";
+        out << "    g += c[" << i << "] * ";
         if (n == 0)
             out << "vec4(1.0, 0.0, 0.0, 0.0);";
         else

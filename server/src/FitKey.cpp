@@ -26,8 +26,8 @@ std::string hexBits(double value) {
 std::string FitKey::text() const {
     // dataset is a plain identifier ([A-Za-z0-9_-]), so "__" cannot be mistaken for a separator
     // inside the fixed-width hex fields that follow it.
-    std::string out =
-        dataset + "__e" + hexBits(eps) + "_d" + std::to_string(degree) + "_b" + hexBits(background) + "_cells";
+    std::string out = dataset + "__e" + hexBits(eps) + "_d" + std::to_string(degree) + "_b" +
+                      hexBits(background) + "_cells";
     if (focus) {
         out += "_f" + hexBits(focus->centerIndex[0]) + "-" + hexBits(focus->centerIndex[1]) + "-" +
                hexBits(focus->centerIndex[2]) + "-" + hexBits(focus->radius) + "-" + hexBits(focus->epsFocus);

@@ -5,8 +5,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include <signal.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <charconv>
 #include <iostream>
 
 namespace vots::server {
@@ -24,6 +27,33 @@ bool carriesKey(const fit::VotSpace& space, const std::string& keyText) {
     return key != meta.end() && key->is_string() && key->get<std::string>() == keyText;
 }
 
+/// The writer's pid of "<key>.vots.tmp-<pid>-<n>" (fit::writeVotSpaceFile's temporary name), else 0.
+pid_t tempWriterPid(const std::string& name) {
+    const auto at = name.rfind(".vots.tmp-");
+    if (at == std::string::npos) return 0;
+    const char* first = name.data() + at + 10;
+    const char* last = name.data() + name.size();
+    pid_t pid = 0;
+    const auto [end, ec] = std::from_chars(first, last, pid);
+    return ec == std::errc() && end != last && *end == '-' && pid > 0 ? pid : 0;
+}
+
+/// Removes temporaries left by writers that no longer run (a server killed while writing). A live
+/// writer's file stays: another server may share the folder.
+void removeStaleTemporaries(const fs::path& dir) {
+    std::error_code ec;
+    try {
+        for (const auto& entry : fs::directory_iterator(dir, ec)) {
+            const pid_t pid = tempWriterPid(entry.path().filename().string());
+            if (pid == 0) continue;
+            if (::kill(pid, 0) == 0 || errno != ESRCH) continue; // alive, or alive as another user (EPERM)
+            std::error_code ignored;
+            fs::remove(entry.path(), ignored);
+        }
+    } catch (const fs::filesystem_error&) { // a folder that cannot be listed: leave it as it is
+    }
+}
+
 } // namespace
 
 VotSpaceCache::VotSpaceCache(fs::path cacheDir, std::size_t memoryBudgetBytes)
@@ -37,6 +67,7 @@ VotSpaceCache::VotSpaceCache(fs::path cacheDir, std::size_t memoryBudgetBytes)
         disableDisk("it is not writable");
     } else {
         mDiskEnabled = true;
+        removeStaleTemporaries(mDir);
     }
 }
 

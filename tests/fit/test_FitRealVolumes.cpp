@@ -12,7 +12,9 @@ using namespace vots::fit;
 
 namespace {
 
-Volume loadShared(const std::string& name) { return loadVolume(std::string(VOTS_SHARED_DATA_DIR) + "/" + name); }
+Volume loadShared(const std::string& name) {
+    return loadVolume(std::string(VOTS_SHARED_DATA_DIR) + "/" + name);
+}
 
 /// A sub-block of a real volume: the paper's seed-every-cell method is too slow for a quick test on
 /// whole volumes, so it runs on a 24^3 block from the volume's busiest region.
@@ -52,7 +54,8 @@ void expectValidFit(const Volume& volume, FitMethod method, float epsPercent, in
     EXPECT_LE(report.maxError, o.eps * (1.0 + 1e-5)) << volume.name;
     EXPECT_GT(report.nonBackgroundCells, 0u) << volume.name;
     EXPECT_LT(fit.space.vots.size(), report.nonBackgroundCells) << volume.name << ": Vots must merge cells";
-    EXPECT_EQ(fit.stats.coveredCells, report.nonBackgroundCells) << "fitter and verifier disagree on background";
+    EXPECT_EQ(fit.stats.coveredCells, report.nonBackgroundCells)
+        << "fitter and verifier disagree on background";
 }
 
 } // namespace
@@ -65,7 +68,8 @@ TEST_P(RealVolume, FastMethodCoversWholeVolumeWithinEps) {
 
 TEST_P(RealVolume, PaperMethodCoversBlockWithinEps) {
     const Volume full = loadShared(GetParam().file);
-    const Volume block = crop(full, {full.dims[0] / 2 - 12, full.dims[1] / 2 - 12, full.dims[2] / 2 - 12}, 24);
+    const Volume block =
+        crop(full, {full.dims[0] / 2 - 12, full.dims[1] / 2 - 12, full.dims[2] / 2 - 12}, 24);
     expectValidFit(block, FitMethod::Paper, GetParam().epsPercent, 3);
     expectValidFit(block, FitMethod::Fast, GetParam().epsPercent, 3);
 }

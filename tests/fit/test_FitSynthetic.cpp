@@ -60,7 +60,8 @@ TEST(CellVot, ReproducesTrilinearAtRandomPoints) {
     const FitResult fit = fitVotSpace(volume, options(1e-3f, 3));
     ASSERT_EQ(fit.space.vots.size(), 1u);
     const Vot& vot = fit.space.vots[0];
-    // DESIGN §2 closed form: c = mean, c_x = 1/4 sum s_i f, c_xy = 1/2 sum s_i s_j f, c_xyz = sum s_i s_j s_k f.
+    // DESIGN §2 closed form: c = mean, c_x = 1/4 sum s_i f, c_xy = 1/2 sum s_i s_j f, c_xyz = sum s_i s_j s_k
+    // f.
     double c0 = 0, cx = 0, cxy = 0, cxyz = 0;
     for (int n = 0; n < 8; ++n) {
         const int i = n & 1, j = (n >> 1) & 1, k = (n >> 2) & 1;
@@ -122,7 +123,8 @@ TEST_P(BothMethods, SmoothNoisyFieldIsCoveredWithinEps) {
         EXPECT_LE(report.maxError, 20.0 + 1e-2);
         EXPECT_GT(report.nonBackgroundCells, 1000u);
         EXPECT_LT(report.nonBackgroundCells, 29u * 25u * 19u) << "some cells must be background";
-        EXPECT_LT(fit.space.vots.size(), report.nonBackgroundCells / 4) << "Vots should be much larger than cells";
+        EXPECT_LT(fit.space.vots.size(), report.nonBackgroundCells / 4)
+            << "Vots should be much larger than cells";
     }
 }
 

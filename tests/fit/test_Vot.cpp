@@ -69,7 +69,7 @@ TEST(VotAccessors, DerivativesFollowDesignCoefficientRules) {
 }
 
 TEST(Monomials, CanonicalOrderIsTheDesignOrder) {
-    const char* expected[] = {"1",  "x",  "y",  "z",   "xx",  "yy",  "zz",  "xy",  "xz",  "yz",
+    const char* expected[] = {"1",   "x",   "y",   "z",   "xx",  "yy",  "zz",  "xy",  "xz",  "yz",
                               "xxx", "yyy", "zzz", "xxy", "xxz", "xyy", "yyz", "xzz", "yzz", "xyz"};
     for (std::size_t i = 0; i < MONOMIAL_COUNT; ++i) {
         EXPECT_STREQ(MONOMIAL_NAMES[i], expected[i]);

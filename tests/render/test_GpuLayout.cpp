@@ -51,7 +51,7 @@ TEST(GpuLayout, GeneratedTaylorFollowsMonomialOrder) {
     const std::string source = shaders::VOT_MIP_FRAG;
     std::size_t pos = 0;
     for (std::size_t i = 0; i < vots::fit::MONOMIAL_COUNT; ++i) {
-        const std::string line = "vots[vot].c[" + std::to_string(i) + "]";
+        const std::string line = "g += c[" + std::to_string(i) + "] *";
         const std::size_t at = source.find(line, pos);
         ASSERT_NE(at, std::string::npos) << line;
         const std::size_t end = source.find('\n', at);

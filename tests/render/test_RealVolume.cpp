@@ -121,14 +121,19 @@ TEST(RealVolume, CullingDoesNotChangeTheImage) {
     const Fitted& f = headCt();
     VotRenderer vots;
     vots.upload(f.space);
-    for (const char* text : {"anterior", "az=30,el=20,zoom=2,pan=0.3:-0.2", "az=10,el=5,zoom=3,proj=persp"}) {
-        const Camera cam = parseCamera(text);
-        vots.setCulling(true);
-        const FloatImage culled = vots.render(cam, 200, 150);
-        const std::size_t drawn = vots.lastFrameStats().votsDrawn;
-        vots.setCulling(false);
-        const FloatImage all = vots.render(cam, 200, 150);
-        EXPECT_EQ(culled.pixels, all.pixels) << text;
-        std::cout << text << ": culling drew " << drawn << " of " << f.space.vots.size() << " Vots\n";
+    for (const auto strategy : {VotRenderer::Strategy::Walk, VotRenderer::Strategy::Raster}) {
+        vots.setStrategy(strategy);
+        for (const char* text :
+             {"anterior", "az=30,el=20,zoom=2,pan=0.3:-0.2", "az=10,el=5,zoom=3,proj=persp"}) {
+            const Camera cam = parseCamera(text);
+            vots.setCulling(true);
+            const FloatImage culled = vots.render(cam, 200, 150);
+            const std::size_t drawn = vots.lastFrameStats().votsDrawn;
+            vots.setCulling(false);
+            const FloatImage all = vots.render(cam, 200, 150);
+            EXPECT_EQ(culled.pixels, all.pixels) << text;
+            if (strategy == VotRenderer::Strategy::Raster)
+                std::cout << text << ": culling drew " << drawn << " of " << f.space.vots.size() << " Vots\n";
+        }
     }
 }

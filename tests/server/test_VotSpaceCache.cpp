@@ -6,7 +6,11 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
 
 namespace vots::server {
 namespace {
@@ -73,6 +77,24 @@ TEST(VotSpaceCache, DiskRoundTripAndForeignFilesIgnored) {
     const FitKey third{"a", 3.f, 3, 0.f, std::nullopt};
     dir.write(third.text() + ".vots", "VOTS");
     EXPECT_FALSE(cache.find(third));
+}
+
+TEST(VotSpaceCache, RemovesTemporariesOfDeadWritersOnStart) {
+    // A server killed between open and rename leaves "<key>.vots.tmp-<pid>-<n>" behind.
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) ::_exit(0);
+    ASSERT_EQ(::waitpid(child, nullptr, 0), child); // reaped: its pid names no process now
+    test::TempDir dir;
+    const std::string dead = "a.vots.tmp-" + std::to_string(child) + "-0";
+    const std::string live = "b.vots.tmp-" + std::to_string(::getpid()) + "-3";
+    for (const std::string& name : {dead, live, std::string("notes.tmp-1-2"), std::string("c.vots")})
+        dir.write(name, "half");
+    VotSpaceCache cache(dir.path(), 1 << 20);
+    EXPECT_FALSE(std::filesystem::exists(dir.path() / dead));
+    EXPECT_TRUE(std::filesystem::exists(dir.path() / live)); // a running writer may still rename it
+    EXPECT_TRUE(std::filesystem::exists(dir.path() / "notes.tmp-1-2"));
+    EXPECT_TRUE(std::filesystem::exists(dir.path() / "c.vots")); // corrupt files are handled by find()
 }
 
 } // namespace

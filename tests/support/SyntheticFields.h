@@ -28,7 +28,8 @@ struct Polynomial {
 };
 
 /// Random coefficients of total degree <= degree, scaled so each term stays O(amplitude) on the grid.
-inline Polynomial randomPolynomial(int degree, const std::array<int, 3>& dims, unsigned seed, double amplitude = 100.0) {
+inline Polynomial randomPolynomial(int degree, const std::array<int, 3>& dims, unsigned seed,
+                                   double amplitude = 100.0) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> uniform(-1.0, 1.0);
     Polynomial p;
@@ -60,7 +61,8 @@ inline fit::Volume sampleVolume(const std::array<int, 3>& dims, const std::funct
 }
 
 /// Uniform random samples in [lo, hi]: the hardest case, every cell different.
-inline fit::Volume randomVolume(const std::array<int, 3>& dims, unsigned seed, double lo = 0.0, double hi = 1000.0) {
+inline fit::Volume randomVolume(const std::array<int, 3>& dims, unsigned seed, double lo = 0.0,
+                                double hi = 1000.0) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> uniform(lo, hi);
     return sampleVolume(dims, [&](int, int, int) { return uniform(rng); });

@@ -171,7 +171,11 @@ function applyHash() {
     }
   }
   const switching = !ds || ds.name !== state.dataset;
-  if (!ds) ds = datasets.find((d) => d.name === state.dataset) || datasets[0];
+  // With no choice in the link, open the Cranium CT (the README's default dataset), else any CT.
+  if (!ds) {
+    ds = datasets.find((d) => d.name === state.dataset) || datasets.find((d) => d.name === 'cranium') ||
+      datasets.find((d) => d.modality === 'CT') || datasets[0];
+  }
   state.dataset = ds.name;
 
   try {

@@ -26,26 +26,26 @@ enum class Certify {
 };
 
 struct FitOptions {
-    float eps = 1.f;                          // context error bound, data units (HU for CT)
-    int degree = 3;                           // requested Taylor degree 0..3
-    std::optional<float> background;          // cells with all 8 corners below it are omitted
+    float eps = 1.f;                 // context error bound, data units (HU for CT)
+    int degree = 3;                  // requested Taylor degree 0..3
+    std::optional<float> background; // cells with all 8 corners below it are omitted
     FitMethod method = FitMethod::Fast;
     Certify certify = Certify::Samples;
-    std::optional<FocusRegion> focus;         // tighter eps in a sphere (grid index space)
-    int threads = 0;                          // 0: all hardware threads
+    std::optional<FocusRegion> focus; // tighter eps in a sphere (grid index space)
+    int threads = 0;                  // 0: all hardware threads
     /// Called now and then from the fitting threads with a fraction in [0,1] and a stage name.
     std::function<void(double fraction, const char* stage)> progress;
     const std::atomic<bool>* cancel = nullptr; // set to true to abandon the fit (throws FitCancelled)
 };
 
 struct FitStats {
-    double seconds = 0.0;          // wall time of the fit
-    std::size_t boxFits = 0;       // least-squares solves
-    std::size_t boxScans = 0;      // full residual scans over a box's samples
-    std::size_t cacheHits = 0;     // box errors reused from a FitCache
-    std::size_t coveredCells = 0;  // non-background cells (all covered)
+    double seconds = 0.0;         // wall time of the fit
+    std::size_t boxFits = 0;      // least-squares solves
+    std::size_t boxScans = 0;     // full residual scans over a box's samples
+    std::size_t cacheHits = 0;    // box errors reused from a FitCache
+    std::size_t coveredCells = 0; // non-background cells (all covered)
     std::size_t backgroundCells = 0;
-    double maxError = 0.0;         // max certified |residual| over all chosen Vots
+    double maxError = 0.0; // max certified |residual| over all chosen Vots
 };
 
 struct FitResult {

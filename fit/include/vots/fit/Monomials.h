@@ -10,6 +10,7 @@ inline constexpr std::size_t MONOMIAL_COUNT = 20;
 
 /// Exponents (a_x, a_y, a_z) of each monomial d^a, in the order
 /// 1 | x y z | xx yy zz xy xz yz | xxx yyy zzz xxy xxz xyy yyz xzz yzz xyz.
+// clang-format off
 inline constexpr std::array<std::array<int, 3>, MONOMIAL_COUNT> MONOMIAL_EXPONENTS{{
     {0, 0, 0},                                                                         //
     {1, 0, 0}, {0, 1, 0}, {0, 0, 1},                                                   //
@@ -21,6 +22,7 @@ inline constexpr std::array<std::array<int, 3>, MONOMIAL_COUNT> MONOMIAL_EXPONEN
 inline constexpr std::array<const char*, MONOMIAL_COUNT> MONOMIAL_NAMES{
     "1",  "x",  "y",  "z",   "xx",  "yy",  "zz",  "xy",  "xz",  "yz",
     "xxx", "yyy", "zzz", "xxy", "xxz", "xyy", "yyz", "xzz", "yzz", "xyz"};
+// clang-format on
 
 constexpr int monomialDegree(std::size_t i) {
     return MONOMIAL_EXPONENTS[i][0] + MONOMIAL_EXPONENTS[i][1] + MONOMIAL_EXPONENTS[i][2];
@@ -37,7 +39,8 @@ constexpr std::size_t monomialCountForDegree(int degree) {
 /// Index of the monomial with the given exponents, or -1.
 constexpr int monomialIndex(int ax, int ay, int az) {
     for (std::size_t i = 0; i < MONOMIAL_COUNT; ++i)
-        if (MONOMIAL_EXPONENTS[i][0] == ax && MONOMIAL_EXPONENTS[i][1] == ay && MONOMIAL_EXPONENTS[i][2] == az)
+        if (MONOMIAL_EXPONENTS[i][0] == ax && MONOMIAL_EXPONENTS[i][1] == ay &&
+            MONOMIAL_EXPONENTS[i][2] == az)
             return static_cast<int>(i);
     return -1;
 }

@@ -14,12 +14,12 @@ namespace vots::fit {
 struct VerifyReport {
     bool ok = false;
     std::size_t nonBackgroundCells = 0;
-    std::size_t uncoveredCells = 0;     // non-background cells inside no Vot box
-    std::size_t samplesChecked = 0;     // (Vot, sample) pairs evaluated
-    std::size_t violations = 0;         // samples with |residual| above the allowed bound
-    double maxError = 0.0;              // max |residual| at grid samples over all Vots
-    double maxCellCentreError = 0.0;    // max |f~ - trilinear| at cell centres inside boxes (DESIGN §3)
-    std::string firstProblem;           // human-readable description of the first failure
+    std::size_t uncoveredCells = 0;  // non-background cells inside no Vot box
+    std::size_t samplesChecked = 0;  // (Vot, sample) pairs evaluated
+    std::size_t violations = 0;      // samples with |residual| above the allowed bound
+    double maxError = 0.0;           // max |residual| at grid samples over all Vots
+    double maxCellCentreError = 0.0; // max |f~ - trilinear| at cell centres inside boxes (DESIGN §3)
+    std::string firstProblem;        // human-readable description of the first failure
 };
 
 /// Float32 coefficients cannot reproduce data exactly: a sample passes when

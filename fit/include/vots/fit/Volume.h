@@ -15,12 +15,12 @@ enum class ScalarType { UInt8, Int8, UInt16, Int16, UInt32, Int32, Float32, Floa
 std::string scalarTypeName(ScalarType type);
 
 struct Volume {
-    std::array<int, 3> dims{0, 0, 0};              // grid points along x, y, z
-    std::array<double, 3> spacing{1.0, 1.0, 1.0};  // world distance between grid points (mm for CT)
-    std::array<double, 3> origin{0.0, 0.0, 0.0};   // world position of grid point (0,0,0)
-    ScalarType sourceType = ScalarType::Float32;   // what the file stored
-    std::string name;                              // short label (file stem), for meta data and logs
-    std::vector<float> values;                     // x fastest, then y, then z
+    std::array<int, 3> dims{0, 0, 0};             // grid points along x, y, z
+    std::array<double, 3> spacing{1.0, 1.0, 1.0}; // world distance between grid points (mm for CT)
+    std::array<double, 3> origin{0.0, 0.0, 0.0};  // world position of grid point (0,0,0)
+    ScalarType sourceType = ScalarType::Float32;  // what the file stored
+    std::string name;                             // short label (file stem), for meta data and logs
+    std::vector<float> values;                    // x fastest, then y, then z
 
     std::size_t sampleCount() const {
         return static_cast<std::size_t>(dims[0]) * static_cast<std::size_t>(dims[1]) *
@@ -29,7 +29,8 @@ struct Volume {
     std::size_t indexOf(int x, int y, int z) const {
         return static_cast<std::size_t>(x) +
                static_cast<std::size_t>(dims[0]) *
-                   (static_cast<std::size_t>(y) + static_cast<std::size_t>(dims[1]) * static_cast<std::size_t>(z));
+                   (static_cast<std::size_t>(y) +
+                    static_cast<std::size_t>(dims[1]) * static_cast<std::size_t>(z));
     }
     float at(int x, int y, int z) const { return values[indexOf(x, y, z)]; }
 

@@ -10,10 +10,10 @@ namespace vots::fit {
 
 /// Plain data as stored in the Vot-Space file (DESIGN §8, record of 120 bytes).
 struct Vot {
-    Box box;                                  // validity box, grid index space, closed, lo < hi
-    std::array<float, 3> p{0.f, 0.f, 0.f};    // expansion point P, grid index space
-    float err = 0.f;                          // max |residual| over the grid samples in the box, data units
-    std::array<float, MONOMIAL_COUNT> c{};    // Taylor coefficients c_a for d = X - P (index units)
+    Box box;                               // validity box, grid index space, closed, lo < hi
+    std::array<float, 3> p{0.f, 0.f, 0.f}; // expansion point P, grid index space
+    float err = 0.f;                       // max |residual| over the grid samples in the box, data units
+    std::array<float, MONOMIAL_COUNT> c{}; // Taylor coefficients c_a for d = X - P (index units)
 
     /// f~(X) at a point X given in grid index space, evaluated in double.
     double evaluate(const std::array<double, 3>& xIndex) const;

@@ -24,6 +24,11 @@ struct GpuVot {
 };                                      // 128B total, array stride 128
 
 static_assert(sizeof(GpuVot) == 128);
+/// The MIP shaders also read the records as a buffer texture of RGBA32F texels (uVotData, texture unit
+/// VOT_TEXTURE_UNIT): VOT_TEXELS texels per Vot, the coefficients four per texel.
+inline constexpr unsigned VOT_TEXTURE_UNIT = 3;
+inline constexpr unsigned VOT_TEXELS = sizeof(GpuVot) / 16;
+static_assert(VOT_TEXELS == 8 && vots::fit::MONOMIAL_COUNT % 4 == 0);
 static_assert(offsetof(GpuVot, lo) == 0 && offsetof(GpuVot, upperBound) == 12);
 static_assert(offsetof(GpuVot, hi) == 16 && offsetof(GpuVot, logSize) == 28);
 static_assert(offsetof(GpuVot, p) == 32 && offsetof(GpuVot, lowerBound) == 44);

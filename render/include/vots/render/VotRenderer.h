@@ -23,12 +23,13 @@ namespace vots::render {
 /// Two MIP strategies give the same image (up to rays grazing a face within 5e-5 voxel); both use a
 /// certified upper bound of each Vot over its box (Bernstein form), computed at upload.
 ///
-/// Walk (default): one fullscreen-like pass; each pixel walks its ray front to back through a grid
-/// holding, per cell, the Vot covering it, and per brick of 8^3 cells the largest bound of the Vots
-/// touching it. Bricks and Vot boxes whose bound cannot beat the pixel's current max are stepped over
-/// whole; the others are evaluated (the same analytic maximum as Raster). Needs disjoint boxes (the
-/// fast fit method); a Vot-Space with overlapping boxes (paper method) is drawn with Raster instead,
-/// see mipStrategy(). Density images always use Raster.
+/// Walk (default): one pass over the back faces of the grid box; each pixel walks its ray front to
+/// back through a grid holding, per cell, the Vot covering it (background cells: near-cubic empty
+/// blocks), and per brick of 16^3 cells the largest bound of the Vots touching it. Bricks and Vot
+/// boxes whose bound cannot beat the pixel's current max, and empty blocks, are stepped over whole;
+/// the other Vots are evaluated with the same analytic maximum as Raster. Needs disjoint boxes (the
+/// fast fit method); a Vot-Space with overlapping boxes (paper method) or beyond the GL limits is
+/// drawn with Raster instead, see mipStrategy(). Density images always use Raster.
 ///
 /// Raster: one instanced unit cube per Vot. With culling, Vots are drawn in descending order of
 /// their bound, in batches; between batches the current max image is read back; a Vot whose bound

@@ -16,6 +16,7 @@
 namespace vots::server {
 
 /// Thread-safe. A disk folder that cannot be created or written logs one warning and is then ignored.
+/// On construction, temporaries of .vots writers that no longer run (killed mid-write) are removed.
 class VotSpaceCache {
 public:
     /// cacheDir empty: memory only.

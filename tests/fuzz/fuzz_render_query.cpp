@@ -1,0 +1,29 @@
+// libFuzzer target: the server's /render query parser and /api/fit body parser on arbitrary text.
+#include "vots/server/HttpError.h"
+#include "vots/server/Params.h"
+
+#include <cstdint>
+#include <cstdlib>
+#include <string>
+#include <string_view>
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    const std::string text(reinterpret_cast<const char*>(data), size);
+    try {
+        const vots::server::RenderParams params =
+            vots::server::parseRenderParams(vots::server::parseQueryString(text));
+        // What the parser accepts is what the route relies on: a plain dataset name and sane sizes.
+        if (!vots::server::isDatasetName(params.dataset)) std::abort();
+        if (params.width < 1 || params.height < 1 || params.width > vots::server::MAX_RENDER_SIDE ||
+            params.height > vots::server::MAX_RENDER_SIDE)
+            std::abort();
+    } catch (const vots::server::HttpError& e) {
+        if (e.status() != 400) std::abort();
+    }
+    try {
+        (void)vots::server::parseFitParams(text);
+    } catch (const vots::server::HttpError& e) {
+        if (e.status() != 400) std::abort();
+    }
+    return 0;
+}

@@ -1,0 +1,82 @@
+#!/usr/bin/env python3
+"""Writes small seed inputs for the fuzz targets (the committed tests/fuzz/seeds/* come from here)."""
+import gzip
+import os
+import struct
+import sys
+import zlib
+
+out = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "seeds")
+
+
+def put(target, name, data):
+    os.makedirs(os.path.join(out, target), exist_ok=True)
+    with open(os.path.join(out, target, name), "wb") as f:
+        f.write(data if isinstance(data, bytes) else data.encode())
+
+
+ramp = bytes((i * 37) % 256 for i in range(4 * 3 * 2))
+
+# NRRD: attached raw and gzip, big-endian int16, space directions, detached names (which cannot exist).
+put("fuzz_nrrd", "raw_uint8.nrrd",
+    b"NRRD0004\ntype: uint8\ndimension: 3\nsizes: 4 3 2\nspacings: 1 1.5 nan\nencoding: raw\n\n" + ramp)
+put("fuzz_nrrd", "gzip_int16_big.nrrd",
+    b"NRRD0005\n# comment\ntype: short\ndimension: 3\nsizes: 4 3 2\nendian: big\n"
+    b"space: left-posterior-superior\nspace directions: (1,0,0) (0,2,0) (0,0,0.5)\n"
+    b"space origin: (-1,2.5,3)\nkinds: domain domain domain\nencoding: gzip\n\n"
+    + gzip.compress(struct.pack(">24h", *range(-12, 12))))
+put("fuzz_nrrd", "float_byteskip.nrrd",
+    b"NRRD0004\ntype: float\ndimension: 3\nsizes: 2 2 2\nendian: little\nbyte skip: -1\nline skip: 0\n"
+    b"encoding: raw\nkey:=value\n\n" + struct.pack("<8f", *[0.5 * i for i in range(8)]))
+put("fuzz_nrrd", "detached_pattern.nhdr",
+    "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 4 3 2\nencoding: raw\ndata file: slice%03d.raw 1 2 1 2\n")
+put("fuzz_nrrd", "detached_list.nhdr",
+    "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 4 3 2\nencoding: raw\ndata file: LIST\na.raw\nb.raw\n")
+
+# NIfTI-1: 348-byte header, 4 extension bytes, samples at vox_offset 352; little and big endian, gzip.
+
+
+def nifti(endian, datatype, bitpix, fmt, values, slope=0.0):
+    h = bytearray(348)
+    struct.pack_into(endian + "i", h, 0, 348)
+    struct.pack_into(endian + "8h", h, 40, 3, 4, 3, 2, 1, 1, 1, 1)
+    struct.pack_into(endian + "hh", h, 70, datatype, bitpix)
+    struct.pack_into(endian + "8f", h, 76, 1, 1.0, 1.5, 2.0, 1, 1, 1, 1)
+    struct.pack_into(endian + "fff", h, 108, 352.0, slope, 0.5)
+    struct.pack_into(endian + "hh", h, 252, 1, 1)
+    struct.pack_into(endian + "12f", h, 280, 1, 0, 0, -5, 0, 1, 0, 6, 0, 0, 1, 7)
+    h[344:348] = b"n+1\0"
+    return bytes(h) + b"\0\0\0\0" + struct.pack(endian + str(len(values)) + fmt, *values)
+
+
+put("fuzz_nifti", "uint8_le.nii", nifti("<", 2, 8, "B", list(ramp)))
+put("fuzz_nifti", "int16_be_scaled.nii", nifti(">", 4, 16, "h", list(range(-12, 12)), slope=2.0))
+put("fuzz_nifti", "float_gz.nii", gzip.compress(nifti("<", 16, 32, "f", [0.25 * i for i in range(24)])))
+
+# MetaImage: LOCAL raw, zlib-compressed, big-endian short, and a detached file name.
+put("fuzz_metaimage", "local_raw.mha",
+    b"ObjectType = Image\nNDims = 3\nDimSize = 4 3 2\nElementSpacing = 1 1 2\nOffset = 0 1 2\n"
+    b"ElementType = MET_UCHAR\nElementDataFile = LOCAL\n" + ramp)
+packed = zlib.compress(struct.pack("<24f", *[0.5 * i for i in range(24)]))
+put("fuzz_metaimage", "local_zlib.mha",
+    ("ObjectType = Image\nNDims = 3\nDimSize = 4 3 2\nCompressedData = True\nCompressedDataSize = %d\n"
+     "ElementType = MET_FLOAT\nElementDataFile = LOCAL\n" % len(packed)).encode() + packed)
+put("fuzz_metaimage", "big_short.mha",
+    b"NDims = 3\nDimSize = 4 3 2\nBinaryDataByteOrderMSB = True\nHeaderSize = -1\nElementType = MET_SHORT\n"
+    b"ElementDataFile = LOCAL\n" + struct.pack(">24h", *range(24)))
+put("fuzz_metaimage", "detached.mhd", "NDims = 3\nDimSize = 4 3 2\nElementType = MET_UCHAR\nElementDataFile = x.raw\n")
+
+# Camera text.
+for i, cam in enumerate(["anterior", "az=30,el=20", "az=-45.5,el=89,zoom=2.5,pan=0.1:-0.2,proj=persp,fov=45",
+                         "view=left,zoom=1e0,proj=ortho", "pan=+1:-1,fov=10"]):
+    put("fuzz_camera", "cam%d.txt" % i, cam)
+
+# /render queries and /api/fit bodies (the hostile .http requests of tests/server are added by make-corpus).
+for i, query in enumerate([
+        "dataset=neghip_64x64x64_uint8&cam=az=30,el=20&size=256x256&eps=2%25&mode=mip&window=120,200&colormap=hot&client=tab1",
+        "dataset=cranium&cam=az%3D30%2Cel%3D20&size=512x512&eps=2%&window=300,1500&_=169",
+        "dataset=x&eps=20&degree=0&mode=density&colormap=viridis",
+        "dataset=x&mode=reference&size=1x4096&window=-1e3,2.5e3&colormap=bone",
+        '{"dataset":"neghip_64x64x64_uint8","eps":"3%","degree":3,"focus":{"x":32,"y":32,"z":32,"r":8,"eps":1}}',
+        '{"dataset":"x","eps":7.5}']):
+    put("fuzz_render_query", "query%d.txt" % i, query)

@@ -1,0 +1,80 @@
+#!/usr/bin/env bash
+# Runs the libFuzzer targets (preset fuzz) on seeded corpora, two at a time, and prints one summary line each.
+#
+# Usage: tests/fuzz/run.sh [--seconds N] [--runs N] [target...]   (default: all six, 600 s or 1,000,000 runs)
+# Needs: cmake --preset fuzz && cmake --build --preset fuzz -j2, and a `vots` binary for .vots seeds
+# (VOTS_BIN, default build/rel/cli/vots, else build/asan/cli/vots). Logs, corpora and crash artifacts go
+# to build/fuzz/{logs,corpus,artifacts}/<target>/.
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/../.."
+
+seconds=600
+runs=1000000
+targets=()
+while [[ $# -gt 0 ]]; do
+    case "$1" in
+    --seconds) seconds="$2"; shift 2 ;;
+    --runs) runs="$2"; shift 2 ;;
+    *) targets+=("$1"); shift ;;
+    esac
+done
+[[ ${#targets[@]} -gt 0 ]] ||
+    targets=(fuzz_votspace_reader fuzz_nrrd fuzz_nifti fuzz_metaimage fuzz_camera fuzz_render_query)
+
+fuzz=build/fuzz
+shared=../shared/data
+mkdir -p "$fuzz"/{logs,corpus,artifacts}
+
+# Larger seeds than the committed ones: small real volumes, .vots files fitted from them, hostile queries.
+seed_extra() {
+    local target=$1 dir=$fuzz/corpus/$1
+    mkdir -p "$dir"
+    case "$target" in
+    fuzz_nrrd)
+        for f in HeadMRVolume_48x62x42_uint8 ironProt_68x68x68_uint8 neghip_64x64x64_uint8; do
+            [[ -f $shared/$f.nrrd ]] && cp -f "$shared/$f.nrrd" "$dir/"
+        done ;;
+    fuzz_votspace_reader)
+        local vots=${VOTS_BIN:-}
+        [[ -n $vots ]] || for b in build/rel/cli/vots build/asan/cli/vots; do [[ -x $b ]] && vots=$b && break; done
+        if [[ -n $vots && -f $shared/HeadMRVolume_48x62x42_uint8.nrrd ]]; then
+            for args in "--eps 10% --degree 3" "--eps 5% --degree 1" "--eps 20% --degree 0"; do
+                name=head_$(echo "$args" | tr -cd 'a-z0-9').vots
+                [[ -f $dir/$name ]] || ASAN_OPTIONS=detect_leaks=0 $vots fit "$shared/HeadMRVolume_48x62x42_uint8.nrrd" \
+                    -o "$dir/$name" $args >/dev/null || true
+            done
+        fi ;;
+    fuzz_render_query)
+        # The query string of each hostile request line ("GET /render?QUERY HTTP/1.1"), and its body.
+        for f in tests/server/hostile/*.http; do
+            grep -m1 -E '^[A-Z]+ /' "$f" | sed -n 's/^[A-Z]* [^?]*?\([^ ]*\) HTTP.*/\1/p' | head -c 20000 \
+                >"$dir/$(basename "$f" .http).q"
+            awk 'body{print} /^\r?$/{body=1}' "$f" | head -c 20000 >"$dir/$(basename "$f" .http).body"
+        done
+        find "$dir" -empty -delete ;;
+    esac
+}
+
+run_one() {
+    local target=$1 bin=$fuzz/tests/fuzz/$1
+    [[ -x $bin ]] || { echo "$target: not built ($bin)"; return 1; }
+    seed_extra "$target"
+    mkdir -p "$fuzz/artifacts/$target"
+    local maxlen=4096
+    [[ $target == fuzz_nrrd || $target == fuzz_votspace_reader ]] && maxlen=131072
+    nice -n 10 "$bin" -runs="$runs" -max_total_time="$seconds" -max_len="$maxlen" -rss_limit_mb=2048 \
+        -timeout=30 -print_final_stats=1 -artifact_prefix="$fuzz/artifacts/$target/" \
+        "$fuzz/corpus/$target" "tests/fuzz/seeds/$target" >"$fuzz/logs/$target.log" 2>&1 || true
+    local execs cov crashes
+    execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$fuzz/logs/$target.log" | tail -1)
+    cov=$(grep -o 'cov: [0-9]*' "$fuzz/logs/$target.log" | tail -1)
+    crashes=$(find "$fuzz/artifacts/$target" -type f | wc -l)
+    echo "$target: executions ${execs:-?}, ${cov:-cov: ?}, artifacts $crashes (log $fuzz/logs/$target.log)"
+}
+
+# Two at a time: the machine has two cores.
+for ((i = 0; i < ${#targets[@]}; i += 2)); do
+    run_one "${targets[i]}" &
+    [[ $((i + 1)) -lt ${#targets[@]} ]] && run_one "${targets[i + 1]}" &
+    wait
+done

@@ -1,0 +1,37 @@
+# Shared by the reliability scripts: build build/rel (Release `vots`), start/stop `vots serve`, read its RSS.
+# Sourced, not run. Sets VOTS (the binary) and uses SERVER_PID / SERVER_PORT for the server it started.
+
+VOTS=${VOTS_BIN:-build/rel/cli/vots}
+SHARED_DATA=${VOTS_SHARED_DATA:-../shared/data}
+
+build_rel() {
+    [[ -n ${VOTS_BIN:-} ]] && return 0
+    cmake -S . -B build/rel -G Ninja -DCMAKE_BUILD_TYPE=Release -DVOTS_BUILD_TESTS=OFF >/dev/null
+    nice cmake --build build/rel -j2 --target vots >/dev/null
+}
+
+# start_server LOG ARGS...: starts `vots serve --port 0 ARGS` and waits for its "listening on" line.
+start_server() {
+    local log=$1
+    shift
+    "$VOTS" serve --port 0 "$@" >"$log" 2>&1 &
+    SERVER_PID=$!
+    for _ in $(seq 1 600); do
+        SERVER_PORT=$(sed -n 's|.*listening on http://[^:]*:\([0-9]*\)/.*|\1|p' "$log" | head -1)
+        [[ -n $SERVER_PORT ]] && return 0
+        kill -0 "$SERVER_PID" 2>/dev/null || { cat "$log"; return 1; }
+        sleep 0.1
+    done
+    echo "server did not start"; cat "$log"; return 1
+}
+
+stop_server() {
+    [[ -n ${SERVER_PID:-} ]] || return 0
+    kill "$SERVER_PID" 2>/dev/null || true
+    wait "$SERVER_PID" 2>/dev/null || true
+    SERVER_PID=
+}
+
+rss_kib() {
+    sed -n 's/^VmRSS:[[:space:]]*\([0-9]*\) kB/\1/p' "/proc/$1/status"
+}

@@ -1,0 +1,190 @@
+// The Walk MIP strategy against Raster on a fitted real CT, its cell grid, and its fallback for overlaps.
+#include "RenderTestSupport.h"
+
+#include "VotWalkGrid.h"
+
+#include "vots/fit/Fitter.h"
+#include "vots/fit/VolumeLoad.h"
+#include "vots/render/CameraText.h"
+#include "vots/render/VotRenderer.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace vots;
+using namespace vots::render;
+
+namespace {
+
+using Strategy = VotRenderer::Strategy;
+
+struct Comparison {
+    std::size_t finiteMismatch = 0; // background in one image only
+    std::size_t beyondTolerance = 0;
+    std::size_t bitIdentical = 0;
+    double worst = 0;
+};
+
+Comparison compare(const FloatImage& a, const FloatImage& b, double tolerance) {
+    Comparison c;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+        const float x = a.pixels[i], y = b.pixels[i];
+        if (x == y || (std::isnan(x) && std::isnan(y))) {
+            ++c.bitIdentical;
+            continue;
+        }
+        if (std::isfinite(x) != std::isfinite(y)) {
+            ++c.finiteMismatch;
+            continue;
+        }
+        const double d = std::abs(double(x) - y);
+        c.worst = std::max(c.worst, d);
+        if (d > tolerance) ++c.beyondTolerance;
+    }
+    return c;
+}
+
+// headsq-quarter fitted with the default (fast) method: disjoint boxes, so Walk applies.
+const fit::VotSpace& headFast(float* epsOut) {
+    static float eps = 0;
+    static const fit::VotSpace space = [] {
+        const fit::Volume volume =
+            fit::loadVolume(std::string(VOTS_SHARED_DATA_DIR) + "/headsq-quarter_64x64x93_int16.nrrd");
+        const auto range = volume.valueRange();
+        fit::FitOptions options;
+        options.eps = 0.02f * (range[1] - range[0]);
+        options.degree = 3;
+        options.background = fit::defaultBackground(volume);
+        eps = options.eps;
+        return fit::fitVotSpace(volume, options).space;
+    }();
+    *epsOut = eps;
+    return space;
+}
+
+} // namespace
+
+TEST(WalkStrategy, MatchesRasterOnFittedCt) {
+    test::glContext();
+    float eps = 0;
+    const fit::VotSpace& space = headFast(&eps);
+    VotRenderer walk, raster;
+    walk.upload(space);
+    raster.upload(space);
+    raster.setStrategy(Strategy::Raster);
+    ASSERT_EQ(walk.strategy(), Strategy::Walk); // the default
+    ASSERT_EQ(walk.mipStrategy(), Strategy::Walk);
+    ASSERT_EQ(raster.mipStrategy(), Strategy::Raster);
+    const auto range = walk.valueRange();
+    const double tiny = 1e-5 * (range[1] - range[0]);
+    for (const char* text : {"anterior", "az=30,el=20,zoom=1.2", "az=-50,el=-30,zoom=1.4,proj=persp,fov=40",
+                             "az=20,el=10,zoom=8,proj=persp,fov=60" /* eye inside the volume */}) {
+        const Camera cam = parseCamera(text);
+        const FloatImage a = walk.render(cam, 200, 160);
+        const FloatImage b = raster.render(cam, 200, 160);
+        const Comparison c = compare(a, b, tiny);
+        // Both evaluate each Vot with the same code; they can differ only where a ray grazes a face
+        // shared by two Vots (within 5e-5 voxel): Raster's slack evaluates both, the walk one of them.
+        EXPECT_LE(c.finiteMismatch + c.beyondTolerance, a.pixels.size() / 1000) << text;
+        EXPECT_LE(c.worst, 2.0 * eps) << text;
+        std::cout << text << ": " << c.bitIdentical << " of " << a.pixels.size() << " pixels bit-identical, "
+                  << c.beyondTolerance << " beyond " << tiny << ", " << c.finiteMismatch
+                  << " background in one only, worst " << c.worst << "\n";
+        std::string name = std::string(text).substr(0, 6);
+        for (char& ch : name)
+            if (ch == '=' || ch == ',') ch = '_';
+        test::saveForInspection(a, "walk_" + name);
+        test::saveForInspection(b, "raster_" + name);
+    }
+}
+
+TEST(WalkStrategy, RepeatRendersAreBitIdentical) {
+    test::glContext();
+    float eps = 0;
+    const fit::VotSpace& space = headFast(&eps);
+    VotRenderer walk;
+    walk.upload(space);
+    const Camera cam = parseCamera("az=-12.5,el=33,zoom=1.2,pan=0.1:0,proj=persp,fov=35");
+    const FloatImage first = walk.render(cam, 128, 96);
+    (void)walk.render(parseCamera("left"), 64, 64);
+    EXPECT_EQ(first.pixels, walk.render(cam, 128, 96).pixels);
+}
+
+TEST(WalkStrategy, OverlappingBoxesFallBackToRaster) {
+    test::glContext();
+    constexpr int N = 12;
+    const test::Polynomial p = test::randomPolynomial(3, N, 100.0, 3u);
+    fit::VotSpace space = test::polynomialVotSpace(p, {N, N, N}, 4);
+    VotRenderer disjoint;
+    disjoint.upload(space);
+    EXPECT_EQ(disjoint.mipStrategy(), Strategy::Walk);
+    space.vots.push_back(space.vots.front()); // the same box twice: overlap
+    VotRenderer overlapping;
+    overlapping.upload(space);
+    EXPECT_EQ(overlapping.strategy(), Strategy::Walk);
+    EXPECT_EQ(overlapping.mipStrategy(), Strategy::Raster);
+    const Camera cam = parseCamera("az=30,el=20");
+    const FloatImage a = overlapping.render(cam, 64, 48);
+    overlapping.setStrategy(Strategy::Raster);
+    EXPECT_EQ(a.pixels, overlapping.render(cam, 64, 48).pixels);
+}
+
+TEST(WalkStrategy, EmptySpaceRendersBackground) {
+    test::glContext();
+    fit::VotSpace space;
+    space.dims = {10, 12, 14};
+    VotRenderer renderer;
+    renderer.upload(space);
+    EXPECT_EQ(renderer.mipStrategy(), Strategy::Walk);
+    const FloatImage img = renderer.render(parseCamera("az=30,el=20"), 32, 32);
+    for (float v : img.pixels)
+        EXPECT_TRUE(std::isinf(v) && v < 0);
+}
+
+TEST(WalkStrategy, GridCoversEveryCellOnce) {
+    constexpr int N = 21; // 20 cells: bricks of 8 leave a partial brick
+    const test::Polynomial p = test::randomPolynomial(2, N, 10.0, 8u);
+    fit::VotSpace space = test::polynomialVotSpace(p, {N, N, N}, 3);
+    // Drop every third Vot, so background cells exist between Vots.
+    std::vector<GpuVot> vots;
+    for (std::size_t i = 0; i < space.vots.size(); i += 3) {
+        GpuVot g{};
+        for (int a = 0; a < 3; ++a)
+            g.lo[a] = float(space.vots[i].box.lo[a]), g.hi[a] = float(space.vots[i].box.hi[a]);
+        g.upperBound = float(i);
+        vots.push_back(g);
+    }
+    std::string why;
+    const auto grid = buildVotWalkGrid(vots, {N, N, N}, 3, &why);
+    ASSERT_TRUE(grid) << why;
+    EXPECT_EQ(grid->bricks, (std::array<int, 3>{3, 3, 3}));
+    std::vector<int> covered(grid->cellVot.size(), 0);
+    for (const CellBlock& b : grid->emptyBlocks)
+        for (int z = b.lo[2]; z < b.hi[2]; ++z)
+            for (int y = b.lo[1]; y < b.hi[1]; ++y)
+                for (int x = b.lo[0]; x < b.hi[0]; ++x)
+                    ++covered[static_cast<std::size_t>((z * 20 + y) * 20 + x)];
+    std::size_t votCells = 0;
+    for (std::size_t i = 0; i < grid->cellVot.size(); ++i) {
+        const std::uint32_t id = grid->cellVot[i];
+        ASSERT_NE(id, EMPTY_CELL);
+        if (id < vots.size()) {
+            ++votCells;
+            EXPECT_EQ(covered[i], 0);
+        } else {
+            EXPECT_EQ(covered[i], 1); // empty blocks are disjoint and name their own cells
+            const CellBlock& b = grid->emptyBlocks[id - vots.size()];
+            const int x = int(i % 20), y = int(i / 20 % 20), z = int(i / 400);
+            EXPECT_TRUE(x >= b.lo[0] && x < b.hi[0] && y >= b.lo[1] && y < b.hi[1] && z >= b.lo[2] &&
+                        z < b.hi[2]);
+        }
+    }
+    EXPECT_GT(votCells, 0u);
+    EXPECT_LT(grid->emptyBlocks.size(), grid->cellVot.size() - votCells); // blocks, not single cells
+    // Brick maxima: the brick holding cell (0,0,0) is touched by Vot 0 (bound 0) and others.
+    EXPECT_GE(grid->brickMax[0], 0.f);
+    vots.push_back(vots.front());
+    EXPECT_FALSE(buildVotWalkGrid(vots, {N, N, N}, 3, &why));
+    EXPECT_NE(why.find("overlap"), std::string::npos) << why;
+}
