@@ -194,27 +194,42 @@ void BoxFitter::certify(const Box& box, const EpsField& eps, BoxOutcome& outcome
     maxCriterion = maxSample;
 
     if (!violated && mCertify == Certify::Cells) {
-        // Trilinear reference at cell centres and at the midpoints of x-, y- and z-edges (DESIGN §3).
+        // Trilinear reference at cell centres and edge midpoints (DESIGN §3), walked on the half-integer
+        // lattice so each slice and row polynomial is built once: h counts the half coordinates.
         const Volume& v = mVolume;
-        auto check = [&](double x, double y, double z, double reference) {
-            const auto r = rowCoefficients(sliceCoefficients(outcome.c, z - pz), y - py);
-            const double res = std::abs(horner(r, x - px) - reference);
-            maxCriterion = std::max(maxCriterion, res);
-            if (!alwaysAccept && !allowed(x, y, z, res)) violated = true;
-        };
-        for (int z = box.lo[2]; z <= box.hi[2] && !violated; ++z)
-            for (int y = box.lo[1]; y <= box.hi[1] && !violated; ++y)
-                for (int x = box.lo[0]; x <= box.hi[0] && !violated; ++x) {
-                    if (x < box.hi[0]) check(x + 0.5, y, z, 0.5 * (v.at(x, y, z) + v.at(x + 1, y, z)));
-                    if (y < box.hi[1]) check(x, y + 0.5, z, 0.5 * (v.at(x, y, z) + v.at(x, y + 1, z)));
-                    if (z < box.hi[2]) check(x, y, z + 0.5, 0.5 * (v.at(x, y, z) + v.at(x, y, z + 1)));
-                    if (x < box.hi[0] && y < box.hi[1] && z < box.hi[2]) {
-                        double sum = 0.0;
+        const int n[3] = {2 * box.cells(0), 2 * box.cells(1), 2 * box.cells(2)};
+        for (int zi = 0; zi <= n[2] && !violated; ++zi) {
+            const double z = box.lo[2] + 0.5 * zi;
+            const int z0 = box.lo[2] + zi / 2, zh = zi & 1;
+            const SliceCoefficients q = sliceCoefficients(outcome.c, z - pz);
+            for (int yi = 0; yi <= n[1] && !violated; ++yi) {
+                const int yh = yi & 1;
+                const double y = box.lo[1] + 0.5 * yi;
+                const int y0 = box.lo[1] + yi / 2;
+                const auto r = rowCoefficients(q, y - py);
+                for (int xi = 0; xi <= n[0]; ++xi) {
+                    const int xh = xi & 1;
+                    const int h = xh + yh + zh;
+                    if (h == 0 || h == 2) continue; // samples were checked above; face centres are not
+                    const int x0 = box.lo[0] + xi / 2;
+                    double reference = 0.0;
+                    if (h == 3) {
                         for (int c = 0; c < 8; ++c)
-                            sum += v.at(x + (c & 1), y + ((c >> 1) & 1), z + ((c >> 2) & 1));
-                        check(x + 0.5, y + 0.5, z + 0.5, sum / 8.0);
+                            reference += v.at(x0 + (c & 1), y0 + ((c >> 1) & 1), z0 + ((c >> 2) & 1));
+                        reference /= 8.0;
+                    } else {
+                        reference = 0.5 * (v.at(x0, y0, z0) + v.at(x0 + xh, y0 + yh, z0 + zh));
+                    }
+                    const double x = box.lo[0] + 0.5 * xi;
+                    const double res = std::abs(horner(r, x - px) - reference);
+                    maxCriterion = std::max(maxCriterion, res);
+                    if (!alwaysAccept && !allowed(x, y, z, res)) {
+                        violated = true;
+                        break;
                     }
                 }
+            }
+        }
     }
     outcome.accepted = !violated;
     outcome.exact = !violated;

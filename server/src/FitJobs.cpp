@@ -149,9 +149,8 @@ void FitJobs::run(const Pending& pending) {
             mStats.addFit(recordFor(job.snapshot(), "disk"));
             return;
         }
-        const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-        fit::FitOptions options =
-            optionsFor(key, static_cast<int>(std::max(1u, cores / static_cast<unsigned>(mWorkers.size()))));
+        // Every core per fit: the interactive case is one refit at a time, and a user waits for it.
+        fit::FitOptions options = optionsFor(key, 0);
         options.progress = [&job](double fraction, const char* stage) { job.setProgress(fraction, stage); };
         options.cancel = &mCancel;
         // The box cache answers only uniform eps exactly; focus fits run without it.

@@ -144,7 +144,7 @@ RenderResult RenderQueue::draw(Renderers& r, const RenderJob& job) {
     result.frameMs =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     mStats.addFrame(result.frameMs);
-    result.png = render::encodePng(image);
+    result.image = std::move(image);
     return result;
 }
 

@@ -1,6 +1,7 @@
 // GET /render: parse, find the dataset, wait for its Vot-Space (fitting if needed), render on the GL thread.
 #include "HttpJson.h"
 #include "ServerImpl.h"
+#include "vots/render/Png.h"
 #include "vots/server/HttpError.h"
 
 #include <chrono>
@@ -59,7 +60,9 @@ void installRenderRoute(Server::Impl& s) {
         res.set_header("X-Vots-Fit-Seconds",
                        formatMs(job.space ? VotSpaceCache::fitSecondsOf(*job.space) : 0.0));
         res.set_header("Cache-Control", "no-cache");
-        res.set_content(std::string(result.png.begin(), result.png.end()), "image/png");
+        // PNG encoding runs here, on the HTTP thread, in parallel with the next frame on the render thread.
+        const std::vector<std::uint8_t> png = render::encodePng(result.image);
+        res.set_content(std::string(png.begin(), png.end()), "image/png");
     });
 }
 

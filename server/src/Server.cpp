@@ -55,6 +55,10 @@ Server::Server(ServerOptions options) : mImpl(std::make_unique<Impl>(std::move(o
     const int threads = std::max(4, s.options.httpThreads);
     http.new_task_queue = [threads] { return new httplib::ThreadPool(static_cast<std::size_t>(threads)); };
     http.set_payload_max_length(MAX_BODY_BYTES);
+    // One request per connection: a kept-alive connection holds a pool thread, so with more clients
+    // than threads the others starved (wrk, 200 connections: 30 s timeouts). Closing after each
+    // answer puts every client back in the pool's FIFO queue; reconnecting on loopback is cheap.
+    http.set_keep_alive_max_count(1);
 
     // Every request passes here first: hostile targets are refused before any route sees them, and
     // non-API paths are static files.

@@ -3,6 +3,7 @@
 
 #include "vots/fit/Volume.h"
 #include "vots/fit/VotSpace.h"
+#include "vots/render/Image.h"
 #include "vots/server/Params.h"
 
 #include <condition_variable>
@@ -28,7 +29,7 @@ struct RenderJob {
 };
 
 struct RenderResult {
-    std::vector<std::uint8_t> png;
+    render::RgbaImage image;  // encoded to PNG by the waiting handler, so the render thread only renders
     double frameMs = 0.0;     // render + display pass on the GPU, without PNG encoding
     std::size_t votCount = 0; // Vots in the Vot-Space drawn (0 for reference)
 };
