@@ -16,7 +16,7 @@ struct ServerOptions {
     std::size_t memoryCacheBytes = std::size_t{1} << 30; // fitted Vot-Spaces kept in memory
     int maxRunningFits = 2;
     int maxQueuedFits = 8;
-    int httpThreads = 12;     // connections served at once (SSE holds one); few, so the accept thread keeps up
+    int httpThreads = 12; // connections served at once (SSE holds one); few, so the accept thread keeps up
     bool withRenderer = true; // false: never try EGL (tests of the 503 path)
 };
 
