@@ -22,6 +22,7 @@
 #include <numeric>
 #include <optional>
 #include <string>
+#include <thread>
 
 namespace vots::render {
 
@@ -357,8 +358,19 @@ void VotRenderer::upload(const fit::VotSpace& space) {
     Impl& d = *mImpl;
     std::vector<VotBounds> bounds(space.vots.size());
     std::vector<std::size_t> order(space.vots.size());
-    for (std::size_t i = 0; i < space.vots.size(); ++i)
-        bounds[i] = computeVotBounds(space.vots[i]);
+    {
+        // The bounds dominate an upload (a refit waits for it); each Vot is independent, so split evenly.
+        const std::size_t n = space.vots.size();
+        const std::size_t workers = std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, 16);
+        std::vector<std::thread> pool;
+        for (std::size_t w = 0; w < workers; ++w)
+            pool.emplace_back([&, w] {
+                for (std::size_t i = n * w / workers; i < n * (w + 1) / workers; ++i)
+                    bounds[i] = computeVotBounds(space.vots[i]);
+            });
+        for (auto& t : pool)
+            t.join();
+    }
     std::iota(order.begin(), order.end(), std::size_t{0});
     std::stable_sort(order.begin(), order.end(),
                      [&](std::size_t a, std::size_t b) { return bounds[a].upper > bounds[b].upper; });
