@@ -46,9 +46,15 @@ FittedBox growSeed(const Box& seed, const std::array<int, 3>& pointDims, const B
     return current;
 }
 
-bool boxLess(const Box& a, const Box& b) {
-    if (a.lo != b.lo) return a.lo < b.lo;
-    return a.hi < b.hi;
+/// Sorts by box and keeps one candidate per box: neighbouring seeds often grow into the same box.
+void removeDuplicateBoxes(std::vector<FittedBox>& boxes) {
+    auto less = [](const FittedBox& a, const FittedBox& b) {
+        return a.box.lo != b.box.lo ? a.box.lo < b.box.lo : a.box.hi < b.box.hi;
+    };
+    std::sort(boxes.begin(), boxes.end(), less);
+    boxes.erase(std::unique(boxes.begin(), boxes.end(),
+                            [](const FittedBox& a, const FittedBox& b) { return a.box == b.box; }),
+                boxes.end());
 }
 
 } // namespace
@@ -69,12 +75,7 @@ std::vector<FittedBox> growSeeds(const CellMask& mask, const BoxTester& tester, 
                 const Box seed{{i, j, static_cast<int>(k)}, {i + 1, j + 1, static_cast<int>(k) + 1}};
                 out.push_back(growSeed(seed, pointDims, tester));
             }
-        // Neighbouring seeds often grow into the same box; keep one of each.
-        std::sort(out.begin(), out.end(),
-                  [](const FittedBox& a, const FittedBox& b) { return boxLess(a.box, b.box); });
-        out.erase(std::unique(out.begin(), out.end(),
-                              [](const FittedBox& a, const FittedBox& b) { return a.box == b.box; }),
-                  out.end());
+        removeDuplicateBoxes(out);
         const std::size_t finished = done.fetch_add(1) + 1;
         if (control.progress) {
             std::lock_guard lock(progressMutex);
@@ -84,11 +85,7 @@ std::vector<FittedBox> growSeeds(const CellMask& mask, const BoxTester& tester, 
     std::vector<FittedBox> all;
     for (auto& v : perSlab)
         all.insert(all.end(), v.begin(), v.end());
-    std::sort(all.begin(), all.end(),
-              [](const FittedBox& a, const FittedBox& b) { return boxLess(a.box, b.box); });
-    all.erase(std::unique(all.begin(), all.end(),
-                          [](const FittedBox& a, const FittedBox& b) { return a.box == b.box; }),
-              all.end());
+    removeDuplicateBoxes(all);
     return all;
 }
 
