@@ -39,6 +39,33 @@ inline std::string slurpText(const std::string& path) {
     return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
+/// VOTS_CLI_BINARY followed by args, owned here, with the NULL-terminated argv exec needs.
+struct CommandLine {
+    std::vector<std::string> words;
+    std::vector<char*> argv;
+
+    explicit CommandLine(const std::vector<std::string>& args) : words{VOTS_CLI_BINARY} {
+        words.insert(words.end(), args.begin(), args.end());
+        for (std::string& w : words)
+            argv.push_back(w.data());
+        argv.push_back(nullptr);
+    }
+    CommandLine(const CommandLine&) = delete; // argv points into words
+    CommandLine& operator=(const CommandLine&) = delete;
+};
+
+/// Waits for the child and reads what it wrote to the capture files.
+inline CliResult collectResult(pid_t pid, const std::string& outPath, const std::string& errPath) {
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0)
+        if (errno != EINTR) throw std::runtime_error("waitpid failed");
+    CliResult r;
+    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = slurpText(outPath);
+    r.err = slurpText(errPath);
+    return r;
+}
+
 /// Runs VOTS_CLI_BINARY with `args`; output goes through files so a chatty child can never block.
 inline CliResult runVots(const std::vector<std::string>& args) {
     TempDir capture;
@@ -49,25 +76,12 @@ inline CliResult runVots(const std::vector<std::string>& args) {
     posix_spawn_file_actions_addopen(&actions, 1, outPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     posix_spawn_file_actions_addopen(&actions, 2, errPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
 
-    std::vector<std::string> all{VOTS_CLI_BINARY};
-    all.insert(all.end(), args.begin(), args.end());
-    std::vector<char*> argv;
-    for (std::string& a : all)
-        argv.push_back(a.data());
-    argv.push_back(nullptr);
-
+    CommandLine command(args);
     pid_t pid = 0;
-    const int rc = posix_spawn(&pid, VOTS_CLI_BINARY, &actions, nullptr, argv.data(), environ);
+    const int rc = posix_spawn(&pid, VOTS_CLI_BINARY, &actions, nullptr, command.argv.data(), environ);
     posix_spawn_file_actions_destroy(&actions);
     if (rc != 0) throw std::runtime_error(std::string("cannot start ") + VOTS_CLI_BINARY);
-    int status = 0;
-    while (waitpid(pid, &status, 0) < 0)
-        if (errno != EINTR) throw std::runtime_error("waitpid failed");
-    CliResult r;
-    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = slurpText(outPath);
-    r.err = slurpText(errPath);
-    return r;
+    return collectResult(pid, outPath, errPath);
 }
 
 /// For failure messages: the command line and what it printed.

@@ -17,12 +17,7 @@ namespace {
 CliResult runVotsWithFileSizeLimit(const std::vector<std::string>& args, rlim_t limitBytes) {
     TempDir capture;
     const std::string outPath = capture.file("stdout"), errPath = capture.file("stderr");
-    std::vector<std::string> all{VOTS_CLI_BINARY};
-    all.insert(all.end(), args.begin(), args.end());
-    std::vector<char*> argv;
-    for (std::string& a : all)
-        argv.push_back(a.data());
-    argv.push_back(nullptr);
+    CommandLine command(args);
     const pid_t pid = ::fork();
     if (pid < 0) throw std::runtime_error("fork failed");
     if (pid == 0) {
@@ -32,17 +27,10 @@ CliResult runVotsWithFileSizeLimit(const std::vector<std::string>& args, rlim_t 
         if (out < 0 || err < 0 || ::dup2(out, 1) < 0 || ::dup2(err, 2) < 0 ||
             ::setrlimit(RLIMIT_FSIZE, &limit) != 0)
             ::_exit(127);
-        ::execv(VOTS_CLI_BINARY, argv.data());
+        ::execv(VOTS_CLI_BINARY, command.argv.data());
         ::_exit(127);
     }
-    int status = 0;
-    while (::waitpid(pid, &status, 0) < 0)
-        if (errno != EINTR) throw std::runtime_error("waitpid failed");
-    CliResult r;
-    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = slurpText(outPath);
-    r.err = slurpText(errPath);
-    return r;
+    return collectResult(pid, outPath, errPath);
 }
 
 TEST(CliFileSizeLimit, FitReportsFileTooLargeAndLeavesNothing) {
