@@ -182,8 +182,24 @@ TEST(WalkStrategy, GridCoversEveryCellOnce) {
     }
     EXPECT_GT(votCells, 0u);
     EXPECT_LT(grid->emptyBlocks.size(), grid->cellVot.size() - votCells); // blocks, not single cells
-    // Brick maxima: the brick holding cell (0,0,0) is touched by Vot 0 (bound 0) and others.
-    EXPECT_GE(grid->brickMax[0], 0.f);
+    // Brick maxima: the largest bound of the Vots whose boxes touch the brick.
+    auto expectMaxima = [&](const std::vector<float>& maxima, const std::array<int, 3>& count, int side) {
+        for (int z = 0; z < count[2]; ++z)
+            for (int y = 0; y < count[1]; ++y)
+                for (int x = 0; x < count[0]; ++x) {
+                    const int at[3] = {x * side, y * side, z * side};
+                    float expected = -INFINITY;
+                    for (const GpuVot& v : vots) {
+                        bool touches = true;
+                        for (int a = 0; a < 3; ++a)
+                            touches = touches && v.lo[a] < float(at[a] + side) && v.hi[a] > float(at[a]);
+                        if (touches) expected = std::max(expected, v.upperBound);
+                    }
+                    EXPECT_EQ(maxima[static_cast<std::size_t>((z * count[1] + y) * count[0] + x)], expected)
+                        << "block " << x << "," << y << "," << z << " of side " << side;
+                }
+    };
+    expectMaxima(grid->brickMax, grid->bricks, 8);
     vots.push_back(vots.front());
     EXPECT_FALSE(buildVotWalkGrid(vots, {N, N, N}, 3, &why));
     EXPECT_NE(why.find("overlap"), std::string::npos) << why;

@@ -9,7 +9,9 @@
 
 namespace vots::render {
 
-/// PNG bytes (RGBA, 8 bit). Deterministic: the same image always gives the same bytes.
+/// PNG bytes, 8 bit, opaque (the alpha channel is dropped; our images are always opaque): greyscale when
+/// every pixel has r == g == b (the grey colour map), else RGB. Deterministic: the same image always
+/// gives the same bytes.
 std::vector<std::uint8_t> encodePng(const RgbaImage& image);
 
 /// Writes "<path>.tmp-<pid>" and renames it over path, so readers never see half a file.
