@@ -5,12 +5,18 @@
 #include "ServerImpl.h"
 #include "vots/server/StaticFiles.h"
 
+#include <sys/socket.h>
+
 namespace vots::server {
 namespace fs = std::filesystem;
 namespace {
 
 constexpr std::size_t MAX_BODY_BYTES = 64 * 1024; // POST bodies (a fit request is ~100 bytes)
 constexpr std::size_t MAX_TARGET_CHARS = 4096;    // httplib itself answers 414 above 8192
+// Debian's httplib is a compiled library that listens with a backlog of 5 (CPPHTTPLIB_LISTEN_BACKLOG
+// only changes it when httplib is built with the define). With one request per connection, 200 wrk
+// connections overflowed that queue and the dropped SYNs came back after 1, 3, 7, 15 s (timeouts).
+constexpr int LISTEN_BACKLOG = 1024;
 
 FitJobLimits limitsFrom(const ServerOptions& o) {
     FitJobLimits limits;
@@ -21,6 +27,12 @@ FitJobLimits limitsFrom(const ServerOptions& o) {
 
 bool isApiPath(const std::string& path) {
     return path.rfind("/api/", 0) == 0 || path == "/api" || path == "/render";
+}
+
+// listen() again on a listening socket only changes its backlog (Linux, BSD).
+void raiseListenBacklog(const Server::Impl& s) {
+    const int sock = s.listenSocket.load();
+    if (sock >= 0) ::listen(sock, LISTEN_BACKLOG);
 }
 
 } // namespace
@@ -59,6 +71,10 @@ Server::Server(ServerOptions options) : mImpl(std::make_unique<Impl>(std::move(o
     // than threads the others starved (wrk, 200 connections: 30 s timeouts). Closing after each
     // answer puts every client back in the pool's FIFO queue; reconnecting on loopback is cheap.
     http.set_keep_alive_max_count(1);
+    http.set_socket_options([&s](socket_t sock) {
+        httplib::default_socket_options(sock);
+        s.listenSocket = sock;
+    });
 
     // Every request passes here first: hostile targets are refused before any route sees them, and
     // non-API paths are static files.
@@ -101,11 +117,16 @@ Server::~Server() {
 }
 
 bool Server::bindToPort(const std::string& host, int port) {
-    return mImpl->http.bind_to_port(host, port);
+    if (!mImpl->http.bind_to_port(host, port)) return false;
+    raiseListenBacklog(*mImpl);
+    return true;
 }
 int Server::bindToAnyPort(const std::string& host) {
-    return mImpl->http.bind_to_any_port(host);
+    const int port = mImpl->http.bind_to_any_port(host);
+    if (port > 0) raiseListenBacklog(*mImpl);
+    return port;
 }
+
 bool Server::listenAfterBind() {
     return mImpl->http.listen_after_bind();
 }

@@ -11,6 +11,7 @@
 
 #include <httplib.h>
 
+#include <atomic>
 #include <memory>
 
 namespace vots::server {
@@ -24,6 +25,7 @@ struct Server::Impl {
     VotSpaceCache cache;
     FitJobs fitJobs;
     std::unique_ptr<RenderQueue> renderQueue; // null when options.withRenderer is false
+    std::atomic<int> listenSocket{-1};        // the socket httplib binds, so its backlog can be raised
     httplib::Server http;                     // destroyed first: no handler runs after the rest is gone
 };
 
