@@ -3,9 +3,11 @@
 
 #include "ParallelFor.h"
 
+#include "vots/fit/Error.h"
+
 #include <algorithm>
+#include <cstdint>
 #include <mutex>
-#include <unordered_map>
 
 namespace vots::fit {
 namespace {
@@ -40,23 +42,79 @@ void splitBrick(const Box& brick, const CellMask& mask, const BoxTester& tester,
     }
 }
 
-/// A face of a box: the plane on `axis` plus the extents on the other two axes.
-struct FaceKey {
-    int axis, plane, lo1, hi1, lo2, hi2;
-    friend bool operator==(const FaceKey&, const FaceKey&) = default;
-};
-struct FaceHash {
-    std::size_t operator()(const FaceKey& k) const noexcept {
-        std::size_t h = 1469598103934665603ull;
-        for (int v : {k.axis, k.plane, k.lo1, k.hi1, k.lo2, k.hi2})
-            h = (h ^ static_cast<std::size_t>(v)) * 1099511628211ull;
-        return h;
+// Which live box covers each cell of the boxes' bounding region. Each cell keeps the box it was
+// first given to; a merge only links the two old boxes to the new one (a union-find forest with path
+// halving), so it costs O(1) instead of rewriting every cell of the merged box. A hash map from faces
+// to boxes did the same job at 35 % of a refit's time (cache misses on 1 M nodes).
+class CellOwners {
+public:
+    static constexpr std::uint32_t NONE = 0xffffffffu;
+
+    explicit CellOwners(const std::vector<FittedBox>& boxes) {
+        if (boxes.empty()) return;
+        mLo = boxes.front().box.lo;
+        mHi = boxes.front().box.hi;
+        for (const FittedBox& fb : boxes)
+            for (int a = 0; a < 3; ++a) {
+                mLo[a] = std::min(mLo[a], fb.box.lo[a]);
+                mHi[a] = std::max(mHi[a], fb.box.hi[a]);
+            }
+        std::size_t count = 1;
+        for (int a = 0; a < 3; ++a)
+            count *= static_cast<std::size_t>(mHi[a] - mLo[a]);
+        mOwner.assign(count, NONE);
+        for (std::size_t i = 0; i < boxes.size(); ++i) {
+            const Box& b = boxes[i].box;
+            for (int z = b.lo[2]; z < b.hi[2]; ++z)
+                for (int y = b.lo[1]; y < b.hi[1]; ++y) {
+                    const std::size_t row = index({b.lo[0], y, z});
+                    std::fill_n(mOwner.begin() + static_cast<std::ptrdiff_t>(row), b.hi[0] - b.lo[0],
+                                static_cast<std::uint32_t>(i));
+                }
+        }
+        mNext.resize(boxes.size());
+        for (std::size_t i = 0; i < mNext.size(); ++i)
+            mNext[i] = static_cast<std::uint32_t>(i);
     }
+
+    /// The live box covering `cell`, or NONE (background, or outside the region).
+    std::uint32_t at(const std::array<int, 3>& cell) {
+        for (int a = 0; a < 3; ++a)
+            if (cell[a] < mLo[a] || cell[a] >= mHi[a]) return NONE;
+        std::uint32_t id = mOwner[index(cell)];
+        if (id == NONE) return NONE;
+        while (mNext[id] != id) {
+            mNext[id] = mNext[mNext[id]];
+            id = mNext[id];
+        }
+        return id;
+    }
+
+    /// Boxes i and j were replaced by box k, the next index.
+    void merged(std::size_t i, std::size_t j, std::size_t k) {
+        mNext.push_back(static_cast<std::uint32_t>(k));
+        mNext[i] = mNext[j] = static_cast<std::uint32_t>(k);
+    }
+
+private:
+    std::size_t index(const std::array<int, 3>& c) const {
+        const auto nx = static_cast<std::size_t>(mHi[0] - mLo[0]);
+        const auto ny = static_cast<std::size_t>(mHi[1] - mLo[1]);
+        return (static_cast<std::size_t>(c[2] - mLo[2]) * ny + static_cast<std::size_t>(c[1] - mLo[1])) * nx +
+               static_cast<std::size_t>(c[0] - mLo[0]);
+    }
+
+    std::array<int, 3> mLo{0, 0, 0}, mHi{0, 0, 0};
+    std::vector<std::uint32_t> mOwner;
+    std::vector<std::uint32_t> mNext;
 };
 
-FaceKey faceOf(const Box& box, int axis, bool high) {
-    const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
-    return {axis, high ? box.hi[axis] : box.lo[axis], box.lo[a1], box.hi[a1], box.lo[a2], box.hi[a2]};
+// b's face on `axis` (high or low side) and n's opposite face are the same rectangle.
+bool shareFace(const Box& b, const Box& n, int axis, bool high) {
+    if (high ? n.lo[axis] != b.hi[axis] : n.hi[axis] != b.lo[axis]) return false;
+    for (int a = 0; a < 3; ++a)
+        if (a != axis && (n.lo[a] != b.lo[a] || n.hi[a] != b.hi[a])) return false;
+    return true;
 }
 
 } // namespace
@@ -97,23 +155,9 @@ std::vector<FittedBox> splitBricks(const CellMask& mask, const BoxTester& tester
 }
 
 void mergeNeighbours(std::vector<FittedBox>& boxes, const BoxTester& tester, const FitControl& control) {
+    if (boxes.size() >= CellOwners::NONE) throw InputError("too many boxes to merge");
     std::vector<bool> alive(boxes.size(), true);
-    std::unordered_map<FaceKey, std::size_t, FaceHash> lowFaces, highFaces;
-    auto enter = [&](std::size_t i) {
-        for (int a = 0; a < 3; ++a) {
-            lowFaces[faceOf(boxes[i].box, a, false)] = i;
-            highFaces[faceOf(boxes[i].box, a, true)] = i;
-        }
-    };
-    auto leave = [&](std::size_t i) {
-        for (int a = 0; a < 3; ++a) {
-            lowFaces.erase(faceOf(boxes[i].box, a, false));
-            highFaces.erase(faceOf(boxes[i].box, a, true));
-        }
-        alive[i] = false;
-    };
-    for (std::size_t i = 0; i < boxes.size(); ++i)
-        enter(i);
+    CellOwners owners(boxes);
     std::vector<std::size_t> work(boxes.size());
     for (std::size_t i = 0; i < work.size(); ++i)
         work[i] = i;
@@ -124,21 +168,21 @@ void mergeNeighbours(std::vector<FittedBox>& boxes, const BoxTester& tester, con
         if (!alive[i]) continue;
         for (int a = 0; a < 3 && alive[i]; ++a)
             for (bool high : {true, false}) {
-                // My high face meets a neighbour's low face at the same plane and extents, or vice versa.
-                const auto& faces = high ? lowFaces : highFaces;
-                const auto it = faces.find(faceOf(boxes[i].box, a, high));
-                if (it == faces.end() || it->second == i) continue;
-                const std::size_t j = it->second;
-                Box merged = boxes[i].box;
-                merged.lo[a] = std::min(boxes[i].box.lo[a], boxes[j].box.lo[a]);
-                merged.hi[a] = std::max(boxes[i].box.hi[a], boxes[j].box.hi[a]);
+                // The only box that can share this whole face covers the cell just across its corner.
+                const Box box = boxes[i].box;
+                std::array<int, 3> across = box.lo;
+                across[a] = high ? box.hi[a] : box.lo[a] - 1;
+                const std::uint32_t j = owners.at(across);
+                if (j == CellOwners::NONE || j == i || !shareFace(box, boxes[j].box, a, high)) continue;
+                Box merged = box;
+                merged.lo[a] = std::min(box.lo[a], boxes[j].box.lo[a]);
+                merged.hi[a] = std::max(box.hi[a], boxes[j].box.hi[a]);
                 BoxOutcome outcome = tester.test(merged);
                 if (!outcome.accepted) continue;
-                leave(i);
-                leave(j);
+                alive[i] = alive[j] = false;
                 boxes.push_back({merged, outcome});
                 alive.push_back(true);
-                enter(boxes.size() - 1);
+                owners.merged(i, j, boxes.size() - 1);
                 work.push_back(boxes.size() - 1);
                 break;
             }
