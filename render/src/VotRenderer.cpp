@@ -357,16 +357,20 @@ VotRenderer::~VotRenderer() = default;
 void VotRenderer::upload(const fit::VotSpace& space) {
     Impl& d = *mImpl;
     std::vector<VotBounds> bounds(space.vots.size());
+    std::vector<GpuVot> unsorted(space.vots.size());
     std::vector<std::size_t> order(space.vots.size());
     {
-        // The bounds dominate an upload (a refit waits for it); each Vot is independent, so split evenly.
+        // Bounds and records dominate an upload (a refit waits for it); each Vot is independent, so
+        // split evenly.
         const std::size_t n = space.vots.size();
         const std::size_t workers = std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, 16);
         std::vector<std::thread> pool;
         for (std::size_t w = 0; w < workers; ++w)
             pool.emplace_back([&, w] {
-                for (std::size_t i = n * w / workers; i < n * (w + 1) / workers; ++i)
+                for (std::size_t i = n * w / workers; i < n * (w + 1) / workers; ++i) {
                     bounds[i] = computeVotBounds(space.vots[i]);
+                    unsorted[i] = makeGpuVot(space.vots[i], bounds[i]);
+                }
             });
         for (auto& t : pool)
             t.join();
@@ -377,7 +381,7 @@ void VotRenderer::upload(const fit::VotSpace& space) {
     d.vots.resize(space.vots.size());
     float lo = INFINITY, hi = -INFINITY, maxLogSize = 0.f;
     for (std::size_t i = 0; i < order.size(); ++i) {
-        d.vots[i] = makeGpuVot(space.vots[order[i]], bounds[order[i]]);
+        d.vots[i] = unsorted[order[i]];
         lo = std::min(lo, static_cast<float>(bounds[order[i]].lower));
         hi = std::max(hi, static_cast<float>(bounds[order[i]].upper));
         maxLogSize = std::max(maxLogSize, d.vots[i].logSize);

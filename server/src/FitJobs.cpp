@@ -158,9 +158,10 @@ void FitJobs::run(const Pending& pending) {
         fit::FitResult result = fit::fitVotSpace(*pending.dataset->volume, options, boxCache.get());
         result.space.metaJson = VotSpaceCache::metaFor(key, result.stats.seconds);
         auto space = std::make_shared<const fit::VotSpace>(std::move(result.space));
-        mCache.store(key, space);
-        job.finish(std::move(space), result.stats.seconds);
+        mCache.storeInMemory(key, space);
+        job.finish(space, result.stats.seconds);
         mStats.addFit(recordFor(job.snapshot(), "fit"));
+        mCache.storeOnDisk(key, *space); // after the announcement: a waiting viewer needs only memory
     } catch (const fit::FitCancelled&) {
         job.fail("fit cancelled: the server is stopping");
     } catch (const std::bad_alloc&) {

@@ -146,14 +146,22 @@ void VotSpaceCache::insertLocked(const std::string& keyText, std::shared_ptr<con
 }
 
 void VotSpaceCache::store(const FitKey& key, std::shared_ptr<const fit::VotSpace> space) {
-    const std::string text = key.text();
+    storeInMemory(key, space);
+    storeOnDisk(key, *space);
+}
+
+void VotSpaceCache::storeInMemory(const FitKey& key, std::shared_ptr<const fit::VotSpace> space) {
+    std::lock_guard lock(mMutex);
+    insertLocked(key.text(), std::move(space));
+}
+
+void VotSpaceCache::storeOnDisk(const FitKey& key, const fit::VotSpace& space) {
     {
         std::lock_guard lock(mMutex);
-        insertLocked(text, space);
         if (!mDiskEnabled) return;
     }
     try {
-        fit::writeVotSpaceFile(fileFor(text).string(), *space);
+        fit::writeVotSpaceFile(fileFor(key.text()).string(), space);
     } catch (const std::exception& e) {
         std::lock_guard lock(mMutex);
         if (mDiskEnabled) disableDisk(e.what());

@@ -27,6 +27,10 @@ public:
     std::shared_ptr<const fit::VotSpace> findInMemory(const FitKey& key);
     /// Adds to memory (evicting least recently used entries over the budget) and writes the disk file.
     void store(const FitKey& key, std::shared_ptr<const fit::VotSpace> space);
+    /// The two halves of store(), so a fit can be announced between them (the disk write of a large
+    /// Vot-Space, fsync included, takes a noticeable part of a refit).
+    void storeInMemory(const FitKey& key, std::shared_ptr<const fit::VotSpace> space);
+    void storeOnDisk(const FitKey& key, const fit::VotSpace& space);
 
     struct MemoryEntry {
         std::string key;
