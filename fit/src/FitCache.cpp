@@ -24,7 +24,7 @@ void FitCache::Impl::bind(const Volume& volume, int degreeIn, Certify certifyIn)
 }
 
 std::optional<CachedBox> FitCache::Impl::find(const Box& box) {
-    auto& shard = shards[BoxHash{}(box) % SHARDS];
+    auto& shard = shards[(BoxHash{}(box) >> 32) % SHARDS];
     std::lock_guard lock(shard.mutex);
     const auto it = shard.boxes.find(box);
     if (it == shard.boxes.end()) return std::nullopt;
@@ -32,7 +32,7 @@ std::optional<CachedBox> FitCache::Impl::find(const Box& box) {
 }
 
 void FitCache::Impl::store(const Box& box, const CachedBox& entry) {
-    auto& shard = shards[BoxHash{}(box) % SHARDS];
+    auto& shard = shards[(BoxHash{}(box) >> 32) % SHARDS];
     std::lock_guard lock(shard.mutex);
     shard.boxes[box] = entry;
 }

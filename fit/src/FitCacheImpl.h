@@ -4,22 +4,17 @@
 #include "BoxFit.h"
 #include "vots/fit/Fitter.h"
 
+#include <absl/container/flat_hash_map.h>
+#include <absl/hash/hash.h>
+
 #include <array>
 #include <mutex>
 #include <optional>
-#include <unordered_map>
 
 namespace vots::fit {
 
 struct BoxHash {
-    std::size_t operator()(const Box& b) const noexcept {
-        std::size_t h = 1469598103934665603ull;
-        for (int a = 0; a < 3; ++a) {
-            h = (h ^ static_cast<std::size_t>(b.lo[a])) * 1099511628211ull;
-            h = (h ^ static_cast<std::size_t>(b.hi[a])) * 1099511628211ull;
-        }
-        return h ^ (h >> 29);
-    }
+    std::size_t operator()(const Box& b) const noexcept { return absl::HashOf(b.lo, b.hi); }
 };
 
 /// A fitted box as remembered across fits. The least-squares solution does not depend on eps, so an
@@ -33,7 +28,9 @@ struct FitCache::Impl {
     static constexpr std::size_t SHARDS = 64;
     struct Shard {
         std::mutex mutex;
-        std::unordered_map<Box, CachedBox, BoxHash> boxes;
+        // Open addressing: a lookup costs about one cache miss. std::unordered_map's node chains made
+        // the cache 25 % of a refit (1 M lookups).
+        absl::flat_hash_map<Box, CachedBox, BoxHash> boxes;
     };
     std::array<Shard, SHARDS> shards;
     // Identity of what the cached errors belong to; a mismatch clears the cache.
