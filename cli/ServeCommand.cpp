@@ -25,6 +25,7 @@ struct ServeArgs {
     std::vector<std::string> data;
     std::string web;
     std::string cacheDir = "data/cache";
+    int frameCacheMb = 64;
 };
 
 bool isLoopback(const std::string& host) {
@@ -45,6 +46,7 @@ void runServe(const ServeArgs& a) {
     if (options.dataDirs.empty()) options.dataDirs = server::defaultDataDirs();
     options.webDir = a.web.empty() ? server::defaultWebDir() : fs::path(a.web);
     options.cacheDir = a.cacheDir;
+    options.frameCacheBytes = static_cast<std::size_t>(a.frameCacheMb) << 20;
     if (!isLoopback(a.host))
         std::cerr << "vots serve: warning: listening on " << a.host
                   << " exposes the server to the network; it has no authentication\n";
@@ -98,6 +100,10 @@ void addServeCommand(CLI::App& app) {
     cmd->add_option("--web", args->web,
                     "Folder with the web viewer; default ./web or the source tree's web/");
     cmd->add_option("--cache-dir", args->cacheDir, "Folder for fitted Vot-Spaces")->capture_default_str();
+    cmd->add_option("--frame-cache-mb", args->frameCacheMb,
+                    "Memory for rendered images answered again to identical /render requests (0: none)")
+        ->check(CLI::Range(0, 65536))
+        ->capture_default_str();
     cmd->callback([args] { runServe(*args); });
 }
 

@@ -1,6 +1,8 @@
 // GET /render: parse, find the dataset, wait for its Vot-Space (fitting if needed), render on the GL thread.
 #include "HttpJson.h"
 #include "ServerImpl.h"
+#include "vots/render/CameraText.h"
+#include "vots/render/Colormap.h"
 #include "vots/render/Png.h"
 #include "vots/server/HttpError.h"
 
@@ -18,14 +20,42 @@ std::string formatMs(double value) {
     return text;
 }
 
+FitKey fitKeyFor(const Dataset& dataset, const RenderParams& p) {
+    FitKey key;
+    key.dataset = dataset.name;
+    key.eps = resolveEps(dataset, p.eps);
+    key.degree = p.degree;
+    key.background = dataset.background;
+    return key;
+}
+
+/// Everything the image depends on: the Vot-Space (by fit key) or the volume, camera, size, mode,
+/// window and colour map; not the client id.
+std::string frameKeyFor(const Dataset& dataset, const RenderParams& p) {
+    std::string key = p.mode == render::RenderMode::Reference ? dataset.name : fitKeyFor(dataset, p).text();
+    key += '|' + render::formatCamera(p.camera) + '|' + std::to_string(p.width) + 'x' +
+           std::to_string(p.height) + '|' + std::string(render::renderModeName(p.mode)) + '|' +
+           std::string(render::colormapName(p.colormap)) + '|';
+    key += p.window ? formatMs(p.window->level) + ',' + formatMs(p.window->width) : "auto";
+    return key;
+}
+
+const char* sourceName(FrameCache::Source source) {
+    switch (source) {
+    case FrameCache::Source::Rendered:
+        return "miss";
+    case FrameCache::Source::Shared:
+        return "shared";
+    case FrameCache::Source::Cached:
+        return "hit";
+    }
+    return "miss";
+}
+
 /// The Vot-Space for this request: from memory, else from the (possibly new) fit job.
 std::shared_ptr<const fit::VotSpace> spaceFor(Server::Impl& s, const std::shared_ptr<const Dataset>& dataset,
                                               const RenderParams& p) {
-    FitKey key;
-    key.dataset = dataset->name;
-    key.eps = resolveEps(*dataset, p.eps);
-    key.degree = p.degree;
-    key.background = dataset->background;
+    const FitKey key = fitKeyFor(*dataset, p);
     if (auto space = s.cache.findInMemory(key)) return space;
     const auto job = s.fitJobs.submit(dataset, key);
     const JobSnapshot done = job->waitFinished(FIT_WAIT);
@@ -53,16 +83,25 @@ void installRenderRoute(Server::Impl& s) {
                                                : "rendering is disabled");
         if (job.params.mode != render::RenderMode::Reference) job.space = spaceFor(s, dataset, job.params);
 
-        const RenderResult result = s.renderQueue->submit(job).get(); // throws HttpError (409, 503, ...)
+        FrameCache::Source source = FrameCache::Source::Rendered;
+        const auto frame = s.frames.get(
+            frameKeyFor(*dataset, job.params),
+            [&] {
+                const RenderResult result = s.renderQueue->submit(job).get(); // throws HttpError (409, ...)
+                // PNG encoding runs here, on the HTTP thread, in parallel with the next frame.
+                const std::vector<std::uint8_t> png = render::encodePng(result.image);
+                return FrameCache::Frame{std::string(png.begin(), png.end()), result.votCount,
+                                         result.frameMs};
+            },
+            &source);
         res.status = 200;
-        res.set_header("X-Vots-Vot-Count", std::to_string(result.votCount));
-        res.set_header("X-Vots-Frame-Ms", formatMs(result.frameMs));
+        res.set_header("X-Vots-Vot-Count", std::to_string(frame->votCount));
+        res.set_header("X-Vots-Frame-Ms", formatMs(frame->frameMs));
+        res.set_header("X-Vots-Frame-Cache", sourceName(source));
         res.set_header("X-Vots-Fit-Seconds",
                        formatMs(job.space ? VotSpaceCache::fitSecondsOf(*job.space) : 0.0));
         res.set_header("Cache-Control", "no-cache");
-        // PNG encoding runs here, on the HTTP thread, in parallel with the next frame on the render thread.
-        const std::vector<std::uint8_t> png = render::encodePng(result.image);
-        res.set_content(std::string(png.begin(), png.end()), "image/png");
+        res.set_content(frame->png, "image/png");
     });
 }
 

@@ -39,7 +39,7 @@ void raiseListenBacklog(const Server::Impl& s) {
 
 Server::Impl::Impl(ServerOptions opts)
     : options(std::move(opts)), registry(options.dataDirs), cache(options.cacheDir, options.memoryCacheBytes),
-      fitJobs(cache, stats, limitsFrom(options)) {
+      fitJobs(cache, stats, limitsFrom(options)), frames(options.frameCacheBytes) {
     if (options.withRenderer) renderQueue = std::make_unique<RenderQueue>(stats);
 }
 

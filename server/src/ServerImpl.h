@@ -3,6 +3,7 @@
 
 #include "vots/server/DatasetRegistry.h"
 #include "vots/server/FitJobs.h"
+#include "vots/server/FrameCache.h"
 #include "vots/server/Params.h"
 #include "vots/server/RenderQueue.h"
 #include "vots/server/Server.h"
@@ -25,6 +26,7 @@ struct Server::Impl {
     VotSpaceCache cache;
     FitJobs fitJobs;
     std::unique_ptr<RenderQueue> renderQueue; // null when options.withRenderer is false
+    FrameCache frames;                        // encoded /render answers
     std::atomic<int> listenSocket{-1};        // the socket httplib binds, so its backlog can be raised
     httplib::Server http;                     // destroyed first: no handler runs after the rest is gone
 };

@@ -7,6 +7,7 @@ namespace vots::server {
 void installStatsRoute(Server::Impl& s) {
     s.http.Get("/api/stats", [&s](const httplib::Request&, httplib::Response& res) {
         const FrameSummary frames = s.stats.frames();
+        const FrameCache::Summary kept = s.frames.summary();
         nlohmann::json fits = nlohmann::json::array();
         for (const FitRecord& f : s.stats.fits())
             fits.push_back({{"key", f.key},
@@ -40,6 +41,13 @@ void installStatsRoute(Server::Impl& s) {
                     {"lastMs", frames.lastMs},
                     {"medianMs", frames.medianMs},
                     {"superseded", frames.superseded}}},
+                  {"frameCache",
+                   {{"entries", kept.entries},
+                    {"bytes", kept.bytes},
+                    {"budgetBytes", kept.budgetBytes},
+                    {"rendered", kept.rendered},
+                    {"shared", kept.shared},
+                    {"cached", kept.cached}}},
                   {"renderer", renderer},
                   {"fits", fits},
                   {"fitJobs", {{"active", s.fitJobs.activeCount()}}},

@@ -7,6 +7,7 @@
 #include <future>
 #include <sstream>
 #include <thread>
+#include <vector>
 
 namespace vots::test {
 namespace {
@@ -64,17 +65,59 @@ TEST_F(ServerRender, RefitAtNewEpsThroughBoxCacheMatchesCliBytes) {
 }
 
 TEST_F(ServerRender, SameUrlSameBytesAndHeaders) {
-    const std::string query = "/render?dataset=neghip_64x64x64_uint8&size=64x64";
+    const std::string query = "/render?dataset=neghip_64x64x64_uint8&size=64x64&cam=az=33";
     auto c = client();
     const auto a = c->Get(query.c_str());
     const auto b = c->Get(query.c_str());
     ASSERT_TRUE(a && b);
     ASSERT_EQ(a->status, 200) << a->body;
     EXPECT_EQ(a->body, b->body);
+    EXPECT_EQ(a->get_header_value("X-Vots-Frame-Cache"), "miss");
+    EXPECT_EQ(b->get_header_value("X-Vots-Frame-Cache"), "hit"); // the same request, answered again
+    EXPECT_EQ(a->get_header_value("X-Vots-Frame-Ms"), b->get_header_value("X-Vots-Frame-Ms"));
     EXPECT_GT(std::stoi(a->get_header_value("X-Vots-Vot-Count")), 0);
     EXPECT_GT(std::stod(a->get_header_value("X-Vots-Frame-Ms")), 0.0);
     EXPECT_GE(std::stod(a->get_header_value("X-Vots-Fit-Seconds")), 0.0);
     EXPECT_EQ(a->body.substr(1, 3), "PNG");
+}
+
+TEST_F(ServerRender, WithoutFrameCacheTheSameUrlRendersAgainToTheSameBytes) {
+    server::ServerOptions options = world().options();
+    options.frameCacheBytes = 0;
+    options.cacheDir.clear();
+    const LoopbackServer uncached(options);
+    const std::string query = "/render?dataset=neghip_64x64x64_uint8&size=48x40&cam=az=-70,el=35";
+    const auto a = uncached.client()->Get(query.c_str());
+    const auto b = uncached.client()->Get(query.c_str());
+    ASSERT_TRUE(a && b);
+    ASSERT_EQ(a->status, 200) << a->body;
+    EXPECT_EQ(a->get_header_value("X-Vots-Frame-Cache"), "miss");
+    EXPECT_EQ(b->get_header_value("X-Vots-Frame-Cache"), "miss");
+    EXPECT_EQ(a->body, b->body); // rendered twice, byte for byte the same
+    EXPECT_EQ(a->body, serverRender(query.substr(8)));
+}
+
+TEST_F(ServerRender, IdenticalRequestsAtOnceRenderOnce) {
+    const std::string query = "/render?dataset=neghip_64x64x64_uint8&size=96x96&cam=az=71,el=-12";
+    serverRender("dataset=neghip_64x64x64_uint8&size=8x8"); // fitted already
+    const auto before = bodyJson(client()->Get("/api/stats"))["frameCache"];
+    std::vector<std::future<std::string>> fetches;
+    for (int i = 0; i < 4; ++i)
+        fetches.push_back(std::async(std::launch::async, [&] {
+            const auto res = client()->Get(query.c_str());
+            return res && res->status == 200 ? res->body : std::string("failed");
+        }));
+    std::vector<std::string> bodies;
+    for (auto& f : fetches)
+        bodies.push_back(f.get());
+    for (const std::string& body : bodies)
+        EXPECT_EQ(body, bodies.front());
+    EXPECT_NE(bodies.front(), "failed");
+    const auto after = bodyJson(client()->Get("/api/stats"))["frameCache"];
+    EXPECT_EQ(after["rendered"].get<int>() - before["rendered"].get<int>(), 1);
+    EXPECT_EQ(after["shared"].get<int>() + after["cached"].get<int>() - before["shared"].get<int>() -
+                  before["cached"].get<int>(),
+              3);
 }
 
 TEST_F(ServerRender, TwoClientsAtOnceGetTheirOwnImages) {

@@ -14,6 +14,7 @@ struct ServerOptions {
     std::filesystem::path webDir;                        // static files; empty: none served
     std::filesystem::path cacheDir;                      // .vots cache; empty: memory only
     std::size_t memoryCacheBytes = std::size_t{1} << 30; // fitted Vot-Spaces kept in memory
+    std::size_t frameCacheBytes = std::size_t{64} << 20; // encoded /render answers kept in memory
     int maxRunningFits = 2;
     int maxQueuedFits = 8;
     int httpThreads = 12; // connections served at once (SSE holds one); few, so the accept thread keeps up
