@@ -1,4 +1,5 @@
-// Sample type names and the value range of a Volume; file reading lives in VolumeLoad.cpp and the readers.
+// Sample type names, the value range and content CRC of a Volume; file reading lives in VolumeLoad.cpp and
+// the readers.
 #include "vots/fit/Volume.h"
 
 #include "vots/fit/Error.h"
@@ -7,6 +8,7 @@
 #include "SampleDecode.h"
 
 #include <algorithm>
+#include <zlib.h>
 
 namespace vots::fit {
 
@@ -42,6 +44,24 @@ std::array<float, 2> Volume::valueRange() const {
     if (values.empty()) return {0.0f, 0.0f};
     const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
     return {*lo, *hi};
+}
+
+std::uint32_t Volume::contentCrc() const {
+    uLong crc = crc32(0L, Z_NULL, 0);
+    auto add = [&crc](const void* data, std::size_t bytes) {
+        const auto* p = static_cast<const Bytef*>(data);
+        while (bytes > 0) { // zlib takes uInt lengths
+            const auto chunk = static_cast<uInt>(std::min<std::size_t>(bytes, 1u << 30));
+            crc = crc32(crc, p, chunk);
+            p += chunk;
+            bytes -= chunk;
+        }
+    };
+    add(dims.data(), sizeof dims);
+    add(spacing.data(), sizeof spacing);
+    add(origin.data(), sizeof origin);
+    add(values.data(), values.size() * sizeof(float));
+    return static_cast<std::uint32_t>(crc);
 }
 
 } // namespace vots::fit

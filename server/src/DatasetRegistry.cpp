@@ -34,6 +34,7 @@ std::shared_ptr<const Dataset> loadDataset(const std::string& name, const fs::pa
     dataset->path = path;
     dataset->range = volume->valueRange();
     dataset->background = fit::defaultBackground(*volume);
+    dataset->contentCrc = volume->contentCrc();
     dataset->defaultEps = EpsSpec{DEFAULT_EPS_PERCENT, true}.resolve(dataset->range[0], dataset->range[1]);
     dataset->isCt = dataset->range[0] <= CT_MIN_HU;
     dataset->presets = windowPresets(dataset->range, dataset->isCt);

@@ -37,6 +37,16 @@ float resolveEps(const Dataset& dataset, const EpsSpec& eps) {
     return value;
 }
 
+FitKey fitKeyFor(const Dataset& dataset, const EpsSpec& eps, int degree) {
+    FitKey key;
+    key.dataset = dataset.name;
+    key.eps = resolveEps(dataset, eps);
+    key.degree = degree;
+    key.background = dataset.background;
+    key.volumeCrc = dataset.contentCrc;
+    return key;
+}
+
 void installDatasetRoutes(Server::Impl& s) {
     s.http.Get("/api/datasets", [&s](const httplib::Request&, httplib::Response& res) {
         nlohmann::json list = nlohmann::json::array();

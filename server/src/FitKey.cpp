@@ -28,6 +28,9 @@ std::string FitKey::text() const {
     // inside the fixed-width hex fields that follow it.
     std::string out = dataset + "__e" + hexBits(eps) + "_d" + std::to_string(degree) + "_b" +
                       hexBits(background) + "_cells";
+    char crc[16];
+    std::snprintf(crc, sizeof crc, "_v%08x", static_cast<unsigned>(volumeCrc));
+    out += crc;
     if (focus) {
         out += "_f" + hexBits(focus->centerIndex[0]) + "-" + hexBits(focus->centerIndex[1]) + "-" +
                hexBits(focus->centerIndex[2]) + "-" + hexBits(focus->radius) + "-" + hexBits(focus->epsFocus);

@@ -42,11 +42,7 @@ void installJobRoutes(Server::Impl& s) {
     s.http.Post("/api/fit", [&s](const httplib::Request& req, httplib::Response& res) {
         const FitParams p = parseFitParams(req.body);
         const auto dataset = s.registry.find(p.dataset);
-        FitKey key;
-        key.dataset = dataset->name;
-        key.eps = resolveEps(*dataset, p.eps);
-        key.degree = p.degree;
-        key.background = dataset->background;
+        FitKey key = fitKeyFor(*dataset, p.eps, p.degree);
         key.focus = p.focus;
         const auto job = s.fitJobs.submit(dataset, key);
         nlohmann::json body = jobJson(job->snapshot());

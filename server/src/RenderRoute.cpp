@@ -20,19 +20,11 @@ std::string formatMs(double value) {
     return text;
 }
 
-FitKey fitKeyFor(const Dataset& dataset, const RenderParams& p) {
-    FitKey key;
-    key.dataset = dataset.name;
-    key.eps = resolveEps(dataset, p.eps);
-    key.degree = p.degree;
-    key.background = dataset.background;
-    return key;
-}
-
 /// Everything the image depends on: the Vot-Space (by fit key) or the volume, camera, size, mode,
 /// window and colour map; not the client id.
 std::string frameKeyFor(const Dataset& dataset, const RenderParams& p) {
-    std::string key = p.mode == render::RenderMode::Reference ? dataset.name : fitKeyFor(dataset, p).text();
+    std::string key =
+        p.mode == render::RenderMode::Reference ? dataset.name : fitKeyFor(dataset, p.eps, p.degree).text();
     key += '|' + render::formatCamera(p.camera) + '|' + std::to_string(p.width) + 'x' +
            std::to_string(p.height) + '|' + std::string(render::renderModeName(p.mode)) + '|' +
            std::string(render::colormapName(p.colormap)) + '|';
@@ -55,7 +47,7 @@ const char* sourceName(FrameCache::Source source) {
 /// The Vot-Space for this request: from memory, else from the (possibly new) fit job.
 std::shared_ptr<const fit::VotSpace> spaceFor(Server::Impl& s, const std::shared_ptr<const Dataset>& dataset,
                                               const RenderParams& p) {
-    const FitKey key = fitKeyFor(*dataset, p);
+    const FitKey key = fitKeyFor(*dataset, p.eps, p.degree);
     if (auto space = s.cache.findInMemory(key)) return space;
     const auto job = s.fitJobs.submit(dataset, key);
     const JobSnapshot done = job->waitFinished(FIT_WAIT);

@@ -41,6 +41,8 @@ bool serveStatic(const Server::Impl& s, const httplib::Request& req, httplib::Re
 
 /// Resolved eps for a dataset, or HttpError 400 when it comes out 0 (a constant volume with "N%").
 float resolveEps(const Dataset& dataset, const EpsSpec& eps);
+/// The key of a uniform-eps fit of the dataset (no focus).
+FitKey fitKeyFor(const Dataset& dataset, const EpsSpec& eps, int degree);
 
 /// The job's visible state as JSON (GET /api/jobs/{id}, SSE data).
 nlohmann::json jobJson(const JobSnapshot& job);

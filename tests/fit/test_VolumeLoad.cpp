@@ -176,6 +176,17 @@ TEST(SharedData, NrrdLoaderAndDispatchAgree) {
     EXPECT_EQ(direct.at(10, 20, 30), direct.values[10 + 64 * (20 + 64 * 30)]);
 }
 
+TEST(SharedData, ContentCrcChangesWithAnySampleOrTheGrid) {
+    const Volume a = loadVolume(sharedData("headsq-quarter_64x64x93_int16.nrrd"));
+    Volume b = loadVolume(sharedData("headsq-quarter_64x64x93_int16.nrrd"));
+    EXPECT_EQ(a.contentCrc(), b.contentCrc()); // loading twice gives the same fingerprint
+    b.values[12345] += 1.f;
+    EXPECT_NE(a.contentCrc(), b.contentCrc());
+    b.values[12345] -= 1.f;
+    b.spacing[2] *= 2.0; // same samples on another grid: a cached fit would be drawn wrongly
+    EXPECT_NE(a.contentCrc(), b.contentCrc());
+}
+
 TEST(CraniumCt, FetchedHeaderLoadsTheCt) {
     const std::string header = std::string(VOTS_SOURCE_DIR) + "/data/cranium.nhdr";
     if (!std::filesystem::exists(header)) GTEST_SKIP() << "run scripts/fetch-ct to get " << header;

@@ -35,6 +35,10 @@ TEST(FitKey, TextIsExactAndFileSafe) {
     FitKey c = a;
     c.focus = fit::FocusRegion{{1, 2, 3}, 4, 0.5f};
     EXPECT_NE(a.text(), c.text());
+    FitKey d = a;
+    d.volumeCrc = 0x1234abcdu; // the same name with other contents is another fit
+    EXPECT_NE(a.text(), d.text());
+    EXPECT_NE(d.text().find("1234abcd"), std::string::npos);
     EXPECT_EQ(c.text().find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_-"),
               std::string::npos);
 }

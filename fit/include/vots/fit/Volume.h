@@ -36,6 +36,9 @@ struct Volume {
 
     /// Smallest and largest sample value; {0,0} for an empty volume.
     std::array<float, 2> valueRange() const;
+    /// CRC-32 of the grid (dims, spacing, origin) and every sample: tells a changed file from the one a
+    /// cached fit was made of.
+    std::uint32_t contentCrc() const;
 };
 
 } // namespace vots::fit

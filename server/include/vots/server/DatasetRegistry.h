@@ -27,6 +27,7 @@ struct Dataset {
     std::shared_ptr<const fit::Volume> volume;
     std::array<float, 2> range{0, 0};            // min and max sample, data units
     float background = 0.f;                      // fit::defaultBackground(volume)
+    std::uint32_t contentCrc = 0;                // volume->contentCrc()
     float defaultEps = 0.f;                      // 2 % of the range, data units
     bool isCt = false;                           // range looks like Hounsfield units (min <= -900)
     std::map<std::string, WindowPreset> presets; // "bone", "soft", "full"

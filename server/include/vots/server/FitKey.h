@@ -3,6 +3,7 @@
 
 #include "vots/fit/EpsField.h"
 
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -14,6 +15,7 @@ struct FitKey {
     int degree = 3;
     float background = 0.f;                // cells with all corners below it are omitted
     std::optional<fit::FocusRegion> focus; // grid index space
+    std::uint32_t volumeCrc = 0;           // fit::Volume::contentCrc(): a changed file is a new key
 
     /// Canonical, exact text (floats as hex bits), safe as a file stem: [A-Za-z0-9_-] only.
     /// Equal keys give equal text and vice versa.
