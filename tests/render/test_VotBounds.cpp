@@ -30,6 +30,16 @@ fit::Vot randomVot(std::mt19937& rng) {
     return vot;
 }
 
+// A Vot with all coefficients zero on the box [lo, hi], expanded around p.
+fit::Vot zeroVot(std::array<int, 3> lo, std::array<int, 3> hi, std::array<float, 3> p) {
+    fit::Vot vot;
+    vot.box.lo = lo;
+    vot.box.hi = hi;
+    vot.p = p;
+    vot.c.fill(0.f);
+    return vot;
+}
+
 } // namespace
 
 TEST(VotBounds, ContainEveryValueOnTheBox) {
@@ -58,11 +68,7 @@ TEST(VotBounds, ContainEveryValueOnTheBox) {
 }
 
 TEST(VotBounds, LinearVotIsBoundedExactlyByItsCorners) {
-    fit::Vot vot;
-    vot.box.lo = {2, 3, 4};
-    vot.box.hi = {6, 5, 9};
-    vot.p = {3.5f, 4.f, 6.f};
-    vot.c.fill(0.f);
+    fit::Vot vot = zeroVot({2, 3, 4}, {6, 5, 9}, {3.5f, 4.f, 6.f});
     vot.c[0] = 10.f;                                   // value
     vot.c[1] = 2.f;                                    // d/dx
     vot.c[2] = -1.f;                                   // d/dy
@@ -77,11 +83,7 @@ TEST(VotBounds, EqualTheBernsteinCoefficientsOfACubic) {
     // f = (x - p)^3 on x in [p - 1, p + 2]: with x - p = -1 + 3t, the Bernstein coefficients are
     // f(0) = -1, f(0) + f'(0)/3 = 2, f(1) - f'(1)/3 = -4 and f(1) = 8, so the bounds are [-4, 8] (wider
     // than the range [-1, 8]: the hull, not the range, is what the bound promises).
-    fit::Vot vot;
-    vot.box.lo = {10, 0, 0};
-    vot.box.hi = {13, 1, 1};
-    vot.p = {11.f, 0.f, 0.f};
-    vot.c.fill(0.f);
+    fit::Vot vot = zeroVot({10, 0, 0}, {13, 1, 1}, {11.f, 0.f, 0.f});
     for (std::size_t m = 0; m < fit::MONOMIAL_COUNT; ++m)
         if (fit::MONOMIAL_EXPONENTS[m] == std::array<int, 3>{3, 0, 0}) vot.c[m] = 1.f;
     const VotBounds b = computeVotBounds(vot);
