@@ -137,9 +137,15 @@ BoxOutcome BoxFitter::fit(const Box& box, const EpsField& eps, FitCounters& coun
     BoxOutcome outcome;
     for (int a = 0; a < 3; ++a)
         outcome.p[a] = static_cast<float>(centre[a]);
+    double halfPower[3][4];
+    for (int a = 0; a < 3; ++a) {
+        halfPower[a][0] = 1.0;
+        for (int k = 1; k < 4; ++k)
+            halfPower[a][k] = halfPower[a][k - 1] * half[a];
+    }
     for (int r = 0; r < nb; ++r) {
         const auto& e = MONOMIAL_EXPONENTS[static_cast<std::size_t>(basis[static_cast<std::size_t>(r)])];
-        const double scale = std::pow(half[0], e[0]) * std::pow(half[1], e[1]) * std::pow(half[2], e[2]);
+        const double scale = halfPower[0][e[0]] * halfPower[1][e[1]] * halfPower[2][e[2]];
         outcome.c[static_cast<std::size_t>(basis[static_cast<std::size_t>(r)])] =
             static_cast<float>(solution(r) / scale);
     }

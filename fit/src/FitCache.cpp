@@ -15,7 +15,8 @@ void FitCache::Impl::bind(const Volume& volume, int degreeIn, Certify certifyIn)
         return;
     for (auto& shard : shards) {
         std::lock_guard lock(shard.mutex);
-        shard.boxes.clear();
+        shard.index.clear();
+        shard.entries.clear();
     }
     volumeData = volume.values.data();
     dims = volume.dims;
@@ -26,22 +27,26 @@ void FitCache::Impl::bind(const Volume& volume, int degreeIn, Certify certifyIn)
 std::optional<CachedBox> FitCache::Impl::find(const Box& box) {
     auto& shard = shards[(BoxHash{}(box) >> 32) % SHARDS];
     std::lock_guard lock(shard.mutex);
-    const auto it = shard.boxes.find(box);
-    if (it == shard.boxes.end()) return std::nullopt;
-    return it->second;
+    const auto it = shard.index.find(box);
+    if (it == shard.index.end()) return std::nullopt;
+    return shard.entries[it->second];
 }
 
 void FitCache::Impl::store(const Box& box, const CachedBox& entry) {
     auto& shard = shards[(BoxHash{}(box) >> 32) % SHARDS];
     std::lock_guard lock(shard.mutex);
-    shard.boxes[box] = entry;
+    const auto [it, added] = shard.index.try_emplace(box, static_cast<std::uint32_t>(shard.entries.size()));
+    if (added)
+        shard.entries.push_back(entry);
+    else
+        shard.entries[it->second] = entry;
 }
 
 std::size_t FitCache::Impl::size() {
     std::size_t n = 0;
     for (auto& shard : shards) {
         std::lock_guard lock(shard.mutex);
-        n += shard.boxes.size();
+        n += shard.index.size();
     }
     return n;
 }

@@ -20,15 +20,23 @@ std::string formatMs(double value) {
     return text;
 }
 
+// Text that reads back as the same float (9 significant digits): windows share a key only when equal.
+std::string exactText(float value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.9g", static_cast<double>(value));
+    return text;
+}
+
 /// Everything the image depends on: the Vot-Space (by fit key) or the volume, camera, size, mode,
 /// window and colour map; not the client id.
 std::string frameKeyFor(const Dataset& dataset, const RenderParams& p) {
-    std::string key =
-        p.mode == render::RenderMode::Reference ? dataset.name : fitKeyFor(dataset, p.eps, p.degree).text();
+    std::string key = p.mode == render::RenderMode::Reference
+                          ? dataset.name + "_v" + std::to_string(dataset.contentCrc)
+                          : fitKeyFor(dataset, p.eps, p.degree).text();
     key += '|' + render::formatCamera(p.camera) + '|' + std::to_string(p.width) + 'x' +
            std::to_string(p.height) + '|' + std::string(render::renderModeName(p.mode)) + '|' +
            std::string(render::colormapName(p.colormap)) + '|';
-    key += p.window ? formatMs(p.window->level) + ',' + formatMs(p.window->width) : "auto";
+    key += p.window ? exactText(p.window->level) + ',' + exactText(p.window->width) : "auto";
     return key;
 }
 

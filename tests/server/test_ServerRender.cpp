@@ -97,6 +97,19 @@ TEST_F(ServerRender, WithoutFrameCacheTheSameUrlRendersAgainToTheSameBytes) {
     EXPECT_EQ(a->body, serverRender(query.substr(8)));
 }
 
+TEST_F(ServerRender, FrameCacheTellsWindowsApartToTheLastBit) {
+    const std::string base = "/render?dataset=neghip_64x64x64_uint8&size=40x40&cam=az=-5&window=100";
+    auto c = client();
+    const auto a = c->Get((base + ",50").c_str());
+    const auto b = c->Get((base + ".0001,50").c_str()); // the same to 3 decimals, another float
+    const auto again = c->Get((base + ",50").c_str());
+    ASSERT_TRUE(a && b && again);
+    ASSERT_EQ(a->status, 200) << a->body;
+    EXPECT_EQ(a->get_header_value("X-Vots-Frame-Cache"), "miss");
+    EXPECT_EQ(b->get_header_value("X-Vots-Frame-Cache"), "miss");
+    EXPECT_EQ(again->get_header_value("X-Vots-Frame-Cache"), "hit");
+}
+
 TEST_F(ServerRender, IdenticalRequestsAtOnceRenderOnce) {
     const std::string query = "/render?dataset=neghip_64x64x64_uint8&size=96x96&cam=az=71,el=-12";
     serverRender("dataset=neghip_64x64x64_uint8&size=8x8"); // fitted already
