@@ -18,10 +18,24 @@ void FitCache::Impl::bind(const Volume& volume, int degreeIn, Certify certifyIn)
         shard.index.clear();
         shard.entries.clear();
     }
+    {
+        std::lock_guard lock(maskMutex);
+        mask.reset();
+    }
     volumeData = volume.values.data();
     dims = volume.dims;
     degree = degreeIn;
     certify = certifyIn;
+}
+
+std::shared_ptr<const CellMask> FitCache::Impl::maskFor(const Volume& volume,
+                                                        std::optional<float> background) {
+    std::lock_guard lock(maskMutex);
+    if (!mask || maskBackground != background) {
+        mask = std::make_shared<const CellMask>(volume, background);
+        maskBackground = background;
+    }
+    return mask;
 }
 
 std::optional<CachedBox> FitCache::Impl::find(const Box& box) {

@@ -51,7 +51,6 @@ FitResult fitVotSpace(const Volume& volume, const FitOptions& options, FitCache*
     validateFitOptions(volume, options);
     const auto start = std::chrono::steady_clock::now();
 
-    const CellMask mask(volume, options.background);
     const EpsField eps(options.eps, options.focus);
     const BoxFitter fitter(volume, options.degree, options.certify);
     FitCounters counters;
@@ -60,6 +59,10 @@ FitResult fitVotSpace(const Volume& volume, const FitOptions& options, FitCache*
         cacheImpl = &cache->impl();
         cacheImpl->bind(volume, options.degree, options.certify);
     }
+    const std::shared_ptr<const CellMask> maskOwner =
+        cacheImpl ? cacheImpl->maskFor(volume, options.background)
+                  : std::make_shared<const CellMask>(volume, options.background);
+    const CellMask& mask = *maskOwner;
     const BoxTester tester(fitter, eps, counters, cacheImpl);
     const FitControl control{resolveThreadCount(options.threads), options.progress, options.cancel};
 
