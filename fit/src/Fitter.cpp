@@ -72,7 +72,7 @@ FitResult fitVotSpace(const Volume& volume, const FitOptions& options, FitCache*
     } else {
         boxes = splitBricks(mask, tester, control);
         if (control.progress) control.progress(0.9, "merge");
-        mergeNeighbours(boxes, tester, control); // across brick borders
+        mergeNeighbours(boxes, tester, control, BRICK_CELLS); // across brick borders
     }
     if (control.progress) control.progress(1.0, "done");
 

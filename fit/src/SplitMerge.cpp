@@ -154,13 +154,20 @@ std::vector<FittedBox> splitBricks(const CellMask& mask, const BoxTester& tester
     return all;
 }
 
-void mergeNeighbours(std::vector<FittedBox>& boxes, const BoxTester& tester, const FitControl& control) {
+void mergeNeighbours(std::vector<FittedBox>& boxes, const BoxTester& tester, const FitControl& control,
+                     int brickCells) {
     if (boxes.size() >= CellOwners::NONE) throw InputError("too many boxes to merge");
     std::vector<bool> alive(boxes.size(), true);
     CellOwners owners(boxes);
-    std::vector<std::size_t> work(boxes.size());
-    for (std::size_t i = 0; i < work.size(); ++i)
-        work[i] = i;
+    auto onBrickPlane = [brickCells](const Box& b) {
+        for (int a = 0; a < 3; ++a)
+            if (b.lo[a] % brickCells == 0 || b.hi[a] % brickCells == 0) return true;
+        return false;
+    };
+    std::vector<std::size_t> work;
+    work.reserve(boxes.size());
+    for (std::size_t i = 0; i < boxes.size(); ++i)
+        if (brickCells <= 0 || onBrickPlane(boxes[i].box)) work.push_back(i);
     while (!work.empty()) {
         control.checkCancel();
         const std::size_t i = work.back();

@@ -24,6 +24,11 @@ inline constexpr int BRICK_CELLS = 32;
 std::vector<FittedBox> splitBricks(const CellMask& mask, const BoxTester& tester, const FitControl& control);
 
 /// Merges pairs of boxes that share a whole face when their union fits; boxes stay disjoint.
-void mergeNeighbours(std::vector<FittedBox>& boxes, const BoxTester& tester, const FitControl& control);
+/// brickCells > 0 says the boxes were already merged brick by brick (bricks of that many cells, as
+/// splitBricks does): every pair inside one brick has been tried, so only boxes with a face on a brick
+/// plane start the work. The result is the same as starting from every box, without re-testing those
+/// pairs (a fresh fit has no cache to answer them).
+void mergeNeighbours(std::vector<FittedBox>& boxes, const BoxTester& tester, const FitControl& control,
+                     int brickCells = 0);
 
 } // namespace vots::fit
