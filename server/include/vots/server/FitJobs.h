@@ -67,6 +67,7 @@ private:
     mutable std::mutex mMutex;
     mutable std::condition_variable mChanged;
     JobSnapshot mState;
+    std::chrono::steady_clock::time_point mLastNotified{}; // last progress wake-up (setProgress)
     std::shared_ptr<const fit::VotSpace> mSpace;
 };
 
