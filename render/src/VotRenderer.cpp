@@ -19,7 +19,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
-#include <numeric>
 #include <optional>
 #include <string>
 #include <thread>
@@ -375,9 +374,16 @@ void VotRenderer::upload(const fit::VotSpace& space) {
         for (auto& t : pool)
             t.join();
     }
-    std::iota(order.begin(), order.end(), std::size_t{0});
-    std::stable_sort(order.begin(), order.end(),
-                     [&](std::size_t a, std::size_t b) { return bounds[a].upper > bounds[b].upper; });
+    {
+        // Descending bound, ties in file order (as a stable sort), on contiguous keys: sorting indices
+        // through the bounds cost 17 ms of a 230 ms upload on the CT.
+        std::vector<std::pair<double, std::size_t>> keys(order.size());
+        for (std::size_t i = 0; i < keys.size(); ++i)
+            keys[i] = {-bounds[i].upper, i};
+        std::sort(keys.begin(), keys.end());
+        for (std::size_t i = 0; i < keys.size(); ++i)
+            order[i] = keys[i].second;
+    }
     d.vots.resize(space.vots.size());
     float lo = INFINITY, hi = -INFINITY, maxLogSize = 0.f;
     for (std::size_t i = 0; i < order.size(); ++i) {

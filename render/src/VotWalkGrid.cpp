@@ -78,10 +78,11 @@ std::optional<VotWalkGrid> buildVotWalkGrid(const std::vector<GpuVot>& vots, con
         const GpuVot& v = vots[i];
         int lo[3], hi[3];
         for (int a = 0; a < 3; ++a) {
-            lo[a] = static_cast<int>(v.lo[a]);
-            hi[a] = static_cast<int>(v.hi[a]);
-            if (float(lo[a]) != v.lo[a] || float(hi[a]) != v.hi[a] || lo[a] < 0 || hi[a] > grid.cells[a] ||
-                lo[a] >= hi[a])
+            // In range first (NaN fails too), so that the int conversions are defined.
+            const bool inside = v.lo[a] >= 0.f && v.hi[a] <= float(grid.cells[a]) && v.lo[a] < v.hi[a];
+            lo[a] = inside ? static_cast<int>(v.lo[a]) : 0;
+            hi[a] = inside ? static_cast<int>(v.hi[a]) : 0;
+            if (!inside || float(lo[a]) != v.lo[a] || float(hi[a]) != v.hi[a])
                 return fail("Vot " + std::to_string(i) +
                             " has a box that is not a cell block inside the grid");
         }
