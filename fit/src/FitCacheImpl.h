@@ -20,6 +20,13 @@ namespace vots::fit {
 struct BoxHash {
     std::size_t operator()(const Box& b) const noexcept { return absl::HashOf(b.lo, b.hi); }
 };
+// Six int compares, inlined; Box's defaulted == went through a memcmp call (6 % of a refit).
+struct BoxEqual {
+    bool operator()(const Box& a, const Box& b) const noexcept {
+        return a.lo[0] == b.lo[0] && a.lo[1] == b.lo[1] && a.lo[2] == b.lo[2] && a.hi[0] == b.hi[0] &&
+               a.hi[1] == b.hi[1] && a.hi[2] == b.hi[2];
+    }
+};
 
 /// A fitted box as remembered across fits. The least-squares solution does not depend on eps, so an
 /// exact error decides acceptance at any uniform eps without touching the samples again.
@@ -35,7 +42,7 @@ struct FitCache::Impl {
         // Open addressing over small slots (box -> entry number): a lookup costs about one cache miss,
         // and misses never touch the large entries. std::unordered_map<Box, CachedBox> made the cache
         // 25 % of a refit (1 M lookups), a flat map with the entries inline still 20 %.
-        absl::flat_hash_map<Box, std::uint32_t, BoxHash> index;
+        absl::flat_hash_map<Box, std::uint32_t, BoxHash, BoxEqual> index;
         std::deque<CachedBox> entries; // never moves an entry
     };
     std::array<Shard, SHARDS> shards;
