@@ -39,7 +39,7 @@ std::shared_ptr<const CellMask> FitCache::Impl::maskFor(const Volume& volume,
 }
 
 std::optional<CachedBox> FitCache::Impl::find(const Box& box) {
-    auto& shard = shards[(BoxHash{}(box) >> 32) % SHARDS];
+    auto& shard = shards[shardOf(box)];
     std::lock_guard lock(shard.mutex);
     const auto it = shard.index.find(box);
     if (it == shard.index.end()) return std::nullopt;
@@ -47,7 +47,7 @@ std::optional<CachedBox> FitCache::Impl::find(const Box& box) {
 }
 
 void FitCache::Impl::store(const Box& box, const CachedBox& entry) {
-    auto& shard = shards[(BoxHash{}(box) >> 32) % SHARDS];
+    auto& shard = shards[shardOf(box)];
     std::lock_guard lock(shard.mutex);
     const auto [it, added] = shard.index.try_emplace(box, static_cast<std::uint32_t>(shard.entries.size()));
     if (added)
