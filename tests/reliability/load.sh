@@ -26,7 +26,7 @@ mkdir -p "$work/data"
 ln -s "$(realpath "$SHARED_DATA/HeadMRVolume_48x62x42_uint8.nrrd")" "$work/data/"
 start_server "$work/server.log" --data "$work/data" --cache-dir "$work/cache"
 base=http://127.0.0.1:$SERVER_PORT
-render="$base/render?dataset=HeadMRVolume_48x62x42_uint8&cam=az%3D30%2Cel%3D20&size=256x256&eps=2%25"
+render="$base/render?dataset=HeadMRVolume_48x62x42_uint8&size=256x256&eps=2%25"
 
 # Warm up: the first /render fits the Vot-Space; the load then measures serving, not fitting.
 curl -sf -o /dev/null "$render" && curl -sf -o /dev/null "$base/api/datasets"
@@ -35,12 +35,16 @@ echo "rss before: $(rss_kib "$SERVER_PID") KiB"
 
 failed=0
 for url in "$render" "$base/api/datasets"; do
-    echo "== wrk -t2 -c$connections -d${seconds}s --latency --timeout 30s $url"
-    wrk -t2 -c"$connections" -d"${seconds}s" --latency --timeout 30s "$url" | tee "$work/wrk.txt"
+    # /render: a new camera angle per request (wrk script), so every answer is a rendered frame.
+    script=()
+    [[ $url == "$render" ]] && script=(-s tests/reliability/new_angle_each_request.lua)
+    echo "== wrk -t2 -c$connections -d${seconds}s --latency --timeout 30s ${script[*]} $url"
+    wrk -t2 -c"$connections" -d"${seconds}s" --latency --timeout 30s "${script[@]}" "$url" | tee "$work/wrk.txt"
     if grep -qE 'Non-2xx or 3xx responses|Socket errors' "$work/wrk.txt"; then failed=1; fi
     kill -0 "$SERVER_PID" 2>/dev/null || { echo "server died"; failed=1; break; }
     echo "rss after: $(rss_kib "$SERVER_PID") KiB"
 done
-curl -sf "$base/api/stats" | head -c 400; echo
+curl -sf "$base/api/stats" |
+    python3 -c 'import json, sys; d = json.load(sys.stdin); print({k: d[k] for k in ("frames", "frameCache")})'
 [[ $failed -eq 0 ]] && echo "load: OK (no errors, server alive)" || echo "load: FAILED"
 exit $failed
