@@ -5,10 +5,10 @@
 #include "vots/fit/Error.h"
 #include "vots/fit/VolumeLoad.h"
 
+#include "Crc32.h"
 #include "SampleDecode.h"
 
 #include <algorithm>
-#include <zlib.h>
 
 namespace vots::fit {
 
@@ -47,21 +47,10 @@ std::array<float, 2> Volume::valueRange() const {
 }
 
 std::uint32_t Volume::contentCrc() const {
-    uLong crc = crc32(0L, Z_NULL, 0);
-    auto add = [&crc](const void* data, std::size_t bytes) {
-        const auto* p = static_cast<const Bytef*>(data);
-        while (bytes > 0) { // zlib takes uInt lengths
-            const auto chunk = static_cast<uInt>(std::min<std::size_t>(bytes, 1u << 30));
-            crc = crc32(crc, p, chunk);
-            p += chunk;
-            bytes -= chunk;
-        }
-    };
-    add(dims.data(), sizeof dims);
-    add(spacing.data(), sizeof spacing);
-    add(origin.data(), sizeof origin);
-    add(values.data(), values.size() * sizeof(float));
-    return static_cast<std::uint32_t>(crc);
+    std::uint32_t crc = crc32Update(0, dims.data(), sizeof dims);
+    crc = crc32Update(crc, spacing.data(), sizeof spacing);
+    crc = crc32Update(crc, origin.data(), sizeof origin);
+    return crc32Update(crc, values.data(), values.size() * sizeof(float));
 }
 
 } // namespace vots::fit

@@ -3,7 +3,7 @@
 
 #include "vots/fit/Error.h"
 
-#include <zlib.h>
+#include "Crc32.h"
 
 #include <algorithm>
 #include <bit>
@@ -83,18 +83,6 @@ float getF32(const std::uint8_t* in) {
 }
 double getF64(const std::uint8_t* in) {
     return std::bit_cast<double>(getU64(in));
-}
-
-std::uint32_t crc32Of(const std::uint8_t* data, std::size_t size) {
-    uLong crc = crc32(0L, Z_NULL, 0);
-    // zlib takes uInt lengths; feed large buffers in chunks.
-    while (size > 0) {
-        const auto chunk = static_cast<uInt>(std::min<std::size_t>(size, 1u << 30));
-        crc = crc32(crc, data, chunk);
-        data += chunk;
-        size -= chunk;
-    }
-    return static_cast<std::uint32_t>(crc);
 }
 
 [[noreturn]] void fail(const std::string& message) {
@@ -269,7 +257,7 @@ std::vector<std::uint8_t> encodeVotSpace(const VotSpace& space) {
     }
     if (!space.metaJson.empty()) std::memcpy(rec, space.metaJson.data(), space.metaJson.size());
     const std::size_t crcAt = out.size() - CRC_BYTES;
-    putU32(h + crcAt, crc32Of(h, crcAt));
+    putU32(h + crcAt, crc32Update(0, h, crcAt));
     return out;
 }
 
@@ -278,7 +266,7 @@ VotSpace decodeVotSpace(const std::uint8_t* data, std::size_t size) {
     const std::uint64_t metaBytes = checkFraming(data, size);
     const std::size_t crcAt = size - CRC_BYTES;
     const std::uint32_t stored = getU32(data + crcAt);
-    const std::uint32_t actual = crc32Of(data, crcAt);
+    const std::uint32_t actual = crc32Update(0, data, crcAt);
     if (stored != actual) fail("checksum mismatch (file is corrupt)");
 
     for (std::size_t i = OFF_RESERVED; i < VOTS_HEADER_BYTES; ++i)
