@@ -27,12 +27,10 @@ std::string exactText(float value) {
     return text;
 }
 
-/// Everything the image depends on: the Vot-Space (by fit key) or the volume, camera, size, mode,
-/// window and colour map; not the client id.
-std::string frameKeyFor(const Dataset& dataset, const RenderParams& p) {
-    std::string key = p.mode == render::RenderMode::Reference
-                          ? dataset.name + "_v" + std::to_string(dataset.contentCrc)
-                          : fitKeyFor(dataset, p.eps, p.degree).text();
+/// Everything the image depends on: what it is drawn from (the Vot-Space's fit key, or the volume),
+/// camera, size, mode, window and colour map; not the client id.
+std::string frameKeyFor(const std::string& drawnFrom, const RenderParams& p) {
+    std::string key = drawnFrom;
     key += '|' + render::formatCamera(p.camera) + '|' + std::to_string(p.width) + 'x' +
            std::to_string(p.height) + '|' + std::string(render::renderModeName(p.mode)) + '|' +
            std::string(render::colormapName(p.colormap)) + '|';
@@ -54,8 +52,7 @@ const char* sourceName(FrameCache::Source source) {
 
 /// The Vot-Space for this request: from memory, else from the (possibly new) fit job.
 std::shared_ptr<const fit::VotSpace> spaceFor(Server::Impl& s, const std::shared_ptr<const Dataset>& dataset,
-                                              const RenderParams& p) {
-    const FitKey key = fitKeyFor(*dataset, p.eps, p.degree);
+                                              const FitKey& key) {
     if (auto space = s.cache.findInMemory(key)) return space;
     const auto job = s.fitJobs.submit(dataset, key);
     const JobSnapshot done = job->waitFinished(FIT_WAIT);
@@ -81,11 +78,18 @@ void installRenderRoute(Server::Impl& s) {
         if (!s.renderQueue || !s.renderQueue->hasContext())
             throw HttpError(503, s.renderQueue ? "rendering is unavailable: " + s.renderQueue->contextError()
                                                : "rendering is disabled");
-        if (job.params.mode != render::RenderMode::Reference) job.space = spaceFor(s, dataset, job.params);
+        std::string drawnFrom; // the fit key, or for reference frames the volume
+        if (job.params.mode == render::RenderMode::Reference) {
+            drawnFrom = dataset->name + "_v" + std::to_string(dataset->contentCrc);
+        } else {
+            const FitKey key = fitKeyFor(*dataset, job.params.eps, job.params.degree);
+            job.space = spaceFor(s, dataset, key);
+            drawnFrom = key.text();
+        }
 
         FrameCache::Source source = FrameCache::Source::Rendered;
         const auto frame = s.frames.get(
-            frameKeyFor(*dataset, job.params),
+            frameKeyFor(drawnFrom, job.params),
             [&] {
                 const RenderResult result = s.renderQueue->submit(job).get(); // throws HttpError (409, ...)
                 // PNG encoding runs here, on the HTTP thread, in parallel with the next frame.
