@@ -51,21 +51,6 @@ Polynomial randomPolynomial(int degree, int n, double amplitude, std::uint32_t s
     return p;
 }
 
-fit::Volume sampleVolume(const std::array<int, 3>& dims,
-                         const std::function<double(double, double, double)>& f,
-                         const std::array<double, 3>& spacing) {
-    fit::Volume v;
-    v.dims = dims;
-    v.spacing = spacing;
-    v.name = "synthetic";
-    v.values.resize(v.sampleCount());
-    for (int z = 0; z < dims[2]; ++z)
-        for (int y = 0; y < dims[1]; ++y)
-            for (int x = 0; x < dims[0]; ++x)
-                v.values[v.indexOf(x, y, z)] = static_cast<float>(f(x, y, z));
-    return v;
-}
-
 fit::VotSpace cellVotSpace(const fit::Volume& volume) {
     fit::VotSpace space;
     space.dims = volume.dims;

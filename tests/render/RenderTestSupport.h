@@ -7,6 +7,8 @@
 #include "vots/render/EglContext.h"
 #include "vots/render/Image.h"
 
+#include "SampleVolume.h" // sampleVolume(), shared with the other modules' tests
+
 #include <array>
 #include <functional>
 #include <random>
@@ -28,11 +30,6 @@ struct Polynomial {
 /// Random polynomial of the given degree with coefficients scaled so values stay O(amplitude) over
 /// a grid of side n.
 Polynomial randomPolynomial(int degree, int n, double amplitude, std::uint32_t seed);
-
-/// Samples f at every grid point.
-fit::Volume sampleVolume(const std::array<int, 3>& dims,
-                         const std::function<double(double, double, double)>& f,
-                         const std::array<double, 3>& spacing = {1, 1, 1});
 
 /// Exact cell Vots (DESIGN §2): one per 2x2x2 cell, reproducing trilinear interpolation.
 fit::VotSpace cellVotSpace(const fit::Volume& volume);

@@ -4,6 +4,8 @@
 #include "vots/fit/Monomials.h"
 #include "vots/fit/Volume.h"
 
+#include "SampleVolume.h"
+
 #include <array>
 #include <cmath>
 #include <functional>
@@ -44,20 +46,6 @@ inline Polynomial randomPolynomial(int degree, const std::array<int, 3>& dims, u
         p.c[i] = uniform(rng) * scale;
     }
     return p;
-}
-
-inline fit::Volume sampleVolume(const std::array<int, 3>& dims, const std::function<double(int, int, int)>& f,
-                                const std::array<double, 3>& spacing = {1.0, 1.0, 1.0}) {
-    fit::Volume v;
-    v.dims = dims;
-    v.spacing = spacing;
-    v.name = "synthetic";
-    v.values.resize(v.sampleCount());
-    for (int z = 0; z < dims[2]; ++z)
-        for (int y = 0; y < dims[1]; ++y)
-            for (int x = 0; x < dims[0]; ++x)
-                v.values[v.indexOf(x, y, z)] = static_cast<float>(f(x, y, z));
-    return v;
 }
 
 /// Uniform random samples in [lo, hi]: the hardest case, every cell different.
