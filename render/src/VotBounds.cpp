@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace vots::render {
 
@@ -13,23 +14,26 @@ constexpr double BINOMIAL[4][4] = {{1, 0, 0, 0}, {1, 1, 0, 0}, {1, 2, 1, 0}, {1,
 constexpr double POWER_TO_BERNSTEIN[4][4] = {
     {1, 0, 0, 0}, {1, 1.0 / 3, 0, 0}, {1, 2.0 / 3, 1.0 / 3, 0}, {1, 1, 1, 1}};
 
-// Applies POWER_TO_BERNSTEIN along one axis of a 4x4x4 coefficient tensor (x fastest: [z][y][x]).
-void toBernsteinAlong(double (&t)[4][4][4], int axis) {
+// Converts a cubic's power coefficients p0..p3 in place to its Bernstein coefficients on [0, 1].
+template <typename At> inline void toBernstein(At at) {
+    const double p1 = at(1), p2 = at(2), p3 = at(3);
+    at(1) = at(0) + p1 * POWER_TO_BERNSTEIN[1][1];
+    at(2) = at(0) + p1 * POWER_TO_BERNSTEIN[2][1] + p2 * POWER_TO_BERNSTEIN[2][2];
+    at(3) = at(0) + p1 + p2 + p3;
+}
+
+// Applies the conversion along every axis of a 4x4x4 coefficient tensor ([z][y][x]); constant strides
+// let the compiler unroll what the pointer-table version could not (bounds were half of an upload).
+void toBernstein3(double (&t)[4][4][4]) {
     for (int u = 0; u < 4; ++u)
-        for (int v = 0; v < 4; ++v) {
-            double* line[4];
-            for (int i = 0; i < 4; ++i)
-                line[i] = axis == 0 ? &t[u][v][i] : axis == 1 ? &t[u][i][v] : &t[i][u][v];
-            double p[4];
-            for (int i = 0; i < 4; ++i)
-                p[i] = *line[i];
-            for (int j = 0; j < 4; ++j) {
-                double b = 0.0;
-                for (int i = 0; i <= j; ++i)
-                    b += POWER_TO_BERNSTEIN[j][i] * p[i];
-                *line[j] = b;
-            }
-        }
+        for (int v = 0; v < 4; ++v)
+            toBernstein([&](int i) -> double& { return t[u][v][i]; });
+    for (int u = 0; u < 4; ++u)
+        for (int v = 0; v < 4; ++v)
+            toBernstein([&](int i) -> double& { return t[u][i][v]; });
+    for (int u = 0; u < 4; ++u)
+        for (int v = 0; v < 4; ++v)
+            toBernstein([&](int i) -> double& { return t[i][u][v]; });
 }
 
 } // namespace
@@ -53,20 +57,24 @@ VotBounds computeVotBounds(const fit::Vot& vot) {
     }
     double t[4][4][4] = {}; // [z][y][x] power of t
     double slackSum = 0.0;
-    for (std::size_t m = 0; m < fit::MONOMIAL_COUNT; ++m) {
-        const double c = vot.c[m];
-        const auto& e = fit::MONOMIAL_EXPONENTS[m];
+    // Unrolled over the monomials at compile time: with constant exponents the loops are short and
+    // straight (the bounds were half of an upload while their trip counts were read from a table).
+    auto addMonomial = [&]<std::size_t M>(std::integral_constant<std::size_t, M>) {
+        constexpr auto e = fit::MONOMIAL_EXPONENTS[M];
+        const double c = vot.c[M];
         slackSum += std::abs(c) * slackPower[0][e[0]] * slackPower[1][e[1]] * slackPower[2][e[2]];
-        if (c == 0.0) continue;
         for (int k = 0; k <= e[2]; ++k)
             for (int j = 0; j <= e[1]; ++j) {
                 const double cjk = c * shift[2][e[2]][k] * shift[1][e[1]][j];
                 for (int i = 0; i <= e[0]; ++i)
                     t[k][j][i] += cjk * shift[0][e[0]][i];
             }
+    };
+    [&]<std::size_t... M>(std::index_sequence<M...>) {
+        (addMonomial(std::integral_constant<std::size_t, M>{}), ...);
     }
-    for (int axis = 0; axis < 3; ++axis)
-        toBernsteinAlong(t, axis);
+    (std::make_index_sequence<fit::MONOMIAL_COUNT>{});
+    toBernstein3(t);
     VotBounds out;
     out.lower = INFINITY;
     out.upper = -INFINITY;

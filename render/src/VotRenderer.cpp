@@ -1,5 +1,5 @@
 // Vot MIP / density: a per-pixel walk through a cell -> Vot grid, or instanced boxes into R32F with
-// MAX/MIN blending in bound-sorted batches with CPU culling.
+// MAX/MIN blending in batches with CPU culling.
 #include "vots/render/VotRenderer.h"
 
 #include "DisplayPass.h"
@@ -8,6 +8,7 @@
 #include "MaxPyramid.h"
 #include "Shaders.h"
 #include "VotBounds.h"
+#include "VotOrder.h"
 #include "VotWalkGrid.h"
 
 #include "vots/fit/Error.h"
@@ -98,7 +99,7 @@ struct VotRenderer::Impl {
 
     bool hasData = false;
     SceneBounds bounds;
-    std::vector<GpuVot> vots; // sorted by descending upperBound
+    std::vector<GpuVot> vots; // in space order when walkable, else by descending upperBound
     std::vector<std::uint32_t> visible;
     std::size_t chunkRecords = 1; // Vots per SSBO binding (GL_MAX_SHADER_STORAGE_BLOCK_SIZE)
     std::array<float, 2> valueRange{0.f, 0.f};
@@ -164,8 +165,9 @@ struct VotRenderer::Impl {
         prevMaxHeight = height;
     }
 
-    // Batches in descending bound order; between batches the max image is read back, Vots that
-    // cannot raise any pixel under their box are skipped, and the rest stop early per fragment.
+    // Batches in record order (descending bound unless the walk is the MIP strategy); between batches the max
+    // image is read back, Vots that cannot raise any pixel under their box are skipped, and the rest stop
+    // early per fragment.
     void drawCulled(const CameraMatrices& m, int width, int height) {
         const GLuint program = mipProgram.get();
         ensurePrevMax(width, height);
@@ -252,24 +254,33 @@ struct VotRenderer::Impl {
         stats.votsDrawn = 0;
     }
 
-    // Uploads the Walk grid, or leaves walkable false so that MIP frames use Raster: boxes that overlap
-    // (the walk sees one Vot per cell), or more than the GL limits hold.
-    void uploadWalkGrid(const std::array<int, 3>& dims) {
+    // The Walk grid for the records in `vots`, or nullopt when the walk cannot draw them, so that MIP
+    // frames use Raster: boxes that overlap (the walk sees one Vot per cell), or more than the GL
+    // limits hold.
+    std::optional<VotWalkGrid> walkGridFor(const std::array<int, 3>& dims) const {
+        if (vots.size() > chunkRecords) return std::nullopt; // the walk reads every Vot through one binding
+        for (int a = 0; a < 3; ++a)
+            if (dims[a] - 1 > 0xffff) return std::nullopt; // box corners are packed in 16 bits
+        std::optional<VotWalkGrid> grid = buildVotWalkGrid(vots, dims, WALK_BRICK_SHIFT, nullptr);
+        if (!grid) return std::nullopt;
+        GLint maxTexels = 0;
+        glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
+        const std::size_t cells = grid->brickMax.size() << (3 * grid->brickShift);
+        if (std::max(cells, vots.size() + grid->emptyBlocks.size()) >= static_cast<std::size_t>(maxTexels))
+            return std::nullopt;
+        return grid;
+    }
+
+    // Uploads the Walk grid (walkable true), or drops the last one when there is none.
+    void uploadWalkGrid(const std::optional<VotWalkGrid>& grid) {
         walkable = false;
         for (GlTexture* t : {&cellVot, &brickMax, &votBox})
             t->reset();
         for (GlBuffer* b : {&cellVotBuffer, &brickMaxBuffer, &votBoxBuffer})
             b->reset();
-        if (vots.size() > chunkRecords) return; // the walk reads every Vot through one binding
-        for (int a = 0; a < 3; ++a)
-            if (dims[a] - 1 > 0xffff) return; // box corners are packed in 16 bits
-        const std::optional<VotWalkGrid> grid = buildVotWalkGrid(vots, dims, WALK_BRICK_SHIFT, nullptr);
         if (!grid) return;
         const std::vector<std::uint32_t> cells = brickOrderedCells(*grid);
         const std::size_t blocks = vots.size() + grid->emptyBlocks.size();
-        GLint maxTexels = 0;
-        glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
-        if (std::max(cells.size(), blocks) >= static_cast<std::size_t>(maxTexels)) return;
 
         // One RGBA32UI texel per block the cell grid names: the Vots' boxes, then the empty blocks
         // (bound -inf).
@@ -356,8 +367,7 @@ VotRenderer::~VotRenderer() = default;
 void VotRenderer::upload(const fit::VotSpace& space) {
     Impl& d = *mImpl;
     std::vector<VotBounds> bounds(space.vots.size());
-    std::vector<GpuVot> unsorted(space.vots.size());
-    std::vector<std::size_t> order(space.vots.size());
+    std::vector<GpuVot> records(space.vots.size());
     {
         // Bounds and records dominate an upload (a refit waits for it); each Vot is independent, so
         // split evenly.
@@ -368,34 +378,12 @@ void VotRenderer::upload(const fit::VotSpace& space) {
             pool.emplace_back([&, w] {
                 for (std::size_t i = n * w / workers; i < n * (w + 1) / workers; ++i) {
                     bounds[i] = computeVotBounds(space.vots[i]);
-                    unsorted[i] = makeGpuVot(space.vots[i], bounds[i]);
+                    records[i] = makeGpuVot(space.vots[i], bounds[i]);
                 }
             });
         for (auto& t : pool)
             t.join();
     }
-    {
-        // Descending bound, ties in file order (as a stable sort), on contiguous keys: sorting indices
-        // through the bounds cost 17 ms of a 230 ms upload on the CT.
-        std::vector<std::pair<double, std::size_t>> keys(order.size());
-        for (std::size_t i = 0; i < keys.size(); ++i)
-            keys[i] = {-bounds[i].upper, i};
-        std::sort(keys.begin(), keys.end());
-        for (std::size_t i = 0; i < keys.size(); ++i)
-            order[i] = keys[i].second;
-    }
-    d.vots.resize(space.vots.size());
-    float lo = INFINITY, hi = -INFINITY, maxLogSize = 0.f;
-    for (std::size_t i = 0; i < order.size(); ++i) {
-        d.vots[i] = unsorted[order[i]];
-        lo = std::min(lo, static_cast<float>(bounds[order[i]].lower));
-        hi = std::max(hi, static_cast<float>(bounds[order[i]].upper));
-        maxLogSize = std::max(maxLogSize, d.vots[i].logSize);
-    }
-    if (d.vots.empty()) lo = hi = 0.f;
-    d.valueRange = {lo, hi};
-    d.densityRange = {0.f, std::max(maxLogSize, 1.f)};
-
     GLint maxBlock = 0, alignment = 1, maxTexels = 0, textureAlignment = 1;
     glGetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
     glGetIntegerv(GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT, &alignment);
@@ -409,6 +397,26 @@ void VotRenderer::upload(const fit::VotSpace& space) {
     if (chunk == 0) throw RenderError("GL shader storage blocks are too small for one Vot");
     d.chunkRecords = chunk;
 
+    auto arrange = [&](const std::vector<std::size_t>& order) {
+        d.vots.resize(order.size());
+        for (std::size_t i = 0; i < order.size(); ++i)
+            d.vots[i] = records[order[i]];
+    };
+    // Space order for the walk; bound order when Raster draws the MIP instead.
+    arrange(spatialOrder(space.vots));
+    const std::optional<VotWalkGrid> grid = d.walkGridFor(space.dims);
+    if (!grid) arrange(boundOrder(bounds));
+
+    float lo = INFINITY, hi = -INFINITY, maxLogSize = 0.f;
+    for (std::size_t i = 0; i < bounds.size(); ++i) {
+        lo = std::min(lo, static_cast<float>(bounds[i].lower));
+        hi = std::max(hi, static_cast<float>(bounds[i].upper));
+        maxLogSize = std::max(maxLogSize, records[i].logSize);
+    }
+    if (d.vots.empty()) lo = hi = 0.f;
+    d.valueRange = {lo, hi};
+    d.densityRange = {0.f, std::max(maxLogSize, 1.f)};
+
     d.votBuffer = createBuffer();
     glNamedBufferStorage(d.votBuffer.get(),
                          static_cast<GLsizeiptr>(std::max<std::size_t>(d.vots.size(), 1) * sizeof(GpuVot)),
@@ -419,7 +427,7 @@ void VotRenderer::upload(const fit::VotSpace& space) {
                          static_cast<GLsizeiptr>(d.visible.size() * sizeof(std::uint32_t)), nullptr,
                          GL_DYNAMIC_STORAGE_BIT);
     checkGl("VotRenderer upload");
-    d.uploadWalkGrid(space.dims);
+    d.uploadWalkGrid(grid);
     d.bounds = sceneBounds(space);
     d.hasData = true;
 }

@@ -31,10 +31,10 @@ namespace vots::render {
 /// fast fit method); a Vot-Space with overlapping boxes (paper method) or beyond the GL limits is
 /// drawn with Raster instead, see mipStrategy(). Density images always use Raster.
 ///
-/// Raster: one instanced unit cube per Vot. With culling, Vots are drawn in descending order of
-/// their bound, in batches; between batches the current max image is read back; a Vot whose bound
-/// cannot exceed the smallest max over the pixels its box covers is not drawn, and fragments whose
-/// Vot bound is below the pixel's max stop early.
+/// Raster: one instanced unit cube per Vot. With culling, Vots are drawn in batches, in descending
+/// order of their bound when Raster is the MIP strategy (records are in space order for the walk); between
+/// batches the current max image is read back; a Vot whose bound cannot exceed the smallest max over the
+/// pixels its box covers is not drawn, and fragments whose Vot bound is below the pixel's max stop early.
 ///
 /// Culling never changes the image (dropped work could only produce values <= the pixel's max); a
 /// test checks it for both strategies.
