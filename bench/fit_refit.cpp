@@ -20,10 +20,13 @@ double median(std::vector<double> v) {
 } // namespace
 
 int main(int argc, char** argv) {
+    // --cells: certify at cell centres and edge midpoints too, as the server fits for rendering.
+    const bool cells = argc > 1 && std::string(argv[1]) == "--cells";
+    if (cells) --argc, ++argv;
     if (argc < 3) {
         std::fprintf(
             stderr,
-            "usage: fit_refit VOLUME BASE_PERCENT [PERCENT...]\n"
+            "usage: fit_refit [--cells] VOLUME BASE_PERCENT [PERCENT...]\n"
             "  fits at BASE_PERCENT of the value range, then refits at each PERCENT with the cache\n");
         return 2;
     }
@@ -34,6 +37,7 @@ int main(int argc, char** argv) {
             FitOptions o;
             o.eps = static_cast<float>(percent / 100.0 * (range[1] - range[0]));
             o.background = defaultBackground(volume);
+            if (cells) o.certify = Certify::Cells;
             return o;
         };
         std::printf(

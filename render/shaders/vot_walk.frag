@@ -8,8 +8,9 @@
 // Buffer textures, not 3D textures or SSBOs: llvmpipe gathers texel fetches for all lanes at once.
 uniform usamplerBuffer uCellVot; // R32UI per cell, brick by brick (VotWalkGrid.h): a Vot index below
                                  // uVotCount, else uVotCount + the index of an empty block
-uniform samplerBuffer uBrickMax; // R32F per brick, x fastest: max upperBound of the Vots touching it,
-                                 // or -inf
+uniform samplerBuffer uBrickMax; // RG32F per brick, x fastest: max upperBound of the Vots touching it
+                                 // (or -inf), and the max of that over every brick this view's rays
+                                 // can reach from it (BrickAhead.h)
 uniform usamplerBuffer uVotBox;  // RGBA32UI per Vot, then per empty block: box [lo, hi) in cells, 16 bits
                                  // each (lo.x | lo.y << 16, lo.z | hi.x << 16, hi.y | hi.z << 16), and
                                  // the bound's bits (-inf for empty blocks)
@@ -44,7 +45,9 @@ void main() {
         ivec3 lo, hi; // the block of cells [lo, hi) the ray leaves next; it contains `cell`
         ivec3 brick = cell >> uBrickShift;
         int brickIndex = brick.x + uBricks.x * (brick.y + uBricks.y * brick.z);
-        float brickMax = texelFetch(uBrickMax, brickIndex).r;
+        vec2 brickBounds = texelFetch(uBrickMax, brickIndex).rg;
+        float brickMax = brickBounds.x;
+        if (uCull != 0 && brickBounds.y <= best) break; // nothing further along can raise the max
         if (brickMax == NEG_INF || (uCull != 0 && brickMax <= best)) {
             lo = brick << uBrickShift;
             hi = min(lo + (1 << uBrickShift), uCells);

@@ -2,6 +2,7 @@
 // MAX/MIN blending in batches with CPU culling.
 #include "vots/render/VotRenderer.h"
 
+#include "BrickAhead.h"
 #include "DisplayPass.h"
 #include "FloatTarget.h"
 #include "GlObjects.h"
@@ -83,8 +84,10 @@ struct VotRenderer::Impl {
     // Walk strategy (vot_walk.frag): buffer textures over their own buffers.
     GlBuffer cellVotBuffer, brickMaxBuffer, votBoxBuffer;
     GlTexture cellVot;  // R32UI per cell, brick by brick: Vot index, or Vot count + empty block index
-    GlTexture brickMax; // R32F per brick, x fastest
-    GlTexture votBox;   // RGBA32UI per Vot, then per empty block: packed box and bound
+    GlTexture brickMax; // RG32F per brick, x fastest: its bound, and the bound ahead for this frame
+    std::vector<float> walkBrickMax;  // per brick: max upperBound of the Vots touching it
+    std::vector<float> brickBoundsRg; // per frame: (walkBrickMax, brickMaximaAhead) pairs
+    GlTexture votBox;                 // RGBA32UI per Vot, then per empty block: packed box and bound
     std::array<int, 3> walkCells{0, 0, 0};
     std::array<int, 3> walkBricks{0, 0, 0};
     bool walkable = false;
@@ -235,6 +238,14 @@ struct VotRenderer::Impl {
         glProgramUniform1i(p, glGetUniformLocation(p, "uBrickShift"), WALK_BRICK_SHIFT);
         glProgramUniform1i(p, glGetUniformLocation(p, "uCull"), culling ? 1 : 0);
         glProgramUniform1ui(p, glGetUniformLocation(p, "uVotCount"), static_cast<GLuint>(vots.size()));
+        // The bounds ahead depend on the view: a few thousand bricks, recomputed per frame.
+        const std::vector<float> ahead = brickMaximaAhead({walkCells, walkBricks, WALK_BRICK_SHIFT},
+                                                          walkBrickMax, rayFamilyOf(m.clipToIndex));
+        for (std::size_t i = 0; i < ahead.size(); ++i)
+            brickBoundsRg[2 * i + 1] = ahead[i];
+        glNamedBufferSubData(brickMaxBuffer.get(), 0,
+                             static_cast<GLsizeiptr>(brickBoundsRg.size() * sizeof(float)),
+                             brickBoundsRg.data());
         glProgramUniform1i(p, glGetUniformLocation(p, "uCellVot"), 0);
         glProgramUniform1i(p, glGetUniformLocation(p, "uBrickMax"), 1);
         glProgramUniform1i(p, glGetUniformLocation(p, "uVotBox"), 2);
@@ -309,8 +320,16 @@ struct VotRenderer::Impl {
             glTextureBuffer(texture.get(), format, buffer.get());
         };
         bufferTexture(cellVotBuffer, cellVot, GL_R32UI, cells.data(), cells.size() * sizeof(std::uint32_t));
-        bufferTexture(brickMaxBuffer, brickMax, GL_R32F, grid->brickMax.data(),
-                      grid->brickMax.size() * sizeof(float));
+        walkBrickMax = grid->brickMax;
+        brickBoundsRg.assign(2 * walkBrickMax.size(), INFINITY);
+        for (std::size_t i = 0; i < walkBrickMax.size(); ++i)
+            brickBoundsRg[2 * i] = walkBrickMax[i];
+        brickMaxBuffer = createBuffer();
+        glNamedBufferStorage(brickMaxBuffer.get(),
+                             static_cast<GLsizeiptr>(brickBoundsRg.size() * sizeof(float)),
+                             brickBoundsRg.data(), GL_DYNAMIC_STORAGE_BIT);
+        brickMax = createTexture(GL_TEXTURE_BUFFER);
+        glTextureBuffer(brickMax.get(), GL_RG32F, brickMaxBuffer.get());
         bufferTexture(votBoxBuffer, votBox, GL_RGBA32UI, boxes.data(), boxes.size() * sizeof(std::uint32_t));
         checkGl("VotRenderer walk grid upload");
         walkCells = grid->cells;
