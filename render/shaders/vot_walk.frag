@@ -11,9 +11,11 @@ uniform usamplerBuffer uCellVot; // R32UI per cell, brick by brick (VotWalkGrid.
 uniform samplerBuffer uBrickMax; // RG32F per brick, x fastest: max upperBound of the Vots touching it
                                  // (or -inf), and the max of that over every brick this view's rays
                                  // can reach from it (BrickAhead.h)
-uniform usamplerBuffer uVotBox;  // RGBA32UI per Vot, then per empty block: box [lo, hi) in cells, 16 bits
+uniform usamplerBuffer uVotBox;  // RGBA32UI per Vot, then per empty block: a box [lo, hi) in cells, 16 bits
                                  // each (lo.x | lo.y << 16, lo.z | hi.x << 16, hi.y | hi.z << 16), and
-                                 // the bound's bits (-inf for empty blocks)
+                                 // the bound's bits (-inf for empty blocks). A Vot's box here is the box
+                                 // to step over when it is culled: its own, or its skip box once grown
+                                 // (SkipBoxes.h); its own box is in its record (uVotData).
 uniform uint uVotCount;
 uniform ivec3 uCells;    // cells per axis (grid points - 1)
 uniform ivec3 uBricks;   // bricks per axis
@@ -56,13 +58,17 @@ void main() {
             int inBrick = (((local.z << uBrickShift) | local.y) << uBrickShift) | local.x;
             uint id = texelFetch(uCellVot, (brickIndex << (3 * uBrickShift)) | inBrick).r;
             uvec4 box = texelFetch(uVotBox, int(id));
-            lo = ivec3(box.x & 0xffffu, box.x >> 16, box.y & 0xffffu);
-            hi = ivec3(box.y >> 16, box.z & 0xffffu, box.z >> 16);
-            float value;
-            // The whole box is evaluated, exactly as the raster strategy does for this Vot.
-            if (id < uVotCount && (uCull == 0 || uintBitsToFloat(box.w) > best) &&
-                votRayMaxInBox(id, vec3(lo), vec3(hi), origin, dir, farT, value))
-                best = max(best, value);
+            if (id >= uVotCount || (uCull != 0 && uintBitsToFloat(box.w) <= best)) { // step over
+                lo = ivec3(box.x & 0xffffu, box.x >> 16, box.y & 0xffffu);
+                hi = ivec3(box.y >> 16, box.z & 0xffffu, box.z >> 16);
+            } else {
+                int base = int(id) * VOT_TEXELS;
+                lo = ivec3(texelFetch(uVotData, base).xyz);
+                hi = ivec3(texelFetch(uVotData, base + 1).xyz);
+                float value;
+                // The whole box is evaluated, exactly as the raster strategy does for this Vot.
+                if (votRayMaxInBox(id, vec3(lo), vec3(hi), origin, dir, farT, value)) best = max(best, value);
+            }
         }
         // Leave the block: the first face crossed sets the axis that moves past it; the other axes
         // follow the ray, clamped into the block and never backwards (rounding cannot skip cells).

@@ -7,7 +7,9 @@
 #include "FloatTarget.h"
 #include "GlObjects.h"
 #include "MaxPyramid.h"
+#include "ParallelChunks.h"
 #include "Shaders.h"
+#include "SkipBoxes.h"
 #include "VotBounds.h"
 #include "VotOrder.h"
 #include "VotWalkGrid.h"
@@ -18,9 +20,11 @@
 #include "vots/render/GpuLayout.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <future>
 #include <optional>
 #include <string>
 #include <thread>
@@ -75,6 +79,15 @@ bool projectBox(const float m[16], const GpuVot& v, int width, int height, int r
     return true;
 }
 
+// One RGBA32UI walk texel: box corners in 16 bits each, and the bound's bits.
+void packBox(std::uint32_t* texel, const std::array<int, 3>& lo, const std::array<int, 3>& hi, float bound) {
+    const auto u = [](int v) { return static_cast<std::uint32_t>(v); };
+    texel[0] = u(lo[0]) | u(lo[1]) << 16;
+    texel[1] = u(lo[2]) | u(hi[0]) << 16;
+    texel[2] = u(hi[1]) | u(hi[2]) << 16;
+    std::memcpy(&texel[3], &bound, sizeof(float));
+}
+
 } // namespace
 
 struct VotRenderer::Impl {
@@ -91,6 +104,13 @@ struct VotRenderer::Impl {
     std::array<int, 3> walkCells{0, 0, 0};
     std::array<int, 3> walkBricks{0, 0, 0};
     bool walkable = false;
+    // Skip boxes (SkipBoxes.h) are grown on other threads once a Vot-Space's first frame is drawn, so
+    // they never delay it, and replace the Vots' own boxes in votBox at the next frame: the same
+    // images, fewer walk steps.
+    std::vector<std::uint32_t> skipCells; // the walk grid's cells, x fastest, until the growth is done
+    std::future<std::vector<CellBlock>> skipTask;
+    std::atomic<bool> skipCancel{false};
+    bool skipStarted = false;
     GlVertexArray vertexArray = createVertexArray();
     GlBuffer votBuffer;
     GlBuffer indexBuffer;
@@ -113,6 +133,46 @@ struct VotRenderer::Impl {
 
     Strategy mipStrategy() const {
         return strategy == Strategy::Walk && walkable ? Strategy::Walk : Strategy::Raster;
+    }
+
+    ~Impl() { stopSkipGrowth(); }
+
+    // Before anything the growth reads (vots, skipCells, walkCells) changes.
+    void stopSkipGrowth() {
+        if (skipTask.valid()) {
+            skipCancel = true;
+            skipTask.wait();
+            skipTask = {};
+        }
+        skipCancel = false;
+    }
+
+    void startSkipGrowth() {
+        if (skipStarted || !walkable) return;
+        skipStarted = true;
+        skipTask = std::async(std::launch::async,
+                              [this] { return growSkipBoxes(skipCells, walkCells, vots, skipCancel); });
+    }
+
+    // Puts finished skip boxes into votBox; with `wait`, waits for them first.
+    void applySkipBoxes(bool wait) {
+        if (!skipTask.valid()) return;
+        if (!wait && skipTask.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
+        std::vector<CellBlock> grown;
+        try {
+            grown = skipTask.get();
+        } catch (const std::exception&) {
+            // Out of memory, say: the Vots' own boxes stay, which are exact too, only slower.
+        }
+        skipTask = {};
+        skipCells = {};
+        if (grown.size() != vots.size()) return;
+        std::vector<std::uint32_t> texels(4 * grown.size());
+        for (std::size_t i = 0; i < grown.size(); ++i)
+            packBox(&texels[4 * i], grown[i].lo, grown[i].hi, vots[i].upperBound);
+        glNamedBufferSubData(votBoxBuffer.get(), 0,
+                             static_cast<GLsizeiptr>(texels.size() * sizeof(std::uint32_t)), texels.data());
+        checkGl("VotRenderer skip boxes");
     }
 
     void bindChunk(std::size_t chunk) {
@@ -223,6 +283,7 @@ struct VotRenderer::Impl {
 
     // One pass over the back faces of the grid box; each pixel walks its ray (vot_walk.frag).
     void drawWalk(const CameraMatrices& m, int width, int height) {
+        applySkipBoxes(false);
         const GLuint p = walkProgram.get();
         glUseProgram(p);
         setMatrixUniform(p, "uIndexToClip", m.indexToClip);
@@ -283,7 +344,7 @@ struct VotRenderer::Impl {
     }
 
     // Uploads the Walk grid (walkable true), or drops the last one when there is none.
-    void uploadWalkGrid(const std::optional<VotWalkGrid>& grid) {
+    void uploadWalkGrid(std::optional<VotWalkGrid>&& grid) {
         walkable = false;
         for (GlTexture* t : {&cellVot, &brickMax, &votBox})
             t->reset();
@@ -296,26 +357,19 @@ struct VotRenderer::Impl {
         // One RGBA32UI texel per block the cell grid names: the Vots' boxes, then the empty blocks
         // (bound -inf).
         std::vector<std::uint32_t> boxes(std::max<std::size_t>(blocks, 1) * 4, 0);
-        auto pack = [&](std::size_t i, const std::array<int, 3>& lo, const std::array<int, 3>& hi,
-                        float bound) {
-            const auto u = [](int v) { return static_cast<std::uint32_t>(v); };
-            boxes[4 * i] = u(lo[0]) | u(lo[1]) << 16;
-            boxes[4 * i + 1] = u(lo[2]) | u(hi[0]) << 16;
-            boxes[4 * i + 2] = u(hi[1]) | u(hi[2]) << 16;
-            std::memcpy(&boxes[4 * i + 3], &bound, sizeof(float));
-        };
         for (std::size_t i = 0; i < vots.size(); ++i) {
             const GpuVot& v = vots[i];
-            pack(i, {int(v.lo[0]), int(v.lo[1]), int(v.lo[2])}, {int(v.hi[0]), int(v.hi[1]), int(v.hi[2])},
-                 v.upperBound);
+            packBox(&boxes[4 * i], {int(v.lo[0]), int(v.lo[1]), int(v.lo[2])},
+                    {int(v.hi[0]), int(v.hi[1]), int(v.hi[2])}, v.upperBound);
         }
         for (std::size_t i = 0; i < grid->emptyBlocks.size(); ++i)
-            pack(vots.size() + i, grid->emptyBlocks[i].lo, grid->emptyBlocks[i].hi, -INFINITY);
+            packBox(&boxes[4 * (vots.size() + i)], grid->emptyBlocks[i].lo, grid->emptyBlocks[i].hi,
+                    -INFINITY);
 
         auto bufferTexture = [](GlBuffer& buffer, GlTexture& texture, GLenum format, const void* data,
                                 std::size_t bytes) {
             buffer = createBuffer();
-            glNamedBufferStorage(buffer.get(), static_cast<GLsizeiptr>(bytes), data, 0);
+            glNamedBufferStorage(buffer.get(), static_cast<GLsizeiptr>(bytes), data, GL_DYNAMIC_STORAGE_BIT);
             texture = createTexture(GL_TEXTURE_BUFFER);
             glTextureBuffer(texture.get(), format, buffer.get());
         };
@@ -331,6 +385,7 @@ struct VotRenderer::Impl {
         brickMax = createTexture(GL_TEXTURE_BUFFER);
         glTextureBuffer(brickMax.get(), GL_RG32F, brickMaxBuffer.get());
         bufferTexture(votBoxBuffer, votBox, GL_RGBA32UI, boxes.data(), boxes.size() * sizeof(std::uint32_t));
+        skipCells = std::move(grid->cellVot);
         checkGl("VotRenderer walk grid upload");
         walkCells = grid->cells;
         walkBricks = grid->bricks;
@@ -354,6 +409,7 @@ struct VotRenderer::Impl {
             glFinish();
             stats.gpuMs = msSince(t0);
             checkGl("VotRenderer walk");
+            startSkipGrowth();
             return;
         }
         const GLuint program = mode == RenderMode::Mip ? mipProgram.get() : densityProgram.get();
@@ -385,23 +441,20 @@ VotRenderer::~VotRenderer() = default;
 
 void VotRenderer::upload(const fit::VotSpace& space) {
     Impl& d = *mImpl;
+    d.stopSkipGrowth();
+    d.skipStarted = false;
+    d.skipCells = {};
     std::vector<VotBounds> bounds(space.vots.size());
     std::vector<GpuVot> records(space.vots.size());
     {
         // Bounds and records dominate an upload (a refit waits for it); each Vot is independent, so
         // split evenly.
-        const std::size_t n = space.vots.size();
-        const std::size_t workers = std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, 16);
-        std::vector<std::thread> pool;
-        for (std::size_t w = 0; w < workers; ++w)
-            pool.emplace_back([&, w] {
-                for (std::size_t i = n * w / workers; i < n * (w + 1) / workers; ++i) {
-                    bounds[i] = computeVotBounds(space.vots[i]);
-                    records[i] = makeGpuVot(space.vots[i], bounds[i]);
-                }
-            });
-        for (auto& t : pool)
-            t.join();
+        parallelChunks(space.vots.size(), [&](std::size_t first, std::size_t last) {
+            for (std::size_t i = first; i < last; ++i) {
+                bounds[i] = computeVotBounds(space.vots[i]);
+                records[i] = makeGpuVot(space.vots[i], bounds[i]);
+            }
+        });
     }
     GLint maxBlock = 0, alignment = 1, maxTexels = 0, textureAlignment = 1;
     glGetIntegerv(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
@@ -423,7 +476,7 @@ void VotRenderer::upload(const fit::VotSpace& space) {
     };
     // Space order for the walk; bound order when Raster draws the MIP instead.
     arrange(spatialOrder(space.vots));
-    const std::optional<VotWalkGrid> grid = d.walkGridFor(space.dims);
+    std::optional<VotWalkGrid> grid = d.walkGridFor(space.dims);
     if (!grid) arrange(boundOrder(bounds));
 
     float lo = INFINITY, hi = -INFINITY, maxLogSize = 0.f;
@@ -446,7 +499,7 @@ void VotRenderer::upload(const fit::VotSpace& space) {
                          static_cast<GLsizeiptr>(d.visible.size() * sizeof(std::uint32_t)), nullptr,
                          GL_DYNAMIC_STORAGE_BIT);
     checkGl("VotRenderer upload");
-    d.uploadWalkGrid(grid);
+    d.uploadWalkGrid(std::move(grid));
     d.bounds = sceneBounds(space);
     d.hasData = true;
 }
@@ -474,6 +527,10 @@ VotRenderer::Strategy VotRenderer::strategy() const {
 }
 VotRenderer::Strategy VotRenderer::mipStrategy() const {
     return mImpl->mipStrategy();
+}
+void VotRenderer::finishPendingWork() {
+    mImpl->startSkipGrowth();
+    mImpl->applySkipBoxes(true);
 }
 const FrameStats& VotRenderer::lastFrameStats() const {
     return mImpl->stats;
