@@ -29,6 +29,9 @@
 #include <string>
 #include <thread>
 
+#include <sched.h>
+#include <unistd.h>
+
 namespace vots::render {
 
 namespace {
@@ -150,8 +153,13 @@ struct VotRenderer::Impl {
     void startSkipGrowth() {
         if (skipStarted || !walkable) return;
         skipStarted = true;
-        skipTask = std::async(std::launch::async,
-                              [this] { return growSkipBoxes(skipCells, walkCells, vots, skipCancel); });
+        skipTask = std::async(std::launch::async, [this] {
+            // Idle priority (inherited by the growth's worker threads): the skip boxes only make later
+            // frames faster, so they must not slow a fit or a frame someone is waiting for.
+            const sched_param idle{};
+            sched_setscheduler(static_cast<pid_t>(gettid()), SCHED_IDLE, &idle);
+            return growSkipBoxes(skipCells, walkCells, vots, skipCancel);
+        });
     }
 
     // Puts finished skip boxes into votBox; with `wait`, waits for them first.
