@@ -10,6 +10,7 @@ namespace vots::render {
 
 std::vector<CellBlock> growSkipBoxes(const std::vector<std::uint32_t>& cellVot,
                                      const std::array<int, 3>& cells, const std::vector<GpuVot>& vots,
+                                     const std::vector<CellBlock>& emptyBlocks,
                                      const std::atomic<bool>& cancel) {
     const auto& n = cells;
     const std::size_t nx = static_cast<std::size_t>(n[0]);
@@ -21,14 +22,16 @@ std::vector<CellBlock> growSkipBoxes(const std::vector<std::uint32_t>& cellVot,
         const std::uint32_t id = cellVot[c];
         cellBound[c] = id < vots.size() ? vots[id].upperBound : -INFINITY;
     }
-    std::vector<CellBlock> skipBoxes(vots.size());
+    std::vector<CellBlock> skipBoxes(vots.size() + emptyBlocks.size());
     auto grow = [&](std::size_t first, std::size_t last) {
         for (std::size_t i = first; i < last; ++i) {
             if ((i & 1023) == 0 && cancel.load(std::memory_order_relaxed)) return;
-            const float bound = vots[i].upperBound;
-            CellBlock b;
-            for (int a = 0; a < 3; ++a)
-                b.lo[a] = int(vots[i].lo[a]), b.hi[a] = int(vots[i].hi[a]);
+            const bool isVot = i < vots.size();
+            const float bound = isVot ? vots[i].upperBound : -INFINITY;
+            CellBlock b = isVot ? CellBlock{} : emptyBlocks[i - vots.size()];
+            if (isVot)
+                for (int a = 0; a < 3; ++a)
+                    b.lo[a] = int(vots[i].lo[a]), b.hi[a] = int(vots[i].hi[a]);
             const CellBlock own = b;
             auto layerPasses = [&](int axis, bool up) {
                 CellBlock layer = b;
@@ -70,7 +73,7 @@ std::vector<CellBlock> growSkipBoxes(const std::vector<std::uint32_t>& cellVot,
             skipBoxes[i] = b;
         }
     };
-    parallelChunks(vots.size(), grow);
+    parallelChunks(skipBoxes.size(), grow);
     if (cancel.load()) return {};
     return skipBoxes;
 }

@@ -110,7 +110,8 @@ struct VotRenderer::Impl {
     // Skip boxes (SkipBoxes.h) are grown on other threads once a Vot-Space's first frame is drawn, so
     // they never delay it, and replace the Vots' own boxes in votBox at the next frame: the same
     // images, fewer walk steps.
-    std::vector<std::uint32_t> skipCells; // the walk grid's cells, x fastest, until the growth is done
+    std::vector<std::uint32_t> skipCells;   // the walk grid's cells, x fastest, until the growth is done
+    std::vector<CellBlock> skipEmptyBlocks; // the walk grid's empty blocks, likewise
     std::future<std::vector<CellBlock>> skipTask;
     std::atomic<bool> skipCancel{false};
     bool skipStarted = false;
@@ -158,7 +159,7 @@ struct VotRenderer::Impl {
             // frames faster, so they must not slow a fit or a frame someone is waiting for.
             const sched_param idle{};
             sched_setscheduler(static_cast<pid_t>(gettid()), SCHED_IDLE, &idle);
-            return growSkipBoxes(skipCells, walkCells, vots, skipCancel);
+            return growSkipBoxes(skipCells, walkCells, vots, skipEmptyBlocks, skipCancel);
         });
     }
 
@@ -174,10 +175,11 @@ struct VotRenderer::Impl {
         }
         skipTask = {};
         skipCells = {};
-        if (grown.size() != vots.size()) return;
+        if (grown.size() != vots.size() + skipEmptyBlocks.size()) return;
         std::vector<std::uint32_t> texels(4 * grown.size());
         for (std::size_t i = 0; i < grown.size(); ++i)
-            packBox(&texels[4 * i], grown[i].lo, grown[i].hi, vots[i].upperBound);
+            packBox(&texels[4 * i], grown[i].lo, grown[i].hi,
+                    i < vots.size() ? vots[i].upperBound : -INFINITY);
         glNamedBufferSubData(votBoxBuffer.get(), 0,
                              static_cast<GLsizeiptr>(texels.size() * sizeof(std::uint32_t)), texels.data());
         checkGl("VotRenderer skip boxes");
@@ -394,6 +396,7 @@ struct VotRenderer::Impl {
         glTextureBuffer(brickMax.get(), GL_RG32F, brickMaxBuffer.get());
         bufferTexture(votBoxBuffer, votBox, GL_RGBA32UI, boxes.data(), boxes.size() * sizeof(std::uint32_t));
         skipCells = std::move(grid->cellVot);
+        skipEmptyBlocks = std::move(grid->emptyBlocks);
         checkGl("VotRenderer walk grid upload");
         walkCells = grid->cells;
         walkBricks = grid->bricks;

@@ -12,6 +12,7 @@ struct Scene {
     std::array<int, 3> cells{24, 20, 18};
     std::vector<GpuVot> vots;
     std::vector<std::uint32_t> cellVot; // x fastest; background: vots.size() and up
+    std::vector<CellBlock> emptyBlocks; // the background boxes
 };
 
 // Boxes of 2 or 3 cells tiling the grid, every fifth left out as background, random bounds.
@@ -29,7 +30,11 @@ Scene randomScene(std::uint32_t seed) {
                                  std::min(z + 3, s.cells[2])});
     std::vector<std::uint32_t> id(boxes.size());
     for (std::size_t i = 0; i < boxes.size(); ++i) {
-        if (i % 5 == 4) continue;
+        if (i % 5 == 4) {
+            s.emptyBlocks.push_back(
+                {{boxes[i][0], boxes[i][1], boxes[i][2]}, {boxes[i][3], boxes[i][4], boxes[i][5]}});
+            continue;
+        }
         GpuVot v{};
         for (int a = 0; a < 3; ++a)
             v.lo[a] = float(boxes[i][a]), v.hi[a] = float(boxes[i][3 + a]);
@@ -51,8 +56,8 @@ Scene randomScene(std::uint32_t seed) {
 TEST(SkipBoxes, CoverOnlyWhatTheirVotsBoundAlsoCulls) {
     const Scene s = randomScene(7u);
     const std::atomic<bool> cancel{false};
-    const std::vector<CellBlock> skip = growSkipBoxes(s.cellVot, s.cells, s.vots, cancel);
-    ASSERT_EQ(skip.size(), s.vots.size());
+    const std::vector<CellBlock> skip = growSkipBoxes(s.cellVot, s.cells, s.vots, s.emptyBlocks, cancel);
+    ASSERT_EQ(skip.size(), s.vots.size() + s.emptyBlocks.size());
     std::size_t grownBoxes = 0;
     for (std::size_t i = 0; i < s.vots.size(); ++i) {
         const GpuVot& v = s.vots[i];
@@ -79,12 +84,29 @@ TEST(SkipBoxes, CoverOnlyWhatTheirVotsBoundAlsoCulls) {
                 }
     }
     EXPECT_GT(grownBoxes, s.vots.size() / 4); // growth happens, not only the own boxes
+    // Empty blocks grow over background only: the walk steps over them whatever the pixel's max.
+    std::size_t grownEmpty = 0;
+    for (std::size_t k = 0; k < s.emptyBlocks.size(); ++k) {
+        const CellBlock& own = s.emptyBlocks[k];
+        const CellBlock& b = skip[s.vots.size() + k];
+        for (int a = 0; a < 3; ++a) {
+            ASSERT_LE(b.lo[a], own.lo[a]);
+            ASSERT_GE(b.hi[a], own.hi[a]);
+        }
+        grownEmpty += b.lo != own.lo || b.hi != own.hi ? 1 : 0;
+        for (int z = b.lo[2]; z < b.hi[2]; ++z)
+            for (int y = b.lo[1]; y < b.hi[1]; ++y)
+                for (int x = b.lo[0]; x < b.hi[0]; ++x)
+                    ASSERT_GE(s.cellVot[static_cast<std::size_t>((z * s.cells[1] + y) * s.cells[0] + x)],
+                              s.vots.size());
+    }
+    EXPECT_GT(grownEmpty, 0u);
 }
 
 TEST(SkipBoxes, CancelledGrowthReturnsNothing) {
     const Scene s = randomScene(8u);
     const std::atomic<bool> cancel{true};
-    EXPECT_TRUE(growSkipBoxes(s.cellVot, s.cells, s.vots, cancel).empty());
+    EXPECT_TRUE(growSkipBoxes(s.cellVot, s.cells, s.vots, s.emptyBlocks, cancel).empty());
 }
 
 } // namespace
