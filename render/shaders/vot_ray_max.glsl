@@ -19,11 +19,10 @@ vec4 linearProduct3(float a0, float b0, float a1, float b1, float a2, float b2) 
 
 float cubicAt(vec4 g, float u) { return g.x + u * (g.y + u * (g.z + u * g.w)); }
 
-// Max of Vot `vot`, whose box is [lo, hi], along origin + t dir, t in [0, farT], over the box grown by
-// CLIP_SLACK. Returns false (value untouched) when the ray misses the box.
-bool votRayMaxInBox(uint vot, vec3 lo, vec3 hi, vec3 origin, vec3 dir, float farT, out float value) {
+// Max of Vot `vot`, whose box is [lo, hi] and expansion point p, along origin + t dir, t in [0, farT],
+// over the box grown by CLIP_SLACK. Returns false (value untouched) when the ray misses the box.
+bool votRayMaxAround(uint vot, vec3 lo, vec3 hi, vec3 p, vec3 origin, vec3 dir, float farT, out float value) {
     int base = int(vot) * VOT_TEXELS;
-    vec3 p = texelFetch(uVotData, base + 2).xyz;
     float c[TAYLOR_TERMS];
     for (int k = 0; k < TAYLOR_TERMS / 4; ++k) {
         vec4 q = texelFetch(uVotData, base + 3 + k);
@@ -57,6 +56,12 @@ bool votRayMaxInBox(uint vot, vec3 lo, vec3 hi, vec3 origin, vec3 dir, float far
     }
     value = best;
     return true;
+}
+
+// votRayMaxAround with the expansion point read from the record.
+bool votRayMaxInBox(uint vot, vec3 lo, vec3 hi, vec3 origin, vec3 dir, float farT, out float value) {
+    return votRayMaxAround(vot, lo, hi, texelFetch(uVotData, int(vot) * VOT_TEXELS + 2).xyz, origin, dir, farT,
+                           value);
 }
 
 // votRayMaxInBox with the box read from the record.

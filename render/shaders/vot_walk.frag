@@ -1,6 +1,8 @@
 #version 450 core
 // Walk strategy: each pixel walks its ray front to back through a cell -> Vot grid, stepping over whole
 // bricks and whole Vot boxes that cannot raise its max and evaluating the Vots that can.
+// Built twice (VotRenderer): with CENTRED_EXPANSION defined for Vot-Spaces whose every expansion point
+// is its box centre, as the fast fit makes them, and without.
 #include "vot_common.glsl"
 #include "ray_common.glsl"
 #include "vot_ray_max.glsl"
@@ -67,7 +69,12 @@ void main() {
                 hi = ivec3(texelFetch(uVotData, base + 1).xyz);
                 float value;
                 // The whole box is evaluated, exactly as the raster strategy does for this Vot.
-                if (votRayMaxInBox(id, vec3(lo), vec3(hi), origin, dir, farT, value)) best = max(best, value);
+#ifdef CENTRED_EXPANSION
+                vec3 p = 0.5 * vec3(lo + hi); // saves a fetch per evaluation: ~3 % of a frame
+#else
+                vec3 p = texelFetch(uVotData, int(id) * VOT_TEXELS + 2).xyz;
+#endif
+                if (votRayMaxAround(id, vec3(lo), vec3(hi), p, origin, dir, farT, value)) best = max(best, value);
             }
         }
         // Leave the block: the first face crossed sets the axis that moves past it; the other axes

@@ -82,6 +82,14 @@ bool projectBox(const float m[16], const GpuVot& v, int width, int height, int r
     return true;
 }
 
+// The shader source with `#define name` after its #version line.
+std::string withDefine(const char* source, const char* name) {
+    std::string text(source);
+    const std::size_t lineEnd = text.find('\n');
+    return text.insert(lineEnd == std::string::npos ? text.size() : lineEnd + 1,
+                       std::string("#define ") + name + "\n");
+}
+
 // One RGBA32UI walk texel: box corners in 16 bits each, and the bound's bits.
 void packBox(std::uint32_t* texel, const std::array<int, 3>& lo, const std::array<int, 3>& hi, float bound) {
     const auto u = [](int v) { return static_cast<std::uint32_t>(v); };
@@ -96,7 +104,10 @@ void packBox(std::uint32_t* texel, const std::array<int, 3>& lo, const std::arra
 struct VotRenderer::Impl {
     GlProgram mipProgram = buildProgram(shaders::VOT_BOX_VERT, shaders::VOT_MIP_FRAG, "vot_mip");
     GlProgram densityProgram = buildProgram(shaders::VOT_BOX_VERT, shaders::VOT_DENSITY_FRAG, "vot_density");
-    GlProgram walkProgram = buildProgram(shaders::WALK_BOX_VERT, shaders::VOT_WALK_FRAG, "vot_walk");
+    GlProgram walkCentredProgram =
+        buildProgram(shaders::WALK_BOX_VERT, withDefine(shaders::VOT_WALK_FRAG, "CENTRED_EXPANSION").c_str(),
+                     "vot_walk_centred");
+    GlProgram walkGeneralProgram; // built when a Vot-Space first needs it
     // Walk strategy (vot_walk.frag): buffer textures over their own buffers.
     GlBuffer cellVotBuffer, brickMaxBuffer, votBoxBuffer;
     GlTexture cellVot;  // R32UI per cell, brick by brick: Vot index, or Vot count + empty block index
@@ -107,6 +118,7 @@ struct VotRenderer::Impl {
     std::array<int, 3> walkCells{0, 0, 0};
     std::array<int, 3> walkBricks{0, 0, 0};
     bool walkable = false;
+    bool centredExpansion = false; // every Vot's p is its box centre, exactly
     // Skip boxes (SkipBoxes.h) are grown on other threads once a Vot-Space's first frame is drawn, so
     // they never delay it, and replace the Vots' own boxes in votBox at the next frame: the same
     // images, fewer walk steps.
@@ -294,7 +306,9 @@ struct VotRenderer::Impl {
     // One pass over the back faces of the grid box; each pixel walks its ray (vot_walk.frag).
     void drawWalk(const CameraMatrices& m, int width, int height) {
         applySkipBoxes(false);
-        const GLuint p = walkProgram.get();
+        if (!centredExpansion && !walkGeneralProgram.get())
+            walkGeneralProgram = buildProgram(shaders::WALK_BOX_VERT, shaders::VOT_WALK_FRAG, "vot_walk");
+        const GLuint p = centredExpansion ? walkCentredProgram.get() : walkGeneralProgram.get();
         glUseProgram(p);
         setMatrixUniform(p, "uIndexToClip", m.indexToClip);
         setMatrixUniform(p, "uClipToIndex", m.clipToIndex);
@@ -497,6 +511,11 @@ void VotRenderer::upload(const fit::VotSpace& space) {
         maxLogSize = std::max(maxLogSize, records[i].logSize);
     }
     if (d.vots.empty()) lo = hi = 0.f;
+    d.centredExpansion = std::all_of(records.begin(), records.end(), [](const GpuVot& v) {
+        for (int a = 0; a < 3; ++a)
+            if (v.p[a] != 0.5f * (v.lo[a] + v.hi[a])) return false;
+        return true;
+    });
     d.valueRange = {lo, hi};
     d.densityRange = {0.f, std::max(maxLogSize, 1.f)};
 

@@ -86,7 +86,8 @@ fit::VotSpace cellVotSpace(const fit::Volume& volume) {
 
 // Re-expands the polynomial around a new centre: Taylor coefficients are derivatives / a!, which we
 // get exactly by finite differences-free symbolic shifting (binomial expansion of each monomial).
-fit::VotSpace polynomialVotSpace(const Polynomial& p, const std::array<int, 3>& dims, int side) {
+fit::VotSpace polynomialVotSpace(const Polynomial& p, const std::array<int, 3>& dims, int side,
+                                 float offCentre) {
     fit::VotSpace space;
     space.dims = dims;
     space.degree = 3;
@@ -100,7 +101,7 @@ fit::VotSpace polynomialVotSpace(const Polynomial& p, const std::array<int, 3>& 
                             std::min(z + side, dims[2] - 1)}};
                 double q[3];
                 for (int a = 0; a < 3; ++a) {
-                    vot.p[a] = 0.5f * float(vot.box.lo[a] + vot.box.hi[a]);
+                    vot.p[a] = 0.5f * float(vot.box.lo[a] + vot.box.hi[a]) + offCentre;
                     q[a] = vot.p[a] - p.centre[a]; // new centre relative to the old one
                 }
                 // (q + d)^a = sum_b C(a,b) q^(a-b) d^b per axis

@@ -34,8 +34,10 @@ Polynomial randomPolynomial(int degree, int n, double amplitude, std::uint32_t s
 /// Exact cell Vots (DESIGN §2): one per 2x2x2 cell, reproducing trilinear interpolation.
 fit::VotSpace cellVotSpace(const fit::Volume& volume);
 
-/// The polynomial split into boxes of `side` cells, each Vot expanded around its own box centre.
-fit::VotSpace polynomialVotSpace(const Polynomial& p, const std::array<int, 3>& dims, int side);
+/// The polynomial split into boxes of `side` cells, each Vot expanded around its own box centre moved
+/// by `offCentre` cells along every axis.
+fit::VotSpace polynomialVotSpace(const Polynomial& p, const std::array<int, 3>& dims, int side,
+                                 float offCentre = 0.f);
 
 /// Max of f along a pixel's ray within the index box [0, dims-1], by dense sampling on the CPU (double).
 double cpuRayMax(const render::CameraMatrices& m, const std::array<int, 3>& dims, int width, int height,
