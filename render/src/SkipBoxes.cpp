@@ -8,30 +8,28 @@
 
 namespace vots::render {
 
-std::vector<CellBlock> growSkipBoxes(const std::vector<std::uint32_t>& cellVot,
-                                     const std::array<int, 3>& cells, const std::vector<GpuVot>& vots,
-                                     const std::vector<CellBlock>& emptyBlocks,
-                                     const std::atomic<bool>& cancel) {
-    const auto& n = cells;
+std::vector<CellBlock> growSkipBoxes(const SkipGrowthInput& input, const std::atomic<bool>& cancel) {
+    const auto& n = input.cells;
+    const std::size_t votCount = input.votBoxes.size();
+    // Checked often: at idle priority a growth may get little CPU, and a cancelled one should end soon.
+    auto cancelled = [&] { return cancel.load(std::memory_order_relaxed); };
     const std::size_t nx = static_cast<std::size_t>(n[0]);
     const std::size_t nxy = nx * static_cast<std::size_t>(n[1]);
     // Each cell's bound (-inf for background), so that a layer is scanned row by row without looking up
     // the Vot of every cell.
-    std::vector<float> cellBound(cellVot.size());
+    std::vector<float> cellBound(input.cellVot.size());
     for (std::size_t c = 0; c < cellBound.size(); ++c) {
-        const std::uint32_t id = cellVot[c];
-        cellBound[c] = id < vots.size() ? vots[id].upperBound : -INFINITY;
+        if ((c & 0xffff) == 0 && cancelled()) return {};
+        const std::uint32_t id = input.cellVot[c];
+        cellBound[c] = id < votCount ? input.votBounds[id] : -INFINITY;
     }
-    std::vector<CellBlock> skipBoxes(vots.size() + emptyBlocks.size());
+    std::vector<CellBlock> skipBoxes(votCount + input.emptyBlocks.size());
     auto grow = [&](std::size_t first, std::size_t last) {
         for (std::size_t i = first; i < last; ++i) {
-            if ((i & 1023) == 0 && cancel.load(std::memory_order_relaxed)) return;
-            const bool isVot = i < vots.size();
-            const float bound = isVot ? vots[i].upperBound : -INFINITY;
-            CellBlock b = isVot ? CellBlock{} : emptyBlocks[i - vots.size()];
-            if (isVot)
-                for (int a = 0; a < 3; ++a)
-                    b.lo[a] = int(vots[i].lo[a]), b.hi[a] = int(vots[i].hi[a]);
+            if ((i & 63) == 0 && cancelled()) return;
+            const bool isVot = i < votCount;
+            const float bound = isVot ? input.votBounds[i] : -INFINITY;
+            CellBlock b = isVot ? input.votBoxes[i] : input.emptyBlocks[i - votCount];
             const CellBlock own = b;
             auto layerPasses = [&](int axis, bool up) {
                 CellBlock layer = b;
@@ -74,7 +72,7 @@ std::vector<CellBlock> growSkipBoxes(const std::vector<std::uint32_t>& cellVot,
         }
     };
     parallelChunks(skipBoxes.size(), grow);
-    if (cancel.load()) return {};
+    if (cancelled()) return {};
     return skipBoxes;
 }
 

@@ -17,16 +17,21 @@ namespace vots::render {
 /// at ~0.3 s of work per 170 k Vots on 2 cores (bench/RESULTS.md), so it runs after the first frame.
 inline constexpr int MAX_SKIP_GROWTH = 16;
 
-/// For every Vot (in the order of `vots`), then every empty block, its box grown one cell layer at a
+/// For every Vot, then every empty block, its box grown one cell layer at a
 /// time (+x, +y, +z, -x, -y, -z in turn) by up to MAX_SKIP_GROWTH cells per side while the new layer
 /// holds only background cells and, for a Vot, Vots whose upperBound is at most its own: where the
 /// walk culls the Vot (or meets the empty block), it may step over the whole grown box. Empty blocks
-/// may overlap once grown; each cell still names one block that contains it. `cellVot` is the walk
-/// grid's cell -> index array in x-fastest order (indices from vots.size() up are background).
-/// Returns an empty vector when `cancel` becomes true.
-std::vector<CellBlock> growSkipBoxes(const std::vector<std::uint32_t>& cellVot,
-                                     const std::array<int, 3>& cells, const std::vector<GpuVot>& vots,
-                                     const std::vector<CellBlock>& emptyBlocks,
-                                     const std::atomic<bool>& cancel);
+/// may overlap once grown; each cell still names one block that contains it (cell indices from the
+/// Vot count up are background). Returns an empty vector soon after `cancel` becomes true.
+/// What the growth reads, owned by it, so that a new upload never waits for a cancelled growth.
+struct SkipGrowthInput {
+    std::vector<std::uint32_t> cellVot; // the walk grid's cell -> index array, x fastest
+    std::array<int, 3> cells{0, 0, 0};  // cells per axis
+    std::vector<CellBlock> votBoxes;    // per Vot, in GPU order
+    std::vector<float> votBounds;       // per Vot: upperBound
+    std::vector<CellBlock> emptyBlocks; // the walk grid's empty blocks
+};
+
+std::vector<CellBlock> growSkipBoxes(const SkipGrowthInput& input, const std::atomic<bool>& cancel);
 
 } // namespace vots::render

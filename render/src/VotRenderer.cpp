@@ -25,6 +25,7 @@
 #include <cmath>
 #include <cstring>
 #include <future>
+#include <memory>
 #include <optional>
 #include <string>
 #include <thread>
@@ -120,13 +121,15 @@ struct VotRenderer::Impl {
     bool walkable = false;
     bool centredExpansion = false; // every Vot's p is its box centre, exactly
     // Skip boxes (SkipBoxes.h) are grown on other threads once a Vot-Space's first frame is drawn, so
-    // they never delay it, and replace the Vots' own boxes in votBox at the next frame: the same
-    // images, fewer walk steps.
-    std::vector<std::uint32_t> skipCells;   // the walk grid's cells, x fastest, until the growth is done
-    std::vector<CellBlock> skipEmptyBlocks; // the walk grid's empty blocks, likewise
+    // they never delay it, and replace the boxes in votBox at the next frame: the same images, fewer
+    // walk steps. A growth owns its input, so an upload cancels the last one without waiting for it.
+    struct SkipGrowth {
+        SkipGrowthInput input;
+        std::atomic<bool> cancel{false};
+    };
+    std::shared_ptr<SkipGrowth> skipGrowth; // this Vot-Space's, until its boxes are in votBox
     std::future<std::vector<CellBlock>> skipTask;
-    std::atomic<bool> skipCancel{false};
-    bool skipStarted = false;
+    std::vector<std::future<std::vector<CellBlock>>> cancelledSkipTasks; // ending on their own
     GlVertexArray vertexArray = createVertexArray();
     GlBuffer votBuffer;
     GlBuffer indexBuffer;
@@ -151,27 +154,33 @@ struct VotRenderer::Impl {
         return strategy == Strategy::Walk && walkable ? Strategy::Walk : Strategy::Raster;
     }
 
-    ~Impl() { stopSkipGrowth(); }
+    ~Impl() {
+        if (skipGrowth) skipGrowth->cancel = true;
+        for (auto& task : cancelledSkipTasks)
+            task.wait();
+    }
 
-    // Before anything the growth reads (vots, skipCells, walkCells) changes.
-    void stopSkipGrowth() {
+    // Before a new upload: the running growth is told to stop and left to end by itself.
+    void cancelSkipGrowth() {
         if (skipTask.valid()) {
-            skipCancel = true;
-            skipTask.wait();
+            skipGrowth->cancel = true;
+            cancelledSkipTasks.push_back(std::move(skipTask));
             skipTask = {};
         }
-        skipCancel = false;
+        skipGrowth.reset();
+        std::erase_if(cancelledSkipTasks, [](const std::future<std::vector<CellBlock>>& task) {
+            return task.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
+        });
     }
 
     void startSkipGrowth() {
-        if (skipStarted || !walkable) return;
-        skipStarted = true;
-        skipTask = std::async(std::launch::async, [this] {
+        if (!skipGrowth || skipTask.valid()) return;
+        skipTask = std::async(std::launch::async, [growth = skipGrowth] {
             // Idle priority (inherited by the growth's worker threads): the skip boxes only make later
             // frames faster, so they must not slow a fit or a frame someone is waiting for.
             const sched_param idle{};
             sched_setscheduler(static_cast<pid_t>(gettid()), SCHED_IDLE, &idle);
-            return growSkipBoxes(skipCells, walkCells, vots, skipEmptyBlocks, skipCancel);
+            return growSkipBoxes(growth->input, growth->cancel);
         });
     }
 
@@ -179,6 +188,7 @@ struct VotRenderer::Impl {
     void applySkipBoxes(bool wait) {
         if (!skipTask.valid()) return;
         if (!wait && skipTask.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
+        const std::size_t emptyCount = skipGrowth->input.emptyBlocks.size();
         std::vector<CellBlock> grown;
         try {
             grown = skipTask.get();
@@ -186,8 +196,8 @@ struct VotRenderer::Impl {
             // Out of memory, say: the Vots' own boxes stay, which are exact too, only slower.
         }
         skipTask = {};
-        skipCells = {};
-        if (grown.size() != vots.size() + skipEmptyBlocks.size()) return;
+        skipGrowth.reset();
+        if (grown.size() != vots.size() + emptyCount) return;
         std::vector<std::uint32_t> texels(4 * grown.size());
         for (std::size_t i = 0; i < grown.size(); ++i)
             packBox(&texels[4 * i], grown[i].lo, grown[i].hi,
@@ -409,8 +419,19 @@ struct VotRenderer::Impl {
         brickMax = createTexture(GL_TEXTURE_BUFFER);
         glTextureBuffer(brickMax.get(), GL_RG32F, brickMaxBuffer.get());
         bufferTexture(votBoxBuffer, votBox, GL_RGBA32UI, boxes.data(), boxes.size() * sizeof(std::uint32_t));
-        skipCells = std::move(grid->cellVot);
-        skipEmptyBlocks = std::move(grid->emptyBlocks);
+        skipGrowth = std::make_shared<SkipGrowth>();
+        SkipGrowthInput& in = skipGrowth->input;
+        in.cellVot = std::move(grid->cellVot);
+        in.cells = grid->cells;
+        in.votBoxes.resize(vots.size());
+        in.votBounds.resize(vots.size());
+        for (std::size_t i = 0; i < vots.size(); ++i) {
+            const GpuVot& v = vots[i];
+            in.votBoxes[i] = {{int(v.lo[0]), int(v.lo[1]), int(v.lo[2])},
+                              {int(v.hi[0]), int(v.hi[1]), int(v.hi[2])}};
+            in.votBounds[i] = v.upperBound;
+        }
+        in.emptyBlocks = std::move(grid->emptyBlocks);
         checkGl("VotRenderer walk grid upload");
         walkCells = grid->cells;
         walkBricks = grid->bricks;
@@ -466,9 +487,7 @@ VotRenderer::~VotRenderer() = default;
 
 void VotRenderer::upload(const fit::VotSpace& space) {
     Impl& d = *mImpl;
-    d.stopSkipGrowth();
-    d.skipStarted = false;
-    d.skipCells = {};
+    d.cancelSkipGrowth();
     std::vector<VotBounds> bounds(space.vots.size());
     std::vector<GpuVot> records(space.vots.size());
     {

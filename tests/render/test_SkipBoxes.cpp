@@ -53,10 +53,23 @@ Scene randomScene(std::uint32_t seed) {
     return s;
 }
 
+SkipGrowthInput growthInput(const Scene& s) {
+    SkipGrowthInput in;
+    in.cellVot = s.cellVot;
+    in.cells = s.cells;
+    for (const GpuVot& v : s.vots) {
+        in.votBoxes.push_back(
+            {{int(v.lo[0]), int(v.lo[1]), int(v.lo[2])}, {int(v.hi[0]), int(v.hi[1]), int(v.hi[2])}});
+        in.votBounds.push_back(v.upperBound);
+    }
+    in.emptyBlocks = s.emptyBlocks;
+    return in;
+}
+
 TEST(SkipBoxes, CoverOnlyWhatTheirVotsBoundAlsoCulls) {
     const Scene s = randomScene(7u);
     const std::atomic<bool> cancel{false};
-    const std::vector<CellBlock> skip = growSkipBoxes(s.cellVot, s.cells, s.vots, s.emptyBlocks, cancel);
+    const std::vector<CellBlock> skip = growSkipBoxes(growthInput(s), cancel);
     ASSERT_EQ(skip.size(), s.vots.size() + s.emptyBlocks.size());
     std::size_t grownBoxes = 0;
     for (std::size_t i = 0; i < s.vots.size(); ++i) {
@@ -106,7 +119,7 @@ TEST(SkipBoxes, CoverOnlyWhatTheirVotsBoundAlsoCulls) {
 TEST(SkipBoxes, CancelledGrowthReturnsNothing) {
     const Scene s = randomScene(8u);
     const std::atomic<bool> cancel{true};
-    EXPECT_TRUE(growSkipBoxes(s.cellVot, s.cells, s.vots, s.emptyBlocks, cancel).empty());
+    EXPECT_TRUE(growSkipBoxes(growthInput(s), cancel).empty());
 }
 
 } // namespace

@@ -135,6 +135,31 @@ TEST(WalkStrategy, SkipBoxesChangeNoPixel) {
     EXPECT_EQ(differing, 0u);
 }
 
+TEST(WalkStrategy, AnUploadWhileSkipBoxesGrowGetsOnlyItsOwn) {
+    // The growth started by the first frame of one Vot-Space is cancelled, not awaited, by the next
+    // upload; nothing of it may reach the new space's frames.
+    test::glContext();
+    float eps = 0;
+    const fit::VotSpace& head = headFast(&eps);
+    constexpr int N = 17;
+    const fit::VotSpace poly =
+        test::polynomialVotSpace(test::randomPolynomial(3, N, 100.0, 12u), {N, N, N}, 4);
+    const Camera cam = parseCamera("az=30,el=20,zoom=1.2");
+    VotRenderer reference;
+    reference.upload(poly);
+    reference.finishPendingWork();
+    const FloatImage expected = reference.render(cam, 96, 80);
+    VotRenderer r;
+    for (int round = 0; round < 3; ++round) {
+        r.upload(head);
+        (void)r.render(cam, 96, 80); // starts the head's growth
+        r.upload(poly);              // cancels it
+        EXPECT_EQ(r.render(cam, 96, 80).pixels, expected.pixels) << round;
+        r.finishPendingWork();
+        EXPECT_EQ(r.render(cam, 96, 80).pixels, expected.pixels) << round;
+    }
+}
+
 TEST(WalkStrategy, OffCentreExpansionPointsRenderTheSamePolynomial) {
     // The walk has a variant for Vots expanded around their box centres (the fast fit's) that computes
     // the point instead of reading it; any other point must be read from the record.
