@@ -72,7 +72,7 @@ void main() {
 #ifdef CENTRED_EXPANSION
                 vec3 p = 0.5 * vec3(lo + hi); // saves a fetch per evaluation: ~3 % of a frame
 #else
-                vec3 p = texelFetch(uVotData, int(id) * VOT_TEXELS + 2).xyz;
+                vec3 p = texelFetch(uVotData, base + 2).xyz;
 #endif
                 if (votRayMaxAround(id, vec3(lo), vec3(hi), p, origin, dir, farT, value)) best = max(best, value);
             }

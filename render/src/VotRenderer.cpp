@@ -113,9 +113,8 @@ struct VotRenderer::Impl {
     GlBuffer cellVotBuffer, brickMaxBuffer, votBoxBuffer;
     GlTexture cellVot;  // R32UI per cell, brick by brick: Vot index, or Vot count + empty block index
     GlTexture brickMax; // RG32F per brick, x fastest: its bound, and the bound ahead for this frame
-    std::vector<float> walkBrickMax;  // per brick: max upperBound of the Vots touching it
-    std::vector<float> brickBoundsRg; // per frame: (walkBrickMax, brickMaximaAhead) pairs
-    GlTexture votBox;                 // RGBA32UI per Vot, then per empty block: packed box and bound
+    std::vector<float> walkBrickMax; // per brick: max upperBound of the Vots touching it
+    GlTexture votBox;                // RGBA32UI per Vot, then per empty block: packed box and bound
     std::array<int, 3> walkCells{0, 0, 0};
     std::array<int, 3> walkBricks{0, 0, 0};
     bool walkable = false;
@@ -165,7 +164,6 @@ struct VotRenderer::Impl {
         if (skipTask.valid()) {
             skipGrowth->cancel = true;
             cancelledSkipTasks.push_back(std::move(skipTask));
-            skipTask = {};
         }
         skipGrowth.reset();
         std::erase_if(cancelledSkipTasks, [](const std::future<std::vector<CellBlock>>& task) {
@@ -336,11 +334,13 @@ struct VotRenderer::Impl {
         // The bounds ahead depend on the view: a few thousand bricks, recomputed per frame.
         const std::vector<float> ahead = brickMaximaAhead({walkCells, walkBricks, WALK_BRICK_SHIFT},
                                                           walkBrickMax, rayFamilyOf(m.clipToIndex));
-        for (std::size_t i = 0; i < ahead.size(); ++i)
-            brickBoundsRg[2 * i + 1] = ahead[i];
+        std::vector<float> brickBounds(2 * ahead.size()); // (bound, bound ahead) per brick
+        for (std::size_t i = 0; i < ahead.size(); ++i) {
+            brickBounds[2 * i] = walkBrickMax[i];
+            brickBounds[2 * i + 1] = ahead[i];
+        }
         glNamedBufferSubData(brickMaxBuffer.get(), 0,
-                             static_cast<GLsizeiptr>(brickBoundsRg.size() * sizeof(float)),
-                             brickBoundsRg.data());
+                             static_cast<GLsizeiptr>(brickBounds.size() * sizeof(float)), brickBounds.data());
         glProgramUniform1i(p, glGetUniformLocation(p, "uCellVot"), 0);
         glProgramUniform1i(p, glGetUniformLocation(p, "uBrickMax"), 1);
         glProgramUniform1i(p, glGetUniformLocation(p, "uVotBox"), 2);
@@ -388,14 +388,22 @@ struct VotRenderer::Impl {
         const std::vector<std::uint32_t> cells = brickOrderedCells(*grid);
         const std::size_t blocks = vots.size() + grid->emptyBlocks.size();
 
+        // What the skip-box growth will read; the Vots' own boxes are also the first box table.
+        skipGrowth = std::make_shared<SkipGrowth>();
+        SkipGrowthInput& in = skipGrowth->input;
+        in.cells = grid->cells;
+        in.votBoxes.resize(vots.size());
+        in.votBounds.resize(vots.size());
+        for (std::size_t i = 0; i < vots.size(); ++i) {
+            in.votBoxes[i] = cellBlockOf(vots[i]);
+            in.votBounds[i] = vots[i].upperBound;
+        }
+
         // One RGBA32UI texel per block the cell grid names: the Vots' boxes, then the empty blocks
         // (bound -inf).
         std::vector<std::uint32_t> boxes(std::max<std::size_t>(blocks, 1) * 4, 0);
-        for (std::size_t i = 0; i < vots.size(); ++i) {
-            const GpuVot& v = vots[i];
-            packBox(&boxes[4 * i], {int(v.lo[0]), int(v.lo[1]), int(v.lo[2])},
-                    {int(v.hi[0]), int(v.hi[1]), int(v.hi[2])}, v.upperBound);
-        }
+        for (std::size_t i = 0; i < vots.size(); ++i)
+            packBox(&boxes[4 * i], in.votBoxes[i].lo, in.votBoxes[i].hi, in.votBounds[i]);
         for (std::size_t i = 0; i < grid->emptyBlocks.size(); ++i)
             packBox(&boxes[4 * (vots.size() + i)], grid->emptyBlocks[i].lo, grid->emptyBlocks[i].hi,
                     -INFINITY);
@@ -409,28 +417,10 @@ struct VotRenderer::Impl {
         };
         bufferTexture(cellVotBuffer, cellVot, GL_R32UI, cells.data(), cells.size() * sizeof(std::uint32_t));
         walkBrickMax = grid->brickMax;
-        brickBoundsRg.assign(2 * walkBrickMax.size(), INFINITY);
-        for (std::size_t i = 0; i < walkBrickMax.size(); ++i)
-            brickBoundsRg[2 * i] = walkBrickMax[i];
-        brickMaxBuffer = createBuffer();
-        glNamedBufferStorage(brickMaxBuffer.get(),
-                             static_cast<GLsizeiptr>(brickBoundsRg.size() * sizeof(float)),
-                             brickBoundsRg.data(), GL_DYNAMIC_STORAGE_BIT);
-        brickMax = createTexture(GL_TEXTURE_BUFFER);
-        glTextureBuffer(brickMax.get(), GL_RG32F, brickMaxBuffer.get());
+        // Written by every walk frame before it draws (drawWalk): the bounds ahead depend on the view.
+        bufferTexture(brickMaxBuffer, brickMax, GL_RG32F, nullptr, 2 * walkBrickMax.size() * sizeof(float));
         bufferTexture(votBoxBuffer, votBox, GL_RGBA32UI, boxes.data(), boxes.size() * sizeof(std::uint32_t));
-        skipGrowth = std::make_shared<SkipGrowth>();
-        SkipGrowthInput& in = skipGrowth->input;
         in.cellVot = std::move(grid->cellVot);
-        in.cells = grid->cells;
-        in.votBoxes.resize(vots.size());
-        in.votBounds.resize(vots.size());
-        for (std::size_t i = 0; i < vots.size(); ++i) {
-            const GpuVot& v = vots[i];
-            in.votBoxes[i] = {{int(v.lo[0]), int(v.lo[1]), int(v.lo[2])},
-                              {int(v.hi[0]), int(v.hi[1]), int(v.hi[2])}};
-            in.votBounds[i] = v.upperBound;
-        }
         in.emptyBlocks = std::move(grid->emptyBlocks);
         checkGl("VotRenderer walk grid upload");
         walkCells = grid->cells;

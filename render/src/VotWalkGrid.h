@@ -19,6 +19,11 @@ struct CellBlock {
     std::array<int, 3> hi{0, 0, 0};
 };
 
+/// A Vot record's box as a cell block (the corners of a walkable Vot are whole cells).
+inline CellBlock cellBlockOf(const GpuVot& v) {
+    return {{int(v.lo[0]), int(v.lo[1]), int(v.lo[2])}, {int(v.hi[0]), int(v.hi[1]), int(v.hi[2])}};
+}
+
 /// What vot_walk.frag reads besides the Vot records. Cells and bricks are stored x fastest.
 struct VotWalkGrid {
     std::array<int, 3> cells{0, 0, 0};  // cells per axis: grid points - 1

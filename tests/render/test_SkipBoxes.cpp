@@ -58,8 +58,7 @@ SkipGrowthInput growthInput(const Scene& s) {
     in.cellVot = s.cellVot;
     in.cells = s.cells;
     for (const GpuVot& v : s.vots) {
-        in.votBoxes.push_back(
-            {{int(v.lo[0]), int(v.lo[1]), int(v.lo[2])}, {int(v.hi[0]), int(v.hi[1]), int(v.hi[2])}});
+        in.votBoxes.push_back(cellBlockOf(v));
         in.votBounds.push_back(v.upperBound);
     }
     in.emptyBlocks = s.emptyBlocks;
