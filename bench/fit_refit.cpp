@@ -26,8 +26,9 @@ int main(int argc, char** argv) {
     if (argc < 3) {
         std::fprintf(
             stderr,
-            "usage: fit_refit [--cells] VOLUME BASE_PERCENT [PERCENT...]\n"
-            "  fits at BASE_PERCENT of the value range, then refits at each PERCENT with the cache\n");
+            "usage: fit_refit [--cells] VOLUME BASE_PERCENT[,BASE_PERCENT...] [PERCENT...]\n"
+            "  fits at each BASE_PERCENT of the value range into one cache (as a server that has fitted\n"
+            "  them), then refits at each PERCENT with a copy of that history\n");
         return 2;
     }
     try {
@@ -44,7 +45,8 @@ int main(int argc, char** argv) {
             "| volume | from eps | to eps | refit (s) | fresh fit (s, median of 3) | Vots | cache hits |\n");
         std::printf("|---|---|---|---|---|---|---|\n");
         for (int i = 3; i < argc; ++i) {
-            const double base = std::atof(argv[2]), target = std::atof(argv[i]);
+            const std::string bases = argv[2];
+            const double target = std::atof(argv[i]);
             std::vector<double> fresh;
             FitResult freshResult;
             for (int run = 0; run < 3; ++run) {
@@ -52,10 +54,14 @@ int main(int argc, char** argv) {
                 fresh.push_back(freshResult.stats.seconds);
             }
             FitCache cache;
-            fitVotSpace(volume, optionsAt(base), &cache);
+            for (std::size_t at = 0; at < bases.size();) {
+                const std::size_t comma = std::min(bases.find(',', at), bases.size());
+                fitVotSpace(volume, optionsAt(std::atof(bases.substr(at, comma - at).c_str())), &cache);
+                at = comma + 1;
+            }
             const FitResult refit = fitVotSpace(volume, optionsAt(target), &cache);
-            std::printf("| %s | %g %% | %g %% | %.3f | %.3f | %zu | %zu |\n", volume.name.c_str(), base,
-                        target, refit.stats.seconds, median(fresh), refit.space.vots.size(),
+            std::printf("| %s | %s %% | %g %% | %.3f | %.3f | %zu | %zu |\n", volume.name.c_str(),
+                        bases.c_str(), target, refit.stats.seconds, median(fresh), refit.space.vots.size(),
                         refit.stats.cacheHits);
         }
     } catch (const std::exception& e) {

@@ -161,7 +161,7 @@ void FitJobs::run(const Pending& pending) {
         mCache.storeInMemory(key, space);
         job.finish(space, result.stats.seconds);
         mStats.addFit(recordFor(job.snapshot(), "fit"));
-        mCache.storeOnDisk(key, *space); // after the announcement: a waiting viewer needs only memory
+        mCache.storeOnDiskLater(key, space); // after the announcement: a waiting viewer needs only memory
     } catch (const fit::FitCancelled&) {
         job.fail("fit cancelled: the server is stopping");
     } catch (const std::bad_alloc&) {

@@ -1,6 +1,8 @@
 // VotSpaceCache: LRU in memory by bytes, plus atomic .vots files named by the key's canonical text.
 #include "vots/server/VotSpaceCache.h"
 
+#include "LowPriorityQueue.h"
+
 #include "vots/fit/VotSpaceFile.h"
 
 #include <nlohmann/json.hpp>
@@ -15,6 +17,8 @@
 namespace vots::server {
 namespace fs = std::filesystem;
 namespace {
+
+constexpr std::size_t MAX_PENDING_WRITES = 8; // a Vot-Space waiting to be written stays in memory
 
 std::size_t bytesOf(const fit::VotSpace& space) {
     return sizeof(fit::VotSpace) + space.vots.size() * sizeof(fit::Vot) + space.metaJson.size();
@@ -57,7 +61,8 @@ void removeStaleTemporaries(const fs::path& dir) {
 } // namespace
 
 VotSpaceCache::VotSpaceCache(fs::path cacheDir, std::size_t memoryBudgetBytes)
-    : mDir(std::move(cacheDir)), mBudget(memoryBudgetBytes) {
+    : mDir(std::move(cacheDir)), mBudget(memoryBudgetBytes),
+      mWriter(std::make_unique<LowPriorityQueue>(MAX_PENDING_WRITES)) {
     if (mDir.empty()) return;
     std::error_code ec;
     fs::create_directories(mDir, ec);
@@ -70,6 +75,8 @@ VotSpaceCache::VotSpaceCache(fs::path cacheDir, std::size_t memoryBudgetBytes)
         removeStaleTemporaries(mDir);
     }
 }
+
+VotSpaceCache::~VotSpaceCache() = default;
 
 std::string VotSpaceCache::metaFor(const FitKey& key, double fitSeconds) {
     return nlohmann::json{{"source", "vots serve"}, {"key", key.text()}, {"fitSeconds", fitSeconds}}.dump();
@@ -166,6 +173,18 @@ void VotSpaceCache::storeOnDisk(const FitKey& key, const fit::VotSpace& space) {
         std::lock_guard lock(mMutex);
         if (mDiskEnabled) disableDisk(e.what());
     }
+}
+
+void VotSpaceCache::storeOnDiskLater(const FitKey& key, std::shared_ptr<const fit::VotSpace> space) {
+    if (!diskEnabled()) return;
+    if (!mWriter->post([this, key, space = std::move(space)] { storeOnDisk(key, *space); }))
+        std::cerr << "vots serve: warning: " << key.text()
+                  << " is not written to the cache folder: the writer is " << MAX_PENDING_WRITES
+                  << " files behind\n";
+}
+
+void VotSpaceCache::waitForDiskWrites() {
+    mWriter->drain();
 }
 
 std::vector<VotSpaceCache::MemoryEntry> VotSpaceCache::memoryEntries() const {

@@ -133,7 +133,12 @@ TEST_F(ServerApi, StatsReportFramesFitsAndCaches) {
     const auto png = c->Get("/render?dataset=HeadMRVolume_48x62x42_uint8&size=64x64&eps=4%25");
     ASSERT_TRUE(png);
     ASSERT_EQ(png->status, 200) << png->body;
-    const auto stats = bodyJson(c->Get("/api/stats"));
+    auto stats = bodyJson(c->Get("/api/stats"));
+    // The cache file is written after the fit is announced, at low priority: give it a while.
+    for (int i = 0; i < 200 && stats["cache"]["disk"].empty(); ++i) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        stats = bodyJson(c->Get("/api/stats"));
+    }
     EXPECT_GE(stats["frames"]["count"].get<int>(), 1);
     EXPECT_GT(stats["frames"]["lastMs"].get<double>(), 0.0);
     EXPECT_GT(stats["frames"]["medianMs"].get<double>(), 0.0);

@@ -58,6 +58,21 @@ TEST(VotSpaceCache, EvictsLeastRecentlyUsedOverBudget) {
     EXPECT_TRUE(cache.findInMemory(k3));
 }
 
+TEST(VotSpaceCache, LaterWritesReachTheDiskByWaitOrDestruction) {
+    test::TempDir dir;
+    const FitKey k1{"a", 1.f, 3, 0.f, std::nullopt}, k2{"a", 2.f, 3, 0.f, std::nullopt};
+    {
+        VotSpaceCache cache(dir.path(), 1 << 20);
+        cache.storeOnDiskLater(k1, spaceWith(5, k1));
+        cache.waitForDiskWrites();
+        EXPECT_EQ(cache.diskEntries().size(), 1u);
+        cache.storeOnDiskLater(k2, spaceWith(6, k2)); // left to the destructor
+    }
+    VotSpaceCache cache(dir.path(), 1 << 20);
+    ASSERT_TRUE(cache.find(k2));
+    EXPECT_EQ(cache.find(k2)->vots.size(), 6u);
+}
+
 TEST(VotSpaceCache, DiskRoundTripAndForeignFilesIgnored) {
     test::TempDir dir;
     const FitKey key{"a", 1.f, 3, 0.f, std::nullopt};

@@ -15,12 +15,17 @@
 
 namespace vots::server {
 
+class LowPriorityQueue;
+
 /// Thread-safe. A disk folder that cannot be created or written logs one warning and is then ignored.
 /// On construction, temporaries of .vots writers that no longer run (killed mid-write) are removed.
 class VotSpaceCache {
 public:
     /// cacheDir empty: memory only.
     VotSpaceCache(std::filesystem::path cacheDir, std::size_t memoryBudgetBytes);
+    ~VotSpaceCache(); // finishes the queued disk writes
+    VotSpaceCache(const VotSpaceCache&) = delete;
+    VotSpaceCache& operator=(const VotSpaceCache&) = delete;
 
     /// Memory first, then disk (a disk hit is validated, must carry the same key, and enters memory).
     std::shared_ptr<const fit::VotSpace> find(const FitKey& key);
@@ -31,6 +36,12 @@ public:
     /// Vot-Space, fsync included, takes a noticeable part of a refit).
     void storeInMemory(const FitKey& key, std::shared_ptr<const fit::VotSpace> space);
     void storeOnDisk(const FitKey& key, const fit::VotSpace& space);
+    /// storeOnDisk on a low-priority writer thread: the ~130 ms of one core that encoding and syncing
+    /// a CT Vot-Space takes must not slow the frame a viewer waits for. Skipped (with a warning) when
+    /// the writer is many files behind.
+    void storeOnDiskLater(const FitKey& key, std::shared_ptr<const fit::VotSpace> space);
+    /// Waits for the writes queued so far.
+    void waitForDiskWrites();
 
     struct MemoryEntry {
         std::string key;
@@ -67,6 +78,7 @@ private:
     std::list<Slot> mLru; // front: most recently used
     std::size_t mBytes = 0;
     bool mDiskEnabled = false;
+    std::unique_ptr<LowPriorityQueue> mWriter; // last: destroyed first, while the rest still exists
 };
 
 } // namespace vots::server
