@@ -26,6 +26,7 @@ struct ServeArgs {
     std::string web;
     std::string cacheDir = "data/cache";
     int frameCacheMb = 64;
+    bool noWarmUp = false;
 };
 
 bool isLoopback(const std::string& host) {
@@ -47,6 +48,7 @@ void runServe(const ServeArgs& a) {
     options.webDir = a.web.empty() ? server::defaultWebDir() : fs::path(a.web);
     options.cacheDir = a.cacheDir;
     options.frameCacheBytes = static_cast<std::size_t>(a.frameCacheMb) << 20;
+    options.warmUpFits = !a.noWarmUp;
     if (!isLoopback(a.host))
         std::cerr << "vots serve: warning: listening on " << a.host
                   << " exposes the server to the network; it has no authentication\n";
@@ -104,6 +106,9 @@ void addServeCommand(CLI::App& app) {
                     "Memory for rendered images answered again to identical /render requests (0: none)")
         ->check(CLI::Range(0, 65536))
         ->capture_default_str();
+    cmd->add_flag(
+        "--no-warm-up", args->noWarmUp,
+        "Do not fit at half the last eps in idle time (it makes later refits to a smaller eps faster)");
     cmd->callback([args] { runServe(*args); });
 }
 

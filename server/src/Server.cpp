@@ -22,6 +22,7 @@ FitJobLimits limitsFrom(const ServerOptions& o) {
     FitJobLimits limits;
     limits.maxRunning = o.maxRunningFits;
     limits.maxQueued = o.maxQueuedFits;
+    limits.warmUp = o.warmUpFits;
     return limits;
 }
 

@@ -5,6 +5,30 @@
 
 namespace vots::server {
 
+void ServerStats::beginFrame() {
+    std::lock_guard lock(mMutex);
+    ++mFramesInFlight;
+}
+
+bool ServerStats::renderedWithin(std::chrono::milliseconds quiet) const {
+    std::lock_guard lock(mMutex);
+    return mFramesInFlight > 0 || std::chrono::steady_clock::now() - mLastFrameEnd < quiet;
+}
+
+void ServerStats::endFrame() {
+    std::lock_guard lock(mMutex);
+    mFramesInFlight = std::max(0, mFramesInFlight - 1);
+    mLastFrameEnd = std::chrono::steady_clock::now();
+}
+
+FrameMark::FrameMark(ServerStats& stats) : mStats(stats) {
+    mStats.beginFrame();
+}
+
+FrameMark::~FrameMark() {
+    mStats.endFrame();
+}
+
 void ServerStats::addFrame(double ms) {
     std::lock_guard lock(mMutex);
     ++mFrames;

@@ -30,6 +30,7 @@ void installStatsRoute(Server::Impl& s) {
         for (const auto& d : s.registry.loaded())
             loaded.push_back(d->name);
 
+        const WarmUpSummary warm = s.fitJobs.warmUps();
         const RenderQueue* queue = s.renderQueue.get();
         nlohmann::json renderer = {{"available", queue && queue->hasContext()},
                                    {"name", queue ? queue->rendererName() : ""},
@@ -51,6 +52,15 @@ void installStatsRoute(Server::Impl& s) {
                   {"renderer", renderer},
                   {"fits", fits},
                   {"fitJobs", {{"active", s.fitJobs.activeCount()}}},
+                  {"warmUps",
+                   {{"started", warm.started},
+                    {"finished", warm.finished},
+                    {"cancelled", warm.cancelled},
+                    {"failed", warm.failed},
+                    {"running", warm.running},
+                    {"lastKey", warm.lastKey},
+                    {"lastEps", warm.lastEps},
+                    {"lastSeconds", warm.lastSeconds}}},
                   {"cache",
                    {{"memory", memory},
                     {"memoryBytes", memoryBytes},

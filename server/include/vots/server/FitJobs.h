@@ -13,6 +13,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <set>
 #include <string>
 #include <thread>
 #include <vector>
@@ -75,9 +76,25 @@ struct FitJobLimits {
     int maxRunning = 2;    // fits at once
     int maxQueued = 8;     // waiting fits beyond those; more is refused with 429
     int keepFinished = 32; // finished jobs remembered for /api/jobs/{id}
+    bool warmUp = true;    // fit eps / 2 into the box cache while idle (see FitJobs)
+};
+
+/// Background fits at half a finished fit's eps (warm-ups), for /api/stats.
+struct WarmUpSummary {
+    std::uint64_t started = 0, finished = 0, cancelled = 0, failed = 0;
+    bool running = false;
+    std::string lastKey; // the latest warm-up's FitKey text
+    float lastEps = 0.f;
+    double lastSeconds = 0.0;
 };
 
 /// Owns the worker threads. Thread-safe.
+///
+/// Warm-ups: a move of the eps slider to a smaller eps must fit boxes no earlier fit tried, which makes
+/// it the slowest move. So when the last job has finished and nothing waits, one thread at nice 19
+/// fits the dataset at half that eps (not below WARM_UP_FLOOR of its range) into the shared box cache;
+/// a later refit anywhere between the two answers most boxes from the cache. Any new job cancels it.
+/// Its Vot-Space is dropped: only the cache is wanted.
 class FitJobs {
 public:
     FitJobs(VotSpaceCache& cache, ServerStats& stats, FitJobLimits limits = {});
@@ -92,6 +109,9 @@ public:
     std::shared_ptr<FitJob> find(std::uint64_t id) const;
     /// Queued plus running.
     int activeCount() const;
+    WarmUpSummary warmUps() const;
+    static constexpr float WARM_UP_FLOOR = 0.01f; // of the value range: a warm-up below it costs more
+                                                  // (time, cache memory) than the rare move it helps
     /// Refuses new jobs (503), fails queued ones and cancels running fits; idempotent.
     void shutdown();
 
@@ -104,6 +124,8 @@ private:
     void run(const Pending& pending);
     std::shared_ptr<fit::FitCache> fitCacheFor(const std::string& dataset, int degree);
     void rememberLocked(const std::shared_ptr<FitJob>& job);
+    void startWarmUpLocked(const Pending& finished);
+    void warmUp(std::shared_ptr<const Dataset> dataset, const FitKey& key);
 
     VotSpaceCache& mCache;
     ServerStats& mStats;
@@ -121,6 +143,11 @@ private:
     std::deque<std::uint64_t> mFinishedOrder;
     std::map<std::string, std::shared_ptr<fit::FitCache>> mFitCaches; // "dataset/degree"
     std::vector<std::thread> mWorkers;
+
+    std::atomic<bool> mWarmCancel{false};
+    WarmUpSummary mWarm;           // under mMutex
+    std::set<std::string> mWarmed; // warm-up keys already run (or running)
+    std::thread mWarmThread;
 };
 
 } // namespace vots::server

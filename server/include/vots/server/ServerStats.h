@@ -1,6 +1,7 @@
 // Counters for /api/stats: recent frame times (last, median) and recent fits; thread-safe.
 #pragma once
 
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <deque>
@@ -27,11 +28,29 @@ struct FrameSummary {
     std::uint64_t superseded = 0;
 };
 
+class ServerStats;
+
+/// beginFrame() now, endFrame() when the scope ends, also by an exception.
+class FrameMark {
+public:
+    explicit FrameMark(ServerStats& stats);
+    ~FrameMark();
+    FrameMark(const FrameMark&) = delete;
+    FrameMark& operator=(const FrameMark&) = delete;
+
+private:
+    ServerStats& mStats;
+};
+
 class ServerStats {
 public:
     static constexpr std::size_t WINDOW = 256;
 
+    void beginFrame(); // the render thread starts drawing (FrameMark below pairs these)
+    void endFrame();   // and stops, drawn or not
     void addFrame(double ms);
+    /// Whether a frame is being drawn or ended less than `quiet` ago: background work gives way.
+    bool renderedWithin(std::chrono::milliseconds quiet) const;
     void addSuperseded();
     void addFit(FitRecord record);
     FrameSummary frames() const;
@@ -42,6 +61,8 @@ private:
     std::deque<double> mFrameMs;
     std::uint64_t mFrames = 0;
     std::uint64_t mSuperseded = 0;
+    int mFramesInFlight = 0;
+    std::chrono::steady_clock::time_point mLastFrameEnd{};
     std::deque<FitRecord> mFits;
 };
 

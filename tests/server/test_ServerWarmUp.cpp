@@ -1,0 +1,107 @@
+// Warm-up fits: an idle server fits half the last eps into the box cache at idle priority, a new job
+// cancels a running warm-up, and --no-warm-up means none.
+#include "LoopbackServer.h"
+#include "ServerFixture.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstdint>
+#include <random>
+#include <string>
+#include <thread>
+
+namespace vots::test {
+namespace {
+
+using namespace std::chrono_literals;
+
+nlohmann::json postFit(httplib::Client& c, const std::string& dataset, const std::string& eps) {
+    const auto res =
+        c.Post("/api/fit", R"({"dataset":")" + dataset + R"(","eps":)" + eps + "}", "application/json");
+    EXPECT_TRUE(res && (res->status == 200 || res->status == 202)) << (res ? res->body : "no response");
+    return bodyJson(res);
+}
+
+nlohmann::json waitForJob(httplib::Client& c, const nlohmann::json& posted) {
+    const std::string path = "/api/jobs/" + std::to_string(posted["job"].get<std::uint64_t>());
+    nlohmann::json job;
+    for (int i = 0; i < 1200; ++i) {
+        job = bodyJson(c.Get(path.c_str()));
+        if (job["state"] == "done" || job["state"] == "failed") break;
+        std::this_thread::sleep_for(50ms);
+    }
+    return job;
+}
+
+/// Polls /api/stats until `until(warmUps)` holds or about a minute has passed; returns the last warmUps.
+template <class Until> nlohmann::json waitForWarmUps(httplib::Client& c, Until until) {
+    nlohmann::json warm;
+    for (int i = 0; i < 6000; ++i) {
+        warm = bodyJson(c.Get("/api/stats"))["warmUps"];
+        if (until(warm)) break;
+        std::this_thread::sleep_for(10ms);
+    }
+    return warm;
+}
+
+TEST(ServerWarmUp, AnIdleServerFitsHalfTheLastEps) {
+    ServerWorld world;
+    auto options = world.options();
+    options.withRenderer = false;
+    LoopbackServer server(options);
+    auto c = server.client();
+    const auto job = waitForJob(*c, postFit(*c, HEAD_MR, "\"8%\""));
+    ASSERT_EQ(job["state"], "done") << job.dump();
+    const auto warm = waitForWarmUps(*c, [](const nlohmann::json& w) { return w["finished"] == 1; });
+    EXPECT_EQ(warm["started"], 1) << warm.dump();
+    EXPECT_EQ(warm["finished"], 1) << warm.dump();
+    EXPECT_FLOAT_EQ(warm["lastEps"].get<float>(), job["eps"].get<float>() / 2) << warm.dump();
+    // 4 % -> 2 %, 2 % -> 1 %, and 1 % -> none: half of it is below 1 % of the range.
+    for (const char* eps : {"\"4%\"", "\"2%\"", "\"1%\""}) {
+        ASSERT_EQ(waitForJob(*c, postFit(*c, HEAD_MR, eps))["state"], "done");
+        waitForWarmUps(*c, [](const nlohmann::json& w) { return !w["running"].get<bool>(); });
+    }
+    std::this_thread::sleep_for(200ms);
+    const auto last = bodyJson(c->Get("/api/stats"))["warmUps"];
+    EXPECT_EQ(last["started"], 3) << last.dump();
+    EXPECT_EQ(last["finished"], 3) << last.dump();
+    EXPECT_FLOAT_EQ(last["lastEps"].get<float>(), warm["lastEps"].get<float>() / 4) << last.dump();
+}
+
+TEST(ServerWarmUp, ANewJobCancelsARunningWarmUp) {
+    ServerWorld world;
+    // Uniform noise: at eps = a quarter of the range the fit needs many small boxes, so the warm-up
+    // (at half the first fit's eps) runs long enough to be caught.
+    std::mt19937 random(7);
+    std::string noise = "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 64 64 64\nencoding: raw\n\n";
+    for (int i = 0; i < 64 * 64 * 64; ++i)
+        noise.push_back(static_cast<char>(random() & 0xff));
+    world.dir().write("data/noise.nrrd", noise);
+    auto options = world.options();
+    options.withRenderer = false;
+    LoopbackServer server(options);
+    auto c = server.client();
+    ASSERT_EQ(waitForJob(*c, postFit(*c, "noise", "128"))["state"], "done");
+    const auto running = waitForWarmUps(*c, [](const nlohmann::json& w) { return w["started"] == 1; });
+    ASSERT_EQ(running["started"], 1) << running.dump();
+    const auto next = waitForJob(*c, postFit(*c, "noise", "250"));
+    EXPECT_EQ(next["state"], "done") << next.dump();
+    const auto warm = waitForWarmUps(*c, [](const nlohmann::json& w) { return !w["running"].get<bool>(); });
+    EXPECT_EQ(warm["cancelled"], 1) << warm.dump(); // the second job's own warm-up may have finished
+}
+
+TEST(ServerWarmUp, NoneWhenTurnedOff) {
+    ServerWorld world;
+    auto options = world.options();
+    options.withRenderer = false;
+    options.warmUpFits = false;
+    LoopbackServer server(options);
+    auto c = server.client();
+    ASSERT_EQ(waitForJob(*c, postFit(*c, HEAD_MR, "\"8%\""))["state"], "done");
+    std::this_thread::sleep_for(300ms);
+    EXPECT_EQ(bodyJson(c->Get("/api/stats"))["warmUps"]["started"], 0);
+}
+
+} // namespace
+} // namespace vots::test
