@@ -1,13 +1,12 @@
 // FitJobs: a bounded queue of fits served by a fixed set of worker threads; results go to the cache.
 #include "vots/server/FitJobs.h"
 
+#include "LowPriorityQueue.h"
+
 #include "vots/fit/Error.h"
 #include "vots/server/HttpError.h"
 #include "vots/server/ServerStats.h"
 #include "vots/server/VotSpaceCache.h"
-
-#include <sys/resource.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -174,7 +173,7 @@ void FitJobs::startWarmUpLocked(const Pending& finished) {
 void FitJobs::warmUp(std::shared_ptr<const Dataset> dataset, const FitKey& key) {
     // Lowest priority, inherited by the fit's worker threads: it must not slow a frame or a fit. Nice 19
     // rather than SCHED_IDLE, which a busy machine could starve for minutes (~1.5 % vs ~0.3 % of a core).
-    setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), 19);
+    lowerThisThreadToNice19();
     const auto t0 = std::chrono::steady_clock::now();
     enum class End { Finished, Cancelled, Failed } end = End::Finished;
     try {

@@ -6,6 +6,10 @@
 
 namespace vots::server {
 
+void lowerThisThreadToNice19() {
+    setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), 19);
+}
+
 LowPriorityQueue::LowPriorityQueue(std::size_t maxPending)
     : mMaxPending(maxPending), mThread([this] { loop(); }) {}
 
@@ -34,8 +38,7 @@ void LowPriorityQueue::drain() {
 }
 
 void LowPriorityQueue::loop() {
-    // Linux applies a nice value to the calling thread alone. Failure only means normal priority.
-    setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), 19);
+    lowerThisThreadToNice19();
     std::unique_lock lock(mMutex);
     for (;;) {
         mWake.wait(lock, [this] { return mStopping || !mTasks.empty(); });

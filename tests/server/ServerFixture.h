@@ -8,9 +8,12 @@
 #include <httplib.h>
 #include <nlohmann/json.hpp>
 
+#include <chrono>
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <thread>
 
 namespace vots::test {
 
@@ -60,6 +63,19 @@ inline nlohmann::json bodyJson(const httplib::Result& res) {
     auto json = nlohmann::json::parse(res->body, nullptr, false);
     if (json.is_discarded()) ADD_FAILURE() << "not JSON: " << res->body.substr(0, 200);
     return json;
+}
+
+/// Polls /api/jobs/{id} of a POST /api/fit answer until the job is done or failed (about a minute at
+/// most); returns the last job JSON.
+inline nlohmann::json waitForJob(httplib::Client& c, const nlohmann::json& posted) {
+    const std::string path = "/api/jobs/" + std::to_string(posted["job"].get<std::uint64_t>());
+    nlohmann::json job;
+    for (int i = 0; i < 1200; ++i) {
+        job = bodyJson(c.Get(path.c_str()));
+        if (job["state"] == "done" || job["state"] == "failed") break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    return job;
 }
 
 /// One shared server per test suite, so the EGL context and fits are paid once.

@@ -117,13 +117,7 @@ TEST_F(ServerApi, FocusFitCompletes) {
         "application/json");
     ASSERT_TRUE(post);
     ASSERT_EQ(post->status, 202) << post->body;
-    const std::string path = "/api/jobs/" + std::to_string(bodyJson(post)["job"].get<std::uint64_t>());
-    nlohmann::json job;
-    for (int i = 0; i < 600; ++i) {
-        job = bodyJson(c->Get(path.c_str()));
-        if (job["state"] == "done" || job["state"] == "failed") break;
-        std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    }
+    const nlohmann::json job = waitForJob(*c, bodyJson(post));
     EXPECT_EQ(job["state"], "done") << job.dump();
     EXPECT_NE(job["key"].get<std::string>().find("_f"), std::string::npos);
 }

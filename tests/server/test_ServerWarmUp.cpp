@@ -23,17 +23,6 @@ nlohmann::json postFit(httplib::Client& c, const std::string& dataset, const std
     return bodyJson(res);
 }
 
-nlohmann::json waitForJob(httplib::Client& c, const nlohmann::json& posted) {
-    const std::string path = "/api/jobs/" + std::to_string(posted["job"].get<std::uint64_t>());
-    nlohmann::json job;
-    for (int i = 0; i < 1200; ++i) {
-        job = bodyJson(c.Get(path.c_str()));
-        if (job["state"] == "done" || job["state"] == "failed") break;
-        std::this_thread::sleep_for(50ms);
-    }
-    return job;
-}
-
 /// Polls /api/stats until `until(warmUps)` holds or about a minute has passed; returns the last warmUps.
 template <class Until> nlohmann::json waitForWarmUps(httplib::Client& c, Until until) {
     nlohmann::json warm;
