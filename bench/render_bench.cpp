@@ -82,6 +82,8 @@ int main(int argc, char** argv) {
     double epsAbs = 0.0;
     int degree = 3, size = 512, frames = 11, warmup = 2;
     bool noCull = false;
+    bool noReference = false;
+    std::vector<std::string> onlyViews;
     app.add_option("volume", volumePath, "volume file (reference renderer, and fitting)")->required();
     app.add_option("--vots", votsPath, ".vots file to render instead of fitting");
     app.add_option("--eps-percent", epsPercents, "fit at these percentages of the value range (comma list)")
@@ -94,6 +96,10 @@ int main(int argc, char** argv) {
     app.add_option("--strategy", strategyName, "Vot MIP strategies to time: both, walk or raster")
         ->check(CLI::IsMember({"both", "walk", "raster"}));
     app.add_flag("--no-cull", noCull, "no bound culling (raster draws every Vot, walk evaluates every Vot)");
+    app.add_option("--view", onlyViews, "time only these views (anterior, oblique, persp; comma list)")
+        ->delimiter(',');
+    app.add_flag("--no-reference", noReference,
+                 "do not time the reference ray caster (for profiling the Vot MIP alone)");
     app.add_option("--png-dir", pngDir, "write reference / raster / walk PNGs of each view here");
     CLI11_PARSE(app, argc, argv);
     const bool timeWalk = strategyName != "raster", timeRaster = strategyName != "walk";
@@ -159,11 +165,16 @@ int main(int argc, char** argv) {
                 {"persp", "az=-40,el=15,zoom=1.5,proj=persp,fov=40"}};
             for (const auto& [name, text] : views) {
                 const vots::render::Camera camera = vots::render::parseCamera(text);
-                std::vector<std::function<void()>> fns{[&] { grid.render(camera, size, size); }};
+                if (!onlyViews.empty() &&
+                    std::find(onlyViews.begin(), onlyViews.end(), name) == onlyViews.end())
+                    continue;
+                std::vector<std::function<void()>> fns{[&] {
+                    if (!noReference) grid.render(camera, size, size);
+                }};
                 if (timeRaster) fns.emplace_back([&] { raster.render(camera, size, size); });
                 if (timeWalk) fns.emplace_back([&] { walk.render(camera, size, size); });
                 const std::vector<double> ms = interleavedMedians(warmup, frames, fns);
-                const double refMs = ms[0];
+                const double refMs = noReference ? NAN : ms[0];
                 const double rasterMs = timeRaster ? ms[1] : NAN;
                 const double walkMs = timeWalk ? ms.back() : NAN;
 

@@ -8,11 +8,13 @@
 #include "vot_ray_max.glsl"
 
 // Buffer textures, not 3D textures or SSBOs: llvmpipe gathers texel fetches for all lanes at once.
-uniform usamplerBuffer uCellVot; // R32UI per cell, brick by brick (VotWalkGrid.h): a Vot index below
-                                 // uVotCount, else uVotCount + the index of an empty block
-uniform samplerBuffer uBrickMax; // RG32F per brick, x fastest: max upperBound of the Vots touching it
-                                 // (or -inf), and the max of that over every brick this view's rays
-                                 // can reach from it (BrickAhead.h)
+uniform usamplerBuffer uCellLocal; // R16UI per cell, brick by brick (PalettedCells, VotWalkGrid.h): an
+                                   // index into the brick's palette
+uniform usamplerBuffer uPalette;   // R32UI: a Vot index below uVotCount, else uVotCount + the index of
+                                   // an empty block
+uniform samplerBuffer uBrickMax;   // RGBA32F per brick, x fastest: max upperBound of the Vots touching it
+                                   // (or -inf); the max of that over every brick this view's rays can
+                                   // reach from it (BrickAhead.h); the bits of its first palette index
 uniform usamplerBuffer uVotBox;  // RGBA32UI per Vot, then per empty block: a box [lo, hi) in cells, 16 bits
                                  // each (lo.x | lo.y << 16, lo.z | hi.x << 16, hi.y | hi.z << 16), and
                                  // the bound's bits (-inf for empty blocks). A Vot's box here is the box
@@ -49,33 +51,39 @@ void main() {
         ivec3 lo, hi; // the block of cells [lo, hi) the ray leaves next; it contains `cell`
         ivec3 brick = cell >> uBrickShift;
         int brickIndex = brick.x + uBricks.x * (brick.y + uBricks.y * brick.z);
-        vec2 brickBounds = texelFetch(uBrickMax, brickIndex).rg;
+        vec4 brickBounds = texelFetch(uBrickMax, brickIndex);
         float brickMax = brickBounds.x;
         if (uCull != 0 && brickBounds.y <= best) break; // nothing further along can raise the max
-        if (brickMax == NEG_INF || (uCull != 0 && brickMax <= best)) {
+        // llvmpipe runs every texel fetch for all lanes of a SIMD group, inside a branch or not, and the
+        // walk waits on memory: lanes that do not need a fetch read texel 0, which stays in cache, instead
+        // of a stale address that may miss (bench/RESULTS.md, stop 12).
+        bool skipBrick = brickMax == NEG_INF || (uCull != 0 && brickMax <= best);
+        ivec3 local = cell - (brick << uBrickShift);
+        int inBrick = (((local.z << uBrickShift) | local.y) << uBrickShift) | local.x;
+        uint paletteIndex = texelFetch(uCellLocal, skipBrick ? 0 : (brickIndex << (3 * uBrickShift)) | inBrick).r;
+        uint id = texelFetch(uPalette, skipBrick ? 0 : int(floatBitsToUint(brickBounds.z) + paletteIndex)).r;
+        uvec4 box = texelFetch(uVotBox, skipBrick ? 0 : int(id));
+        bool stepOver = id >= uVotCount || (uCull != 0 && uintBitsToFloat(box.w) <= best);
+        uint votToRead = skipBrick || stepOver ? 0u : id;
+        int base = int(votToRead) * VOT_TEXELS;
+        vec3 recordLo = texelFetch(uVotData, base).xyz, recordHi = texelFetch(uVotData, base + 1).xyz;
+#ifdef CENTRED_EXPANSION
+        vec3 p = 0.5 * (recordLo + recordHi); // saves a fetch per evaluation: ~3 % of a frame
+#else
+        vec3 p = texelFetch(uVotData, base + 2).xyz;
+#endif
+        if (skipBrick) {
             lo = brick << uBrickShift;
             hi = min(lo + (1 << uBrickShift), uCells);
+        } else if (stepOver) {
+            lo = ivec3(box.x & 0xffffu, box.x >> 16, box.y & 0xffffu);
+            hi = ivec3(box.y >> 16, box.z & 0xffffu, box.z >> 16);
         } else {
-            ivec3 local = cell - (brick << uBrickShift);
-            int inBrick = (((local.z << uBrickShift) | local.y) << uBrickShift) | local.x;
-            uint id = texelFetch(uCellVot, (brickIndex << (3 * uBrickShift)) | inBrick).r;
-            uvec4 box = texelFetch(uVotBox, int(id));
-            if (id >= uVotCount || (uCull != 0 && uintBitsToFloat(box.w) <= best)) { // step over
-                lo = ivec3(box.x & 0xffffu, box.x >> 16, box.y & 0xffffu);
-                hi = ivec3(box.y >> 16, box.z & 0xffffu, box.z >> 16);
-            } else {
-                int base = int(id) * VOT_TEXELS;
-                lo = ivec3(texelFetch(uVotData, base).xyz);
-                hi = ivec3(texelFetch(uVotData, base + 1).xyz);
-                float value;
-                // The whole box is evaluated, exactly as the raster strategy does for this Vot.
-#ifdef CENTRED_EXPANSION
-                vec3 p = 0.5 * vec3(lo + hi); // saves a fetch per evaluation: ~3 % of a frame
-#else
-                vec3 p = texelFetch(uVotData, base + 2).xyz;
-#endif
-                if (votRayMaxAround(id, vec3(lo), vec3(hi), p, origin, dir, farT, value)) best = max(best, value);
-            }
+            lo = ivec3(recordLo);
+            hi = ivec3(recordHi);
+            float value;
+            // The whole box is evaluated, exactly as the raster strategy does for this Vot.
+            if (votRayMaxAround(votToRead, recordLo, recordHi, p, origin, dir, farT, value)) best = max(best, value);
         }
         // Leave the block: the first face crossed sets the axis that moves past it; the other axes
         // follow the ray, clamped into the block and never backwards (rounding cannot skip cells).

@@ -110,11 +110,14 @@ struct VotRenderer::Impl {
                      "vot_walk_centred");
     GlProgram walkGeneralProgram; // built when a Vot-Space first needs it
     // Walk strategy (vot_walk.frag): buffer textures over their own buffers.
-    GlBuffer cellVotBuffer, brickMaxBuffer, votBoxBuffer;
-    GlTexture cellVot;  // R32UI per cell, brick by brick: Vot index, or Vot count + empty block index
-    GlTexture brickMax; // RG32F per brick, x fastest: its bound, and the bound ahead for this frame
-    std::vector<float> walkBrickMax; // per brick: max upperBound of the Vots touching it
-    GlTexture votBox;                // RGBA32UI per Vot, then per empty block: packed box and bound
+    GlBuffer cellLocalBuffer, paletteBuffer, brickMaxBuffer, votBoxBuffer;
+    GlTexture cellLocal; // R16UI per cell, brick by brick: index into the brick's palette
+    GlTexture palette;   // R32UI: block ids (a Vot index, or Vot count + empty block index), brick by brick
+    GlTexture brickMax;  // RGBA32F per brick, x fastest: its bound, the bound ahead for this frame, and
+                         // the bits of its first palette index
+    std::vector<float> walkBrickMax;             // per brick: max upperBound of the Vots touching it
+    std::vector<std::uint32_t> walkPaletteStart; // per brick: its first palette index
+    GlTexture votBox; // RGBA32UI per Vot, then per empty block: packed box and bound
     std::array<int, 3> walkCells{0, 0, 0};
     std::array<int, 3> walkBricks{0, 0, 0};
     bool walkable = false;
@@ -334,18 +337,21 @@ struct VotRenderer::Impl {
         // The bounds ahead depend on the view: a few thousand bricks, recomputed per frame.
         const std::vector<float> ahead = brickMaximaAhead({walkCells, walkBricks, WALK_BRICK_SHIFT},
                                                           walkBrickMax, rayFamilyOf(m.clipToIndex));
-        std::vector<float> brickBounds(2 * ahead.size()); // (bound, bound ahead) per brick
+        std::vector<float> brickBounds(4 * ahead.size()); // (bound, bound ahead, palette start, 0) per brick
         for (std::size_t i = 0; i < ahead.size(); ++i) {
-            brickBounds[2 * i] = walkBrickMax[i];
-            brickBounds[2 * i + 1] = ahead[i];
+            brickBounds[4 * i] = walkBrickMax[i];
+            brickBounds[4 * i + 1] = ahead[i];
+            std::memcpy(&brickBounds[4 * i + 2], &walkPaletteStart[i], sizeof(float));
         }
         glNamedBufferSubData(brickMaxBuffer.get(), 0,
                              static_cast<GLsizeiptr>(brickBounds.size() * sizeof(float)), brickBounds.data());
-        glProgramUniform1i(p, glGetUniformLocation(p, "uCellVot"), 0);
+        glProgramUniform1i(p, glGetUniformLocation(p, "uCellLocal"), 0);
+        glProgramUniform1i(p, glGetUniformLocation(p, "uPalette"), 4);
         glProgramUniform1i(p, glGetUniformLocation(p, "uBrickMax"), 1);
         glProgramUniform1i(p, glGetUniformLocation(p, "uVotBox"), 2);
         glProgramUniform1i(p, glGetUniformLocation(p, "uVotData"), VOT_TEXTURE_UNIT);
-        glBindTextureUnit(0, cellVot.get());
+        glBindTextureUnit(0, cellLocal.get());
+        glBindTextureUnit(4, palette.get());
         glBindTextureUnit(1, brickMax.get());
         glBindTextureUnit(2, votBox.get());
         bindChunk(0);
@@ -380,12 +386,12 @@ struct VotRenderer::Impl {
     // Uploads the Walk grid (walkable true), or drops the last one when there is none.
     void uploadWalkGrid(std::optional<VotWalkGrid>&& grid) {
         walkable = false;
-        for (GlTexture* t : {&cellVot, &brickMax, &votBox})
+        for (GlTexture* t : {&cellLocal, &palette, &brickMax, &votBox})
             t->reset();
-        for (GlBuffer* b : {&cellVotBuffer, &brickMaxBuffer, &votBoxBuffer})
+        for (GlBuffer* b : {&cellLocalBuffer, &paletteBuffer, &brickMaxBuffer, &votBoxBuffer})
             b->reset();
         if (!grid) return;
-        const std::vector<std::uint32_t> cells = brickOrderedCells(*grid);
+        PalettedCells cells = palettedCells(*grid);
         const std::size_t blocks = vots.size() + grid->emptyBlocks.size();
 
         // What the skip-box growth will read; the Vots' own boxes are also the first box table.
@@ -415,10 +421,14 @@ struct VotRenderer::Impl {
             texture = createTexture(GL_TEXTURE_BUFFER);
             glTextureBuffer(texture.get(), format, buffer.get());
         };
-        bufferTexture(cellVotBuffer, cellVot, GL_R32UI, cells.data(), cells.size() * sizeof(std::uint32_t));
+        bufferTexture(cellLocalBuffer, cellLocal, GL_R16UI, cells.local.data(),
+                      cells.local.size() * sizeof(std::uint16_t));
+        bufferTexture(paletteBuffer, palette, GL_R32UI, cells.palette.data(),
+                      cells.palette.size() * sizeof(std::uint32_t));
         walkBrickMax = grid->brickMax;
+        walkPaletteStart = std::move(cells.paletteStart);
         // Written by every walk frame before it draws (drawWalk): the bounds ahead depend on the view.
-        bufferTexture(brickMaxBuffer, brickMax, GL_RG32F, nullptr, 2 * walkBrickMax.size() * sizeof(float));
+        bufferTexture(brickMaxBuffer, brickMax, GL_RGBA32F, nullptr, 4 * walkBrickMax.size() * sizeof(float));
         bufferTexture(votBoxBuffer, votBox, GL_RGBA32UI, boxes.data(), boxes.size() * sizeof(std::uint32_t));
         in.cellVot = std::move(grid->cellVot);
         in.emptyBlocks = std::move(grid->emptyBlocks);

@@ -1,6 +1,8 @@
 // Rasterises disjoint Vot boxes into a cell index grid and takes per-brick maxima of their bounds.
 #include "VotWalkGrid.h"
 
+#include "ParallelChunks.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -116,29 +118,56 @@ std::optional<VotWalkGrid> buildVotWalkGrid(const std::vector<GpuVot>& vots, con
 
 namespace vots::render {
 
-std::vector<std::uint32_t> brickOrderedCells(const VotWalkGrid& grid) {
+PalettedCells palettedCells(const VotWalkGrid& grid) {
     const int side = 1 << grid.brickShift;
     const std::size_t brickCells = std::size_t{1} << (3 * grid.brickShift);
-    std::vector<std::uint32_t> out(grid.brickMax.size() * brickCells, EMPTY_CELL);
+    const std::size_t brickCount = grid.brickMax.size();
+    PalettedCells out;
+    out.local.assign(brickCount * brickCells, 0);
+    std::uint32_t ids = 1;
+    for (const std::uint32_t id : grid.cellVot)
+        ids = std::max(ids, id + 1);
     const std::size_t nx = static_cast<std::size_t>(grid.cells[0]);
     const std::size_t nxy = nx * static_cast<std::size_t>(grid.cells[1]);
-    for (int z = 0; z < grid.cells[2]; ++z)
-        for (int y = 0; y < grid.cells[1]; ++y)
-            for (int x = 0; x < grid.cells[0]; ++x) {
-                const std::size_t brick = static_cast<std::size_t>(x >> grid.brickShift) +
-                                          static_cast<std::size_t>(grid.bricks[0]) *
-                                              (static_cast<std::size_t>(y >> grid.brickShift) +
-                                               static_cast<std::size_t>(grid.bricks[1]) *
-                                                   static_cast<std::size_t>(z >> grid.brickShift));
-                const std::size_t local =
-                    static_cast<std::size_t>(x & (side - 1)) +
-                    static_cast<std::size_t>(side) *
-                        (static_cast<std::size_t>(y & (side - 1)) +
-                         static_cast<std::size_t>(side) * static_cast<std::size_t>(z & (side - 1)));
-                out[brick * brickCells + local] =
-                    grid.cellVot[static_cast<std::size_t>(z) * nxy + static_cast<std::size_t>(y) * nx +
-                                 static_cast<std::size_t>(x)];
-            }
+    std::vector<std::vector<std::uint32_t>> palettes(brickCount);
+    // Split by cells so that every core gets a share of the bricks (parallelChunks splits only large counts).
+    parallelChunks(out.local.size(), [&](std::size_t firstCell, std::size_t lastCell) {
+        // Which brick last gave each id a palette entry, and that entry's index in the brick's palette.
+        std::vector<std::uint32_t> seenInBrick(ids, UINT32_MAX);
+        std::vector<std::uint16_t> localOf(ids, 0);
+        for (std::size_t brick = firstCell / brickCells; brick < lastCell / brickCells; ++brick) {
+            std::vector<std::uint32_t>& palette = palettes[brick];
+            std::uint16_t* local = &out.local[brick * brickCells];
+            const int x0 = static_cast<int>(brick % static_cast<std::size_t>(grid.bricks[0])) * side;
+            const std::size_t yz = brick / static_cast<std::size_t>(grid.bricks[0]);
+            const int y0 = static_cast<int>(yz % static_cast<std::size_t>(grid.bricks[1])) * side;
+            const int z0 = static_cast<int>(yz / static_cast<std::size_t>(grid.bricks[1])) * side;
+            for (int z = z0; z < std::min(z0 + side, grid.cells[2]); ++z)
+                for (int y = y0; y < std::min(y0 + side, grid.cells[1]); ++y) {
+                    const std::size_t row =
+                        static_cast<std::size_t>(z) * nxy + static_cast<std::size_t>(y) * nx;
+                    std::uint16_t* localRow =
+                        local + (static_cast<std::size_t>(z - z0) * static_cast<std::size_t>(side) +
+                                 static_cast<std::size_t>(y - y0)) *
+                                    static_cast<std::size_t>(side);
+                    for (int x = x0; x < std::min(x0 + side, grid.cells[0]); ++x) {
+                        const std::uint32_t id = grid.cellVot[row + static_cast<std::size_t>(x)];
+                        if (seenInBrick[id] != brick) {
+                            seenInBrick[id] = static_cast<std::uint32_t>(brick);
+                            localOf[id] = static_cast<std::uint16_t>(palette.size());
+                            palette.push_back(id);
+                        }
+                        localRow[x - x0] = localOf[id];
+                    }
+                }
+        }
+    });
+    out.paletteStart.resize(brickCount);
+    for (std::size_t brick = 0; brick < brickCount; ++brick) {
+        out.paletteStart[brick] = static_cast<std::uint32_t>(out.palette.size());
+        out.palette.insert(out.palette.end(), palettes[brick].begin(), palettes[brick].end());
+    }
+    if (out.palette.empty()) out.palette.push_back(0); // a buffer texture needs a texel
     return out;
 }
 

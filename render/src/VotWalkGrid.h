@@ -36,9 +36,17 @@ struct VotWalkGrid {
                                         // crosses empty space in a few steps
 };
 
-/// cellVot reordered brick by brick (bricks x fastest, cells x fastest inside a brick, padded to whole
-/// bricks with EMPTY_CELL): the layout vot_walk.frag reads, so a ray stays in few cache lines.
-std::vector<std::uint32_t> brickOrderedCells(const VotWalkGrid& grid);
+/// The cell grid as vot_walk.frag reads it, in half the bytes of cellVot: each brick has a palette of
+/// the block ids its cells name, and each cell holds its index into that palette. Cells are stored
+/// brick by brick (bricks x fastest, cells x fastest inside a brick, padded to whole bricks), so a ray
+/// stays in few cache lines; the walk waits on these reads more than on anything else.
+struct PalettedCells {
+    std::vector<std::uint16_t> local;        // per cell: index into its brick's palette (a brick has 4096
+                                             // cells at most, so 16 bits always do)
+    std::vector<std::uint32_t> palette;      // block ids (as cellVot), brick after brick
+    std::vector<std::uint32_t> paletteStart; // per brick: the index of its first palette entry
+};
+PalettedCells palettedCells(const VotWalkGrid& grid);
 
 /// Builds the grid for Vots (in their GPU order) on a grid of `dims` points. Returns nullopt, with the
 /// reason in *whyNot, when the walk could not see every Vot: boxes that overlap (a cell covered twice,

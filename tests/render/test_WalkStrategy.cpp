@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <set>
 
 using namespace vots;
 using namespace vots::render;
@@ -267,6 +268,29 @@ TEST(WalkStrategy, GridCoversEveryCellOnce) {
                 }
     };
     expectMaxima(grid->brickMax, grid->bricks, 8);
+
+    // What the shader reads: per cell, brick by brick, an index into its brick's palette of ids.
+    const PalettedCells cells = palettedCells(*grid);
+    ASSERT_EQ(cells.paletteStart.size(), grid->brickMax.size());
+    ASSERT_EQ(cells.local.size(), grid->brickMax.size() * 512);
+    for (std::size_t brick = 0; brick < cells.paletteStart.size(); ++brick) {
+        const std::uint32_t start = cells.paletteStart[brick];
+        const std::uint32_t end = brick + 1 < cells.paletteStart.size() ? cells.paletteStart[brick + 1]
+                                                                        : std::uint32_t(cells.palette.size());
+        const std::set<std::uint32_t> distinct(cells.palette.begin() + start, cells.palette.begin() + end);
+        EXPECT_EQ(distinct.size(), end - start) << "brick " << brick << " lists an id twice";
+    }
+    for (int z = 0; z < 20; ++z)
+        for (int y = 0; y < 20; ++y)
+            for (int x = 0; x < 20; ++x) {
+                const std::size_t brick = std::size_t(x / 8 + 3 * (y / 8 + 3 * (z / 8)));
+                const std::size_t inBrick = std::size_t(x % 8 + 8 * (y % 8 + 8 * (z % 8)));
+                const std::uint32_t id =
+                    cells.palette[cells.paletteStart[brick] + cells.local[brick * 512 + inBrick]];
+                ASSERT_EQ(id, grid->cellVot[static_cast<std::size_t>((z * 20 + y) * 20 + x)])
+                    << "cell " << x << "," << y << "," << z;
+            }
+
     vots.push_back(vots.front());
     EXPECT_FALSE(buildVotWalkGrid(vots, {N, N, N}, 3, &why));
     EXPECT_NE(why.find("overlap"), std::string::npos) << why;
