@@ -55,8 +55,8 @@ void main() {
         float brickMax = brickBounds.x;
         if (uCull != 0 && brickBounds.y <= best) break; // nothing further along can raise the max
         // llvmpipe runs every texel fetch for all lanes of a SIMD group, inside a branch or not, and the
-        // walk waits on memory: lanes that do not need a fetch read texel 0, which stays in cache, instead
-        // of a stale address that may miss (bench/RESULTS.md, stop 12).
+        // walk waits on memory more than on arithmetic (bench/RESULTS.md, stop 12): lanes that do not
+        // need a fetch read texel 0, which stays in cache, rather than an address of their own.
         bool skipBrick = brickMax == NEG_INF || (uCull != 0 && brickMax <= best);
         ivec3 local = cell - (brick << uBrickShift);
         int inBrick = (((local.z << uBrickShift) | local.y) << uBrickShift) | local.x;
