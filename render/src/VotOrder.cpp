@@ -33,13 +33,33 @@ template <typename Key> std::vector<std::size_t> orderByKey(std::vector<std::pai
 } // namespace
 
 std::vector<std::size_t> spatialOrder(const std::vector<fit::Vot>& vots) {
-    std::vector<std::pair<std::uint64_t, std::size_t>> keys(vots.size());
+    std::vector<std::uint64_t> keys(vots.size());
+    std::uint64_t all = 0;
     for (std::size_t i = 0; i < vots.size(); ++i) {
         const auto& lo = vots[i].box.lo;
         const auto bits = [](int v) { return spreadBits(static_cast<std::uint64_t>(std::max(v, 0))); };
-        keys[i] = {bits(lo[0]) | bits(lo[1]) << 1 | bits(lo[2]) << 2, i};
+        keys[i] = bits(lo[0]) | bits(lo[1]) << 1 | bits(lo[2]) << 2;
+        all |= keys[i];
     }
-    return orderByKey(std::move(keys));
+    // Least significant digit first, 11 bits at a time, stable: equal keys keep file order, as a
+    // comparison sort on (key, index) would give, in a few linear passes instead of ~18 comparisons
+    // per Vot (a refit waits for the upload this is part of).
+    constexpr int DIGIT_BITS = 11;
+    constexpr std::size_t BUCKETS = std::size_t{1} << DIGIT_BITS;
+    std::vector<std::size_t> order(vots.size()), next(vots.size());
+    for (std::size_t i = 0; i < order.size(); ++i)
+        order[i] = i;
+    for (int shift = 0; shift < 64 && (all >> shift) != 0; shift += DIGIT_BITS) {
+        std::vector<std::size_t> start(BUCKETS + 1, 0);
+        for (const std::uint64_t key : keys)
+            ++start[((key >> shift) & (BUCKETS - 1)) + 1];
+        for (std::size_t b = 0; b < BUCKETS; ++b)
+            start[b + 1] += start[b];
+        for (const std::size_t i : order)
+            next[start[(keys[i] >> shift) & (BUCKETS - 1)]++] = i;
+        order.swap(next);
+    }
+    return order;
 }
 
 std::vector<std::size_t> boundOrder(const std::vector<VotBounds>& bounds) {

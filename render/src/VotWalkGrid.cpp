@@ -4,15 +4,23 @@
 #include "ParallelChunks.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <cstdint>
+#include <mutex>
+#include <thread>
 
 namespace vots::render {
 
 namespace {
 
+constexpr std::uint32_t COVERED = EMPTY_CELL - 1; // a background cell some empty block has taken
+
 // Covers every EMPTY_CELL of grid.cellVot with disjoint blocks, grown from the first free cell in scan
 // order one layer at a time along +x, +y, +z in turn while the new layer is all free (near-cubic
-// blocks suit rays from any direction). Each covered cell gets base + block index.
+// blocks suit rays from any direction). Each covered cell gets base + block index. The z range is cut
+// into slabs covered in parallel (blocks stop at slab faces; the skip-box growth after the first frame
+// joins them again); blocks are numbered slab by slab, so the result depends only on the slab count.
 void coverEmptyCells(VotWalkGrid& grid, std::uint32_t base) {
     const auto& n = grid.cells;
     const std::size_t nx = static_cast<std::size_t>(n[0]);
@@ -21,34 +29,121 @@ void coverEmptyCells(VotWalkGrid& grid, std::uint32_t base) {
         return grid.cellVot[static_cast<std::size_t>(z) * nxy + static_cast<std::size_t>(y) * nx +
                             static_cast<std::size_t>(x)];
     };
-    auto layerFree = [&](const CellBlock& b, int axis) {
-        CellBlock layer = b;
-        layer.lo[axis] = b.hi[axis];
-        layer.hi[axis] = b.hi[axis] + 1;
-        if (layer.hi[axis] > n[axis]) return false;
-        for (int z = layer.lo[2]; z < layer.hi[2]; ++z)
-            for (int y = layer.lo[1]; y < layer.hi[1]; ++y)
-                for (int x = layer.lo[0]; x < layer.hi[0]; ++x)
-                    if (at(x, y, z) != EMPTY_CELL) return false;
-        return true;
-    };
-    for (int z = 0; z < n[2]; ++z)
-        for (int y = 0; y < n[1]; ++y)
-            for (int x = 0; x < n[0]; ++x) {
-                if (at(x, y, z) != EMPTY_CELL) continue;
-                CellBlock b{{x, y, z}, {x + 1, y + 1, z + 1}};
-                for (bool grown = true; grown;) {
-                    grown = false;
-                    for (int axis = 0; axis < 3; ++axis)
-                        if (layerFree(b, axis)) ++b.hi[axis], grown = true;
+    constexpr int MIN_SLAB = 32; // cells: thinner slabs would cut too many blocks
+    const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    const int slabs = std::clamp(n[2] / MIN_SLAB, 1, std::min(cores, 4));
+    std::vector<std::vector<CellBlock>> slabBlocks(static_cast<std::size_t>(slabs));
+    auto coverSlab = [&](int slab) {
+        const int z0 = n[2] * slab / slabs, z1 = n[2] * (slab + 1) / slabs;
+        std::vector<CellBlock>& blocks = slabBlocks[static_cast<std::size_t>(slab)];
+        auto layerFree = [&](const CellBlock& b, int axis) {
+            CellBlock layer = b;
+            layer.lo[axis] = b.hi[axis];
+            layer.hi[axis] = b.hi[axis] + 1;
+            if (layer.hi[axis] > (axis == 2 ? z1 : n[axis])) return false;
+            for (int z = layer.lo[2]; z < layer.hi[2]; ++z)
+                for (int y = layer.lo[1]; y < layer.hi[1]; ++y)
+                    for (int x = layer.lo[0]; x < layer.hi[0]; ++x)
+                        if (at(x, y, z) != EMPTY_CELL) return false;
+            return true;
+        };
+        for (int z = z0; z < z1; ++z)
+            for (int y = 0; y < n[1]; ++y)
+                for (int x = 0; x < n[0]; ++x) {
+                    if (at(x, y, z) != EMPTY_CELL) continue;
+                    CellBlock b{{x, y, z}, {x + 1, y + 1, z + 1}};
+                    for (bool grown = true; grown;) {
+                        grown = false;
+                        for (int axis = 0; axis < 3; ++axis)
+                            if (layerFree(b, axis)) ++b.hi[axis], grown = true;
+                    }
+                    for (int k = b.lo[2]; k < b.hi[2]; ++k)
+                        for (int j = b.lo[1]; j < b.hi[1]; ++j)
+                            std::fill(&at(b.lo[0], j, k), &at(b.lo[0], j, k) + (b.hi[0] - b.lo[0]), COVERED);
+                    blocks.push_back(b);
                 }
-                const auto index = base + static_cast<std::uint32_t>(grid.emptyBlocks.size());
-                for (int k = b.lo[2]; k < b.hi[2]; ++k)
-                    for (int j = b.lo[1]; j < b.hi[1]; ++j)
-                        for (int i = b.lo[0]; i < b.hi[0]; ++i)
-                            at(i, j, k) = index;
-                grid.emptyBlocks.push_back(b);
-            }
+    };
+    std::vector<std::thread> workers;
+    for (int slab = 1; slab < slabs; ++slab)
+        workers.emplace_back(coverSlab, slab);
+    coverSlab(0);
+    for (auto& w : workers)
+        w.join();
+    for (const std::vector<CellBlock>& blocks : slabBlocks)
+        grid.emptyBlocks.insert(grid.emptyBlocks.end(), blocks.begin(), blocks.end());
+    parallelChunks(grid.emptyBlocks.size(), [&](std::size_t first, std::size_t last) {
+        for (std::size_t i = first; i < last; ++i) {
+            const CellBlock& b = grid.emptyBlocks[i];
+            const auto index = base + static_cast<std::uint32_t>(i);
+            for (int k = b.lo[2]; k < b.hi[2]; ++k)
+                for (int j = b.lo[1]; j < b.hi[1]; ++j)
+                    std::fill(&at(b.lo[0], j, k), &at(b.lo[0], j, k) + (b.hi[0] - b.lo[0]), index);
+        }
+    });
+}
+
+// Writes each Vot's index into its cells and its bound into the bricks it touches, Vots split among
+// threads. Boxes of a walkable space are disjoint, so no cell is written twice; whether they were is
+// told afterwards by counting (overlaps leave fewer covered cells than the boxes hold).
+bool rasterizeVots(VotWalkGrid& grid, const std::vector<GpuVot>& vots, const std::vector<CellBlock>& boxes) {
+    const std::size_t nx = static_cast<std::size_t>(grid.cells[0]);
+    const std::size_t nxy = nx * static_cast<std::size_t>(grid.cells[1]);
+    const std::size_t bx = static_cast<std::size_t>(grid.bricks[0]);
+    const std::size_t bxy = bx * static_cast<std::size_t>(grid.bricks[1]);
+    const int shift = grid.brickShift;
+    std::mutex merge;
+    std::size_t boxCells = 0;
+    parallelChunks(vots.size(), [&](std::size_t first, std::size_t last) {
+        std::vector<float> brickMax(grid.brickMax.size(), -INFINITY);
+        std::size_t cells = 0;
+        for (std::size_t i = first; i < last; ++i) {
+            const CellBlock& b = boxes[i];
+            const auto index = static_cast<std::uint32_t>(i);
+            for (int z = b.lo[2]; z < b.hi[2]; ++z)
+                for (int y = b.lo[1]; y < b.hi[1]; ++y) {
+                    std::uint32_t* row = grid.cellVot.data() + static_cast<std::size_t>(z) * nxy +
+                                         static_cast<std::size_t>(y) * nx;
+                    for (int x = b.lo[0]; x < b.hi[0]; ++x) // atomic only so that overlaps are defined
+                        std::atomic_ref<std::uint32_t>(row[x]).store(index, std::memory_order_relaxed);
+                }
+            cells += static_cast<std::size_t>(b.hi[0] - b.lo[0]) *
+                     static_cast<std::size_t>(b.hi[1] - b.lo[1]) *
+                     static_cast<std::size_t>(b.hi[2] - b.lo[2]);
+            for (int z = b.lo[2] >> shift; z <= (b.hi[2] - 1) >> shift; ++z)
+                for (int y = b.lo[1] >> shift; y <= (b.hi[1] - 1) >> shift; ++y)
+                    for (int x = b.lo[0] >> shift; x <= (b.hi[0] - 1) >> shift; ++x) {
+                        float& m = brickMax[static_cast<std::size_t>(z) * bxy +
+                                            static_cast<std::size_t>(y) * bx + static_cast<std::size_t>(x)];
+                        m = std::max(m, vots[i].upperBound);
+                    }
+        }
+        const std::lock_guard<std::mutex> lock(merge);
+        boxCells += cells;
+        for (std::size_t i = 0; i < brickMax.size(); ++i)
+            grid.brickMax[i] = std::max(grid.brickMax[i], brickMax[i]);
+    });
+    const auto covered = static_cast<std::size_t>(
+        grid.cellVot.size() -
+        static_cast<std::size_t>(std::count(grid.cellVot.begin(), grid.cellVot.end(), EMPTY_CELL)));
+    return covered == boxCells;
+}
+
+// The first cell that two of the boxes share, for the error message.
+std::array<int, 3> firstOverlap(const std::array<int, 3>& cells, const std::vector<CellBlock>& boxes) {
+    std::vector<bool> taken(static_cast<std::size_t>(cells[0]) * static_cast<std::size_t>(cells[1]) *
+                            static_cast<std::size_t>(cells[2]));
+    for (const CellBlock& b : boxes)
+        for (int z = b.lo[2]; z < b.hi[2]; ++z)
+            for (int y = b.lo[1]; y < b.hi[1]; ++y)
+                for (int x = b.lo[0]; x < b.hi[0]; ++x) {
+                    const std::size_t i = (static_cast<std::size_t>(z) * static_cast<std::size_t>(cells[1]) +
+                                           static_cast<std::size_t>(y)) *
+                                              static_cast<std::size_t>(cells[0]) +
+                                          static_cast<std::size_t>(x);
+                    if (taken[i]) return {x, y, z};
+                    taken[i] = true;
+                }
+    return {-1, -1, -1};
 }
 
 } // namespace
@@ -69,54 +164,31 @@ std::optional<VotWalkGrid> buildVotWalkGrid(const std::vector<GpuVot>& vots, con
         cellCount *= static_cast<std::size_t>(grid.cells[a]);
         brickCount *= static_cast<std::size_t>(grid.bricks[a]);
     }
-    if (vots.size() >= EMPTY_CELL) return fail("too many Vots for 32-bit cell indices");
-    grid.cellVot.assign(cellCount, EMPTY_CELL);
-    grid.brickMax.assign(brickCount, -INFINITY);
-    const std::size_t nx = static_cast<std::size_t>(grid.cells[0]);
-    const std::size_t nxy = nx * static_cast<std::size_t>(grid.cells[1]);
-    const std::size_t bx = static_cast<std::size_t>(grid.bricks[0]);
-    const std::size_t bxy = bx * static_cast<std::size_t>(grid.bricks[1]);
+    if (vots.size() >= COVERED) return fail("too many Vots for 32-bit cell indices");
+    std::vector<CellBlock> boxes(vots.size());
     for (std::size_t i = 0; i < vots.size(); ++i) {
         const GpuVot& v = vots[i];
-        int lo[3], hi[3];
         for (int a = 0; a < 3; ++a) {
             // In range first (NaN fails too), so that the int conversions are defined.
             const bool inside = v.lo[a] >= 0.f && v.hi[a] <= float(grid.cells[a]) && v.lo[a] < v.hi[a];
-            lo[a] = inside ? static_cast<int>(v.lo[a]) : 0;
-            hi[a] = inside ? static_cast<int>(v.hi[a]) : 0;
-            if (!inside || float(lo[a]) != v.lo[a] || float(hi[a]) != v.hi[a])
+            boxes[i].lo[a] = inside ? static_cast<int>(v.lo[a]) : 0;
+            boxes[i].hi[a] = inside ? static_cast<int>(v.hi[a]) : 0;
+            if (!inside || float(boxes[i].lo[a]) != v.lo[a] || float(boxes[i].hi[a]) != v.hi[a])
                 return fail("Vot " + std::to_string(i) +
                             " has a box that is not a cell block inside the grid");
         }
-        const auto index = static_cast<std::uint32_t>(i);
-        for (int z = lo[2]; z < hi[2]; ++z)
-            for (int y = lo[1]; y < hi[1]; ++y) {
-                std::uint32_t* row = grid.cellVot.data() + static_cast<std::size_t>(z) * nxy +
-                                     static_cast<std::size_t>(y) * nx;
-                for (int x = lo[0]; x < hi[0]; ++x) {
-                    if (row[x] != EMPTY_CELL)
-                        return fail("Vot boxes overlap (cell " + std::to_string(x) + "," + std::to_string(y) +
-                                    "," + std::to_string(z) + ")");
-                    row[x] = index;
-                }
-            }
-        for (int z = lo[2] >> brickShift; z <= (hi[2] - 1) >> brickShift; ++z)
-            for (int y = lo[1] >> brickShift; y <= (hi[1] - 1) >> brickShift; ++y)
-                for (int x = lo[0] >> brickShift; x <= (hi[0] - 1) >> brickShift; ++x) {
-                    float& m = grid.brickMax[static_cast<std::size_t>(z) * bxy +
-                                             static_cast<std::size_t>(y) * bx + static_cast<std::size_t>(x)];
-                    m = std::max(m, v.upperBound);
-                }
+    }
+    grid.cellVot.assign(cellCount, EMPTY_CELL);
+    grid.brickMax.assign(brickCount, -INFINITY);
+    if (!rasterizeVots(grid, vots, boxes)) {
+        const std::array<int, 3> c = firstOverlap(grid.cells, boxes);
+        return fail("Vot boxes overlap (cell " + std::to_string(c[0]) + "," + std::to_string(c[1]) + "," +
+                    std::to_string(c[2]) + ")");
     }
     coverEmptyCells(grid, static_cast<std::uint32_t>(vots.size()));
-    if (vots.size() + grid.emptyBlocks.size() >= EMPTY_CELL)
-        return fail("too many blocks for 32-bit indices");
+    if (vots.size() + grid.emptyBlocks.size() >= COVERED) return fail("too many blocks for 32-bit indices");
     return grid;
 }
-
-} // namespace vots::render
-
-namespace vots::render {
 
 PalettedCells palettedCells(const VotWalkGrid& grid) {
     const int side = 1 << grid.brickShift;

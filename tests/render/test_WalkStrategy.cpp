@@ -295,3 +295,45 @@ TEST(WalkStrategy, GridCoversEveryCellOnce) {
     EXPECT_FALSE(buildVotWalkGrid(vots, {N, N, N}, 3, &why));
     EXPECT_NE(why.find("overlap"), std::string::npos) << why;
 }
+
+TEST(WalkStrategy, EmptyBlocksCoverTallGridsExactlyOnce) {
+    // Tall enough for the empty cells to be covered in several slabs on a machine with several cores.
+    const std::array<int, 3> dims{12, 10, 140};
+    std::vector<GpuVot> vots;
+    for (int z = 0; z + 3 < dims[2] - 1; z += 7) {
+        GpuVot g{};
+        const int x = z % 5, y = (z / 7) % 4;
+        g.lo[0] = float(x), g.lo[1] = float(y), g.lo[2] = float(z);
+        g.hi[0] = float(x + 3), g.hi[1] = float(y + 2), g.hi[2] = float(z + 3);
+        g.upperBound = float(z);
+        vots.push_back(g);
+    }
+    std::string why;
+    const auto grid = buildVotWalkGrid(vots, dims, 4, &why);
+    ASSERT_TRUE(grid) << why;
+    const int nx = dims[0] - 1, ny = dims[1] - 1, nz = dims[2] - 1;
+    std::vector<int> covered(grid->cellVot.size(), 0);
+    for (const CellBlock& b : grid->emptyBlocks)
+        for (int z = b.lo[2]; z < b.hi[2]; ++z)
+            for (int y = b.lo[1]; y < b.hi[1]; ++y)
+                for (int x = b.lo[0]; x < b.hi[0]; ++x)
+                    ++covered[static_cast<std::size_t>((z * ny + y) * nx + x)];
+    for (int z = 0; z < nz; ++z)
+        for (int y = 0; y < ny; ++y)
+            for (int x = 0; x < nx; ++x) {
+                const std::size_t i = static_cast<std::size_t>((z * ny + y) * nx + x);
+                const std::uint32_t id = grid->cellVot[i];
+                ASSERT_LT(id, vots.size() + grid->emptyBlocks.size()) << x << "," << y << "," << z;
+                if (id < vots.size()) {
+                    const GpuVot& v = vots[id];
+                    EXPECT_TRUE(float(x) >= v.lo[0] && float(x) < v.hi[0] && float(y) >= v.lo[1] &&
+                                float(y) < v.hi[1] && float(z) >= v.lo[2] && float(z) < v.hi[2]);
+                    EXPECT_EQ(covered[i], 0);
+                } else {
+                    ASSERT_EQ(covered[i], 1) << x << "," << y << "," << z;
+                    const CellBlock& b = grid->emptyBlocks[id - vots.size()];
+                    EXPECT_TRUE(x >= b.lo[0] && x < b.hi[0] && y >= b.lo[1] && y < b.hi[1] && z >= b.lo[2] &&
+                                z < b.hi[2]);
+                }
+            }
+}
