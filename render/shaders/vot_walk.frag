@@ -28,6 +28,70 @@ uniform int uCull;       // 1: step over bricks and Vots whose bound cannot beat
 
 layout(location = 0) out float outValue;
 
+// The ray of this pixel, set once by main() for walkStep().
+vec3 gOrigin, gDir, gInvDir;
+bvec3 gUp;
+float gFarT, gTOut;
+
+// One step of the walk: leaves the block at `cell` (evaluating it first when it is a Vot that can raise
+// the max) or ends the walk. With mayEvaluate false, a Vot to evaluate is left as it is, for the next
+// call that may.
+void walkStep(const bool mayEvaluate, inout ivec3 cell, inout float best, inout bool walking, inout int budget) {
+    ivec3 lo, hi; // the block of cells [lo, hi) the ray leaves next; it contains `cell`
+    ivec3 brick = cell >> uBrickShift;
+    int brickIndex = brick.x + uBricks.x * (brick.y + uBricks.y * brick.z);
+    vec4 brickBounds = texelFetch(uBrickMax, brickIndex);
+    float brickMax = brickBounds.x;
+    if (uCull != 0 && brickBounds.y <= best) { // nothing further along can raise the max
+        walking = false;
+        return;
+    }
+    // llvmpipe runs every texel fetch for all lanes of a SIMD group, inside a branch or not, and the
+    // walk waits on memory more than on arithmetic (bench/RESULTS.md, stop 12): lanes that do not
+    // need a fetch read texel 0, which stays in cache, rather than an address of their own.
+    bool skipBrick = brickMax == NEG_INF || (uCull != 0 && brickMax <= best);
+    ivec3 local = cell - (brick << uBrickShift);
+    int inBrick = (((local.z << uBrickShift) | local.y) << uBrickShift) | local.x;
+    uint paletteIndex = texelFetch(uCellLocal, skipBrick ? 0 : (brickIndex << (3 * uBrickShift)) | inBrick).r;
+    uint id = texelFetch(uPalette, skipBrick ? 0 : int(floatBitsToUint(brickBounds.z) + paletteIndex)).r;
+    uvec4 box = texelFetch(uVotBox, skipBrick ? 0 : int(id));
+    bool stepOver = id >= uVotCount || (uCull != 0 && uintBitsToFloat(box.w) <= best);
+    if (!mayEvaluate && !skipBrick && !stepOver) return; // left for the next iteration's first step
+    if (skipBrick) {
+        lo = brick << uBrickShift;
+        hi = min(lo + (1 << uBrickShift), uCells);
+    } else if (stepOver) {
+        lo = ivec3(box.x & 0xffffu, box.x >> 16, box.y & 0xffffu);
+        hi = ivec3(box.y >> 16, box.z & 0xffffu, box.z >> 16);
+    } else if (mayEvaluate) {
+        uint votToRead = skipBrick || stepOver ? 0u : id;
+        int base = int(votToRead) * VOT_TEXELS;
+        vec3 recordLo = texelFetch(uVotData, base).xyz, recordHi = texelFetch(uVotData, base + 1).xyz;
+#ifdef CENTRED_EXPANSION
+        vec3 p = 0.5 * (recordLo + recordHi); // saves a fetch per evaluation: ~3 % of a frame
+#else
+        vec3 p = texelFetch(uVotData, base + 2).xyz;
+#endif
+        lo = ivec3(recordLo);
+        hi = ivec3(recordHi);
+        float value;
+        // The whole box is evaluated, exactly as the raster strategy does for this Vot.
+        if (votRayMaxAround(votToRead, recordLo, recordHi, p, gOrigin, gDir, gFarT, value)) best = max(best, value);
+    }
+    // Leave the block: the first face crossed sets the axis that moves past it; the other axes
+    // follow the ray, clamped into the block and never backwards (rounding cannot skip cells).
+    vec3 tFace = (vec3(mix(lo, hi, gUp)) - gOrigin) * gInvDir;
+    float tExit = min(min(tFace.x, tFace.y), tFace.z);
+    bvec3 first = bvec3(tFace.x == tExit, tFace.y == tExit && tFace.x != tExit,
+                        tFace.z == tExit && tFace.x != tExit && tFace.y != tExit);
+    ivec3 at = ivec3(floor(gOrigin + tExit * gDir));
+    cell = mix(clamp(at, lo, cell), clamp(at, cell, hi - 1), gUp);
+    cell = mix(cell, mix(lo - 1, hi, gUp), first);
+    if (tExit > gTOut || any(lessThan(cell, ivec3(0))) || any(greaterThanEqual(cell, uCells)) ||
+        --budget <= 0)
+        walking = false;
+}
+
 void main() {
     vec3 origin, dir;
     float farT;
@@ -46,57 +110,14 @@ void main() {
     int budget = uCells.x + uCells.y + uCells.z + 3;
     // One loop that may evaluate at any step, not a walk-then-evaluate pair of loops: the rasteriser
     // shades 8 pixels in lockstep, and nested loops made each wait for the slowest at every Vot
-    // (measured 1.3x slower on the CT, bench/RESULTS.md).
+    // (measured 1.3x slower on the CT, bench/RESULTS.md). llvmpipe runs an evaluation's code for all 8
+    // lanes whenever one of them evaluates, so each round adds a second step that cannot evaluate: a
+    // lane crossing empty or culled blocks moves on twice as fast (stop 12: perspective 5 % faster,
+    // oblique 2 %; a third such step was slower).
+    gOrigin = origin, gDir = dir, gInvDir = invDir, gUp = up, gFarT = farT, gTOut = tOut;
     while (walking) {
-        ivec3 lo, hi; // the block of cells [lo, hi) the ray leaves next; it contains `cell`
-        ivec3 brick = cell >> uBrickShift;
-        int brickIndex = brick.x + uBricks.x * (brick.y + uBricks.y * brick.z);
-        vec4 brickBounds = texelFetch(uBrickMax, brickIndex);
-        float brickMax = brickBounds.x;
-        if (uCull != 0 && brickBounds.y <= best) break; // nothing further along can raise the max
-        // llvmpipe runs every texel fetch for all lanes of a SIMD group, inside a branch or not, and the
-        // walk waits on memory more than on arithmetic (bench/RESULTS.md, stop 12): lanes that do not
-        // need a fetch read texel 0, which stays in cache, rather than an address of their own.
-        bool skipBrick = brickMax == NEG_INF || (uCull != 0 && brickMax <= best);
-        ivec3 local = cell - (brick << uBrickShift);
-        int inBrick = (((local.z << uBrickShift) | local.y) << uBrickShift) | local.x;
-        uint paletteIndex = texelFetch(uCellLocal, skipBrick ? 0 : (brickIndex << (3 * uBrickShift)) | inBrick).r;
-        uint id = texelFetch(uPalette, skipBrick ? 0 : int(floatBitsToUint(brickBounds.z) + paletteIndex)).r;
-        uvec4 box = texelFetch(uVotBox, skipBrick ? 0 : int(id));
-        bool stepOver = id >= uVotCount || (uCull != 0 && uintBitsToFloat(box.w) <= best);
-        uint votToRead = skipBrick || stepOver ? 0u : id;
-        int base = int(votToRead) * VOT_TEXELS;
-        vec3 recordLo = texelFetch(uVotData, base).xyz, recordHi = texelFetch(uVotData, base + 1).xyz;
-#ifdef CENTRED_EXPANSION
-        vec3 p = 0.5 * (recordLo + recordHi); // saves a fetch per evaluation: ~3 % of a frame
-#else
-        vec3 p = texelFetch(uVotData, base + 2).xyz;
-#endif
-        if (skipBrick) {
-            lo = brick << uBrickShift;
-            hi = min(lo + (1 << uBrickShift), uCells);
-        } else if (stepOver) {
-            lo = ivec3(box.x & 0xffffu, box.x >> 16, box.y & 0xffffu);
-            hi = ivec3(box.y >> 16, box.z & 0xffffu, box.z >> 16);
-        } else {
-            lo = ivec3(recordLo);
-            hi = ivec3(recordHi);
-            float value;
-            // The whole box is evaluated, exactly as the raster strategy does for this Vot.
-            if (votRayMaxAround(votToRead, recordLo, recordHi, p, origin, dir, farT, value)) best = max(best, value);
-        }
-        // Leave the block: the first face crossed sets the axis that moves past it; the other axes
-        // follow the ray, clamped into the block and never backwards (rounding cannot skip cells).
-        vec3 tFace = (vec3(mix(lo, hi, up)) - origin) * invDir;
-        float tExit = min(min(tFace.x, tFace.y), tFace.z);
-        bvec3 first = bvec3(tFace.x == tExit, tFace.y == tExit && tFace.x != tExit,
-                            tFace.z == tExit && tFace.x != tExit && tFace.y != tExit);
-        ivec3 at = ivec3(floor(origin + tExit * dir));
-        cell = mix(clamp(at, lo, cell), clamp(at, cell, hi - 1), up);
-        cell = mix(cell, mix(lo - 1, hi, up), first);
-        if (tExit > tOut || any(lessThan(cell, ivec3(0))) || any(greaterThanEqual(cell, uCells)) ||
-            --budget <= 0)
-            walking = false;
+        walkStep(true, cell, best, walking, budget);
+        if (walking) walkStep(false, cell, best, walking, budget);
     }
     outValue = best;
 }
