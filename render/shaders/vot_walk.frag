@@ -10,17 +10,17 @@
 // Buffer textures, not 3D textures or SSBOs: llvmpipe gathers texel fetches for all lanes at once.
 uniform usamplerBuffer uCellLocal; // R16UI per cell, brick by brick (PalettedCells, VotWalkGrid.h): an
                                    // index into the brick's palette
-uniform usamplerBuffer uPalette;   // R32UI: a Vot index below uVotCount, else uVotCount + the index of
-                                   // an empty block
+uniform usamplerBuffer uPalette;   // R32UI per palette entry: the block it names, a Vot index (records in
+                                   // uVotData) or, past the Vots, an empty block's
 uniform samplerBuffer uBrickMax;   // RGBA32F per brick, x fastest: max upperBound of the Vots touching it
                                    // (or -inf); the max of that over every brick this view's rays can
                                    // reach from it (BrickAhead.h); the bits of its first palette index
-uniform usamplerBuffer uVotBox;  // RGBA32UI per Vot, then per empty block: a box [lo, hi) in cells, 16 bits
-                                 // each (lo.x | lo.y << 16, lo.z | hi.x << 16, hi.y | hi.z << 16), and
-                                 // the bound's bits (-inf for empty blocks). A Vot's box here is the box
-                                 // to step over when it is culled: its own, or its skip box once grown
-                                 // (SkipBoxes.h); its own box is in its record (uVotData).
-uniform uint uVotCount;
+uniform usamplerBuffer uVotBox;    // RGBA32UI per palette entry, for the block it names: a box [lo, hi) in
+                                   // cells, 16 bits each (lo.x | lo.y << 16, lo.z | hi.x << 16,
+                                   // hi.y | hi.z << 16), and the bound's bits (-inf for empty blocks). A
+                                   // Vot's box here is the box to step over when it is culled: its own,
+                                   // or its skip box once grown (SkipBoxes.h); its own box is in its
+                                   // record (uVotData).
 uniform ivec3 uCells;    // cells per axis (grid points - 1)
 uniform ivec3 uBricks;   // bricks per axis
 uniform int uBrickShift; // a brick is (1 << uBrickShift)^3 cells
@@ -53,9 +53,10 @@ void walkStep(const bool mayEvaluate, inout ivec3 cell, inout float best, inout 
     ivec3 local = cell - (brick << uBrickShift);
     int inBrick = (((local.z << uBrickShift) | local.y) << uBrickShift) | local.x;
     uint paletteIndex = texelFetch(uCellLocal, skipBrick ? 0 : (brickIndex << (3 * uBrickShift)) | inBrick).r;
-    uint id = texelFetch(uPalette, skipBrick ? 0 : int(floatBitsToUint(brickBounds.z) + paletteIndex)).r;
-    uvec4 box = texelFetch(uVotBox, skipBrick ? 0 : int(id));
-    bool stepOver = id >= uVotCount || (uCull != 0 && uintBitsToFloat(box.w) <= best);
+    int entry = skipBrick ? 0 : int(floatBitsToUint(brickBounds.z) + paletteIndex);
+    uvec4 box = texelFetch(uVotBox, entry);
+    float bound = uintBitsToFloat(box.w);
+    bool stepOver = bound == NEG_INF || (uCull != 0 && bound <= best); // -inf: an empty block
     if (!mayEvaluate && !skipBrick && !stepOver) return; // left for the next iteration's first step
     if (skipBrick) {
         lo = brick << uBrickShift;
@@ -64,7 +65,7 @@ void walkStep(const bool mayEvaluate, inout ivec3 cell, inout float best, inout 
         lo = ivec3(box.x & 0xffffu, box.x >> 16, box.y & 0xffffu);
         hi = ivec3(box.y >> 16, box.z & 0xffffu, box.z >> 16);
     } else if (mayEvaluate) {
-        uint votToRead = skipBrick || stepOver ? 0u : id;
+        uint votToRead = skipBrick || stepOver ? 0u : texelFetch(uPalette, entry).r;
         int base = int(votToRead) * VOT_TEXELS;
         vec3 recordLo = texelFetch(uVotData, base).xyz, recordHi = texelFetch(uVotData, base + 1).xyz;
 #ifdef CENTRED_EXPANSION

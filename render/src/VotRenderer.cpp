@@ -117,7 +117,9 @@ struct VotRenderer::Impl {
                          // the bits of its first palette index
     std::vector<float> walkBrickMax;             // per brick: max upperBound of the Vots touching it
     std::vector<std::uint32_t> walkPaletteStart; // per brick: its first palette index
-    GlTexture votBox; // RGBA32UI per Vot, then per empty block: packed box and bound
+    GlTexture votBox; // RGBA32UI per palette entry: the packed box to step over and the bound of the
+                      // block the entry names (its copy of the block's box-table texel)
+    std::vector<std::uint32_t> walkPalette; // the palette's block ids, to rewrite votBox with skip boxes
     std::array<int, 3> walkCells{0, 0, 0};
     std::array<int, 3> walkBricks{0, 0, 0};
     bool walkable = false;
@@ -199,10 +201,12 @@ struct VotRenderer::Impl {
         skipTask = {};
         skipGrowth.reset();
         if (grown.size() != vots.size() + emptyCount) return;
-        std::vector<std::uint32_t> texels(4 * grown.size());
-        for (std::size_t i = 0; i < grown.size(); ++i)
-            packBox(&texels[4 * i], grown[i].lo, grown[i].hi,
-                    i < vots.size() ? vots[i].upperBound : -INFINITY);
+        std::vector<std::uint32_t> texels(4 * walkPalette.size());
+        for (std::size_t i = 0; i < walkPalette.size(); ++i) {
+            const std::uint32_t block = walkPalette[i];
+            packBox(&texels[4 * i], grown[block].lo, grown[block].hi,
+                    block < vots.size() ? vots[block].upperBound : -INFINITY);
+        }
         glNamedBufferSubData(votBoxBuffer.get(), 0,
                              static_cast<GLsizeiptr>(texels.size() * sizeof(std::uint32_t)), texels.data());
         checkGl("VotRenderer skip boxes");
@@ -333,7 +337,6 @@ struct VotRenderer::Impl {
                            walkBricks[2]);
         glProgramUniform1i(p, glGetUniformLocation(p, "uBrickShift"), WALK_BRICK_SHIFT);
         glProgramUniform1i(p, glGetUniformLocation(p, "uCull"), culling ? 1 : 0);
-        glProgramUniform1ui(p, glGetUniformLocation(p, "uVotCount"), static_cast<GLuint>(vots.size()));
         // The bounds ahead depend on the view: a few thousand bricks, recomputed per frame.
         const std::vector<float> ahead = brickMaximaAhead({walkCells, walkBricks, WALK_BRICK_SHIFT},
                                                           walkBrickMax, rayFamilyOf(m.clipToIndex));
@@ -405,14 +408,18 @@ struct VotRenderer::Impl {
             in.votBounds[i] = vots[i].upperBound;
         }
 
-        // One RGBA32UI texel per block the cell grid names: the Vots' boxes, then the empty blocks
-        // (bound -inf).
-        std::vector<std::uint32_t> boxes(std::max<std::size_t>(blocks, 1) * 4, 0);
-        for (std::size_t i = 0; i < vots.size(); ++i)
-            packBox(&boxes[4 * i], in.votBoxes[i].lo, in.votBoxes[i].hi, in.votBounds[i]);
-        for (std::size_t i = 0; i < grid->emptyBlocks.size(); ++i)
-            packBox(&boxes[4 * (vots.size() + i)], grid->emptyBlocks[i].lo, grid->emptyBlocks[i].hi,
-                    -INFINITY);
+        // One RGBA32UI texel per palette entry, the box and bound of the block it names (bound -inf for
+        // an empty block): a step reads it straight after the cell, and a brick's entries share cache
+        // lines, where one table by block index cost another dependent read per step.
+        std::vector<std::uint32_t> boxes(cells.palette.size() * 4, 0);
+        for (std::size_t i = 0; i < cells.palette.size(); ++i) {
+            const std::uint32_t block = cells.palette[i];
+            if (block < vots.size())
+                packBox(&boxes[4 * i], in.votBoxes[block].lo, in.votBoxes[block].hi, in.votBounds[block]);
+            else if (block < blocks)
+                packBox(&boxes[4 * i], grid->emptyBlocks[block - vots.size()].lo,
+                        grid->emptyBlocks[block - vots.size()].hi, -INFINITY);
+        }
 
         auto bufferTexture = [](GlBuffer& buffer, GlTexture& texture, GLenum format, const void* data,
                                 std::size_t bytes) {
@@ -427,6 +434,7 @@ struct VotRenderer::Impl {
                       cells.palette.size() * sizeof(std::uint32_t));
         walkBrickMax = grid->brickMax;
         walkPaletteStart = std::move(cells.paletteStart);
+        walkPalette = std::move(cells.palette);
         // Written by every walk frame before it draws (drawWalk): the bounds ahead depend on the view.
         bufferTexture(brickMaxBuffer, brickMax, GL_RGBA32F, nullptr, 4 * walkBrickMax.size() * sizeof(float));
         bufferTexture(votBoxBuffer, votBox, GL_RGBA32UI, boxes.data(), boxes.size() * sizeof(std::uint32_t));
