@@ -118,7 +118,7 @@ struct VotRenderer::Impl {
     std::vector<float> walkBrickMax;             // per brick: max upperBound of the Vots touching it
     std::vector<std::uint32_t> walkPaletteStart; // per brick: its first palette index
     GlTexture votBox; // RGBA32UI per palette entry: the packed box to step over and the bound of the
-                      // block the entry names (its copy of the block's box-table texel)
+                      // block the entry names (each brick has its own copies of its blocks' boxes)
     std::vector<std::uint32_t> walkPalette; // the palette's block ids, to rewrite votBox with skip boxes
     std::array<int, 3> walkCells{0, 0, 0};
     std::array<int, 3> walkBricks{0, 0, 0};
