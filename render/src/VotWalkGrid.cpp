@@ -29,13 +29,18 @@ void coverEmptyCells(VotWalkGrid& grid, std::uint32_t base) {
         return grid.cellVot[static_cast<std::size_t>(z) * nxy + static_cast<std::size_t>(y) * nx +
                             static_cast<std::size_t>(x)];
     };
+    auto fill = [&](const CellBlock& b, std::uint32_t value) {
+        for (int k = b.lo[2]; k < b.hi[2]; ++k)
+            for (int j = b.lo[1]; j < b.hi[1]; ++j)
+                std::fill(&at(b.lo[0], j, k), &at(b.lo[0], j, k) + (b.hi[0] - b.lo[0]), value);
+    };
     constexpr int MIN_SLAB = 32; // cells: thinner slabs would cut too many blocks
     const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     const int slabs = std::clamp(n[2] / MIN_SLAB, 1, std::min(cores, 4));
     std::vector<std::vector<CellBlock>> slabBlocks(static_cast<std::size_t>(slabs));
-    auto coverSlab = [&](int slab) {
-        const int z0 = n[2] * slab / slabs, z1 = n[2] * (slab + 1) / slabs;
-        std::vector<CellBlock>& blocks = slabBlocks[static_cast<std::size_t>(slab)];
+    parallelTasks(slabBlocks.size(), [&](std::size_t slab) {
+        const int z0 = n[2] * static_cast<int>(slab) / slabs, z1 = n[2] * static_cast<int>(slab + 1) / slabs;
+        std::vector<CellBlock>& blocks = slabBlocks[slab];
         auto layerFree = [&](const CellBlock& b, int axis) {
             CellBlock layer = b;
             layer.lo[axis] = b.hi[axis];
@@ -57,28 +62,15 @@ void coverEmptyCells(VotWalkGrid& grid, std::uint32_t base) {
                         for (int axis = 0; axis < 3; ++axis)
                             if (layerFree(b, axis)) ++b.hi[axis], grown = true;
                     }
-                    for (int k = b.lo[2]; k < b.hi[2]; ++k)
-                        for (int j = b.lo[1]; j < b.hi[1]; ++j)
-                            std::fill(&at(b.lo[0], j, k), &at(b.lo[0], j, k) + (b.hi[0] - b.lo[0]), COVERED);
+                    fill(b, COVERED);
                     blocks.push_back(b);
                 }
-    };
-    std::vector<std::thread> workers;
-    for (int slab = 1; slab < slabs; ++slab)
-        workers.emplace_back(coverSlab, slab);
-    coverSlab(0);
-    for (auto& w : workers)
-        w.join();
+    });
     for (const std::vector<CellBlock>& blocks : slabBlocks)
         grid.emptyBlocks.insert(grid.emptyBlocks.end(), blocks.begin(), blocks.end());
     parallelChunks(grid.emptyBlocks.size(), [&](std::size_t first, std::size_t last) {
-        for (std::size_t i = first; i < last; ++i) {
-            const CellBlock& b = grid.emptyBlocks[i];
-            const auto index = base + static_cast<std::uint32_t>(i);
-            for (int k = b.lo[2]; k < b.hi[2]; ++k)
-                for (int j = b.lo[1]; j < b.hi[1]; ++j)
-                    std::fill(&at(b.lo[0], j, k), &at(b.lo[0], j, k) + (b.hi[0] - b.lo[0]), index);
-        }
+        for (std::size_t i = first; i < last; ++i)
+            fill(grid.emptyBlocks[i], base + static_cast<std::uint32_t>(i));
     });
 }
 
