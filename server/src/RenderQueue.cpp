@@ -133,13 +133,14 @@ RenderResult RenderQueue::draw(Renderers& r, const RenderJob& job) {
             r.grid->upload(*job.volume);
             r.uploadedVolume = job.volume;
         }
-        image = r.grid->renderRgba(p.camera, p.width, p.height, displayFor(p, *job.volume, *r.vots));
+        image = r.grid->renderRgba(p.camera, p.width, p.height, displayFor(p, job.valueRange, *r.vots));
     } else {
         if (r.uploadedSpace != job.space) {
             r.vots->upload(*job.space);
             r.uploadedSpace = job.space;
         }
-        image = r.vots->renderRgba(p.camera, p.width, p.height, displayFor(p, *job.volume, *r.vots), p.mode);
+        image =
+            r.vots->renderRgba(p.camera, p.width, p.height, displayFor(p, job.valueRange, *r.vots), p.mode);
         result.votCount = job.space->vots.size();
     }
     result.frameMs =

@@ -74,6 +74,7 @@ void installRenderRoute(Server::Impl& s) {
         job.params = parseRenderParams(parseQueryString(query));
         const auto dataset = s.registry.find(job.params.dataset);
         job.volume = dataset->volume;
+        job.valueRange = dataset->range;
         // Checked before a possibly long fit: without a context the answer is 503 either way.
         if (!s.renderQueue || !s.renderQueue->hasContext())
             throw HttpError(503, s.renderQueue ? "rendering is unavailable: " + s.renderQueue->contextError()
