@@ -7,6 +7,8 @@
 
 #include <sys/socket.h>
 
+#include <chrono>
+
 namespace vots::server {
 namespace fs = std::filesystem;
 namespace {
@@ -17,6 +19,8 @@ constexpr std::size_t MAX_TARGET_CHARS = 4096;    // httplib itself answers 414 
 // only changes it when httplib is built with the define). With one request per connection, 200 wrk
 // connections overflowed that queue and the dropped SYNs came back after 1, 3, 7, 15 s (timeouts).
 constexpr int LISTEN_BACKLOG = 1024;
+// Cache files are written in pauses between frames this long (the warm-up fits' pause too).
+constexpr auto DISK_WRITE_QUIET = std::chrono::milliseconds(250);
 
 FitJobLimits limitsFrom(const ServerOptions& o) {
     FitJobLimits limits;
@@ -42,6 +46,7 @@ Server::Impl::Impl(ServerOptions opts)
     : options(std::move(opts)), registry(options.dataDirs), cache(options.cacheDir, options.memoryCacheBytes),
       fitJobs(cache, stats, limitsFrom(options)), frames(options.frameCacheBytes) {
     if (options.withRenderer) renderQueue = std::make_unique<RenderQueue>(stats);
+    cache.deferDiskWritesWhile([this] { return stats.renderedWithin(DISK_WRITE_QUIET); });
 }
 
 std::vector<fs::path> defaultDataDirs() {

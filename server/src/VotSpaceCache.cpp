@@ -13,12 +13,15 @@
 #include <cerrno>
 #include <charconv>
 #include <iostream>
+#include <thread>
 
 namespace vots::server {
 namespace fs = std::filesystem;
 namespace {
 
 constexpr std::size_t MAX_PENDING_WRITES = 8; // a Vot-Space waiting to be written stays in memory
+constexpr auto DISK_WRITE_DELAY = std::chrono::milliseconds(300);
+constexpr auto MAX_DISK_WRITE_DEFERRAL = std::chrono::seconds(60);
 
 std::size_t bytesOf(const fit::VotSpace& space) {
     return sizeof(fit::VotSpace) + space.vots.size() * sizeof(fit::Vot) + space.metaJson.size();
@@ -76,7 +79,9 @@ VotSpaceCache::VotSpaceCache(fs::path cacheDir, std::size_t memoryBudgetBytes)
     }
 }
 
-VotSpaceCache::~VotSpaceCache() = default;
+VotSpaceCache::~VotSpaceCache() {
+    ++mFlushRequests; // the writer, destroyed first, finishes the queue without waiting for quiet
+}
 
 std::string VotSpaceCache::metaFor(const FitKey& key, double fitSeconds) {
     return nlohmann::json{{"source", "vots serve"}, {"key", key.text()}, {"fitSeconds", fitSeconds}}.dump();
@@ -175,16 +180,42 @@ void VotSpaceCache::storeOnDisk(const FitKey& key, const fit::VotSpace& space) {
     }
 }
 
+void VotSpaceCache::deferDiskWritesWhile(std::function<bool()> rendering) {
+    std::lock_guard lock(mMutex);
+    mRendering = std::move(rendering);
+}
+
+void VotSpaceCache::waitToWrite(std::chrono::steady_clock::time_point queued) const {
+    std::function<bool()> rendering;
+    {
+        std::lock_guard lock(mMutex);
+        rendering = mRendering;
+    }
+    if (!rendering) return;
+    for (;;) {
+        const auto now = std::chrono::steady_clock::now();
+        if (mFlushRequests > 0 || now >= queued + MAX_DISK_WRITE_DEFERRAL) return;
+        if (now >= queued + DISK_WRITE_DELAY && !rendering()) return;
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+}
+
 void VotSpaceCache::storeOnDiskLater(const FitKey& key, std::shared_ptr<const fit::VotSpace> space) {
     if (!diskEnabled()) return;
-    if (!mWriter->post([this, key, space = std::move(space)] { storeOnDisk(key, *space); }))
+    const auto queued = std::chrono::steady_clock::now();
+    if (!mWriter->post([this, key, space = std::move(space), queued] {
+            waitToWrite(queued);
+            storeOnDisk(key, *space);
+        }))
         std::cerr << "vots serve: warning: " << key.text()
                   << " is not written to the cache folder: the writer is " << MAX_PENDING_WRITES
                   << " files behind\n";
 }
 
 void VotSpaceCache::waitForDiskWrites() {
+    ++mFlushRequests;
     mWriter->drain();
+    --mFlushRequests;
 }
 
 std::vector<VotSpaceCache::MemoryEntry> VotSpaceCache::memoryEntries() const {

@@ -4,9 +4,12 @@
 #include "vots/fit/VotSpace.h"
 #include "vots/server/FitKey.h"
 
+#include <atomic>
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <list>
 #include <memory>
 #include <mutex>
@@ -40,7 +43,12 @@ public:
     /// a CT Vot-Space takes must not slow the frame a viewer waits for. Skipped (with a warning) when
     /// the writer is many files behind.
     void storeOnDiskLater(const FitKey& key, std::shared_ptr<const fit::VotSpace> space);
-    /// Waits for the writes queued so far.
+    /// Makes storeOnDiskLater's writes give way to frames: a write starts no sooner than
+    /// DISK_WRITE_DELAY after it was queued (the viewer that waited for the fit asks for its frame
+    /// then), and not while `rendering()` is true, for at most MAX_DISK_WRITE_DEFERRAL. Even at nice 19
+    /// the write took one of the two cores from the first frame of the new Vot-Space (stop 13).
+    void deferDiskWritesWhile(std::function<bool()> rendering);
+    /// Waits for the writes queued so far, deferred ones included (they start at once).
     void waitForDiskWrites();
 
     struct MemoryEntry {
@@ -71,6 +79,7 @@ private:
     std::filesystem::path fileFor(const std::string& keyText) const;
     void insertLocked(const std::string& keyText, std::shared_ptr<const fit::VotSpace> space);
     void disableDisk(const std::string& reason);
+    void waitToWrite(std::chrono::steady_clock::time_point queued) const;
 
     std::filesystem::path mDir;
     std::size_t mBudget;
@@ -78,6 +87,8 @@ private:
     std::list<Slot> mLru; // front: most recently used
     std::size_t mBytes = 0;
     bool mDiskEnabled = false;
+    std::function<bool()> mRendering;          // deferDiskWritesWhile's test; guarded by mMutex
+    std::atomic<int> mFlushRequests{0};        // > 0: deferred writes start at once
     std::unique_ptr<LowPriorityQueue> mWriter; // last: destroyed first, while the rest still exists
 };
 
