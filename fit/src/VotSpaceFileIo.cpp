@@ -7,6 +7,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <cstdint>
@@ -43,15 +44,17 @@ private:
 };
 
 /// Writes all bytes, retrying on EINTR and short writes. Returns 0 or an errno value.
-int writeAll(int fd, const std::uint8_t* data, std::size_t size) {
+int writeAll(int fd, const std::uint8_t* data, std::size_t size, const std::function<void()>& betweenChunks) {
+    constexpr std::size_t CHUNK = std::size_t{1} << 20;
     while (size > 0) {
-        const ssize_t n = ::write(fd, data, size);
+        const ssize_t n = ::write(fd, data, betweenChunks ? std::min(size, CHUNK) : size);
         if (n < 0) {
             if (errno == EINTR) continue;
             return errno;
         }
         data += n;
         size -= static_cast<std::size_t>(n);
+        if (size > 0 && betweenChunks) betweenChunks();
     }
     return 0;
 }
@@ -71,10 +74,11 @@ void syncDir(const std::string& dir) {
 }
 
 /// Writes bytes to the temp file, fsyncs and closes it. Returns 0 or an errno value.
-int writeTemp(const std::string& tmp, const std::vector<std::uint8_t>& bytes) {
+int writeTemp(const std::string& tmp, const std::vector<std::uint8_t>& bytes,
+              const std::function<void()>& betweenChunks) {
     Fd fd(::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644));
     if (fd.get() < 0) return errno;
-    if (const int err = writeAll(fd.get(), bytes.data(), bytes.size())) return err;
+    if (const int err = writeAll(fd.get(), bytes.data(), bytes.size(), betweenChunks)) return err;
     if (::fsync(fd.get()) != 0) return errno;
     // close() can report a deferred write error (NFS); it must not be ignored.
     if (::close(fd.release()) != 0) return errno;
@@ -83,14 +87,15 @@ int writeTemp(const std::string& tmp, const std::vector<std::uint8_t>& bytes) {
 
 } // namespace
 
-void writeVotSpaceFile(const std::string& path, const VotSpace& space) {
+void writeVotSpaceFile(const std::string& path, const VotSpace& space,
+                       const std::function<void()>& betweenChunks) {
     if (path.empty()) throw InputError("cannot write a Vot-Space file: empty path");
     // Validates before touching the disk, so an invalid space leaves nothing behind.
     const std::vector<std::uint8_t> bytes = encodeVotSpace(space);
 
     static std::atomic<unsigned> counter{0};
     const std::string tmp = path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
-    if (const int err = writeTemp(tmp, bytes)) {
+    if (const int err = writeTemp(tmp, bytes, betweenChunks)) {
         ::unlink(tmp.c_str()); // may not exist when open failed; harmless
         failErrno("write", path, err);
     }

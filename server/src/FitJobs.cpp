@@ -203,6 +203,7 @@ void FitJobs::warmUp(std::shared_ptr<const Dataset> dataset, const FitKey& key) 
 void FitJobs::run(const Pending& pending) {
     FitJob& job = *pending.job;
     const FitKey& key = job.key();
+    const ForegroundMark mark(mStats, Foreground::Fit); // cache files of earlier fits wait meanwhile
     job.setRunning();
     try {
         if (auto space = mCache.find(key)) { // fitted by an earlier run of the server

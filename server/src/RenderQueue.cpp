@@ -125,7 +125,7 @@ void RenderQueue::threadMain() {
 RenderResult RenderQueue::draw(Renderers& r, const RenderJob& job) {
     const RenderParams& p = job.params;
     RenderResult result;
-    const FrameMark mark(mStats); // background work (FitJobs warm-ups) waits while frames are drawn
+    const ForegroundMark mark(mStats, Foreground::Frame); // warm-ups and cache files wait meanwhile
     const auto start = std::chrono::steady_clock::now();
     render::RgbaImage image;
     if (p.mode == render::RenderMode::Reference) {

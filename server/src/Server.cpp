@@ -19,8 +19,9 @@ constexpr std::size_t MAX_TARGET_CHARS = 4096;    // httplib itself answers 414 
 // only changes it when httplib is built with the define). With one request per connection, 200 wrk
 // connections overflowed that queue and the dropped SYNs came back after 1, 3, 7, 15 s (timeouts).
 constexpr int LISTEN_BACKLOG = 1024;
-// Cache files are written in pauses between frames this long (the warm-up fits' pause too).
-constexpr auto DISK_WRITE_QUIET = std::chrono::milliseconds(250);
+// Cache files are written in pauses this long without frames or requested fits: a user moving the eps
+// slider again at once would otherwise share the cores with the last fit's file.
+constexpr auto DISK_WRITE_QUIET = std::chrono::milliseconds(500);
 
 FitJobLimits limitsFrom(const ServerOptions& o) {
     FitJobLimits limits;
@@ -46,7 +47,7 @@ Server::Impl::Impl(ServerOptions opts)
     : options(std::move(opts)), registry(options.dataDirs), cache(options.cacheDir, options.memoryCacheBytes),
       fitJobs(cache, stats, limitsFrom(options)), frames(options.frameCacheBytes) {
     if (options.withRenderer) renderQueue = std::make_unique<RenderQueue>(stats);
-    cache.deferDiskWritesWhile([this] { return stats.renderedWithin(DISK_WRITE_QUIET); });
+    cache.deferDiskWritesWhile([this] { return stats.busyWithin(DISK_WRITE_QUIET); });
 }
 
 std::vector<fs::path> defaultDataDirs() {

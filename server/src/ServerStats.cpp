@@ -5,28 +5,26 @@
 
 namespace vots::server {
 
-void ServerStats::beginFrame() {
+void ServerStats::begin(Foreground work) {
     std::lock_guard lock(mMutex);
-    ++mFramesInFlight;
+    ++inFlight(work).count;
+}
+
+void ServerStats::end(Foreground work) {
+    std::lock_guard lock(mMutex);
+    InFlight& w = inFlight(work);
+    w.count = std::max(0, w.count - 1);
+    w.lastEnd = std::chrono::steady_clock::now();
 }
 
 bool ServerStats::renderedWithin(std::chrono::milliseconds quiet) const {
     std::lock_guard lock(mMutex);
-    return mFramesInFlight > 0 || std::chrono::steady_clock::now() - mLastFrameEnd < quiet;
+    return mFrameWork.within(quiet);
 }
 
-void ServerStats::endFrame() {
+bool ServerStats::busyWithin(std::chrono::milliseconds quiet) const {
     std::lock_guard lock(mMutex);
-    mFramesInFlight = std::max(0, mFramesInFlight - 1);
-    mLastFrameEnd = std::chrono::steady_clock::now();
-}
-
-FrameMark::FrameMark(ServerStats& stats) : mStats(stats) {
-    mStats.beginFrame();
-}
-
-FrameMark::~FrameMark() {
-    mStats.endFrame();
+    return mFrameWork.within(quiet) || mFitWork.within(quiet);
 }
 
 void ServerStats::addFrame(double ms) {

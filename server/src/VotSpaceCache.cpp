@@ -167,35 +167,36 @@ void VotSpaceCache::storeInMemory(const FitKey& key, std::shared_ptr<const fit::
     insertLocked(key.text(), std::move(space));
 }
 
-void VotSpaceCache::storeOnDisk(const FitKey& key, const fit::VotSpace& space) {
+void VotSpaceCache::storeOnDisk(const FitKey& key, const fit::VotSpace& space,
+                                const std::function<void()>& betweenChunks) {
     {
         std::lock_guard lock(mMutex);
         if (!mDiskEnabled) return;
     }
     try {
-        fit::writeVotSpaceFile(fileFor(key.text()).string(), space);
+        fit::writeVotSpaceFile(fileFor(key.text()).string(), space, betweenChunks);
     } catch (const std::exception& e) {
         std::lock_guard lock(mMutex);
         if (mDiskEnabled) disableDisk(e.what());
     }
 }
 
-void VotSpaceCache::deferDiskWritesWhile(std::function<bool()> rendering) {
+void VotSpaceCache::deferDiskWritesWhile(std::function<bool()> busy) {
     std::lock_guard lock(mMutex);
-    mRendering = std::move(rendering);
+    mBusy = std::move(busy);
 }
 
-void VotSpaceCache::waitToWrite(std::chrono::steady_clock::time_point queued) const {
-    std::function<bool()> rendering;
+void VotSpaceCache::waitForQuiet(std::chrono::steady_clock::time_point queued, bool startDelay) const {
+    std::function<bool()> busy;
     {
         std::lock_guard lock(mMutex);
-        rendering = mRendering;
+        busy = mBusy;
     }
-    if (!rendering) return;
+    if (!busy) return;
     for (;;) {
         const auto now = std::chrono::steady_clock::now();
         if (mFlushRequests > 0 || now >= queued + MAX_DISK_WRITE_DEFERRAL) return;
-        if (now >= queued + DISK_WRITE_DELAY && !rendering()) return;
+        if ((!startDelay || now >= queued + DISK_WRITE_DELAY) && !busy()) return;
         std::this_thread::sleep_for(std::chrono::milliseconds(10));
     }
 }
@@ -204,8 +205,8 @@ void VotSpaceCache::storeOnDiskLater(const FitKey& key, std::shared_ptr<const fi
     if (!diskEnabled()) return;
     const auto queued = std::chrono::steady_clock::now();
     if (!mWriter->post([this, key, space = std::move(space), queued] {
-            waitToWrite(queued);
-            storeOnDisk(key, *space);
+            waitForQuiet(queued, true);
+            storeOnDisk(key, *space, [this, queued] { waitForQuiet(queued, false); });
         }))
         std::cerr << "vots serve: warning: " << key.text()
                   << " is not written to the cache folder: the writer is " << MAX_PENDING_WRITES

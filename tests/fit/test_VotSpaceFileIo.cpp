@@ -49,6 +49,19 @@ template <class F> std::string errorOf(F&& body) {
     return "";
 }
 
+TEST(VotSpaceFileIo, ALargeWritePausesBetweenMebibytesAndStaysExact) {
+    TempDir dir;
+    const std::string path = dir.file("big.vots");
+    const VotSpace s = makeSampleSpace(40000); // several MiB of records
+    const std::size_t bytes = encodeVotSpace(s).size();
+    ASSERT_GT(bytes, std::size_t{3} << 20);
+    std::size_t pauses = 0;
+    writeVotSpaceFile(path, s, [&pauses] { ++pauses; });
+    EXPECT_EQ(pauses, (bytes - 1) >> 20) << "one pause between consecutive MiB, none after the last";
+    EXPECT_EQ(slurp(path), encodeVotSpace(s));
+    EXPECT_EQ(entryCount(dir.path()), 1u);
+}
+
 TEST(VotSpaceFileIo, WriteThenReadLeavesOnlyTheFile) {
     TempDir dir;
     const std::string path = dir.file("a.vots");

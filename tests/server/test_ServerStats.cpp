@@ -1,5 +1,5 @@
-// ServerStats' render activity, which warm-up fits wait on: a frame in flight or just ended counts, also
-// one that ended by an exception.
+// ServerStats' foreground activity, which background work waits on: a frame (or, for cache files, a
+// requested fit) in flight or just ended counts, also one that ended by an exception.
 #include "vots/server/ServerStats.h"
 
 #include <gtest/gtest.h>
@@ -16,7 +16,7 @@ TEST(ServerStats, RenderActivityCoversFramesInFlightAndAQuietTimeAfter) {
     ServerStats stats;
     EXPECT_FALSE(stats.renderedWithin(50ms)) << "no frame yet";
     {
-        const FrameMark mark(stats);
+        const ForegroundMark mark(stats, Foreground::Frame);
         std::this_thread::sleep_for(80ms);
         EXPECT_TRUE(stats.renderedWithin(50ms)) << "a frame longer than the quiet time is still in flight";
     }
@@ -24,12 +24,29 @@ TEST(ServerStats, RenderActivityCoversFramesInFlightAndAQuietTimeAfter) {
     std::this_thread::sleep_for(80ms);
     EXPECT_FALSE(stats.renderedWithin(50ms));
     try {
-        const FrameMark mark(stats);
+        const ForegroundMark mark(stats, Foreground::Frame);
         throw std::runtime_error("upload failed");
     } catch (const std::runtime_error&) {
     }
     std::this_thread::sleep_for(80ms);
     EXPECT_FALSE(stats.renderedWithin(50ms)) << "a failed frame must not leave the renderer busy for ever";
+}
+
+TEST(ServerStats, RequestedFitsKeepTheServerBusyButDoNotCountAsRendering) {
+    ServerStats stats;
+    EXPECT_FALSE(stats.busyWithin(50ms));
+    {
+        const ForegroundMark mark(stats, Foreground::Fit);
+        EXPECT_TRUE(stats.busyWithin(50ms)) << "cache files wait for a running fit";
+        EXPECT_FALSE(stats.renderedWithin(50ms)) << "warm-ups are cancelled by fits, not paused";
+    }
+    EXPECT_TRUE(stats.busyWithin(50ms));
+    std::this_thread::sleep_for(80ms);
+    EXPECT_FALSE(stats.busyWithin(50ms));
+    {
+        const ForegroundMark mark(stats, Foreground::Frame);
+        EXPECT_TRUE(stats.busyWithin(50ms)) << "and for a frame";
+    }
 }
 
 } // namespace

@@ -76,24 +76,24 @@ TEST(VotSpaceCache, LaterWritesReachTheDiskByWaitOrDestruction) {
     EXPECT_EQ(cache.find(k2)->vots.size(), 6u);
 }
 
-TEST(VotSpaceCache, LaterWritesWaitWhileFramesAreDrawn) {
+TEST(VotSpaceCache, LaterWritesWaitWhileTheServerIsBusy) {
     test::TempDir dir;
     const FitKey k1{"a", 1.f, 3, 0.f, std::nullopt}, k2{"a", 2.f, 3, 0.f, std::nullopt};
-    std::atomic<bool> rendering{true};
+    std::atomic<bool> busy{true};
     VotSpaceCache cache(dir.path(), 1 << 20);
-    cache.deferDiskWritesWhile([&rendering] { return rendering.load(); });
+    cache.deferDiskWritesWhile([&busy] { return busy.load(); });
     cache.storeOnDiskLater(k1, spaceWith(5, k1));
-    std::this_thread::sleep_for(std::chrono::milliseconds(600)); // past the start delay, still rendering
+    std::this_thread::sleep_for(std::chrono::milliseconds(600)); // past the start delay, still busy
     EXPECT_TRUE(cache.diskEntries().empty());
-    rendering = false;
+    busy = false;
     const auto giveUp = std::chrono::steady_clock::now() + std::chrono::seconds(20);
     while (cache.diskEntries().empty() && std::chrono::steady_clock::now() < giveUp)
         std::this_thread::sleep_for(std::chrono::milliseconds(10));
     EXPECT_EQ(cache.diskEntries().size(), 1u);
 
-    rendering = true;
+    busy = true;
     cache.storeOnDiskLater(k2, spaceWith(6, k2));
-    cache.waitForDiskWrites(); // does not wait for the frames to pause
+    cache.waitForDiskWrites(); // does not wait for the server to pause
     EXPECT_EQ(cache.diskEntries().size(), 2u);
 }
 

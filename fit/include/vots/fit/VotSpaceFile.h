@@ -4,6 +4,7 @@
 #include "vots/fit/VotSpace.h"
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -21,7 +22,10 @@ VotSpace decodeVotSpace(const std::uint8_t* data, std::size_t size);
 
 /// Writes to "<path>.tmp-<pid>", fsyncs, then renames over path, so a crash never leaves a
 /// half-written file under the real name. Throws InputError when the folder is not writable.
-void writeVotSpaceFile(const std::string& path, const VotSpace& space);
+/// betweenChunks, when given, runs between 1 MiB pieces of the write: there a background writer can
+/// wait while foreground work runs (copying into the page cache costs CPU even at nice 19).
+void writeVotSpaceFile(const std::string& path, const VotSpace& space,
+                       const std::function<void()>& betweenChunks = {});
 /// Reads and validates a file; throws InputError with the path in the message.
 VotSpace readVotSpaceFile(const std::string& path);
 

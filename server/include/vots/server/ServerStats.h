@@ -28,29 +28,20 @@ struct FrameSummary {
     std::uint64_t superseded = 0;
 };
 
-class ServerStats;
-
-/// beginFrame() now, endFrame() when the scope ends, also by an exception.
-class FrameMark {
-public:
-    explicit FrameMark(ServerStats& stats);
-    ~FrameMark();
-    FrameMark(const FrameMark&) = delete;
-    FrameMark& operator=(const FrameMark&) = delete;
-
-private:
-    ServerStats& mStats;
-};
+/// Foreground work that background work (warm-up fits, cache files) gives way to.
+enum class Foreground { Frame, Fit };
 
 class ServerStats {
 public:
     static constexpr std::size_t WINDOW = 256;
 
-    void beginFrame(); // the render thread starts drawing (FrameMark below pairs these)
-    void endFrame();   // and stops, drawn or not
+    void begin(Foreground work); // a frame or a requested fit starts (ForegroundMark pairs these)
+    void end(Foreground work);   // and ends, done or not
     void addFrame(double ms);
-    /// Whether a frame is being drawn or ended less than `quiet` ago: background work gives way.
+    /// Whether a frame is being drawn or ended less than `quiet` ago (warm-up fits wait).
     bool renderedWithin(std::chrono::milliseconds quiet) const;
+    /// Whether a frame or a requested fit is running or ended less than `quiet` ago (cache files wait).
+    bool busyWithin(std::chrono::milliseconds quiet) const;
     void addSuperseded();
     void addFit(FitRecord record);
     FrameSummary frames() const;
@@ -61,9 +52,29 @@ private:
     std::deque<double> mFrameMs;
     std::uint64_t mFrames = 0;
     std::uint64_t mSuperseded = 0;
-    int mFramesInFlight = 0;
-    std::chrono::steady_clock::time_point mLastFrameEnd{};
+    struct InFlight {
+        int count = 0;
+        std::chrono::steady_clock::time_point lastEnd{};
+        bool within(std::chrono::milliseconds quiet) const {
+            return count > 0 || std::chrono::steady_clock::now() - lastEnd < quiet;
+        }
+    };
+    InFlight mFrameWork, mFitWork;
     std::deque<FitRecord> mFits;
+    InFlight& inFlight(Foreground work) { return work == Foreground::Frame ? mFrameWork : mFitWork; }
+};
+
+/// begin(work) now, end(work) when the scope ends, also by an exception.
+class ForegroundMark {
+public:
+    ForegroundMark(ServerStats& stats, Foreground work) : mStats(stats), mWork(work) { mStats.begin(mWork); }
+    ~ForegroundMark() { mStats.end(mWork); }
+    ForegroundMark(const ForegroundMark&) = delete;
+    ForegroundMark& operator=(const ForegroundMark&) = delete;
+
+private:
+    ServerStats& mStats;
+    Foreground mWork;
 };
 
 } // namespace vots::server

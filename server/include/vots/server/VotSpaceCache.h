@@ -38,16 +38,18 @@ public:
     /// The two halves of store(), so a fit can be announced between them (the disk write of a large
     /// Vot-Space, fsync included, takes a noticeable part of a refit).
     void storeInMemory(const FitKey& key, std::shared_ptr<const fit::VotSpace> space);
-    void storeOnDisk(const FitKey& key, const fit::VotSpace& space);
+    void storeOnDisk(const FitKey& key, const fit::VotSpace& space,
+                     const std::function<void()>& betweenChunks = {});
     /// storeOnDisk on a low-priority writer thread: the ~130 ms of one core that encoding and syncing
     /// a CT Vot-Space takes must not slow the frame a viewer waits for. Skipped (with a warning) when
     /// the writer is many files behind.
     void storeOnDiskLater(const FitKey& key, std::shared_ptr<const fit::VotSpace> space);
-    /// Makes storeOnDiskLater's writes give way to frames: a write starts no sooner than
+    /// Makes storeOnDiskLater's writes give way to foreground work: a write starts no sooner than
     /// DISK_WRITE_DELAY after it was queued (the viewer that waited for the fit asks for its frame
-    /// then), and not while `rendering()` is true, for at most MAX_DISK_WRITE_DEFERRAL. Even at nice 19
-    /// the write took one of the two cores from the first frame of the new Vot-Space (stop 13).
-    void deferDiskWritesWhile(std::function<bool()> rendering);
+    /// then), and neither starts nor goes on to its next MiB while `busy()` is true, for at most
+    /// MAX_DISK_WRITE_DEFERRAL in all. Even at nice 19 a write took one of the two cores from the
+    /// first frame of the new Vot-Space (stop 13).
+    void deferDiskWritesWhile(std::function<bool()> busy);
     /// Waits for the writes queued so far, deferred ones included (they start at once).
     void waitForDiskWrites();
 
@@ -79,7 +81,9 @@ private:
     std::filesystem::path fileFor(const std::string& keyText) const;
     void insertLocked(const std::string& keyText, std::shared_ptr<const fit::VotSpace> space);
     void disableDisk(const std::string& reason);
-    void waitToWrite(std::chrono::steady_clock::time_point queued) const;
+    /// Returns once busy() is false (and, with `startDelay`, that long after `queued`), or when waiting
+    /// must end: a flush, or MAX_DISK_WRITE_DEFERRAL after `queued`.
+    void waitForQuiet(std::chrono::steady_clock::time_point queued, bool startDelay) const;
 
     std::filesystem::path mDir;
     std::size_t mBudget;
@@ -87,7 +91,7 @@ private:
     std::list<Slot> mLru; // front: most recently used
     std::size_t mBytes = 0;
     bool mDiskEnabled = false;
-    std::function<bool()> mRendering;          // deferDiskWritesWhile's test; guarded by mMutex
+    std::function<bool()> mBusy;               // deferDiskWritesWhile's test; guarded by mMutex
     std::atomic<int> mFlushRequests{0};        // > 0: deferred writes start at once
     std::unique_ptr<LowPriorityQueue> mWriter; // last: destroyed first, while the rest still exists
 };
