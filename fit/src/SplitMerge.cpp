@@ -148,9 +148,17 @@ std::vector<FittedBox> splitBricks(const CellMask& mask, const BoxTester& tester
             control.progress(0.9 * static_cast<double>(finished) / static_cast<double>(brickCount), "split");
         }
     });
+    // One allocation, with room for the boxes the merge across bricks adds: each fresh page of a
+    // growing 30 MB vector is a page fault, ~2 us apiece on the team's VM, on the fit's serial part.
+    std::size_t total = 0;
+    for (const auto& v : perBrick)
+        total += v.size();
     std::vector<FittedBox> all;
-    for (auto& v : perBrick)
+    all.reserve(total + total / 2);
+    for (auto& v : perBrick) {
         all.insert(all.end(), v.begin(), v.end());
+        std::vector<FittedBox>().swap(v);
+    }
     return all;
 }
 
@@ -194,10 +202,11 @@ void mergeNeighbours(std::vector<FittedBox>& boxes, const BoxTester& tester, con
                 break;
             }
     }
-    std::vector<FittedBox> kept;
+    // Compacted in place, in the same order: a new vector of the survivors was another 30 MB of fresh pages.
+    std::size_t keep = 0;
     for (std::size_t i = 0; i < boxes.size(); ++i)
-        if (alive[i]) kept.push_back(boxes[i]);
-    boxes = std::move(kept);
+        if (alive[i]) boxes[keep++] = boxes[i];
+    boxes.resize(keep);
 }
 
 } // namespace vots::fit
