@@ -100,6 +100,21 @@ void packBox(std::uint32_t* texel, const std::array<int, 3>& lo, const std::arra
     std::memcpy(&texel[3], &bound, sizeof(float));
 }
 
+// The walk's box table: per palette entry, the box boxOf(block) of the block it names, Vots first, and
+// that block's bound (-inf for an empty block). Entries naming no block stay zero.
+template <class BoxOf>
+std::vector<std::uint32_t> boxTable(const std::vector<std::uint32_t>& palette,
+                                    const std::vector<GpuVot>& vots, std::size_t blockCount, BoxOf boxOf) {
+    std::vector<std::uint32_t> texels(4 * palette.size(), 0);
+    for (std::size_t i = 0; i < palette.size(); ++i) {
+        const std::uint32_t block = palette[i];
+        if (block >= blockCount) continue;
+        const CellBlock& box = boxOf(block);
+        packBox(&texels[4 * i], box.lo, box.hi, block < vots.size() ? vots[block].upperBound : -INFINITY);
+    }
+    return texels;
+}
+
 } // namespace
 
 struct VotRenderer::Impl {
@@ -201,12 +216,9 @@ struct VotRenderer::Impl {
         skipTask = {};
         skipGrowth.reset();
         if (grown.size() != vots.size() + emptyCount) return;
-        std::vector<std::uint32_t> texels(4 * walkPalette.size());
-        for (std::size_t i = 0; i < walkPalette.size(); ++i) {
-            const std::uint32_t block = walkPalette[i];
-            packBox(&texels[4 * i], grown[block].lo, grown[block].hi,
-                    block < vots.size() ? vots[block].upperBound : -INFINITY);
-        }
+        const std::vector<std::uint32_t> texels =
+            boxTable(walkPalette, vots, grown.size(),
+                     [&](std::uint32_t block) -> const CellBlock& { return grown[block]; });
         glNamedBufferSubData(votBoxBuffer.get(), 0,
                              static_cast<GLsizeiptr>(texels.size() * sizeof(std::uint32_t)), texels.data());
         checkGl("VotRenderer skip boxes");
@@ -411,15 +423,10 @@ struct VotRenderer::Impl {
         // One RGBA32UI texel per palette entry, the box and bound of the block it names (bound -inf for
         // an empty block): a step reads it straight after the cell, and a brick's entries share cache
         // lines, where one table by block index cost another dependent read per step.
-        std::vector<std::uint32_t> boxes(cells.palette.size() * 4, 0);
-        for (std::size_t i = 0; i < cells.palette.size(); ++i) {
-            const std::uint32_t block = cells.palette[i];
-            if (block < vots.size())
-                packBox(&boxes[4 * i], in.votBoxes[block].lo, in.votBoxes[block].hi, in.votBounds[block]);
-            else if (block < blocks)
-                packBox(&boxes[4 * i], grid->emptyBlocks[block - vots.size()].lo,
-                        grid->emptyBlocks[block - vots.size()].hi, -INFINITY);
-        }
+        const std::vector<std::uint32_t> boxes =
+            boxTable(cells.palette, vots, blocks, [&](std::uint32_t block) -> const CellBlock& {
+                return block < vots.size() ? in.votBoxes[block] : grid->emptyBlocks[block - vots.size()];
+            });
 
         auto bufferTexture = [](GlBuffer& buffer, GlTexture& texture, GLenum format, const void* data,
                                 std::size_t bytes) {
