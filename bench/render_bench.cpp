@@ -2,7 +2,8 @@
 // caster, measured interleaved in one run, as markdown rows.
 //
 //   render_bench VOLUME [--vots FILE | --eps-percent P[,P...] | --eps E] [--degree N] [--size N]
-//                [--frames N] [--warmup N] [--strategy both|walk|raster] [--no-cull] [--png-dir DIR]
+//                [--frames N] [--warmup N] [--strategy both|walk|raster]
+//                [--walk-shader auto|fragment|compute] [--no-cull] [--png-dir DIR]
 // Each round renders one frame with every renderer being compared (reference, raster, walk), so load
 // from other processes hits all of them alike; the table gives per-renderer medians over --frames
 // rounds after --warmup rounds, each frame glFinish-synchronised, and the ratios of those medians.
@@ -77,7 +78,7 @@ std::size_t countDifferent(const vots::render::FloatImage& a, const vots::render
 
 int main(int argc, char** argv) {
     CLI::App app{"Vot MIP (walk, raster) vs reference ray caster frame times"};
-    std::string volumePath, votsPath, strategyName = "both", pngDir;
+    std::string volumePath, votsPath, strategyName = "both", pngDir, walkShaderName = "auto";
     std::vector<double> epsPercents;
     double epsAbs = 0.0;
     int degree = 3, size = 512, frames = 11, warmup = 2;
@@ -95,6 +96,10 @@ int main(int argc, char** argv) {
     app.add_option("--warmup", warmup, "untimed rounds first");
     app.add_option("--strategy", strategyName, "Vot MIP strategies to time: both, walk or raster")
         ->check(CLI::IsMember({"both", "walk", "raster"}));
+    app.add_option(
+           "--walk-shader", walkShaderName,
+           "stage that runs the walk: auto (compute on a GPU, fragment on llvmpipe), fragment or compute")
+        ->check(CLI::IsMember({"auto", "fragment", "compute"}));
     app.add_flag("--no-cull", noCull, "no bound culling (raster draws every Vot, walk evaluates every Vot)");
     app.add_option("--view", onlyViews, "time only these views (anterior, oblique, persp; comma list)")
         ->delimiter(',');
@@ -115,7 +120,7 @@ int main(int argc, char** argv) {
                   << ", LP_NUM_THREADS=" << (threads ? threads : "(unset)") << ", volume " << volumePath
                   << " " << volume.dims[0] << "x" << volume.dims[1] << "x" << volume.dims[2] << ", " << size
                   << "x" << size << ", medians of " << frames << " interleaved rounds after " << warmup
-                  << ", culling " << (noCull ? "off" : "on") << "\n\n";
+                  << ", culling " << (noCull ? "off" : "on") << ", walk shader " << walkShaderName << "\n\n";
         std::cout
             << "| eps | view | Vots | strategy used | reference ms | raster ms | walk ms | ref / walk | "
                "raster / walk | pixels walk != raster | readback ms | display+readback ms | PNG ms |\n"
@@ -151,6 +156,9 @@ int main(int argc, char** argv) {
             walk.setStrategy(VotRenderer::Strategy::Walk);
             raster.setStrategy(VotRenderer::Strategy::Raster);
             walk.setCulling(!noCull);
+            if (walkShaderName != "auto")
+                walk.setWalkShader(walkShaderName == "compute" ? VotRenderer::WalkShader::Compute
+                                                               : VotRenderer::WalkShader::Fragment);
             raster.setCulling(!noCull);
             // The steady state: what the first frame of a Vot-Space starts in the background is done.
             const double pendingMs = msOf([&] { walk.finishPendingWork(); });

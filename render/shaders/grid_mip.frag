@@ -13,7 +13,7 @@ float sampleAt(vec3 xIndex) { return texture(uVolume, (xIndex + 0.5) / uDims).r;
 void main() {
     vec3 origin, dir;
     float farT;
-    pixelRay(origin, dir, farT);
+    pixelRay(gl_FragCoord.xy, origin, dir, farT);
     vec2 span = clipRayToBox(origin, dir, vec3(0.0), uDims - 1.0);
     float tIn = max(span.x, 0.0);
     float tOut = min(span.y, farT);

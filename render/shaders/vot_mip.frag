@@ -18,7 +18,7 @@ void main() {
 
     vec3 origin, dir;
     float farT;
-    pixelRay(origin, dir, farT);
+    pixelRay(gl_FragCoord.xy, origin, dir, farT);
     float value;
     if (!votRayMax(vVot, origin, dir, farT, value)) discard;
     outValue = value;

@@ -160,7 +160,11 @@ std::unique_ptr<EglContext> EglContext::create(std::string* error) {
     result->mRenderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
     result->mVersion = reinterpret_cast<const char*>(glGetString(GL_VERSION));
     std::cerr << "vots: EGL platform " << result->mPlatform << ", renderer " << result->mRenderer
-              << ", OpenGL " << result->mVersion << '\n';
+              << ", OpenGL " << result->mVersion;
+    // Why the preferred platform was passed over: a GPU reached through another platform works, but
+    // whoever set the machine up will want to know.
+    if (platform != "device") std::cerr << " (" << reasons << ")";
+    std::cerr << '\n';
     return result;
 }
 
@@ -185,8 +189,12 @@ void EglContext::makeCurrent() {
 }
 
 bool EglContext::isSoftware() const {
-    return mRenderer.find("llvmpipe") != std::string::npos ||
-           mRenderer.find("softpipe") != std::string::npos || mRenderer.find("swrast") != std::string::npos;
+    return isSoftwareRenderer(mRenderer);
+}
+
+bool EglContext::isSoftwareRenderer(const std::string& renderer) {
+    return renderer.find("llvmpipe") != std::string::npos || renderer.find("softpipe") != std::string::npos ||
+           renderer.find("swrast") != std::string::npos;
 }
 
 } // namespace vots::render

@@ -58,10 +58,34 @@ GLuint compile(GLenum stage, const char* source, const char* label) {
         glGetShaderInfoLog(shader, length, nullptr, log.data());
         glDeleteShader(shader);
         throw RenderError(std::string("shader ") + label +
-                          (stage == GL_VERTEX_SHADER ? " (vertex)" : " (fragment)") +
+                          (stage == GL_VERTEX_SHADER    ? " (vertex)"
+                           : stage == GL_COMPUTE_SHADER ? " (compute)"
+                                                        : " (fragment)") +
                           " does not compile: " + log.data());
     }
     return shader;
+}
+} // namespace
+
+namespace {
+// Links the compiled shaders (and deletes them); throws with the info log on failure.
+GlProgram link(const std::vector<GLuint>& shaders, const char* label) {
+    GlProgram program(glCreateProgram());
+    for (GLuint shader : shaders)
+        glAttachShader(program.get(), shader);
+    glLinkProgram(program.get());
+    for (GLuint shader : shaders)
+        glDeleteShader(shader);
+    GLint ok = GL_FALSE;
+    glGetProgramiv(program.get(), GL_LINK_STATUS, &ok);
+    if (!ok) {
+        GLint length = 0;
+        glGetProgramiv(program.get(), GL_INFO_LOG_LENGTH, &length);
+        std::vector<char> log(static_cast<std::size_t>(std::max(length, 1)));
+        glGetProgramInfoLog(program.get(), length, nullptr, log.data());
+        throw RenderError(std::string("program ") + label + " does not link: " + log.data());
+    }
+    return program;
 }
 } // namespace
 
@@ -74,22 +98,11 @@ GlProgram buildProgram(const char* vertexSource, const char* fragmentSource, con
         glDeleteShader(vs);
         throw;
     }
-    GlProgram program(glCreateProgram());
-    glAttachShader(program.get(), vs);
-    glAttachShader(program.get(), fs);
-    glLinkProgram(program.get());
-    glDeleteShader(vs);
-    glDeleteShader(fs);
-    GLint ok = GL_FALSE;
-    glGetProgramiv(program.get(), GL_LINK_STATUS, &ok);
-    if (!ok) {
-        GLint length = 0;
-        glGetProgramiv(program.get(), GL_INFO_LOG_LENGTH, &length);
-        std::vector<char> log(static_cast<std::size_t>(std::max(length, 1)));
-        glGetProgramInfoLog(program.get(), length, nullptr, log.data());
-        throw RenderError(std::string("program ") + label + " does not link: " + log.data());
-    }
-    return program;
+    return link({vs, fs}, label);
+}
+
+GlProgram buildComputeProgram(const char* computeSource, const char* label) {
+    return link({compile(GL_COMPUTE_SHADER, computeSource, label)}, label);
 }
 
 void setMatrixUniform(GLuint program, const char* name, const std::array<double, 16>& matrix) {

@@ -52,6 +52,8 @@ GlVertexArray createVertexArray();
 
 /// Compiles and links; throws RenderError with the info log (and which shader) on failure.
 GlProgram buildProgram(const char* vertexSource, const char* fragmentSource, const char* label);
+/// The same for a compute shader alone.
+GlProgram buildComputeProgram(const char* computeSource, const char* label);
 
 /// Uploads a column-major double matrix as a float mat4 uniform.
 void setMatrixUniform(GLuint program, const char* name, const std::array<double, 16>& matrix);

@@ -16,6 +16,7 @@
 
 #include "vots/fit/Error.h"
 #include "vots/fit/VotSpace.h"
+#include "vots/render/EglContext.h"
 #include "vots/render/Error.h"
 #include "vots/render/GpuLayout.h"
 
@@ -25,6 +26,7 @@
 #include <cmath>
 #include <cstring>
 #include <future>
+#include <iostream>
 #include <memory>
 #include <optional>
 #include <string>
@@ -120,10 +122,10 @@ std::vector<std::uint32_t> boxTable(const std::vector<std::uint32_t>& palette,
 struct VotRenderer::Impl {
     GlProgram mipProgram = buildProgram(shaders::VOT_BOX_VERT, shaders::VOT_MIP_FRAG, "vot_mip");
     GlProgram densityProgram = buildProgram(shaders::VOT_BOX_VERT, shaders::VOT_DENSITY_FRAG, "vot_density");
-    GlProgram walkCentredProgram =
-        buildProgram(shaders::WALK_BOX_VERT, withDefine(shaders::VOT_WALK_FRAG, "CENTRED_EXPANSION").c_str(),
-                     "vot_walk_centred");
-    GlProgram walkGeneralProgram; // built when a Vot-Space first needs it
+    WalkShader walkShader = defaultWalkShader();
+    // Per (compute, centred expansion), built when first needed; the constructor builds the one most
+    // frames use, so that a shader this driver refuses shows at once.
+    std::array<GlProgram, 4> walkPrograms;
     // Walk strategy (vot_walk.frag): buffer textures over their own buffers.
     GlBuffer cellLocalBuffer, paletteBuffer, brickMaxBuffer, votBoxBuffer;
     GlTexture cellLocal; // R16UI per cell, brick by brick: index into the brick's palette
@@ -171,6 +173,40 @@ struct VotRenderer::Impl {
 
     Strategy mipStrategy() const {
         return strategy == Strategy::Walk && walkable ? Strategy::Walk : Strategy::Raster;
+    }
+
+    Impl() {
+        if (walkShader == WalkShader::Compute) {
+            try {
+                walkProgram(true, true);
+                return;
+            } catch (const RenderError& e) { // the rasteriser's walk is the one every driver has run
+                std::cerr << "vots: warning: the compute walk does not build here, using the fragment walk: "
+                          << e.what() << "\n";
+                walkShader = WalkShader::Fragment;
+            }
+        }
+        walkProgram(false, true);
+    }
+
+    static WalkShader defaultWalkShader() {
+        const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+        return renderer && EglContext::isSoftwareRenderer(renderer) ? WalkShader::Fragment
+                                                                    : WalkShader::Compute;
+    }
+
+    GLuint walkProgram(bool compute, bool centred) {
+        GlProgram& program = walkPrograms[(compute ? 2 : 0) + (centred ? 1 : 0)];
+        if (!program.get()) {
+            const char* label = compute ? (centred ? "vot_walk_compute_centred" : "vot_walk_compute")
+                                        : (centred ? "vot_walk_centred" : "vot_walk");
+            const char* shader = compute ? shaders::VOT_WALK_COMP : shaders::VOT_WALK_FRAG;
+            const std::string source =
+                centred ? withDefine(shader, "CENTRED_EXPANSION") : std::string(shader);
+            program = compute ? buildComputeProgram(source.c_str(), label)
+                              : buildProgram(shaders::WALK_BOX_VERT, source.c_str(), label);
+        }
+        return program.get();
     }
 
     ~Impl() {
@@ -330,12 +366,12 @@ struct VotRenderer::Impl {
         }
     }
 
-    // One pass over the back faces of the grid box; each pixel walks its ray (vot_walk.frag).
+    // Each pixel walks its ray (vot_walk.glsl): one compute invocation per pixel, or one pass over the
+    // back faces of the grid box.
     void drawWalk(const CameraMatrices& m, int width, int height) {
         applySkipBoxes(false);
-        if (!centredExpansion && !walkGeneralProgram.get())
-            walkGeneralProgram = buildProgram(shaders::WALK_BOX_VERT, shaders::VOT_WALK_FRAG, "vot_walk");
-        const GLuint p = centredExpansion ? walkCentredProgram.get() : walkGeneralProgram.get();
+        const bool compute = walkShader == WalkShader::Compute;
+        const GLuint p = walkProgram(compute, centredExpansion);
         glUseProgram(p);
         setMatrixUniform(p, "uIndexToClip", m.indexToClip);
         setMatrixUniform(p, "uClipToIndex", m.clipToIndex);
@@ -370,6 +406,18 @@ struct VotRenderer::Impl {
         glBindTextureUnit(1, brickMax.get());
         glBindTextureUnit(2, votBox.get());
         bindChunk(0);
+        stats.batches = 1;
+        if (compute) {
+            constexpr GLuint GROUP_SIDE = 8; // local_size in vot_walk.comp
+            glBindImageTexture(0, target.texture(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+            glDispatchCompute((static_cast<GLuint>(width) + GROUP_SIDE - 1) / GROUP_SIDE,
+                              (static_cast<GLuint>(height) + GROUP_SIDE - 1) / GROUP_SIDE, 1);
+            glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
+                            GL_FRAMEBUFFER_BARRIER_BIT);
+            stats.votsDrawn = 0;
+            return;
+        }
+        target.clear(-INFINITY);
         glBindVertexArray(vertexArray.get());
         glEnable(GL_CULL_FACE);
         glCullFace(GL_FRONT); // back faces: every pixel whose ray meets the box, once, eye inside or not
@@ -377,7 +425,6 @@ struct VotRenderer::Impl {
         glDisable(GL_DEPTH_TEST);
         glDisable(GL_BLEND);
         glDrawArrays(GL_TRIANGLES, 0, 36);
-        stats.batches = 1;
         stats.votsDrawn = 0;
     }
 
@@ -464,8 +511,7 @@ struct VotRenderer::Impl {
         stats.votsTotal = vots.size();
         target.bind(width, height);
         if (mode == RenderMode::Mip && mipStrategy() == Strategy::Walk) {
-            target.clear(-INFINITY);
-            drawWalk(m, width, height);
+            drawWalk(m, width, height); // writes every pixel
             glDisable(GL_CULL_FACE);
             glFinish();
             stats.gpuMs = msSince(t0);
@@ -597,6 +643,13 @@ VotRenderer::Strategy VotRenderer::strategy() const {
 VotRenderer::Strategy VotRenderer::mipStrategy() const {
     return mImpl->mipStrategy();
 }
+void VotRenderer::setWalkShader(WalkShader shader) {
+    mImpl->walkShader = shader;
+}
+VotRenderer::WalkShader VotRenderer::walkShader() const {
+    return mImpl->walkShader;
+}
+
 void VotRenderer::finishPendingWork() {
     mImpl->startSkipGrowth();
     mImpl->applySkipBoxes(true);

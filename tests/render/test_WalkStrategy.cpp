@@ -46,6 +46,11 @@ Comparison compare(const FloatImage& a, const FloatImage& b, double tolerance) {
     return c;
 }
 
+// Front, oblique, perspective, and perspective with the eye inside the volume.
+constexpr const char* VIEWS[] = {"anterior", "az=30,el=20,zoom=1.2",
+                                 "az=-50,el=-30,zoom=1.4,proj=persp,fov=40",
+                                 "az=20,el=10,zoom=8,proj=persp,fov=60"};
+
 // headsq-quarter fitted with the default (fast) method: disjoint boxes, so Walk applies.
 const fit::VotSpace& headFast(float* epsOut) {
     static float eps = 0;
@@ -79,8 +84,7 @@ TEST(WalkStrategy, MatchesRasterOnFittedCt) {
     ASSERT_EQ(raster.mipStrategy(), Strategy::Raster);
     const auto range = walk.valueRange();
     const double tiny = 1e-5 * (range[1] - range[0]);
-    for (const char* text : {"anterior", "az=30,el=20,zoom=1.2", "az=-50,el=-30,zoom=1.4,proj=persp,fov=40",
-                             "az=20,el=10,zoom=8,proj=persp,fov=60" /* eye inside the volume */}) {
+    for (const char* text : VIEWS) {
         const Camera cam = parseCamera(text);
         const FloatImage a = walk.render(cam, 200, 160);
         const FloatImage b = raster.render(cam, 200, 160);
@@ -112,6 +116,35 @@ TEST(WalkStrategy, RepeatRendersAreBitIdentical) {
     EXPECT_EQ(first.pixels, walk.render(cam, 128, 96).pixels);
 }
 
+TEST(WalkStrategy, ComputeAndFragmentShadersGiveTheSameImage) {
+    // GPUs run the walk as a compute shader, llvmpipe on the rasteriser; the image must not depend on
+    // the machine. Sizes that are no multiple of the 8x8 work groups test the edges; the off-centre
+    // space tests the other shader variant.
+    test::glContext();
+    float eps = 0;
+    const fit::VotSpace& head = headFast(&eps);
+    constexpr int N = 17;
+    const fit::VotSpace offCentre =
+        test::polynomialVotSpace(test::randomPolynomial(3, N, 100.0, 13u), {N, N, N}, 4, 0.37f);
+    for (const fit::VotSpace* space : {&head, &offCentre}) {
+        VotRenderer fragment, compute;
+        fragment.setWalkShader(VotRenderer::WalkShader::Fragment);
+        compute.setWalkShader(VotRenderer::WalkShader::Compute);
+        fragment.upload(*space);
+        compute.upload(*space);
+        for (const char* text : VIEWS) {
+            const Camera cam = parseCamera(text);
+            const FloatImage a = fragment.render(cam, 203, 157), b = compute.render(cam, 203, 157);
+            std::size_t finite = 0;
+            for (float v : a.pixels)
+                finite += std::isfinite(v) ? 1 : 0;
+            EXPECT_GT(finite, a.pixels.size() / 10) << text; // not a blank image
+            const Comparison c = compare(a, b, 0.0);
+            EXPECT_EQ(c.finiteMismatch + c.beyondTolerance, 0u) << text << ", worst " << c.worst;
+        }
+    }
+}
+
 TEST(WalkStrategy, SkipBoxesChangeNoPixel) {
     test::glContext();
     float eps = 0;
@@ -120,8 +153,7 @@ TEST(WalkStrategy, SkipBoxesChangeNoPixel) {
     settled.upload(space);
     settled.finishPendingWork(); // skip boxes grown and in use from the first frame on
     std::size_t differing = 0, pixels = 0;
-    for (const char* text : {"anterior", "az=30,el=20,zoom=1.2", "az=-50,el=-30,zoom=1.4,proj=persp,fov=40",
-                             "az=20,el=10,zoom=8,proj=persp,fov=60"}) {
+    for (const char* text : VIEWS) {
         const Camera cam = parseCamera(text);
         VotRenderer fresh; // the first frame after an upload always steps Vot by Vot
         fresh.upload(space);

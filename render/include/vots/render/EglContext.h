@@ -31,6 +31,8 @@ public:
     } // GL_RENDERER, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
     const std::string& version() const { return mVersion; } // GL_VERSION
     bool isSoftware() const;                                // llvmpipe / softpipe / swrast
+    /// Whether a GL_RENDERER string names one of Mesa's CPU rasterisers.
+    static bool isSoftwareRenderer(const std::string& renderer);
 
     struct Handles; // EGL handles, private to EglContext.cpp
 

@@ -23,13 +23,13 @@ namespace vots::render {
 /// Two MIP strategies give the same image (up to rays grazing a face within 5e-5 voxel); both use a
 /// certified upper bound of each Vot over its box (Bernstein form), computed at upload.
 ///
-/// Walk (default): one pass over the back faces of the grid box; each pixel walks its ray front to
-/// back through a grid holding, per cell, the Vot covering it (background cells: near-cubic empty
-/// blocks), and per brick of 16^3 cells the largest bound of the Vots touching it. Bricks and Vot
-/// boxes whose bound cannot beat the pixel's current max, and empty blocks, are stepped over whole (a
-/// culled Vot together with the neighbours its bound also culls, once their skip boxes are grown after
-/// the first frame); a ray stops once no brick its view can still reach may beat its max; the other
-/// Vots are evaluated with the same analytic maximum as Raster. Needs disjoint boxes (the
+/// Walk (default): one compute invocation per pixel (on llvmpipe: one pass over the back faces of the
+/// grid box, see WalkShader); each pixel walks its ray front to back through a grid holding, per cell, the
+/// Vot covering it (background cells: near-cubic empty blocks), and per brick of 16^3 cells the largest bound
+/// of the Vots touching it. Bricks and Vot boxes whose bound cannot beat the pixel's current max, and empty
+/// blocks, are stepped over whole (a culled Vot together with the neighbours its bound also culls, once their
+/// skip boxes are grown after the first frame); a ray stops once no brick its view can still reach may beat
+/// its max; the other Vots are evaluated with the same analytic maximum as Raster. Needs disjoint boxes (the
 /// fast fit method); a Vot-Space with overlapping boxes (paper method) or beyond the GL limits is
 /// drawn with Raster instead, see mipStrategy(). Density images always use Raster.
 ///
@@ -45,6 +45,12 @@ public:
     enum class Strategy {
         Walk,  // per-pixel ray walk through the cell -> Vot grid (default)
         Raster // instanced boxes, MAX blending
+    };
+    /// The shader stage that runs the Walk. Both give the same image.
+    enum class WalkShader {
+        Fragment, // the back faces of the grid box rasterised: what llvmpipe runs fastest
+        Compute   // one invocation per pixel: GPUs like the H100 shade fragments on few of their
+                  // multiprocessors but run compute on all
     };
 
     VotRenderer();
@@ -76,6 +82,10 @@ public:
     /// The strategy MIP frames of the uploaded Vot-Space use: Raster when Walk was asked for but the
     /// space cannot be walked (overlapping boxes, or too large for the GL limits).
     Strategy mipStrategy() const;
+    /// Compute unless the context's renderer is a CPU rasteriser (llvmpipe), which runs Fragment faster
+    /// (bench/RESULTS.md). Takes effect with the next frame.
+    void setWalkShader(WalkShader shader);
+    WalkShader walkShader() const;
     /// Finishes what the first Walk frame of a Vot-Space starts on other threads (the skip boxes that
     /// let later frames step over culled neighbourhoods at once) and applies it now. Frames are
     /// bit-identical before and after, only faster after; benchmarks call this to time the steady state.

@@ -1,0 +1,123 @@
+// Walk strategy, shared by vot_walk.frag and vot_walk.comp: each pixel walks its ray front to back
+// through a cell -> Vot grid, stepping over whole bricks and whole Vot boxes that cannot raise its max
+// and evaluating the Vots that can. Each is built twice (VotRenderer): with CENTRED_EXPANSION defined
+// for Vot-Spaces whose every expansion point is its box centre, as the fast fit makes them, and without.
+#include "vot_common.glsl"
+#include "ray_common.glsl"
+#include "vot_ray_max.glsl"
+
+// Buffer textures, not 3D textures or SSBOs: llvmpipe gathers texel fetches for all lanes at once.
+uniform usamplerBuffer uCellLocal; // R16UI per cell, brick by brick (PalettedCells, VotWalkGrid.h): an
+                                   // index into the brick's palette
+uniform usamplerBuffer uPalette;   // R32UI per palette entry: the block it names, a Vot index (records in
+                                   // uVotData) or, past the Vots, an empty block's
+uniform samplerBuffer uBrickMax;   // RGBA32F per brick, x fastest: max upperBound of the Vots touching it
+                                   // (or -inf); the max of that over every brick this view's rays can
+                                   // reach from it (BrickAhead.h); the bits of its first palette index
+uniform usamplerBuffer uVotBox;    // RGBA32UI per palette entry, for the block it names: a box [lo, hi) in
+                                   // cells, 16 bits each (lo.x | lo.y << 16, lo.z | hi.x << 16,
+                                   // hi.y | hi.z << 16), and the bound's bits (-inf for empty blocks). A
+                                   // Vot's box here is the box to step over when it is culled: its own,
+                                   // or its skip box once grown (SkipBoxes.h); its own box is in its
+                                   // record (uVotData).
+uniform ivec3 uCells;    // cells per axis (grid points - 1)
+uniform ivec3 uBricks;   // bricks per axis
+uniform int uBrickShift; // a brick is (1 << uBrickShift)^3 cells
+uniform int uCull;       // 1: step over bricks and Vots whose bound cannot beat the pixel's max
+
+// The ray of this pixel, set once by main() for walkStep().
+vec3 gOrigin, gDir, gInvDir;
+bvec3 gUp;
+float gFarT, gTOut;
+
+// One step of the walk: leaves the block at `cell` (evaluating it first when it is a Vot that can raise
+// the max) or ends the walk. With mayEvaluate false, a Vot to evaluate is left as it is, for the next
+// call that may.
+void walkStep(const bool mayEvaluate, inout ivec3 cell, inout float best, inout bool walking, inout int budget) {
+    ivec3 lo, hi; // the block of cells [lo, hi) the ray leaves next; it contains `cell`
+    ivec3 brick = cell >> uBrickShift;
+    int brickIndex = brick.x + uBricks.x * (brick.y + uBricks.y * brick.z);
+    vec4 brickBounds = texelFetch(uBrickMax, brickIndex);
+    float brickMax = brickBounds.x;
+    if (uCull != 0 && brickBounds.y <= best) { // nothing further along can raise the max
+        walking = false;
+        return;
+    }
+    // llvmpipe runs every texel fetch for all lanes of a SIMD group, inside a branch or not, and the
+    // walk waits on memory more than on arithmetic (bench/RESULTS.md, stop 12): lanes that do not
+    // need a fetch read texel 0, which stays in cache, rather than an address of their own.
+    bool skipBrick = brickMax == NEG_INF || (uCull != 0 && brickMax <= best);
+    ivec3 local = cell - (brick << uBrickShift);
+    int inBrick = (((local.z << uBrickShift) | local.y) << uBrickShift) | local.x;
+    uint paletteIndex = texelFetch(uCellLocal, skipBrick ? 0 : (brickIndex << (3 * uBrickShift)) | inBrick).r;
+    int entry = skipBrick ? 0 : int(floatBitsToUint(brickBounds.z) + paletteIndex);
+    uvec4 box = texelFetch(uVotBox, entry);
+    float bound = uintBitsToFloat(box.w);
+    bool stepOver = bound == NEG_INF || (uCull != 0 && bound <= best); // -inf: an empty block
+    if (!mayEvaluate && !skipBrick && !stepOver) return; // left for the next iteration's first step
+    if (skipBrick) {
+        lo = brick << uBrickShift;
+        hi = min(lo + (1 << uBrickShift), uCells);
+    } else if (stepOver) {
+        lo = ivec3(box.x & 0xffffu, box.x >> 16, box.y & 0xffffu);
+        hi = ivec3(box.y >> 16, box.z & 0xffffu, box.z >> 16);
+    } else if (mayEvaluate) {
+        uint votToRead = skipBrick || stepOver ? 0u : texelFetch(uPalette, entry).r;
+        int base = int(votToRead) * VOT_TEXELS;
+        vec3 recordLo = texelFetch(uVotData, base).xyz, recordHi = texelFetch(uVotData, base + 1).xyz;
+#ifdef CENTRED_EXPANSION
+        vec3 p = 0.5 * (recordLo + recordHi); // saves a fetch per evaluation: ~3 % of a frame
+#else
+        vec3 p = texelFetch(uVotData, base + 2).xyz;
+#endif
+        lo = ivec3(recordLo);
+        hi = ivec3(recordHi);
+        float value;
+        // The whole box is evaluated, exactly as the raster strategy does for this Vot.
+        if (votRayMaxAround(votToRead, recordLo, recordHi, p, gOrigin, gDir, gFarT, value)) best = max(best, value);
+    }
+    // Leave the block: the first face crossed sets the axis that moves past it; the other axes
+    // follow the ray, clamped into the block and never backwards (rounding cannot skip cells).
+    vec3 tFace = (vec3(mix(lo, hi, gUp)) - gOrigin) * gInvDir;
+    float tExit = min(min(tFace.x, tFace.y), tFace.z);
+    bvec3 first = bvec3(tFace.x == tExit, tFace.y == tExit && tFace.x != tExit,
+                        tFace.z == tExit && tFace.x != tExit && tFace.y != tExit);
+    ivec3 at = ivec3(floor(gOrigin + tExit * gDir));
+    cell = mix(clamp(at, lo, cell), clamp(at, cell, hi - 1), gUp);
+    cell = mix(cell, mix(lo - 1, hi, gUp), first);
+    if (tExit > gTOut || any(lessThan(cell, ivec3(0))) || any(greaterThanEqual(cell, uCells)) ||
+        --budget <= 0)
+        walking = false;
+}
+
+// The max along the ray through the pixel centre `fragCoord` (window coordinates); -inf when it meets
+// no Vot.
+float walkPixel(vec2 fragCoord) {
+    vec3 origin, dir;
+    float farT;
+    pixelRay(fragCoord, origin, dir, farT);
+    vec2 span = clipRayToBox(origin, dir, vec3(0.0), vec3(uCells));
+    float tIn = max(span.x, 0.0);
+    float tOut = min(span.y, farT);
+    float best = NEG_INF;
+    bool walking = tIn <= tOut;
+    vec3 safeDir = mix(dir, vec3(1e-30), lessThan(abs(dir), vec3(1e-30)));
+    vec3 invDir = 1.0 / safeDir;
+    bvec3 up = greaterThan(safeDir, vec3(0.0));
+    ivec3 cell = clamp(ivec3(floor(origin + tIn * dir)), ivec3(0), uCells - 1);
+    // Every step moves at least one axis past the block it leaves and none backwards, so the walk ends
+    // within the sum of the sides; the budget only guards against the unforeseen.
+    int budget = uCells.x + uCells.y + uCells.z + 3;
+    // One loop that may evaluate at any step, not a walk-then-evaluate pair of loops: the rasteriser
+    // shades 8 pixels in lockstep, and nested loops made each wait for the slowest at every Vot
+    // (measured 1.3x slower on the CT, bench/RESULTS.md). llvmpipe runs an evaluation's code for all 8
+    // lanes whenever one of them evaluates, so each round adds a second step that cannot evaluate: a
+    // lane crossing empty or culled blocks moves on twice as fast (stop 12: perspective 5 % faster,
+    // oblique 2 %; a third such step was slower).
+    gOrigin = origin, gDir = dir, gInvDir = invDir, gUp = up, gFarT = farT, gTOut = tOut;
+    while (walking) {
+        walkStep(true, cell, best, walking, budget);
+        if (walking) walkStep(false, cell, best, walking, budget);
+    }
+    return best;
+}
