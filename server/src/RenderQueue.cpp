@@ -91,6 +91,10 @@ void RenderQueue::threadMain() {
         mHasContext = renderers.context != nullptr;
         mContextError = mHasContext ? "" : (error.empty() ? "no EGL context" : error);
         mRendererName = mHasContext ? renderers.context->renderer() : "";
+        if (mHasContext)
+            mWalkShaderName = renderers.vots->walkShader() == render::VotRenderer::WalkShader::Compute
+                                  ? "compute"
+                                  : "fragment";
         mReady = true;
     }
     mWake.notify_all();

@@ -34,6 +34,7 @@ void installStatsRoute(Server::Impl& s) {
         const RenderQueue* queue = s.renderQueue.get();
         nlohmann::json renderer = {{"available", queue && queue->hasContext()},
                                    {"name", queue ? queue->rendererName() : ""},
+                                   {"walkShader", queue ? queue->walkShaderName() : ""},
                                    {"error", queue ? queue->contextError() : "renderer disabled"},
                                    {"waiting", queue ? queue->waiting() : 0}};
         sendJson(res, 200,

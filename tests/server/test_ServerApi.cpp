@@ -142,6 +142,10 @@ TEST_F(ServerApi, StatsReportFramesFitsAndCaches) {
     EXPECT_GE(stats["cache"]["disk"].size(), 1u);
     EXPECT_TRUE(stats["cache"]["diskEnabled"].get<bool>());
     EXPECT_TRUE(stats["renderer"].contains("available"));
+    // llvmpipe walks on the rasteriser, a GPU in a compute shader (bench/RESULTS.md, "GPU").
+    const std::string name = stats["renderer"]["name"];
+    EXPECT_EQ(stats["renderer"]["walkShader"],
+              name.find("llvmpipe") != std::string::npos ? "fragment" : "compute");
 }
 
 TEST(ServerLimits, TooManyFitJobsGive429) {

@@ -51,6 +51,8 @@ public:
     bool hasContext() const { return mHasContext; }
     const std::string& contextError() const { return mContextError; }
     const std::string& rendererName() const { return mRendererName; }
+    /// "compute" or "fragment": the shader stage the Vot walk runs in (VotRenderer::WalkShader).
+    const std::string& walkShaderName() const { return mWalkShaderName; }
 
     /// Queues a job. The future throws HttpError 409 ("superseded") when a newer job with the same
     /// non-empty client id arrived while this one waited, 503 without a context or when the queue is
@@ -77,6 +79,7 @@ private:
     bool mHasContext = false;
     std::string mContextError;
     std::string mRendererName;
+    std::string mWalkShaderName;
     std::thread mThread;
 };
 
