@@ -61,11 +61,16 @@ std::string makeContext(EGLDisplay display, EglContext::Handles& out) {
     if (!hasExtension(eglQueryString(display, EGL_EXTENSIONS), "EGL_KHR_surfaceless_context"))
         return fail("no EGL_KHR_surfaceless_context");
     if (!eglBindAPI(EGL_OPENGL_API)) return fail("eglBindAPI(OpenGL): " + eglErrorName(eglGetError()));
-    const EGLint configAttribs[] = {EGL_SURFACE_TYPE, 0, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+    // No surface is ever made, so any OpenGL config will do. Some drivers list none for SURFACE_TYPE 0
+    // but do for pbuffers; with neither, a context without config needs KHR_no_config_context.
     EGLConfig config = nullptr;
-    EGLint count = 0;
-    // Some drivers list no config for SURFACE_TYPE 0; a context without config needs KHR_no_config_context.
-    if (!eglChooseConfig(display, configAttribs, &config, 1, &count) || count < 1) config = nullptr;
+    for (const EGLint surfaceType : {EGLint{0}, EGLint{EGL_PBUFFER_BIT}}) {
+        const EGLint configAttribs[] = {EGL_SURFACE_TYPE, surfaceType, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
+                                        EGL_NONE};
+        EGLint count = 0;
+        if (eglChooseConfig(display, configAttribs, &config, 1, &count) && count >= 1) break;
+        config = nullptr;
+    }
     // 4.6 fails with EGL_BAD_MATCH on Mesa 22 llvmpipe (EGL_NOTES); 4.5 core is what we need.
     const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION,
                                      4,
