@@ -24,12 +24,14 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <future>
 #include <iostream>
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <thread>
 
 #include <sched.h>
@@ -189,7 +191,15 @@ struct VotRenderer::Impl {
         walkProgram(false, true);
     }
 
+    // VOTS_WALK_SHADER=fragment|compute overrides the choice by renderer: the compute walk is the
+    // default on GPUs without having been timed on one yet (bench/RESULTS.md, "GPU").
     static WalkShader defaultWalkShader() {
+        if (const char* forced = std::getenv("VOTS_WALK_SHADER")) {
+            if (std::string_view(forced) == "fragment") return WalkShader::Fragment;
+            if (std::string_view(forced) == "compute") return WalkShader::Compute;
+            std::cerr << "vots: warning: VOTS_WALK_SHADER=" << forced
+                      << " is neither fragment nor compute; choosing by renderer\n";
+        }
         const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
         return renderer && EglContext::isSoftwareRenderer(renderer) ? WalkShader::Fragment
                                                                     : WalkShader::Compute;

@@ -83,7 +83,8 @@ public:
     /// space cannot be walked (overlapping boxes, or too large for the GL limits).
     Strategy mipStrategy() const;
     /// Compute unless the context's renderer is a CPU rasteriser (llvmpipe), which runs Fragment faster
-    /// (bench/RESULTS.md). Takes effect with the next frame.
+    /// (bench/RESULTS.md), or the environment variable VOTS_WALK_SHADER (fragment or compute) says
+    /// otherwise. Takes effect with the next frame.
     void setWalkShader(WalkShader shader);
     WalkShader walkShader() const;
     /// Finishes what the first Walk frame of a Vot-Space starts on other threads (the skip boxes that
