@@ -3,6 +3,8 @@
 #include "vots/fit/VolumeLoad.h"
 
 #include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -13,6 +15,7 @@ using namespace vots::fit;
 namespace {
 
 double median(std::vector<double> v) {
+    if (v.empty()) return NAN;
     std::sort(v.begin(), v.end());
     return v[v.size() / 2];
 }
@@ -23,10 +26,13 @@ int main(int argc, char** argv) {
     // --cells: certify at cell centres and edge midpoints too, as the server fits for rendering.
     const bool cells = argc > 1 && std::string(argv[1]) == "--cells";
     if (cells) --argc, ++argv;
+    // --no-fresh: only the refits (for profiling them); the fresh-fit column then reads nan.
+    const bool timeFresh = !(argc > 1 && std::string(argv[1]) == "--no-fresh");
+    if (!timeFresh) --argc, ++argv;
     if (argc < 3) {
         std::fprintf(
             stderr,
-            "usage: fit_refit [--cells] VOLUME BASE_PERCENT[,BASE_PERCENT...] [PERCENT...]\n"
+            "usage: fit_refit [--cells] [--no-fresh] VOLUME BASE_PERCENT[,BASE_PERCENT...] [PERCENT...]\n"
             "  fits at each BASE_PERCENT of the value range into one cache (as a server that has fitted\n"
             "  them), then refits at each PERCENT with a copy of that history\n");
         return 2;
@@ -49,7 +55,7 @@ int main(int argc, char** argv) {
             const double target = std::atof(argv[i]);
             std::vector<double> fresh;
             FitResult freshResult;
-            for (int run = 0; run < 3; ++run) {
+            for (int run = 0; timeFresh && run < 3; ++run) {
                 freshResult = fitVotSpace(volume, optionsAt(target));
                 fresh.push_back(freshResult.stats.seconds);
             }
@@ -59,7 +65,13 @@ int main(int argc, char** argv) {
                 fitVotSpace(volume, optionsAt(std::atof(bases.substr(at, comma - at).c_str())), &cache);
                 at = comma + 1;
             }
+            // CLOCK_MONOTONIC, for `perf record -k mono` and `perf report --time` around the refit alone.
+            const auto refitStart = std::chrono::steady_clock::now();
             const FitResult refit = fitVotSpace(volume, optionsAt(target), &cache);
+            std::fprintf(
+                stderr, "refit %g %%: monotonic %.6f .. %.6f s\n", target,
+                std::chrono::duration<double>(refitStart.time_since_epoch()).count(),
+                std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count());
             std::printf("| %s | %s %% | %g %% | %.3f | %.3f | %zu | %zu |\n", volume.name.c_str(),
                         bases.c_str(), target, refit.stats.seconds, median(fresh), refit.space.vots.size(),
                         refit.stats.cacheHits);
