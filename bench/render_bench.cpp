@@ -156,9 +156,8 @@ int main(int argc, char** argv) {
             walk.setStrategy(VotRenderer::Strategy::Walk);
             raster.setStrategy(VotRenderer::Strategy::Raster);
             walk.setCulling(!noCull);
-            if (walkShaderName != "auto")
-                walk.setWalkShader(walkShaderName == "compute" ? VotRenderer::WalkShader::Compute
-                                                               : VotRenderer::WalkShader::Fragment);
+            if (const auto shader = vots::render::parseWalkShader(walkShaderName))
+                walk.setWalkShader(*shader);
             raster.setCulling(!noCull);
             // The steady state: what the first frame of a Vot-Space starts in the background is done.
             const double pendingMs = msOf([&] { walk.finishPendingWork(); });

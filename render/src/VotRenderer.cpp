@@ -195,8 +195,7 @@ struct VotRenderer::Impl {
     // default on GPUs without having been timed on one yet (bench/RESULTS.md, "GPU").
     static WalkShader defaultWalkShader() {
         if (const char* forced = std::getenv("VOTS_WALK_SHADER")) {
-            if (std::string_view(forced) == "fragment") return WalkShader::Fragment;
-            if (std::string_view(forced) == "compute") return WalkShader::Compute;
+            if (const auto shader = parseWalkShader(forced)) return *shader;
             std::cerr << "vots: warning: VOTS_WALK_SHADER=" << forced
                       << " is neither fragment nor compute; choosing by renderer\n";
         }
@@ -653,6 +652,16 @@ VotRenderer::Strategy VotRenderer::strategy() const {
 VotRenderer::Strategy VotRenderer::mipStrategy() const {
     return mImpl->mipStrategy();
 }
+std::string_view walkShaderName(VotRenderer::WalkShader shader) {
+    return shader == VotRenderer::WalkShader::Compute ? "compute" : "fragment";
+}
+
+std::optional<VotRenderer::WalkShader> parseWalkShader(std::string_view name) {
+    for (const auto shader : {VotRenderer::WalkShader::Fragment, VotRenderer::WalkShader::Compute})
+        if (name == walkShaderName(shader)) return shader;
+    return std::nullopt;
+}
+
 void VotRenderer::setWalkShader(WalkShader shader) {
     mImpl->walkShader = shader;
 }

@@ -91,10 +91,7 @@ void RenderQueue::threadMain() {
         mHasContext = renderers.context != nullptr;
         mContextError = mHasContext ? "" : (error.empty() ? "no EGL context" : error);
         mRendererName = mHasContext ? renderers.context->renderer() : "";
-        if (mHasContext)
-            mWalkShaderName = renderers.vots->walkShader() == render::VotRenderer::WalkShader::Compute
-                                  ? "compute"
-                                  : "fragment";
+        if (mHasContext) mWalkShaderName = render::walkShaderName(renderers.vots->walkShader());
         mReady = true;
     }
     mWake.notify_all();

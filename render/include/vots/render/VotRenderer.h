@@ -10,6 +10,8 @@
 
 #include <array>
 #include <memory>
+#include <optional>
+#include <string_view>
 
 namespace vots::fit {
 struct VotSpace;
@@ -98,5 +100,10 @@ public:
 private:
     std::unique_ptr<Impl> mImpl;
 };
+
+/// "fragment" or "compute", for VOTS_WALK_SHADER, render_bench and /api/stats.
+std::string_view walkShaderName(VotRenderer::WalkShader shader);
+/// The shader named so, or nullopt for any other text.
+std::optional<VotRenderer::WalkShader> parseWalkShader(std::string_view name);
 
 } // namespace vots::render
