@@ -1,27 +1,15 @@
-// Analytic maximum of one Vot's cubic along a ray (DESIGN §5), shared by the raster and walk MIP shaders.
-// Needs vot_common.glsl (CLIP_SLACK) and ray_common.glsl (clipRayToBox) included before it.
+// Max of one Vot along a ray from its shared record (GpuLayout.h), for the raster MIP shader.
+// Needs vot_common.glsl and ray_common.glsl included before it.
+#include "cubic_ray_max.glsl"
 
 // The Vot records of vots[] (GpuLayout.h) seen as a buffer texture, 8 RGBA32F texels per Vot: texel
 // fetches gather all pixels' records at once, where llvmpipe loads SSBO data pixel by pixel.
 uniform samplerBuffer uVotData;
 const int VOT_TEXELS = 8;
 
-// vec4 linearProductN(...): coefficients in u of a product of N linear factors (a_i + b_i u).
-vec4 linearProduct1(float a, float b) { return vec4(a, b, 0.0, 0.0); }
-vec4 linearProduct2(float a0, float b0, float a1, float b1) {
-    return vec4(a0 * a1, a0 * b1 + b0 * a1, b0 * b1, 0.0);
-}
-vec4 linearProduct3(float a0, float b0, float a1, float b1, float a2, float b2) {
-    vec4 q = linearProduct2(a0, b0, a1, b1);
-    return vec4(q.x * a2, q.x * b2 + q.y * a2, q.y * b2 + q.z * a2, q.z * b2);
-}
-#include "taylor.glsl"
-
-float cubicAt(vec4 g, float u) { return g.x + u * (g.y + u * (g.z + u * g.w)); }
-
-// Max of Vot `vot`, whose box is [lo, hi] and expansion point p, along origin + t dir, t in [0, farT],
-// over the box grown by CLIP_SLACK. Returns false (value untouched) when the ray misses the box.
-bool votRayMaxAround(uint vot, vec3 lo, vec3 hi, vec3 p, vec3 origin, vec3 dir, float farT, out float value) {
+// Max of Vot `vot` along origin + t dir, t in [0, farT], over its box grown by CLIP_SLACK. Returns false
+// (value untouched) when the ray misses the box.
+bool votRayMax(uint vot, vec3 origin, vec3 dir, float farT, out float value) {
     int base = int(vot) * VOT_TEXELS;
     float c[TAYLOR_TERMS];
     for (int k = 0; k < TAYLOR_TERMS / 4; ++k) {
@@ -31,42 +19,7 @@ bool votRayMaxAround(uint vot, vec3 lo, vec3 hi, vec3 p, vec3 origin, vec3 dir, 
         c[4 * k + 2] = q.z;
         c[4 * k + 3] = q.w;
     }
-    vec2 span = clipRayToBox(origin, dir, lo - CLIP_SLACK, hi + CLIP_SLACK);
-    float tIn = max(span.x, 0.0); // the near plane clips boxes the camera sits in
-    float tOut = min(span.y, farT);
-    if (tIn > tOut) return false;
-
-    // Expand from the box entry point, not the near plane: float cancellation (EGL_NOTES).
-    vec3 s = origin + tIn * dir - p;
-    vec4 g = taylorAlongRay(c, s, dir); // g(u) = g0 + g1 u + g2 u^2 + g3 u^3, u in [0, len]
-    float len = tOut - tIn;
-
-    float best = max(g.x, cubicAt(g, len));
-    // g'(u) = A u^2 + B u + C; roots via the cancellation-free form q = -(B + sign(B) sqrt(disc)) / 2,
-    // r1 = q / A, r2 = C / q. A == 0 gives r1 = inf (ignored) and r2 = -C / B, the linear root;
-    // A == B == 0 gives no finite root. Non-finite roots fail the range test below.
-    float A = 3.0 * g.w, B = 2.0 * g.z, C = g.y;
-    float disc = B * B - 4.0 * A * C;
-    if (disc >= 0.0) {
-        float q = -0.5 * (B + (B >= 0.0 ? 1.0 : -1.0) * sqrt(disc));
-        float r1 = q / A;
-        float r2 = C / q;
-        if (r1 > 0.0 && r1 < len) best = max(best, cubicAt(g, r1));
-        if (r2 > 0.0 && r2 < len) best = max(best, cubicAt(g, r2));
-    }
-    value = best;
-    return true;
-}
-
-// votRayMaxAround with the expansion point read from the record.
-bool votRayMaxInBox(uint vot, vec3 lo, vec3 hi, vec3 origin, vec3 dir, float farT, out float value) {
-    return votRayMaxAround(vot, lo, hi, texelFetch(uVotData, int(vot) * VOT_TEXELS + 2).xyz, origin, dir, farT,
-                           value);
-}
-
-// votRayMaxInBox with the box read from the record.
-bool votRayMax(uint vot, vec3 origin, vec3 dir, float farT, out float value) {
-    int base = int(vot) * VOT_TEXELS;
     vec3 lo = texelFetch(uVotData, base).xyz, hi = texelFetch(uVotData, base + 1).xyz;
-    return votRayMaxInBox(vot, lo, hi, origin, dir, farT, value);
+    vec3 p = texelFetch(uVotData, base + 2).xyz;
+    return cubicRayMax(c, lo, hi, p, vec3(1.0), origin, dir, farT, value);
 }

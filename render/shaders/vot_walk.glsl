@@ -1,10 +1,9 @@
 // Walk strategy, shared by vot_walk.frag and vot_walk.comp: each pixel walks its ray front to back
 // through a cell -> Vot grid, stepping over whole bricks and whole Vot boxes that cannot raise its max
-// and evaluating the Vots that can. Each is built twice (VotRenderer): with CENTRED_EXPANSION defined
-// for Vot-Spaces whose every expansion point is its box centre, as the fast fit makes them, and without.
+// and evaluating the Vots that can, from their 64-byte walk records.
 #include "vot_common.glsl"
 #include "ray_common.glsl"
-#include "vot_ray_max.glsl"
+#include "cubic_ray_max.glsl"
 
 // Buffer textures, not 3D textures or SSBOs: llvmpipe gathers texel fetches for all lanes at once.
 uniform usamplerBuffer uCellLocal; // R16UI per cell, brick by brick (PalettedCells, VotWalkGrid.h): an
@@ -20,6 +19,8 @@ uniform usamplerBuffer uVotBox;    // RGBA32UI per palette entry, for the block 
                                    // Vot's box here is the box to step over when it is culled: its own,
                                    // or its skip box once grown (SkipBoxes.h); its own box is in its
                                    // record (uVotData).
+uniform usamplerBuffer uWalkRecord; // 4 RGBA32UI texels per Vot (WalkRecord.h): box, the polynomial
+                                    // around the box centre in box units, higher terms in 16 bits
 uniform ivec3 uCells;    // cells per axis (grid points - 1)
 uniform ivec3 uBricks;   // bricks per axis
 uniform int uBrickShift; // a brick is (1 << uBrickShift)^3 cells
@@ -29,6 +30,31 @@ uniform int uCull;       // 1: step over bricks and Vots whose bound cannot beat
 vec3 gOrigin, gDir, gInvDir;
 bvec3 gUp;
 float gFarT, gTOut;
+
+// The max of Vot `vot` along this pixel's ray (-inf when the ray misses its box), and its box [lo, hi)
+// in cells. The whole box is evaluated, as the raster strategy does for this Vot.
+float walkRecordRayMax(uint vot, out ivec3 lo, out ivec3 hi) {
+    int base = int(vot) * 4;
+    uvec4 r0 = texelFetch(uWalkRecord, base), r1 = texelFetch(uWalkRecord, base + 1);
+    uvec4 r2 = texelFetch(uWalkRecord, base + 2), r3 = texelFetch(uWalkRecord, base + 3);
+    lo = ivec3(r0.x & 0xffffu, r0.x >> 16, r0.y & 0xffffu);
+    hi = ivec3(r0.y >> 16, r0.z & 0xffffu, r0.z >> 16);
+    float c[TAYLOR_TERMS];
+    c[0] = uintBitsToFloat(r0.w);
+    c[1] = uintBitsToFloat(r1.x);
+    c[2] = uintBitsToFloat(r1.y);
+    c[3] = uintBitsToFloat(r1.z);
+    float quantum = uintBitsToFloat(r1.w);
+    uint steps[8] = uint[8](r2.x, r2.y, r2.z, r2.w, r3.x, r3.y, r3.z, r3.w);
+    for (int k = 0; k < 8; ++k) {
+        c[4 + 2 * k] = float(bitfieldExtract(int(steps[k]), 0, 16)) * quantum;
+        c[5 + 2 * k] = float(int(steps[k]) >> 16) * quantum;
+    }
+    vec3 boxLo = vec3(lo), boxHi = vec3(hi);
+    float value = NEG_INF;
+    cubicRayMax(c, boxLo, boxHi, 0.5 * (boxLo + boxHi), 2.0 / (boxHi - boxLo), gOrigin, gDir, gFarT, value);
+    return value;
+}
 
 // One step of the walk: leaves the block at `cell` (evaluating it first when it is a Vot that can raise
 // the max) or ends the walk. With mayEvaluate false, a Vot to evaluate is left as it is, for the next
@@ -63,18 +89,7 @@ void walkStep(const bool mayEvaluate, inout ivec3 cell, inout float best, inout 
         hi = ivec3(box.y >> 16, box.z & 0xffffu, box.z >> 16);
     } else if (mayEvaluate) {
         uint votToRead = skipBrick || stepOver ? 0u : texelFetch(uPalette, entry).r;
-        int base = int(votToRead) * VOT_TEXELS;
-        vec3 recordLo = texelFetch(uVotData, base).xyz, recordHi = texelFetch(uVotData, base + 1).xyz;
-#ifdef CENTRED_EXPANSION
-        vec3 p = 0.5 * (recordLo + recordHi); // saves a fetch per evaluation: ~3 % of a frame
-#else
-        vec3 p = texelFetch(uVotData, base + 2).xyz;
-#endif
-        lo = ivec3(recordLo);
-        hi = ivec3(recordHi);
-        float value;
-        // The whole box is evaluated, exactly as the raster strategy does for this Vot.
-        if (votRayMaxAround(votToRead, recordLo, recordHi, p, gOrigin, gDir, gFarT, value)) best = max(best, value);
+        best = max(best, walkRecordRayMax(votToRead, lo, hi));
     }
     // Leave the block: the first face crossed sets the axis that moves past it; the other axes
     // follow the ray, clamped into the block and never backwards (rounding cannot skip cells).

@@ -13,6 +13,7 @@
 #include "VotBounds.h"
 #include "VotOrder.h"
 #include "VotWalkGrid.h"
+#include "WalkRecord.h"
 
 #include "vots/fit/Error.h"
 #include "vots/fit/VotSpace.h"
@@ -87,14 +88,6 @@ bool projectBox(const float m[16], const GpuVot& v, int width, int height, int r
     return true;
 }
 
-// The shader source with `#define name` after its #version line.
-std::string withDefine(const char* source, const char* name) {
-    std::string text(source);
-    const std::size_t lineEnd = text.find('\n');
-    return text.insert(lineEnd == std::string::npos ? text.size() : lineEnd + 1,
-                       std::string("#define ") + name + "\n");
-}
-
 // One RGBA32UI walk texel: box corners in 16 bits each, and the bound's bits.
 void packBox(std::uint32_t* texel, const std::array<int, 3>& lo, const std::array<int, 3>& hi, float bound) {
     const auto u = [](int v) { return static_cast<std::uint32_t>(v); };
@@ -125,24 +118,24 @@ struct VotRenderer::Impl {
     GlProgram mipProgram = buildProgram(shaders::VOT_BOX_VERT, shaders::VOT_MIP_FRAG, "vot_mip");
     GlProgram densityProgram = buildProgram(shaders::VOT_BOX_VERT, shaders::VOT_DENSITY_FRAG, "vot_density");
     WalkShader walkShader = defaultWalkShader();
-    // Per (compute, centred expansion), built when first needed; the constructor builds the one most
-    // frames use, so that a shader this driver refuses shows at once.
-    std::array<GlProgram, 4> walkPrograms;
+    // Fragment and compute, built when first needed; the constructor builds the one frames use, so
+    // that a shader this driver refuses shows at once.
+    std::array<GlProgram, 2> walkPrograms;
     // Walk strategy (vot_walk.frag): buffer textures over their own buffers.
-    GlBuffer cellLocalBuffer, paletteBuffer, brickMaxBuffer, votBoxBuffer;
+    GlBuffer cellLocalBuffer, paletteBuffer, brickMaxBuffer, votBoxBuffer, walkRecordBuffer;
     GlTexture cellLocal; // R16UI per cell, brick by brick: index into the brick's palette
     GlTexture palette;   // R32UI: block ids (a Vot index, or Vot count + empty block index), brick by brick
     GlTexture brickMax;  // RGBA32F per brick, x fastest: its bound, the bound ahead for this frame, and
                          // the bits of its first palette index
     std::vector<float> walkBrickMax;             // per brick: max upperBound of the Vots touching it
     std::vector<std::uint32_t> walkPaletteStart; // per brick: its first palette index
-    GlTexture votBox; // RGBA32UI per palette entry: the packed box to step over and the bound of the
-                      // block the entry names (each brick has its own copies of its blocks' boxes)
+    GlTexture walkRecord; // RGBA32UI, WALK_RECORD_TEXELS per Vot (WalkRecord.h), in the order of vots
+    GlTexture votBox;     // RGBA32UI per palette entry: the packed box to step over and the bound of the
+                          // block the entry names (each brick has its own copies of its blocks' boxes)
     std::vector<std::uint32_t> walkPalette; // the palette's block ids, to rewrite votBox with skip boxes
     std::array<int, 3> walkCells{0, 0, 0};
     std::array<int, 3> walkBricks{0, 0, 0};
     bool walkable = false;
-    bool centredExpansion = false; // every Vot's p is its box centre, exactly
     // Skip boxes (SkipBoxes.h) are grown on other threads once a Vot-Space's first frame is drawn, so
     // they never delay it, and replace the boxes in votBox at the next frame: the same images, fewer
     // walk steps. A growth owns its input, so an upload cancels the last one without waiting for it.
@@ -154,7 +147,7 @@ struct VotRenderer::Impl {
     std::future<std::vector<CellBlock>> skipTask;
     std::vector<std::future<std::vector<CellBlock>>> cancelledSkipTasks; // ending on their own
     GlVertexArray vertexArray = createVertexArray();
-    GlBuffer votBuffer;
+    GlBuffer votBuffer; // the records of `vots`, made by the first frame that draws Raster or density
     GlBuffer indexBuffer;
     GlTexture votData = createTexture(GL_TEXTURE_BUFFER); // RGBA32F view of the bound chunk (uVotData)
     FloatTarget target;
@@ -180,7 +173,7 @@ struct VotRenderer::Impl {
     Impl() {
         if (walkShader == WalkShader::Compute) {
             try {
-                walkProgram(true, true);
+                walkProgram(true);
                 return;
             } catch (const RenderError& e) { // the rasteriser's walk is the one every driver has run
                 std::cerr << "vots: warning: the compute walk does not build here, using the fragment walk: "
@@ -188,7 +181,7 @@ struct VotRenderer::Impl {
                 walkShader = WalkShader::Fragment;
             }
         }
-        walkProgram(false, true);
+        walkProgram(false);
     }
 
     // VOTS_WALK_SHADER=fragment|compute overrides the choice by renderer: the compute walk is the
@@ -204,17 +197,11 @@ struct VotRenderer::Impl {
                                                                     : WalkShader::Compute;
     }
 
-    GLuint walkProgram(bool compute, bool centred) {
-        GlProgram& program = walkPrograms[(compute ? 2 : 0) + (centred ? 1 : 0)];
-        if (!program.get()) {
-            const char* label = compute ? (centred ? "vot_walk_compute_centred" : "vot_walk_compute")
-                                        : (centred ? "vot_walk_centred" : "vot_walk");
-            const char* shader = compute ? shaders::VOT_WALK_COMP : shaders::VOT_WALK_FRAG;
-            const std::string source =
-                centred ? withDefine(shader, "CENTRED_EXPANSION") : std::string(shader);
-            program = compute ? buildComputeProgram(source.c_str(), label)
-                              : buildProgram(shaders::WALK_BOX_VERT, source.c_str(), label);
-        }
+    GLuint walkProgram(bool compute) {
+        GlProgram& program = walkPrograms[compute ? 1 : 0];
+        if (!program.get())
+            program = compute ? buildComputeProgram(shaders::VOT_WALK_COMP, "vot_walk_compute")
+                              : buildProgram(shaders::WALK_BOX_VERT, shaders::VOT_WALK_FRAG, "vot_walk");
         return program.get();
     }
 
@@ -267,6 +254,15 @@ struct VotRenderer::Impl {
         glNamedBufferSubData(votBoxBuffer.get(), 0,
                              static_cast<GLsizeiptr>(texels.size() * sizeof(std::uint32_t)), texels.data());
         checkGl("VotRenderer skip boxes");
+    }
+
+    void ensureVotBuffer() {
+        if (votBuffer.get()) return;
+        votBuffer = createBuffer();
+        glNamedBufferStorage(votBuffer.get(),
+                             static_cast<GLsizeiptr>(std::max<std::size_t>(vots.size(), 1) * sizeof(GpuVot)),
+                             vots.empty() ? nullptr : vots.data(), 0);
+        checkGl("VotRenderer records upload");
     }
 
     void bindChunk(std::size_t chunk) {
@@ -380,7 +376,7 @@ struct VotRenderer::Impl {
     void drawWalk(const CameraMatrices& m, int width, int height) {
         applySkipBoxes(false);
         const bool compute = walkShader == WalkShader::Compute;
-        const GLuint p = walkProgram(compute, centredExpansion);
+        const GLuint p = walkProgram(compute);
         glUseProgram(p);
         setMatrixUniform(p, "uIndexToClip", m.indexToClip);
         setMatrixUniform(p, "uClipToIndex", m.clipToIndex);
@@ -409,12 +405,12 @@ struct VotRenderer::Impl {
         glProgramUniform1i(p, glGetUniformLocation(p, "uPalette"), 4);
         glProgramUniform1i(p, glGetUniformLocation(p, "uBrickMax"), 1);
         glProgramUniform1i(p, glGetUniformLocation(p, "uVotBox"), 2);
-        glProgramUniform1i(p, glGetUniformLocation(p, "uVotData"), VOT_TEXTURE_UNIT);
+        glProgramUniform1i(p, glGetUniformLocation(p, "uWalkRecord"), 3);
         glBindTextureUnit(0, cellLocal.get());
         glBindTextureUnit(4, palette.get());
         glBindTextureUnit(1, brickMax.get());
         glBindTextureUnit(2, votBox.get());
-        bindChunk(0);
+        glBindTextureUnit(3, walkRecord.get());
         stats.batches = 1;
         if (compute) {
             constexpr GLuint GROUP_SIDE = 8; // local_size in vot_walk.comp
@@ -441,7 +437,6 @@ struct VotRenderer::Impl {
     // frames use Raster: boxes that overlap (the walk sees one Vot per cell), or more than the GL
     // limits hold.
     std::optional<VotWalkGrid> walkGridFor(const std::array<int, 3>& dims) const {
-        if (vots.size() > chunkRecords) return std::nullopt; // the walk reads every Vot through one binding
         for (int a = 0; a < 3; ++a)
             if (dims[a] - 1 > 0xffff) return std::nullopt; // box corners are packed in 16 bits
         std::optional<VotWalkGrid> grid = buildVotWalkGrid(vots, dims, WALK_BRICK_SHIFT, nullptr);
@@ -449,17 +444,19 @@ struct VotRenderer::Impl {
         GLint maxTexels = 0;
         glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
         const std::size_t cells = grid->brickMax.size() << (3 * grid->brickShift);
-        if (std::max(cells, vots.size() + grid->emptyBlocks.size()) >= static_cast<std::size_t>(maxTexels))
+        if (std::max({cells, vots.size() + grid->emptyBlocks.size(), WALK_RECORD_TEXELS * vots.size()}) >=
+            static_cast<std::size_t>(maxTexels))
             return std::nullopt;
         return grid;
     }
 
     // Uploads the Walk grid (walkable true), or drops the last one when there is none.
-    void uploadWalkGrid(std::optional<VotWalkGrid>&& grid) {
+    void uploadWalkGrid(std::optional<VotWalkGrid>&& grid, const std::vector<std::uint32_t>& records) {
         walkable = false;
-        for (GlTexture* t : {&cellLocal, &palette, &brickMax, &votBox})
+        for (GlTexture* t : {&cellLocal, &palette, &brickMax, &votBox, &walkRecord})
             t->reset();
-        for (GlBuffer* b : {&cellLocalBuffer, &paletteBuffer, &brickMaxBuffer, &votBoxBuffer})
+        for (GlBuffer* b :
+             {&cellLocalBuffer, &paletteBuffer, &brickMaxBuffer, &votBoxBuffer, &walkRecordBuffer})
             b->reset();
         if (!grid) return;
         PalettedCells cells = palettedCells(*grid);
@@ -501,6 +498,10 @@ struct VotRenderer::Impl {
         // Written by every walk frame before it draws (drawWalk): the bounds ahead depend on the view.
         bufferTexture(brickMaxBuffer, brickMax, GL_RGBA32F, nullptr, 4 * walkBrickMax.size() * sizeof(float));
         bufferTexture(votBoxBuffer, votBox, GL_RGBA32UI, boxes.data(), boxes.size() * sizeof(std::uint32_t));
+        // At least one record, so that an empty space binds a valid buffer.
+        const std::uint32_t none[WALK_RECORD_WORDS] = {};
+        bufferTexture(walkRecordBuffer, walkRecord, GL_RGBA32UI, records.empty() ? none : records.data(),
+                      std::max(records.size(), WALK_RECORD_WORDS) * sizeof(std::uint32_t));
         in.cellVot = std::move(grid->cellVot);
         in.emptyBlocks = std::move(grid->emptyBlocks);
         checkGl("VotRenderer walk grid upload");
@@ -529,6 +530,7 @@ struct VotRenderer::Impl {
             return;
         }
         const GLuint program = mode == RenderMode::Mip ? mipProgram.get() : densityProgram.get();
+        ensureVotBuffer();
         setCommonState(program, m, width, height);
         if (mode == RenderMode::Mip) {
             target.clear(-INFINITY);
@@ -566,11 +568,17 @@ void VotRenderer::upload(const fit::VotSpace& space) {
     for (std::size_t i = 0; i < order.size(); ++i)
         place[order[i]] = i;
     d.vots.resize(space.vots.size());
+    std::vector<std::uint32_t> walkRecords(space.vots.size() * WALK_RECORD_WORDS);
     {
         // Bounds and records dominate an upload; each Vot is independent, so split evenly.
         parallelChunks(space.vots.size(), [&](std::size_t first, std::size_t last) {
             for (std::size_t i = first; i < last; ++i) {
                 bounds[i] = computeVotBounds(space.vots[i]);
+                const WalkRecord walk = makeWalkRecord(space.vots[i]);
+                std::copy(walk.words.begin(), walk.words.end(), &walkRecords[place[i] * WALK_RECORD_WORDS]);
+                // The walk evaluates its record's polynomial, which strays from the Vot's by up to
+                // maxError: every bound covers both, so culling by it never changes either image.
+                bounds[i].floatSlack += walk.maxError;
                 d.vots[place[i]] = makeGpuVot(space.vots[i], bounds[i]);
             }
         });
@@ -605,25 +613,17 @@ void VotRenderer::upload(const fit::VotSpace& space) {
         maxLogSize = std::max(maxLogSize, d.vots[i].logSize);
     }
     if (d.vots.empty()) lo = hi = 0.f;
-    d.centredExpansion = std::all_of(d.vots.begin(), d.vots.end(), [](const GpuVot& v) {
-        for (int a = 0; a < 3; ++a)
-            if (v.p[a] != 0.5f * (v.lo[a] + v.hi[a])) return false;
-        return true;
-    });
     d.valueRange = {lo, hi};
     d.densityRange = {0.f, std::max(maxLogSize, 1.f)};
 
-    d.votBuffer = createBuffer();
-    glNamedBufferStorage(d.votBuffer.get(),
-                         static_cast<GLsizeiptr>(std::max<std::size_t>(d.vots.size(), 1) * sizeof(GpuVot)),
-                         d.vots.empty() ? nullptr : d.vots.data(), 0);
+    d.votBuffer.reset(); // the walk reads its own records: most spaces never need these 30 MB in GL
     d.visible.assign(std::max<std::size_t>(std::min(d.vots.size(), chunk), 1), 0);
     d.indexBuffer = createBuffer();
     glNamedBufferStorage(d.indexBuffer.get(),
                          static_cast<GLsizeiptr>(d.visible.size() * sizeof(std::uint32_t)), nullptr,
                          GL_DYNAMIC_STORAGE_BIT);
     checkGl("VotRenderer upload");
-    d.uploadWalkGrid(std::move(grid));
+    d.uploadWalkGrid(std::move(grid), walkRecords);
     d.bounds = sceneBounds(space);
     d.hasData = true;
 }

@@ -194,8 +194,8 @@ TEST(WalkStrategy, AnUploadWhileSkipBoxesGrowGetsOnlyItsOwn) {
 }
 
 TEST(WalkStrategy, OffCentreExpansionPointsRenderTheSamePolynomial) {
-    // The walk has a variant for Vots expanded around their box centres (the fast fit's) that computes
-    // the point instead of reading it; any other point must be read from the record.
+    // The walk re-expands every Vot around its box centre (WalkRecord.h); a Vot expanded anywhere else
+    // in its box must draw the same polynomial as one expanded there.
     test::glContext();
     constexpr int N = 17;
     const test::Polynomial p = test::randomPolynomial(3, N, 100.0, 11u);
@@ -206,7 +206,7 @@ TEST(WalkStrategy, OffCentreExpansionPointsRenderTheSamePolynomial) {
     for (const char* text : {"anterior", "az=30,el=20", "az=-50,el=-30,zoom=1.4,proj=persp,fov=40"}) {
         const Camera cam = parseCamera(text);
         const FloatImage a = centred.render(cam, 64, 48), b = offCentre.render(cam, 64, 48);
-        const Comparison c = compare(a, b, 1e-3); // float re-expansion rounding only (values ~100)
+        const Comparison c = compare(a, b, 1e-3); // float rounding and 16-bit terms only (values ~100)
         EXPECT_EQ(c.finiteMismatch + c.beyondTolerance, 0u) << text << ", worst " << c.worst;
     }
 }
