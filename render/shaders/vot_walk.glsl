@@ -8,8 +8,6 @@
 // Buffer textures, not 3D textures or SSBOs: llvmpipe gathers texel fetches for all lanes at once.
 uniform usamplerBuffer uCellLocal; // R16UI per cell, brick by brick (PalettedCells, VotWalkGrid.h): an
                                    // index into the brick's palette
-uniform usamplerBuffer uPalette;   // R32UI per palette entry: the block it names, a Vot index (records in
-                                   // uVotData) or, past the Vots, an empty block's
 uniform samplerBuffer uBrickMax;   // RGBA32F per brick, x fastest: max upperBound of the Vots touching it
                                    // (or -inf); the max of that over every brick this view's rays can
                                    // reach from it (BrickAhead.h); the bits of its first palette index
@@ -19,8 +17,9 @@ uniform usamplerBuffer uVotBox;    // RGBA32UI per palette entry, for the block 
                                    // Vot's box here is the box to step over when it is culled: its own,
                                    // or its skip box once grown (SkipBoxes.h); its own box is in its
                                    // record (uVotData).
-uniform usamplerBuffer uWalkRecord; // 4 RGBA32UI texels per Vot (WalkRecord.h): box, the polynomial
-                                    // around the box centre in box units, higher terms in 16 bits
+uniform usamplerBuffer uWalkRecord; // 4 RGBA32UI texels per palette entry naming a Vot (WalkRecord.h):
+                                    // its box, its polynomial around the box centre in box units, the
+                                    // higher terms in 16 bits
 uniform ivec3 uCells;    // cells per axis (grid points - 1)
 uniform ivec3 uBricks;   // bricks per axis
 uniform int uBrickShift; // a brick is (1 << uBrickShift)^3 cells
@@ -31,10 +30,10 @@ vec3 gOrigin, gDir, gInvDir;
 bvec3 gUp;
 float gFarT, gTOut;
 
-// The max of Vot `vot` along this pixel's ray (-inf when the ray misses its box), and its box [lo, hi)
-// in cells. The whole box is evaluated, as the raster strategy does for this Vot.
-float walkRecordRayMax(uint vot, out ivec3 lo, out ivec3 hi) {
-    int base = int(vot) * 4;
+// The max along this pixel's ray of the Vot that palette entry `entry` names (-inf when the ray misses
+// its box), and its box [lo, hi) in cells. The whole box is evaluated, as the raster strategy does.
+float walkRecordRayMax(int entry, out ivec3 lo, out ivec3 hi) {
+    int base = entry * 4;
     uvec4 r0 = texelFetch(uWalkRecord, base), r1 = texelFetch(uWalkRecord, base + 1);
     uvec4 r2 = texelFetch(uWalkRecord, base + 2), r3 = texelFetch(uWalkRecord, base + 3);
     lo = ivec3(r0.x & 0xffffu, r0.x >> 16, r0.y & 0xffffu);
@@ -88,8 +87,7 @@ void walkStep(const bool mayEvaluate, inout ivec3 cell, inout float best, inout 
         lo = ivec3(box.x & 0xffffu, box.x >> 16, box.y & 0xffffu);
         hi = ivec3(box.y >> 16, box.z & 0xffffu, box.z >> 16);
     } else if (mayEvaluate) {
-        uint votToRead = skipBrick || stepOver ? 0u : texelFetch(uPalette, entry).r;
-        best = max(best, walkRecordRayMax(votToRead, lo, hi));
+        best = max(best, walkRecordRayMax(skipBrick || stepOver ? 0 : entry, lo, hi));
     }
     // Leave the block: the first face crossed sets the axis that moves past it; the other axes
     // follow the ray, clamped into the block and never backwards (rounding cannot skip cells).

@@ -122,14 +122,14 @@ struct VotRenderer::Impl {
     // that a shader this driver refuses shows at once.
     std::array<GlProgram, 2> walkPrograms;
     // Walk strategy (vot_walk.frag): buffer textures over their own buffers.
-    GlBuffer cellLocalBuffer, paletteBuffer, brickMaxBuffer, votBoxBuffer, walkRecordBuffer;
+    GlBuffer cellLocalBuffer, brickMaxBuffer, votBoxBuffer, walkRecordBuffer;
     GlTexture cellLocal; // R16UI per cell, brick by brick: index into the brick's palette
-    GlTexture palette;   // R32UI: block ids (a Vot index, or Vot count + empty block index), brick by brick
     GlTexture brickMax;  // RGBA32F per brick, x fastest: its bound, the bound ahead for this frame, and
                          // the bits of its first palette index
     std::vector<float> walkBrickMax;             // per brick: max upperBound of the Vots touching it
     std::vector<std::uint32_t> walkPaletteStart; // per brick: its first palette index
-    GlTexture walkRecord; // RGBA32UI, WALK_RECORD_TEXELS per Vot (WalkRecord.h), in the order of vots
+    GlTexture walkRecord; // RGBA32UI, WALK_RECORD_TEXELS per palette entry (WalkRecord.h): the record of
+                          // the Vot it names, zeros for an empty block
     GlTexture votBox;     // RGBA32UI per palette entry: the packed box to step over and the bound of the
                           // block the entry names (each brick has its own copies of its blocks' boxes)
     std::vector<std::uint32_t> walkPalette; // the palette's block ids, to rewrite votBox with skip boxes
@@ -139,6 +139,10 @@ struct VotRenderer::Impl {
     // Skip boxes (SkipBoxes.h) are grown on other threads once a Vot-Space's first frame is drawn, so
     // they never delay it, and replace the boxes in votBox at the next frame: the same images, fewer
     // walk steps. A growth owns its input, so an upload cancels the last one without waiting for it.
+    struct WalkGrid {
+        VotWalkGrid grid;
+        PalettedCells cells;
+    };
     struct SkipGrowth {
         SkipGrowthInput input;
         std::atomic<bool> cancel{false};
@@ -402,12 +406,10 @@ struct VotRenderer::Impl {
         glNamedBufferSubData(brickMaxBuffer.get(), 0,
                              static_cast<GLsizeiptr>(brickBounds.size() * sizeof(float)), brickBounds.data());
         glProgramUniform1i(p, glGetUniformLocation(p, "uCellLocal"), 0);
-        glProgramUniform1i(p, glGetUniformLocation(p, "uPalette"), 4);
         glProgramUniform1i(p, glGetUniformLocation(p, "uBrickMax"), 1);
         glProgramUniform1i(p, glGetUniformLocation(p, "uVotBox"), 2);
         glProgramUniform1i(p, glGetUniformLocation(p, "uWalkRecord"), 3);
         glBindTextureUnit(0, cellLocal.get());
-        glBindTextureUnit(4, palette.get());
         glBindTextureUnit(1, brickMax.get());
         glBindTextureUnit(2, votBox.get());
         glBindTextureUnit(3, walkRecord.get());
@@ -436,30 +438,31 @@ struct VotRenderer::Impl {
     // The Walk grid for the records in `vots`, or nullopt when the walk cannot draw them, so that MIP
     // frames use Raster: boxes that overlap (the walk sees one Vot per cell), or more than the GL
     // limits hold.
-    std::optional<VotWalkGrid> walkGridFor(const std::array<int, 3>& dims) const {
+    std::optional<WalkGrid> walkGridFor(const std::array<int, 3>& dims) const {
         for (int a = 0; a < 3; ++a)
             if (dims[a] - 1 > 0xffff) return std::nullopt; // box corners are packed in 16 bits
         std::optional<VotWalkGrid> grid = buildVotWalkGrid(vots, dims, WALK_BRICK_SHIFT, nullptr);
         if (!grid) return std::nullopt;
+        PalettedCells cells = palettedCells(*grid);
         GLint maxTexels = 0;
         glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
-        const std::size_t cells = grid->brickMax.size() << (3 * grid->brickShift);
-        if (std::max({cells, vots.size() + grid->emptyBlocks.size(), WALK_RECORD_TEXELS * vots.size()}) >=
+        const std::size_t cellCount = grid->brickMax.size() << (3 * grid->brickShift);
+        if (std::max(cellCount, WALK_RECORD_TEXELS * cells.palette.size()) >=
             static_cast<std::size_t>(maxTexels))
             return std::nullopt;
-        return grid;
+        return WalkGrid{std::move(*grid), std::move(cells)};
     }
 
     // Uploads the Walk grid (walkable true), or drops the last one when there is none.
-    void uploadWalkGrid(std::optional<VotWalkGrid>&& grid, const std::vector<std::uint32_t>& records) {
+    void uploadWalkGrid(std::optional<WalkGrid>&& walk, const std::vector<std::uint32_t>& votRecords) {
         walkable = false;
-        for (GlTexture* t : {&cellLocal, &palette, &brickMax, &votBox, &walkRecord})
+        for (GlTexture* t : {&cellLocal, &brickMax, &votBox, &walkRecord})
             t->reset();
-        for (GlBuffer* b :
-             {&cellLocalBuffer, &paletteBuffer, &brickMaxBuffer, &votBoxBuffer, &walkRecordBuffer})
+        for (GlBuffer* b : {&cellLocalBuffer, &brickMaxBuffer, &votBoxBuffer, &walkRecordBuffer})
             b->reset();
-        if (!grid) return;
-        PalettedCells cells = palettedCells(*grid);
+        if (!walk) return;
+        VotWalkGrid* grid = &walk->grid;
+        PalettedCells& cells = walk->cells;
         const std::size_t blocks = vots.size() + grid->emptyBlocks.size();
 
         // What the skip-box growth will read; the Vots' own boxes are also the first box table.
@@ -490,18 +493,26 @@ struct VotRenderer::Impl {
         };
         bufferTexture(cellLocalBuffer, cellLocal, GL_R16UI, cells.local.data(),
                       cells.local.size() * sizeof(std::uint16_t));
-        bufferTexture(paletteBuffer, palette, GL_R32UI, cells.palette.data(),
-                      cells.palette.size() * sizeof(std::uint32_t));
         walkBrickMax = grid->brickMax;
         walkPaletteStart = std::move(cells.paletteStart);
         walkPalette = std::move(cells.palette);
         // Written by every walk frame before it draws (drawWalk): the bounds ahead depend on the view.
         bufferTexture(brickMaxBuffer, brickMax, GL_RGBA32F, nullptr, 4 * walkBrickMax.size() * sizeof(float));
         bufferTexture(votBoxBuffer, votBox, GL_RGBA32UI, boxes.data(), boxes.size() * sizeof(std::uint32_t));
+        // Walk records by palette entry, like the box table: a step that evaluates reads the record
+        // straight after the box, with no lookup of the Vot's index between them. Only 4 % of the CT's
+        // Vots have entries in two bricks; entries of empty blocks stay zero (10 % of the entries).
         // At least one record, so that an empty space binds a valid buffer.
-        const std::uint32_t none[WALK_RECORD_WORDS] = {};
-        bufferTexture(walkRecordBuffer, walkRecord, GL_RGBA32UI, records.empty() ? none : records.data(),
-                      std::max(records.size(), WALK_RECORD_WORDS) * sizeof(std::uint32_t));
+        std::vector<std::uint32_t> records(WALK_RECORD_WORDS * std::max<std::size_t>(walkPalette.size(), 1),
+                                           0);
+        parallelChunks(walkPalette.size(), [&](std::size_t first, std::size_t last) {
+            for (std::size_t i = first; i < last; ++i)
+                if (walkPalette[i] < vots.size())
+                    std::copy_n(&votRecords[walkPalette[i] * WALK_RECORD_WORDS], WALK_RECORD_WORDS,
+                                &records[i * WALK_RECORD_WORDS]);
+        });
+        bufferTexture(walkRecordBuffer, walkRecord, GL_RGBA32UI, records.data(),
+                      records.size() * sizeof(std::uint32_t));
         in.cellVot = std::move(grid->cellVot);
         in.emptyBlocks = std::move(grid->emptyBlocks);
         checkGl("VotRenderer walk grid upload");
@@ -596,7 +607,7 @@ void VotRenderer::upload(const fit::VotSpace& space) {
     if (chunk == 0) throw RenderError("GL shader storage blocks are too small for one Vot");
     d.chunkRecords = chunk;
 
-    std::optional<VotWalkGrid> grid = d.walkGridFor(space.dims);
+    std::optional<Impl::WalkGrid> grid = d.walkGridFor(space.dims);
     if (!grid) {
         // Bound order when Raster draws the MIP instead.
         const std::vector<std::size_t> byBound = boundOrder(bounds);
