@@ -16,7 +16,7 @@ uniform usamplerBuffer uVotBox;    // RGBA32UI per palette entry, for the block 
                                    // hi.y | hi.z << 16), and the bound's bits (-inf for empty blocks). A
                                    // Vot's box here is the box to step over when it is culled: its own,
                                    // or its skip box once grown (SkipBoxes.h); its own box is in its
-                                   // record (uVotData).
+                                   // walk record (uWalkRecord).
 uniform usamplerBuffer uWalkRecord; // 4 RGBA32UI texels per palette entry naming a Vot (WalkRecord.h):
                                     // its box, its polynomial around the box centre in box units, the
                                     // higher terms in 16 bits

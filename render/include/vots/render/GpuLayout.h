@@ -24,7 +24,7 @@ struct GpuVot {
 };                                      // 128B total, array stride 128
 
 static_assert(sizeof(GpuVot) == 128);
-/// The MIP shaders also read the records as a buffer texture of RGBA32F texels (uVotData, texture unit
+/// The raster MIP shader also reads the records as a buffer texture of RGBA32F texels (uVotData, texture unit
 /// VOT_TEXTURE_UNIT): VOT_TEXELS texels per Vot, the coefficients four per texel.
 inline constexpr unsigned VOT_TEXTURE_UNIT = 3;
 inline constexpr unsigned VOT_TEXELS = sizeof(GpuVot) / 16;
