@@ -26,7 +26,8 @@ inline constexpr std::size_t WALK_RECORD_TEXELS = WALK_RECORD_WORDS / 4;
 struct WalkRecord {
     std::array<std::uint32_t, WALK_RECORD_WORDS> words{};
     /// Bound on |record polynomial - Vot polynomial| over the box (grown by the shader's clip slack),
-    /// before float rounding: 8 q. At most 2.5e-4 of the largest second- or third-order term.
+    /// before float rounding: the sum of the 16 terms' roundings, at most 8 q, so at most 2.5e-4 of
+    /// the largest second- or third-order term.
     double maxError = 0.0;
 };
 
