@@ -30,14 +30,19 @@ vec3 gOrigin, gDir, gInvDir;
 bvec3 gUp;
 float gFarT, gTOut;
 
+// The box [lo, hi) in cells packed in a texel's first three words (packBoxCorners, VotWalkGrid.h).
+void unpackBox(uvec4 texel, out ivec3 lo, out ivec3 hi) {
+    lo = ivec3(texel.x & 0xffffu, texel.x >> 16, texel.y & 0xffffu);
+    hi = ivec3(texel.y >> 16, texel.z & 0xffffu, texel.z >> 16);
+}
+
 // The max along this pixel's ray of the Vot that palette entry `entry` names (-inf when the ray misses
 // its box), and its box [lo, hi) in cells. The whole box is evaluated, as the raster strategy does.
 float walkRecordRayMax(int entry, out ivec3 lo, out ivec3 hi) {
     int base = entry * 4;
     uvec4 r0 = texelFetch(uWalkRecord, base), r1 = texelFetch(uWalkRecord, base + 1);
     uvec4 r2 = texelFetch(uWalkRecord, base + 2), r3 = texelFetch(uWalkRecord, base + 3);
-    lo = ivec3(r0.x & 0xffffu, r0.x >> 16, r0.y & 0xffffu);
-    hi = ivec3(r0.y >> 16, r0.z & 0xffffu, r0.z >> 16);
+    unpackBox(r0, lo, hi);
     float c[TAYLOR_TERMS];
     c[0] = uintBitsToFloat(r0.w);
     c[1] = uintBitsToFloat(r1.x);
@@ -84,8 +89,7 @@ void walkStep(const bool mayEvaluate, inout ivec3 cell, inout float best, inout 
         lo = brick << uBrickShift;
         hi = min(lo + (1 << uBrickShift), uCells);
     } else if (stepOver) {
-        lo = ivec3(box.x & 0xffffu, box.x >> 16, box.y & 0xffffu);
-        hi = ivec3(box.y >> 16, box.z & 0xffffu, box.z >> 16);
+        unpackBox(box, lo, hi);
     } else if (mayEvaluate) {
         best = max(best, walkRecordRayMax(skipBrick || stepOver ? 0 : entry, lo, hi));
     }

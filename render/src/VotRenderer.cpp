@@ -90,10 +90,7 @@ bool projectBox(const float m[16], const GpuVot& v, int width, int height, int r
 
 // One RGBA32UI walk texel: box corners in 16 bits each, and the bound's bits.
 void packBox(std::uint32_t* texel, const std::array<int, 3>& lo, const std::array<int, 3>& hi, float bound) {
-    const auto u = [](int v) { return static_cast<std::uint32_t>(v); };
-    texel[0] = u(lo[0]) | u(lo[1]) << 16;
-    texel[1] = u(lo[2]) | u(hi[0]) << 16;
-    texel[2] = u(hi[1]) | u(hi[2]) << 16;
+    packBoxCorners(texel, lo, hi);
     std::memcpy(&texel[3], &bound, sizeof(float));
 }
 

@@ -24,6 +24,15 @@ inline CellBlock cellBlockOf(const GpuVot& v) {
     return {{int(v.lo[0]), int(v.lo[1]), int(v.lo[2])}, {int(v.hi[0]), int(v.hi[1]), int(v.hi[2])}};
 }
 
+/// Box corners in 16 bits each into three words, as unpackBox in vot_walk.glsl reads them (the box table
+/// and the walk records): lo.x | lo.y << 16, lo.z | hi.x << 16, hi.y | hi.z << 16.
+inline void packBoxCorners(std::uint32_t* words, const std::array<int, 3>& lo, const std::array<int, 3>& hi) {
+    const auto u16 = [](int v) { return static_cast<std::uint32_t>(v) & 0xffffu; };
+    words[0] = u16(lo[0]) | u16(lo[1]) << 16;
+    words[1] = u16(lo[2]) | u16(hi[0]) << 16;
+    words[2] = u16(hi[1]) | u16(hi[2]) << 16;
+}
+
 /// What vot_walk.frag reads besides the Vot records. Cells and bricks are stored x fastest.
 struct VotWalkGrid {
     std::array<int, 3> cells{0, 0, 0};  // cells per axis: grid points - 1

@@ -2,6 +2,8 @@
 // 16-bit higher-order terms.
 #include "WalkRecord.h"
 
+#include "VotWalkGrid.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -75,10 +77,7 @@ WalkRecord makeWalkRecord(const fit::Vot& vot) {
     const std::array<double, fit::MONOMIAL_COUNT> d = boxUnitCoefficients(vot);
     WalkRecord record;
     auto& w = record.words;
-    const auto u16 = [](int v) { return static_cast<std::uint32_t>(v) & 0xffffu; };
-    w[0] = u16(vot.box.lo[0]) | u16(vot.box.lo[1]) << 16;
-    w[1] = u16(vot.box.lo[2]) | u16(vot.box.hi[0]) << 16;
-    w[2] = u16(vot.box.hi[1]) | u16(vot.box.hi[2]) << 16;
+    packBoxCorners(w.data(), vot.box.lo, vot.box.hi);
     for (std::size_t k = 0; k < FIRST_QUANTISED; ++k)
         w[3 + k] = floatBits(static_cast<float>(d[k]));
     double largest = 0.0;
@@ -93,7 +92,8 @@ WalkRecord makeWalkRecord(const fit::Vot& vot) {
         const double steps = std::clamp(std::nearbyint(d[k] * perQuantum), -32767.0, 32767.0);
         error += std::abs(d[k] - steps * quantum);
         const std::size_t slot = k - FIRST_QUANTISED;
-        w[8 + slot / 2] |= u16(static_cast<int>(steps)) << (16 * (slot % 2));
+        w[8 + slot / 2] |= (static_cast<std::uint32_t>(static_cast<int>(steps)) & 0xffffu)
+                           << (16 * (slot % 2));
     }
     record.maxError = error * CLIP_GROWTH;
     return record;
