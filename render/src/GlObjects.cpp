@@ -65,9 +65,7 @@ GLuint compile(GLenum stage, const char* source, const char* label) {
     }
     return shader;
 }
-} // namespace
 
-namespace {
 // Links the compiled shaders (and deletes them); throws with the info log on failure.
 GlProgram link(const std::vector<GLuint>& shaders, const char* label) {
     GlProgram program(glCreateProgram());

@@ -47,6 +47,14 @@ Comparison compare(const FloatImage& a, const FloatImage& b, double tolerance) {
     return c;
 }
 
+// The most any walk record of the space strays from its Vot (WalkRecord.h).
+double largestRecordError(const fit::VotSpace& space) {
+    double largest = 0.0;
+    for (const fit::Vot& vot : space.vots)
+        largest = std::max(largest, makeWalkRecord(vot).maxError);
+    return largest;
+}
+
 // Front, oblique, perspective, and perspective with the eye inside the volume.
 constexpr const char* VIEWS[] = {"anterior", "az=30,el=20,zoom=1.2",
                                  "az=-50,el=-30,zoom=1.4,proj=persp,fov=40",
@@ -85,10 +93,7 @@ TEST(WalkStrategy, MatchesRasterOnFittedCt) {
     ASSERT_EQ(raster.mipStrategy(), Strategy::Raster);
     const auto range = walk.valueRange();
     // The walk evaluates each Vot's 64-byte record, within its maxError of the Vot (WalkRecord.h).
-    double recordError = 0.0;
-    for (const fit::Vot& vot : space.vots)
-        recordError = std::max(recordError, makeWalkRecord(vot).maxError);
-    const double tiny = 1e-5 * (range[1] - range[0]) + recordError;
+    const double tiny = 1e-5 * (range[1] - range[0]) + largestRecordError(space);
     for (const char* text : VIEWS) {
         const Camera cam = parseCamera(text);
         const FloatImage a = walk.render(cam, 200, 160);
@@ -211,10 +216,8 @@ TEST(WalkStrategy, OffCentreExpansionPointsRenderTheSamePolynomial) {
     centred.upload(centredSpace);
     offCentre.upload(offCentreSpace);
     ASSERT_EQ(offCentre.mipStrategy(), Strategy::Walk);
-    double recordError = 0.0; // each record within its maxError of its Vot (WalkRecord.h)
-    for (const fit::VotSpace* space : {&centredSpace, &offCentreSpace})
-        for (const fit::Vot& vot : space->vots)
-            recordError = std::max(recordError, makeWalkRecord(vot).maxError);
+    // Each record is within its maxError of its Vot (WalkRecord.h).
+    const double recordError = std::max(largestRecordError(centredSpace), largestRecordError(offCentreSpace));
     for (const char* text : {"anterior", "az=30,el=20", "az=-50,el=-30,zoom=1.4,proj=persp,fov=40"}) {
         const Camera cam = parseCamera(text);
         const FloatImage a = centred.render(cam, 64, 48), b = offCentre.render(cam, 64, 48);
