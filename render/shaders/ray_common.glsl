@@ -2,8 +2,9 @@
 uniform mat4 uClipToIndex; // inverse of projection * view * (index -> world)
 uniform vec2 uViewport;    // framebuffer size in pixels
 
-// Ray through the pixel centre `fragCoord` (window coordinates, as gl_FragCoord): origin on the near plane, unit direction (index space), and the
-// distance to the far plane. Nothing in front of the near plane is ever visible.
+// Ray through the pixel centre `fragCoord` (window coordinates, as gl_FragCoord): origin on the near
+// plane, unit direction (index space), and the distance to the far plane. Nothing in front of the near
+// plane is ever visible.
 void pixelRay(vec2 fragCoord, out vec3 origin, out vec3 dir, out float farT) {
     vec2 ndc = fragCoord / uViewport * 2.0 - 1.0;
     vec4 a = uClipToIndex * vec4(ndc, -1.0, 1.0);

@@ -1,6 +1,8 @@
 // The JSON endpoints over loopback: datasets, stats, static files, fit jobs with polling and SSE, limits.
 #include "ServerFixture.h"
 
+#include "vots/render/EglContext.h"
+
 #include <chrono>
 #include <thread>
 
@@ -145,7 +147,7 @@ TEST_F(ServerApi, StatsReportFramesFitsAndCaches) {
     // llvmpipe walks on the rasteriser, a GPU in a compute shader (bench/RESULTS.md, "GPU").
     const std::string name = stats["renderer"]["name"];
     EXPECT_EQ(stats["renderer"]["walkShader"],
-              name.find("llvmpipe") != std::string::npos ? "fragment" : "compute");
+              render::EglContext::isSoftwareRenderer(name) ? "fragment" : "compute");
 }
 
 TEST(ServerLimits, TooManyFitJobsGive429) {
