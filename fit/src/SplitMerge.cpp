@@ -172,6 +172,13 @@ void mergeNeighbours(std::vector<FittedBox>& boxes, const BoxTester& tester, con
             if (b.lo[a] % brickCells == 0 || b.hi[a] % brickCells == 0) return true;
         return false;
     };
+    // A box from the per-brick merge has already been tried against every neighbour inside its brick
+    // and refused; only its faces on a brick plane can meet a box it has not been tried with. A box
+    // this merge makes is new to all its neighbours.
+    const std::size_t firstNew = brickCells > 0 ? boxes.size() : 0;
+    auto faceIsNew = [&](std::size_t i, int a, bool high) {
+        return i >= firstNew || (high ? boxes[i].box.hi[a] : boxes[i].box.lo[a]) % brickCells == 0;
+    };
     std::vector<std::size_t> work;
     work.reserve(boxes.size());
     for (std::size_t i = 0; i < boxes.size(); ++i)
@@ -183,6 +190,7 @@ void mergeNeighbours(std::vector<FittedBox>& boxes, const BoxTester& tester, con
         if (!alive[i]) continue;
         for (int a = 0; a < 3 && alive[i]; ++a)
             for (bool high : {true, false}) {
+                if (!faceIsNew(i, a, high)) continue;
                 // The only box that can share this whole face covers the cell just across its corner.
                 const Box box = boxes[i].box;
                 std::array<int, 3> across = box.lo;

@@ -26,8 +26,9 @@ std::vector<FittedBox> splitBricks(const CellMask& mask, const BoxTester& tester
 /// Merges pairs of boxes that share a whole face when their union fits; boxes stay disjoint.
 /// brickCells > 0 says the boxes were already merged brick by brick (bricks of that many cells, as
 /// splitBricks does): every pair inside one brick has been tried, so only boxes with a face on a brick
-/// plane start the work. The result is the same as starting from every box, without re-testing those
-/// pairs (a fresh fit has no cache to answer them).
+/// plane start the work, and of those boxes only the faces on a brick plane are tried. The result is
+/// the same as trying every face of every box, without re-testing those pairs (a fresh fit has no cache
+/// to answer them; test_SplitMerge.cpp checks the equivalence).
 void mergeNeighbours(std::vector<FittedBox>& boxes, const BoxTester& tester, const FitControl& control,
                      int brickCells = 0);
 

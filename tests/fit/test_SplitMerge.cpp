@@ -1,0 +1,82 @@
+// The merge across brick borders (white box, fit/src): trying only the faces that can meet a box not yet
+// tried must reach the same cover as trying every face of every box, and leave no mergeable pair.
+#include "SplitMerge.h"
+#include "SyntheticFields.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+using namespace vots::fit;
+using vots::test::sampleVolume;
+
+namespace {
+
+bool shareWholeFace(const Box& a, const Box& b) {
+    for (int axis = 0; axis < 3; ++axis) {
+        if (a.hi[axis] != b.lo[axis] && b.hi[axis] != a.lo[axis]) continue;
+        bool same = true;
+        for (int other = 0; other < 3; ++other)
+            if (other != axis && (a.lo[other] != b.lo[other] || a.hi[other] != b.hi[other])) same = false;
+        if (same) return true;
+    }
+    return false;
+}
+
+Box unite(const Box& a, const Box& b) {
+    Box u;
+    for (int axis = 0; axis < 3; ++axis) {
+        u.lo[axis] = std::min(a.lo[axis], b.lo[axis]);
+        u.hi[axis] = std::max(a.hi[axis], b.hi[axis]);
+    }
+    return u;
+}
+
+// Three bricks along x, two along y and z, a smooth field with noise and empty corners, so the split
+// leaves boxes of many sizes on every brick plane.
+Volume bricksVolume() {
+    std::mt19937 rng(7);
+    std::normal_distribution<double> noise(0.0, 3.0);
+    return sampleVolume({81, 50, 41}, [&](int x, int y, int z) {
+        if (x + y < 12) return -1000.0;
+        return 400.0 * std::sin(0.09 * x) * std::cos(0.13 * y - 0.07 * z) + 0.2 * x * z + noise(rng);
+    });
+}
+
+} // namespace
+
+TEST(SplitMerge, MergeAcrossBricksMatchesTryingEveryFaceAndLeavesNoMergeablePair) {
+    const Volume volume = bricksVolume();
+    const BoxFitter fitter(volume, 3, Certify::Cells);
+    const EpsField eps(30.f);
+    FitCounters counters;
+    const BoxTester tester(fitter, eps, counters, nullptr);
+    const CellMask mask(volume, -900.f);
+    const FitControl control{2, nullptr, nullptr};
+
+    std::vector<FittedBox> perBrick = splitBricks(mask, tester, control);
+    std::vector<FittedBox> everyFace = perBrick;
+    mergeNeighbours(perBrick, tester, control, BRICK_CELLS);
+    mergeNeighbours(everyFace, tester, control);
+
+    ASSERT_GT(perBrick.size(), 100u) << "the field should need many boxes";
+    ASSERT_EQ(perBrick.size(), everyFace.size());
+    for (std::size_t i = 0; i < perBrick.size(); ++i)
+        ASSERT_EQ(perBrick[i].box, everyFace[i].box) << "box " << i;
+
+    std::size_t crossing = 0, pairs = 0;
+    for (std::size_t i = 0; i < perBrick.size(); ++i) {
+        const Box& a = perBrick[i].box;
+        for (int axis = 0; axis < 3; ++axis)
+            if (a.lo[axis] / BRICK_CELLS != (a.hi[axis] - 1) / BRICK_CELLS) ++crossing;
+        for (std::size_t j = i + 1; j < perBrick.size(); ++j) {
+            if (!shareWholeFace(a, perBrick[j].box)) continue;
+            ++pairs;
+            EXPECT_FALSE(tester.test(unite(a, perBrick[j].box)).accepted)
+                << "boxes " << i << " and " << j << " could still merge";
+        }
+    }
+    EXPECT_GT(crossing, 0u) << "some merges should cross a brick plane";
+    EXPECT_GT(pairs, 0u);
+}
