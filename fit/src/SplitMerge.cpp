@@ -126,9 +126,12 @@ std::vector<FittedBox> splitBricks(const CellMask& mask, const BoxTester& tester
         bricks[a] = (cells[a] + BRICK_CELLS - 1) / BRICK_CELLS;
     const std::size_t brickCount = static_cast<std::size_t>(bricks[0]) * bricks[1] * bricks[2];
     std::vector<std::vector<FittedBox>> perBrick(brickCount);
+    // A brick's split and merge work in one vector per thread, kept from brick to brick: vectors grown
+    // afresh for every brick were most of a refit's page faults (~54 k per server refit at 1.3 %).
+    std::vector<std::vector<FittedBox>> scratch(static_cast<std::size_t>(std::max(1, control.threads)));
     std::atomic<std::size_t> done{0};
     std::mutex progressMutex;
-    parallelFor(brickCount, control.threads, [&](std::size_t b, int) {
+    parallelFor(brickCount, control.threads, [&](std::size_t b, int thread) {
         const int bx = static_cast<int>(b % static_cast<std::size_t>(bricks[0]));
         const int by =
             static_cast<int>((b / static_cast<std::size_t>(bricks[0])) % static_cast<std::size_t>(bricks[1]));
@@ -139,9 +142,12 @@ std::vector<FittedBox> splitBricks(const CellMask& mask, const BoxTester& tester
             brick.lo[a] = index[a] * BRICK_CELLS;
             brick.hi[a] = std::min(brick.lo[a] + BRICK_CELLS, cells[a]);
         }
-        splitBrick(brick, mask, tester, perBrick[b], control);
+        std::vector<FittedBox>& boxes = scratch[static_cast<std::size_t>(thread)];
+        boxes.clear();
+        splitBrick(brick, mask, tester, boxes, control);
         // Merging inside the brick first keeps most merge work parallel.
-        mergeNeighbours(perBrick[b], tester, FitControl{1, nullptr, control.cancel});
+        mergeNeighbours(boxes, tester, FitControl{1, nullptr, control.cancel});
+        perBrick[b].assign(boxes.begin(), boxes.end());
         const std::size_t finished = done.fetch_add(1) + 1;
         if (control.progress) {
             std::lock_guard lock(progressMutex);
