@@ -40,10 +40,11 @@ int main(int argc, char** argv) {
     try {
         const Volume volume = loadVolume(argv[1]);
         const auto range = volume.valueRange();
+        const float background = defaultBackground(volume); // a scan of the volume: not in the timed refit
         auto optionsAt = [&](double percent) {
             FitOptions o;
             o.eps = static_cast<float>(percent / 100.0 * (range[1] - range[0]));
-            o.background = defaultBackground(volume);
+            o.background = background;
             if (cells) o.certify = Certify::Cells;
             return o;
         };

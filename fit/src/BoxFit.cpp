@@ -61,8 +61,14 @@ std::uint32_t basisMask(const Box& box, int degree) {
     return mask;
 }
 
+FitCounters::Slot& FitCounters::mine() {
+    static std::atomic<std::size_t> nextThread{0};
+    thread_local const std::size_t slot = nextThread.fetch_add(1, std::memory_order_relaxed) % SLOTS;
+    return mSlots[slot];
+}
+
 BoxOutcome BoxFitter::fit(const Box& box, const EpsField& eps, FitCounters& counters) const {
-    counters.fits.fetch_add(1, std::memory_order_relaxed);
+    counters.addFit();
     const std::uint32_t mask = basisMask(box, mDegree);
     std::array<int, MONOMIAL_COUNT> basis{};
     int nb = 0;
@@ -195,7 +201,7 @@ BoxOutcome BoxFitter::fit(const Box& box, const EpsField& eps, FitCounters& coun
 
 void BoxFitter::certify(const Box& box, const EpsField& eps, BoxOutcome& outcome,
                         FitCounters& counters) const {
-    counters.scans.fetch_add(1, std::memory_order_relaxed);
+    counters.addScan();
     const bool alwaysAccept = isSingleCell(box);
     const bool varies = eps.varies();
     const double epsMin = eps.minOverBox(box);

@@ -12,18 +12,18 @@ BoxOutcome BoxTester::test(const Box& box) const {
         const float epsMin = mEps.minOverBox(box);
         const float epsMax = mEps.maxOverBox(box);
         if (o.exact && (singleCell || o.errCriterion <= epsMin)) {
-            mCounters.cacheHits.fetch_add(1, std::memory_order_relaxed);
+            mCounters.addCacheHit();
             o.accepted = true;
             return o;
         }
         if (o.errCriterion > epsMax) {
-            mCounters.cacheHits.fetch_add(1, std::memory_order_relaxed);
+            mCounters.addCacheHit();
             o.accepted = false;
             return o;
         }
         if (cached->hasCoefficients) {
             // Between the bounds only a scan with the stored coefficients can decide.
-            mCounters.cacheHits.fetch_add(1, std::memory_order_relaxed);
+            mCounters.addCacheHit();
             mFitter.certify(box, mEps, o, mCounters);
             if (o.exact) mCache->store(box, CachedBox{o, true});
             return o;

@@ -97,9 +97,9 @@ FitResult fitVotSpace(const Volume& volume, const FitOptions& options, FitCache*
         space.vots.push_back(vot);
     }
     result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    result.stats.boxFits = counters.fits.load();
-    result.stats.boxScans = counters.scans.load();
-    result.stats.cacheHits = counters.cacheHits.load();
+    result.stats.boxFits = counters.fits();
+    result.stats.boxScans = counters.scans();
+    result.stats.cacheHits = counters.cacheHits();
     result.stats.coveredCells = static_cast<std::size_t>(mask.totalForeground());
     result.stats.backgroundCells = static_cast<std::size_t>(mask.totalCells() - mask.totalForeground());
     return result;
