@@ -13,6 +13,10 @@ public:
 
     /// Accepted outcomes carry coefficients and certified errors; rejected ones may not.
     BoxOutcome test(const Box& box) const;
+    /// A hint: box will be tested soon.
+    void willTest(const Box& box) const {
+        if (mCache) mCache->prefetch(box);
+    }
     const EpsField& eps() const { return mEps; }
 
 private:

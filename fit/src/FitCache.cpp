@@ -46,6 +46,12 @@ std::optional<CachedBox> FitCache::Impl::find(const Box& box) {
     return shard.entries[it->second];
 }
 
+void FitCache::Impl::prefetch(const Box& box) {
+    auto& shard = shards[shardOf(box)];
+    std::lock_guard lock(shard.mutex);
+    shard.index.prefetch(box);
+}
+
 void FitCache::Impl::store(const Box& box, const CachedBox& entry) {
     auto& shard = shards[shardOf(box)];
     std::lock_guard lock(shard.mutex);

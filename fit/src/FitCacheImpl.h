@@ -69,6 +69,8 @@ struct FitCache::Impl {
     void bind(const Volume& volume, int degreeIn, Certify certifyIn);
     std::shared_ptr<const CellMask> maskFor(const Volume& volume, std::optional<float> background);
     std::optional<CachedBox> find(const Box& box);
+    /// Starts loading where find(box) will look, so that lookups coming soon overlap their cache misses.
+    void prefetch(const Box& box);
     void store(const Box& box, const CachedBox& entry);
     std::size_t size();
 };

@@ -38,7 +38,10 @@ void splitBrick(const Box& brick, const CellMask& mask, const BoxTester& tester,
         first.hi[axis] = mid;
         second.lo[axis] = mid;
         for (const Box& child : {first, second})
-            if (auto tight = mask.tightBox(child)) stack.push_back(*tight);
+            if (auto tight = mask.tightBox(child)) {
+                stack.push_back(*tight);
+                tester.willTest(*tight);
+            }
     }
 }
 
@@ -194,11 +197,19 @@ void mergeNeighbours(std::vector<FittedBox>& boxes, const BoxTester& tester, con
         const std::size_t i = work.back();
         work.pop_back();
         if (!alive[i]) continue;
-        for (int a = 0; a < 3 && alive[i]; ++a)
+        // Every face's union first, so that their cache lookups are in flight together; nothing changes
+        // until one of them is accepted, and then box i is gone.
+        struct Candidate {
+            std::uint32_t neighbour;
+            Box merged;
+        };
+        std::array<Candidate, 6> candidates;
+        int count = 0;
+        const Box box = boxes[i].box;
+        for (int a = 0; a < 3; ++a)
             for (bool high : {true, false}) {
                 if (!faceIsNew(i, a, high)) continue;
                 // The only box that can share this whole face covers the cell just across its corner.
-                const Box box = boxes[i].box;
                 std::array<int, 3> across = box.lo;
                 across[a] = high ? box.hi[a] : box.lo[a] - 1;
                 const std::uint32_t j = owners.at(across);
@@ -206,15 +217,20 @@ void mergeNeighbours(std::vector<FittedBox>& boxes, const BoxTester& tester, con
                 Box merged = box;
                 merged.lo[a] = std::min(box.lo[a], boxes[j].box.lo[a]);
                 merged.hi[a] = std::max(box.hi[a], boxes[j].box.hi[a]);
-                BoxOutcome outcome = tester.test(merged);
-                if (!outcome.accepted) continue;
-                alive[i] = alive[j] = false;
-                boxes.push_back({merged, outcome});
-                alive.push_back(true);
-                owners.merged(i, j, boxes.size() - 1);
-                work.push_back(boxes.size() - 1);
-                break;
+                tester.willTest(merged);
+                candidates[static_cast<std::size_t>(count++)] = {j, merged};
             }
+        for (int c = 0; c < count; ++c) {
+            const auto [j, merged] = candidates[static_cast<std::size_t>(c)];
+            BoxOutcome outcome = tester.test(merged);
+            if (!outcome.accepted) continue;
+            alive[i] = alive[j] = false;
+            boxes.push_back({merged, outcome});
+            alive.push_back(true);
+            owners.merged(i, j, boxes.size() - 1);
+            work.push_back(boxes.size() - 1);
+            break;
+        }
     }
     // Compacted in place, in the same order: a new vector of the survivors was another 30 MB of fresh pages.
     std::size_t keep = 0;
