@@ -63,7 +63,9 @@ std::int64_t CellMask::countForeground(const Box& box) const {
 
 std::optional<Box> CellMask::tightBox(const Box& box) const {
     std::array<int, 3> lo = box.lo, hi = box.hi; // cells [lo, hi)
-    if (countCells(lo, hi) == 0) return std::nullopt;
+    const std::int64_t foreground = countCells(lo, hi);
+    if (foreground == 0) return std::nullopt;
+    if (foreground == box.cellCount()) return box; // most boxes inside an object: no slab to trim
     for (int a = 0; a < 3; ++a) {
         auto slabCount = [&](int first) {
             std::array<int, 3> slo = lo, shi = hi;
