@@ -70,7 +70,8 @@ int main(int argc, char** argv) {
             const auto refitStart = std::chrono::steady_clock::now();
             const FitResult refit = fitVotSpace(volume, optionsAt(target), &cache);
             std::fprintf(
-                stderr, "refit %g %%: monotonic %.6f .. %.6f s\n", target,
+                stderr, "refit %g %%: %zu box fits, %zu scans; monotonic %.6f .. %.6f s\n", target,
+                refit.stats.boxFits, refit.stats.boxScans,
                 std::chrono::duration<double>(refitStart.time_since_epoch()).count(),
                 std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count());
             std::printf("| %s | %s %% | %g %% | %.3f | %.3f | %zu | %zu |\n", volume.name.c_str(),
