@@ -27,6 +27,7 @@ struct ServeArgs {
     std::string cacheDir = "data/cache";
     int frameCacheMb = 64;
     bool noWarmUp = false;
+    std::string prepare = "cranium"; // the viewer's first dataset when the data folders have it
 };
 
 bool isLoopback(const std::string& host) {
@@ -49,6 +50,7 @@ void runServe(const ServeArgs& a) {
     options.cacheDir = a.cacheDir;
     options.frameCacheBytes = static_cast<std::size_t>(a.frameCacheMb) << 20;
     options.warmUpFits = !a.noWarmUp;
+    options.prepareDataset = a.prepare;
     if (!isLoopback(a.host))
         std::cerr << "vots serve: warning: listening on " << a.host
                   << " exposes the server to the network; it has no authentication\n";
@@ -105,6 +107,10 @@ void addServeCommand(CLI::App& app) {
     cmd->add_option("--frame-cache-mb", args->frameCacheMb,
                     "Memory for rendered images answered again to identical /render requests (0: none)")
         ->check(CLI::Range(0, 65536))
+        ->capture_default_str();
+    cmd->add_option("--prepare", args->prepare,
+                    "Dataset to load, fit at its default eps and upload as the server starts, so the "
+                    "viewer's first image is quick (skipped when the data folders lack it; '' for none)")
         ->capture_default_str();
     cmd->add_flag(
         "--no-warm-up", args->noWarmUp,

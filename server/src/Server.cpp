@@ -7,6 +7,7 @@
 
 #include <sys/socket.h>
 
+#include <algorithm>
 #include <chrono>
 
 namespace vots::server {
@@ -117,10 +118,15 @@ Server::Server(ServerOptions options) : mImpl(std::make_unique<Impl>(std::move(o
     installStatsRoute(s);
     installRenderRoute(s);
     installJobRoutes(s);
+
+    const std::vector<std::string> names = s.registry.names();
+    if (std::find(names.begin(), names.end(), s.options.prepareDataset) != names.end())
+        s.preparing = std::thread([&s] { prepareDataset(s, s.options.prepareDataset); });
 }
 
 Server::~Server() {
     stop();
+    if (mImpl->preparing.joinable()) mImpl->preparing.join(); // fits are answered by stop(); a frame is short
 }
 
 bool Server::bindToPort(const std::string& host, int port) {

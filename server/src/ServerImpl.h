@@ -11,9 +11,12 @@
 #include "vots/server/VotSpaceCache.h"
 
 #include <httplib.h>
+#include <nlohmann/json.hpp>
 
 #include <atomic>
 #include <memory>
+#include <string>
+#include <thread>
 
 namespace vots::server {
 
@@ -28,6 +31,7 @@ struct Server::Impl {
     std::unique_ptr<RenderQueue> renderQueue; // null when options.withRenderer is false
     FrameCache frames;                        // encoded /render answers
     std::atomic<int> listenSocket{-1};        // the socket httplib binds, so its backlog can be raised
+    std::thread preparing;                    // prepareDataset(options.prepareDataset); joined by ~Server
     httplib::Server http;                     // destroyed first: no handler runs after the rest is gone
 };
 
@@ -38,6 +42,10 @@ void installRenderRoute(Server::Impl& s);   // GET /render
 void installJobRoutes(Server::Impl& s);     // POST /api/fit, GET /api/jobs/{id}, GET /api/jobs/{id}/events
 /// Static files from the web folder, answered in the pre-routing step for non-API paths.
 bool serveStatic(const Server::Impl& s, const httplib::Request& req, httplib::Response& res);
+
+/// Loads the dataset, fits it at its default eps and draws a small frame of it (the upload), so the
+/// viewer's first image waits for none of them; failures are logged and left to the first request.
+void prepareDataset(Server::Impl& s, const std::string& name);
 
 /// Resolved eps for a dataset, or HttpError 400 when it comes out 0 (a constant volume with "N%").
 float resolveEps(const Dataset& dataset, const EpsSpec& eps);

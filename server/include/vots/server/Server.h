@@ -20,6 +20,9 @@ struct ServerOptions {
     bool warmUpFits = true; // fit eps / 2 into the box cache while idle (FitJobs.h)
     int httpThreads = 12;   // connections served at once (SSE holds one); few, so the accept thread keeps up
     bool withRenderer = true; // false: never try EGL (tests of the 503 path)
+    // Loaded, fitted at its default eps and uploaded as the server starts, when the data folders have
+    // it: the viewer's first image then waits for none of that. Empty: none.
+    std::string prepareDataset;
 };
 
 /// The folders `vots serve` uses when none are given: ./data and ../shared/data when present.

@@ -1,0 +1,32 @@
+// Readies one dataset as the server starts: its volume loaded, its default fit done and uploaded to the
+// renderer, so that the viewer's first image does not wait for them.
+#include "ServerImpl.h"
+
+#include <chrono>
+#include <iostream>
+
+namespace vots::server {
+
+void prepareDataset(Server::Impl& s, const std::string& name) {
+    try {
+        const auto dataset = s.registry.find(name);
+        const FitKey key = fitKeyFor(*dataset, EpsSpec{}, DEFAULT_DEGREE); // the viewer's first fit
+        const auto fit = s.fitJobs.submit(dataset, key);
+        const JobSnapshot done = fit->waitFinished(std::chrono::minutes(10));
+        if (done.state != JobState::Done) return; // failed (the job says why) or the server is stopping
+        if (!s.renderQueue || !s.renderQueue->hasContext()) return;
+        // A small frame is enough: drawing one uploads the Vot-Space, which is what a first frame waits on.
+        RenderJob job;
+        job.params.dataset = name;
+        job.params.width = job.params.height = 16;
+        job.space = fit->space();
+        job.volume = dataset->volume;
+        job.valueRange = dataset->range;
+        s.renderQueue->submit(job).get();
+    } catch (const std::exception& e) {
+        // Nothing is lost: the first request for the dataset will load and fit it, and say what fails.
+        std::cerr << "vots serve: could not prepare dataset '" << name << "': " << e.what() << "\n";
+    }
+}
+
+} // namespace vots::server
