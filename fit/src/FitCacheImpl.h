@@ -57,7 +57,7 @@ struct FitCache::Impl {
     Certify certify = Certify::Samples;
 
     // The background mask of the bound volume: the same for every refit at the same background, and
-    // ~80 ms to build on the CT.
+    // ~20 ms to build on the CT.
     std::mutex maskMutex;
     std::shared_ptr<const CellMask> mask;
     std::optional<float> maskBackground;
