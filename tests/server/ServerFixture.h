@@ -78,6 +78,17 @@ inline nlohmann::json waitForJob(httplib::Client& c, const nlohmann::json& poste
     return job;
 }
 
+/// Polls /api/stats until `until(stats)` holds or about a minute has passed; returns the last stats.
+template <class Until> nlohmann::json waitForStats(httplib::Client& c, Until until) {
+    nlohmann::json stats;
+    for (int i = 0; i < 6000; ++i) {
+        stats = bodyJson(c.Get("/api/stats"));
+        if (until(stats)) break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return stats;
+}
+
 /// One shared server per test suite, so the EGL context and fits are paid once.
 class SharedServerTest : public ::testing::Test {
 protected:

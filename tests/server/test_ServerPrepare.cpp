@@ -14,17 +14,6 @@ namespace {
 
 using namespace std::chrono_literals;
 
-/// Polls /api/stats until `until(stats)` holds or about a minute has passed; returns the last stats.
-template <class Until> nlohmann::json waitForStats(httplib::Client& c, Until until) {
-    nlohmann::json stats;
-    for (int i = 0; i < 6000; ++i) {
-        stats = bodyJson(c.Get("/api/stats"));
-        if (until(stats)) break;
-        std::this_thread::sleep_for(10ms);
-    }
-    return stats;
-}
-
 TEST(ServerPrepare, FitsAndDrawsTheDatasetBeforeAnyRequest) {
     ServerWorld world;
     auto options = world.options();

@@ -23,15 +23,9 @@ nlohmann::json postFit(httplib::Client& c, const std::string& dataset, const std
     return bodyJson(res);
 }
 
-/// Polls /api/stats until `until(warmUps)` holds or about a minute has passed; returns the last warmUps.
+/// waitForStats on the stats' warmUps part; returns the last warmUps.
 template <class Until> nlohmann::json waitForWarmUps(httplib::Client& c, Until until) {
-    nlohmann::json warm;
-    for (int i = 0; i < 6000; ++i) {
-        warm = bodyJson(c.Get("/api/stats"))["warmUps"];
-        if (until(warm)) break;
-        std::this_thread::sleep_for(10ms);
-    }
-    return warm;
+    return waitForStats(c, [&](const nlohmann::json& stats) { return until(stats["warmUps"]); })["warmUps"];
 }
 
 TEST(ServerWarmUp, AnIdleServerFitsHalfTheLastEps) {
