@@ -35,9 +35,17 @@ std::string expand(const std::string& text) {
         last = static_cast<std::size_t>(it->position() + it->length());
     }
     out += text.substr(last);
-    for (std::size_t pos; (pos = out.find("{{NUL}}")) != std::string::npos;)
-        out.replace(pos, 7, std::string(1, '\0'));
-    return out;
+    // Copied piece by piece rather than with std::string::replace, which GCC 12 warns about wrongly
+    // (-Wrestrict) at -O2.
+    const std::string nul = "{{NUL}}";
+    std::string withNul;
+    for (std::size_t pos = 0;;) {
+        const std::size_t next = out.find(nul, pos);
+        withNul.append(out, pos, next == std::string::npos ? std::string::npos : next - pos);
+        if (next == std::string::npos) return withNul;
+        withNul.push_back('\0');
+        pos = next + nul.size();
+    }
 }
 
 HostileRequest loadHostile(const fs::path& file) {
