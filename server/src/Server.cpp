@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <iostream>
 
 namespace vots::server {
 namespace fs = std::filesystem;
@@ -120,8 +121,12 @@ Server::Server(ServerOptions options) : mImpl(std::make_unique<Impl>(std::move(o
     installJobRoutes(s);
 
     const std::vector<std::string> names = s.registry.names();
-    if (std::find(names.begin(), names.end(), s.options.prepareDataset) != names.end())
+    const std::string& prepare = s.options.prepareDataset;
+    if (std::find(names.begin(), names.end(), prepare) != names.end())
         s.preparing = std::thread([&s] { prepareDataset(s, s.options.prepareDataset); });
+    else if (!prepare.empty())
+        std::cerr << "vots serve: no dataset '" << prepare.substr(0, 200)
+                  << "' in the data folders to prepare; nothing prepared\n";
 }
 
 Server::~Server() {
