@@ -112,7 +112,15 @@ const FrameStats& GridRenderer::lastFrameStats() const {
     return mImpl->stats;
 }
 
-FloatImage GridRenderer::render(const Camera& camera, int width, int height) {
+namespace {
+void checkGridMode(RenderMode mode) {
+    if (mode == RenderMode::Density)
+        throw fit::InputError("GridRenderer draws the grid's MIP (reference); density needs a Vot-Space");
+}
+} // namespace
+
+FloatImage GridRenderer::render(const Camera& camera, int width, int height, RenderMode mode) {
+    checkGridMode(mode);
     mImpl->draw(camera, width, height);
     const auto t0 = Clock::now();
     FloatImage image = mImpl->target.readback();
@@ -121,7 +129,8 @@ FloatImage GridRenderer::render(const Camera& camera, int width, int height) {
 }
 
 RgbaImage GridRenderer::renderRgba(const Camera& camera, int width, int height,
-                                   const DisplaySettings& display) {
+                                   const DisplaySettings& display, RenderMode mode) {
+    checkGridMode(mode);
     mImpl->draw(camera, width, height);
     const auto t0 = Clock::now();
     RgbaImage image = mImpl->display.apply(mImpl->target.texture(), width, height, display);

@@ -25,8 +25,8 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <cstring>
+#include <functional>
 #include <future>
 #include <iostream>
 #include <memory>
@@ -34,9 +34,6 @@
 #include <string>
 #include <string_view>
 #include <thread>
-
-#include <sched.h>
-#include <unistd.h>
 
 namespace vots::render {
 
@@ -165,34 +162,35 @@ struct VotRenderer::Impl {
     std::array<float, 2> densityRange{0.f, 1.f};
     bool culling = true;
     Strategy strategy = Strategy::Walk;
+    std::function<void()> backgroundThreadStart;
     FrameStats stats;
 
     Strategy mipStrategy() const {
         return strategy == Strategy::Walk && walkable ? Strategy::Walk : Strategy::Raster;
     }
 
-    Impl() {
-        if (walkShader == WalkShader::Compute) {
+    Impl() { useWalkShader(defaultWalkShader()); }
+
+    // Builds the walk program now, so that a shader this driver refuses shows at once; the fragment
+    // walk is the one every driver has run, so a compute walk that does not build falls back to it.
+    void useWalkShader(WalkShader shader) {
+        if (shader == WalkShader::Compute) {
             try {
                 walkProgram(true);
+                walkShader = shader;
                 return;
-            } catch (const RenderError& e) { // the rasteriser's walk is the one every driver has run
+            } catch (const RenderError& e) {
                 std::cerr << "vots: warning: the compute walk does not build here, using the fragment walk: "
                           << e.what() << "\n";
-                walkShader = WalkShader::Fragment;
             }
         }
         walkProgram(false);
+        walkShader = WalkShader::Fragment;
     }
 
-    // VOTS_WALK_SHADER=fragment|compute overrides the choice by renderer: the compute walk is the
-    // default on GPUs without having been timed on one yet (bench/RESULTS.md, "GPU").
+    // The compute walk spreads over all of a GPU's multiprocessors; a CPU rasteriser runs the
+    // fragment walk faster (bench/RESULTS.md, "GPU").
     static WalkShader defaultWalkShader() {
-        if (const char* forced = std::getenv("VOTS_WALK_SHADER")) {
-            if (const auto shader = parseWalkShader(forced)) return *shader;
-            std::cerr << "vots: warning: VOTS_WALK_SHADER=" << forced
-                      << " is neither fragment nor compute; choosing by renderer\n";
-        }
         const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
         return renderer && EglContext::isSoftwareRenderer(renderer) ? WalkShader::Fragment
                                                                     : WalkShader::Compute;
@@ -226,11 +224,9 @@ struct VotRenderer::Impl {
 
     void startSkipGrowth() {
         if (!skipGrowth || skipTask.valid()) return;
-        skipTask = std::async(std::launch::async, [growth = skipGrowth] {
-            // Idle priority (inherited by the growth's worker threads): the skip boxes only make later
-            // frames faster, so they must not slow a fit or a frame someone is waiting for.
-            const sched_param idle{};
-            sched_setscheduler(static_cast<pid_t>(gettid()), SCHED_IDLE, &idle);
+        skipTask = std::async(std::launch::async, [growth = skipGrowth, onStart = backgroundThreadStart] {
+            // The caller's priority policy; the growth's worker threads inherit what it sets.
+            if (onStart) onStart();
             return growSkipBoxes(growth->input, growth->cancel);
         });
     }
@@ -686,7 +682,10 @@ std::optional<VotRenderer::WalkShader> parseWalkShader(std::string_view name) {
 }
 
 void VotRenderer::setWalkShader(WalkShader shader) {
-    mImpl->walkShader = shader;
+    mImpl->useWalkShader(shader);
+}
+void VotRenderer::setBackgroundThreadStart(std::function<void()> onStart) {
+    mImpl->backgroundThreadStart = std::move(onStart);
 }
 VotRenderer::WalkShader VotRenderer::walkShader() const {
     return mImpl->walkShader;

@@ -6,6 +6,7 @@
 #include "vots/render/DisplaySettings.h"
 #include "vots/render/FrameStats.h"
 #include "vots/render/Image.h"
+#include "vots/render/Renderer.h"
 
 #include <array>
 #include <memory>
@@ -20,26 +21,27 @@ namespace vots::render {
 /// the grid box [0, dims-1] in index space and sampled every stepVoxels (default 0.5) index units,
 /// plus the exit point; the pixel keeps the maximum. Pixels whose ray misses the grid are -infinity.
 /// Needs a current EglContext for its whole life.
-class GridRenderer {
+class GridRenderer final : public Renderer {
 public:
     GridRenderer();
-    ~GridRenderer();
-    GridRenderer(const GridRenderer&) = delete;
-    GridRenderer& operator=(const GridRenderer&) = delete;
+    ~GridRenderer() override;
 
     /// Uploads the samples as a 3D texture; throws fit::InputError if a side exceeds the GL limit.
     void upload(const fit::Volume& volume);
-    bool hasData() const;
-    const SceneBounds& bounds() const;
-    std::array<float, 2> valueRange() const; // min and max sample
+    bool hasData() const override;
+    const SceneBounds& bounds() const override;
+    std::array<float, 2> valueRange() const override; // min and max sample
 
     /// Step along the ray in index units, (0, 0.5]; throws fit::InputError outside.
     void setStepVoxels(float step);
     float stepVoxels() const;
 
-    FloatImage render(const Camera& camera, int width, int height);
-    RgbaImage renderRgba(const Camera& camera, int width, int height, const DisplaySettings& display);
-    const FrameStats& lastFrameStats() const;
+    /// RenderMode::Reference (or Mip, the same image: the grid's MIP); Density throws fit::InputError.
+    FloatImage render(const Camera& camera, int width, int height,
+                      RenderMode mode = RenderMode::Reference) override;
+    RgbaImage renderRgba(const Camera& camera, int width, int height, const DisplaySettings& display,
+                         RenderMode mode = RenderMode::Reference) override;
+    const FrameStats& lastFrameStats() const override;
 
     struct Impl;
 

@@ -7,8 +7,10 @@
 #include "vots/render/FrameStats.h"
 #include "vots/render/Image.h"
 #include "vots/render/RenderMode.h"
+#include "vots/render/Renderer.h"
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string_view>
@@ -45,7 +47,7 @@ namespace vots::render {
 ///
 /// Culling never changes the image (dropped work could only produce values <= the pixel's max); a
 /// test checks it for both strategies.
-class VotRenderer {
+class VotRenderer final : public Renderer {
 public:
     enum class Strategy {
         Walk,  // per-pixel ray walk through the cell -> Vot grid (default)
@@ -59,24 +61,23 @@ public:
     };
 
     VotRenderer();
-    ~VotRenderer();
-    VotRenderer(const VotRenderer&) = delete;
-    VotRenderer& operator=(const VotRenderer&) = delete;
+    ~VotRenderer() override;
 
     /// Replaces the current Vot-Space (copies what it needs; the argument may be freed afterwards).
     void upload(const fit::VotSpace& space);
-    bool hasData() const;
-    const SceneBounds& bounds() const;
+    bool hasData() const override;
+    const SceneBounds& bounds() const override;
     /// [min lower bound, max upper bound] of the polynomials over their boxes (default window).
-    std::array<float, 2> valueRange() const;
+    std::array<float, 2> valueRange() const override;
     /// [0, log2 of the largest box's geometric-mean edge in cells] (default density window).
     std::array<float, 2> densityRange() const;
 
     /// RenderMode::Mip or RenderMode::Density (Reference throws fit::InputError).
-    FloatImage render(const Camera& camera, int width, int height, RenderMode mode = RenderMode::Mip);
+    FloatImage render(const Camera& camera, int width, int height,
+                      RenderMode mode = RenderMode::Mip) override;
     /// render() followed by the display pass on the GPU; only RGBA8 is read back.
     RgbaImage renderRgba(const Camera& camera, int width, int height, const DisplaySettings& display,
-                         RenderMode mode = RenderMode::Mip);
+                         RenderMode mode = RenderMode::Mip) override;
 
     /// Culling on (default) or off; off draws every Vot in one instanced draw (Raster) or evaluates
     /// every Vot along the ray (Walk); for tests and bench.
@@ -88,15 +89,18 @@ public:
     /// space cannot be walked (overlapping boxes, or too large for the GL limits).
     Strategy mipStrategy() const;
     /// Compute unless the context's renderer is a CPU rasteriser (llvmpipe), which runs Fragment faster
-    /// (bench/RESULTS.md), or the environment variable VOTS_WALK_SHADER (fragment or compute) says
-    /// otherwise. Takes effect with the next frame.
+    /// (bench/RESULTS.md). Takes effect with the next frame; Compute where it does not build here falls
+    /// back to Fragment with a warning on stderr.
     void setWalkShader(WalkShader shader);
     WalkShader walkShader() const;
     /// Finishes what the first Walk frame of a Vot-Space starts on other threads (the skip boxes that
     /// let later frames step over culled neighbourhoods at once) and applies it now. Frames are
     /// bit-identical before and after, only faster after; benchmarks call this to time the steady state.
     void finishPendingWork();
-    const FrameStats& lastFrameStats() const;
+    const FrameStats& lastFrameStats() const override;
+    /// Run first on every thread the renderer starts for work no frame waits for (skip-box growth), so
+    /// the caller decides its priority; none by default.
+    void setBackgroundThreadStart(std::function<void()> onStart);
 
     struct Impl;
 

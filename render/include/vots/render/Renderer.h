@@ -1,0 +1,38 @@
+// The interface both renderers share (Vots and the sampled grid), so callers draw frames through one type.
+#pragma once
+
+#include "vots/render/Camera.h"
+#include "vots/render/DisplaySettings.h"
+#include "vots/render/FrameStats.h"
+#include "vots/render/Image.h"
+#include "vots/render/RenderMode.h"
+
+#include <array>
+
+namespace vots::render {
+
+/// What a frame needs from a renderer once its data is uploaded. Every implementation needs a current
+/// EglContext for its whole life, and throws fit::InputError for a mode it cannot draw.
+class Renderer {
+public:
+    virtual ~Renderer() = default;
+
+    virtual bool hasData() const = 0;
+    virtual const SceneBounds& bounds() const = 0;
+    /// The range of the values the renderer draws (its default display window).
+    virtual std::array<float, 2> valueRange() const = 0;
+
+    virtual FloatImage render(const Camera& camera, int width, int height, RenderMode mode) = 0;
+    /// render() followed by the display pass on the GPU; only RGBA8 is read back.
+    virtual RgbaImage renderRgba(const Camera& camera, int width, int height, const DisplaySettings& display,
+                                 RenderMode mode) = 0;
+    /// Times and counts of the last frame.
+    virtual const FrameStats& lastFrameStats() const = 0;
+
+protected:
+    Renderer() = default;
+    Renderer(const Renderer&) = delete;
+    Renderer& operator=(const Renderer&) = delete;
+};
+
+} // namespace vots::render
