@@ -1,0 +1,284 @@
+// The walk MIP strategy: grid upload, box table, skip-box growth on another thread, and the walk's draw.
+#include "WalkPass.h"
+
+#include "BrickAhead.h"
+#include "ParallelChunks.h"
+#include "Shaders.h"
+#include "WalkRecord.h"
+
+#include "vots/render/EglContext.h"
+#include "vots/render/Error.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <iostream>
+
+namespace vots::render {
+
+namespace {
+
+constexpr int WALK_BRICK_SHIFT = 4;     // bricks of 16^3 cells (bench/RESULTS.md compares 8, 16, 32)
+constexpr float WALK_BOX_SLACK = 1e-3f; // the grid box drawn is grown like Raster's (BOX_SLACK)
+
+// One RGBA32UI walk texel: box corners in 16 bits each, and the bound's bits.
+void packBox(std::uint32_t* texel, const std::array<int, 3>& lo, const std::array<int, 3>& hi, float bound) {
+    packBoxCorners(texel, lo, hi);
+    std::memcpy(&texel[3], &bound, sizeof(float));
+}
+
+// The walk's box table: per palette entry, the box boxOf(block) of the block it names, Vots first, and
+// that block's bound (-inf for an empty block). Entries naming no block stay zero.
+template <class BoxOf>
+std::vector<std::uint32_t> boxTable(const std::vector<std::uint32_t>& palette,
+                                    const std::vector<float>& votBounds, std::size_t blockCount,
+                                    BoxOf boxOf) {
+    std::vector<std::uint32_t> texels(4 * palette.size(), 0);
+    for (std::size_t i = 0; i < palette.size(); ++i) {
+        const std::uint32_t block = palette[i];
+        if (block >= blockCount) continue;
+        const CellBlock& box = boxOf(block);
+        packBox(&texels[4 * i], box.lo, box.hi, block < votBounds.size() ? votBounds[block] : -INFINITY);
+    }
+    return texels;
+}
+
+// The compute walk spreads over all of a GPU's multiprocessors; a CPU rasteriser runs the fragment walk
+// faster (bench/RESULTS.md, "GPU").
+VotRenderer::WalkShader defaultShader() {
+    const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    return renderer && EglContext::isSoftwareRenderer(renderer) ? VotRenderer::WalkShader::Fragment
+                                                                : VotRenderer::WalkShader::Compute;
+}
+
+} // namespace
+
+WalkPass::WalkPass() {
+    useShader(defaultShader());
+}
+
+WalkPass::~WalkPass() {
+    if (mSkipGrowth) mSkipGrowth->cancel = true;
+    for (auto& task : mCancelledSkipTasks)
+        task.wait();
+}
+
+GLuint WalkPass::program(bool compute) {
+    GlProgram& program = mPrograms[compute ? 1 : 0];
+    if (!program.get())
+        program = compute ? buildComputeProgram(shaders::VOT_WALK_COMP, "vot_walk_compute")
+                          : buildProgram(shaders::WALK_BOX_VERT, shaders::VOT_WALK_FRAG, "vot_walk");
+    return program.get();
+}
+
+void WalkPass::useShader(Shader shader) {
+    // The fragment walk is the one every driver has run.
+    if (shader == Shader::Compute) {
+        try {
+            program(true);
+            mShader = shader;
+            return;
+        } catch (const RenderError& e) {
+            std::cerr << "vots: warning: the compute walk does not build here, using the fragment walk: "
+                      << e.what() << "\n";
+        }
+    }
+    program(false);
+    mShader = Shader::Fragment;
+}
+
+void WalkPass::cancelSkipGrowth() {
+    if (mSkipTask.valid()) {
+        mSkipGrowth->cancel = true;
+        mCancelledSkipTasks.push_back(std::move(mSkipTask));
+    }
+    mSkipGrowth.reset();
+    std::erase_if(mCancelledSkipTasks, [](const std::future<std::vector<CellBlock>>& task) {
+        return task.wait_for(std::chrono::seconds(0)) == std::future_status::ready;
+    });
+}
+
+void WalkPass::startSkipGrowth() {
+    if (!mSkipGrowth || mSkipTask.valid()) return;
+    mSkipTask = std::async(std::launch::async, [growth = mSkipGrowth, onStart = mBackgroundThreadStart] {
+        // The caller's priority policy; the growth's worker threads inherit what it sets.
+        if (onStart) onStart();
+        return growSkipBoxes(growth->input, growth->cancel);
+    });
+}
+
+void WalkPass::applySkipBoxes(bool wait) {
+    if (!mSkipTask.valid()) return;
+    if (!wait && mSkipTask.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
+    const SkipGrowthInput& in = mSkipGrowth->input;
+    std::vector<CellBlock> grown;
+    try {
+        grown = mSkipTask.get();
+    } catch (const std::exception&) {
+        // Out of memory, say: the Vots' own boxes stay, which are exact too, only slower.
+    }
+    mSkipTask = {};
+    if (grown.size() == in.votBounds.size() + in.emptyBlocks.size()) {
+        const std::vector<std::uint32_t> texels =
+            boxTable(mPalette, in.votBounds, grown.size(),
+                     [&](std::uint32_t block) -> const CellBlock& { return grown[block]; });
+        glNamedBufferSubData(mVotBoxBuffer.get(), 0,
+                             static_cast<GLsizeiptr>(texels.size() * sizeof(std::uint32_t)), texels.data());
+        checkGl("VotRenderer skip boxes");
+    }
+    mSkipGrowth.reset();
+}
+
+std::optional<WalkPass::Grid> WalkPass::gridFor(const std::vector<GpuVot>& vots,
+                                                const std::array<int, 3>& dims) {
+    for (int a = 0; a < 3; ++a)
+        if (dims[a] - 1 > 0xffff) return std::nullopt; // box corners are packed in 16 bits
+    std::optional<VotWalkGrid> grid = buildVotWalkGrid(vots, dims, WALK_BRICK_SHIFT, nullptr);
+    if (!grid) return std::nullopt;
+    PalettedCells cells = palettedCells(*grid);
+    GLint maxTexels = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
+    const std::size_t cellCount = grid->brickMax.size() << (3 * grid->brickShift);
+    if (std::max(cellCount, WALK_RECORD_TEXELS * cells.palette.size()) >= static_cast<std::size_t>(maxTexels))
+        return std::nullopt;
+    return Grid{std::move(*grid), std::move(cells)};
+}
+
+void WalkPass::upload(std::optional<Grid>&& walk, const std::vector<GpuVot>& vots,
+                      const std::uint32_t* votRecords) {
+    mWalkable = false;
+    for (GlTexture* t : {&mCellLocal, &mBrickMax, &mVotBox, &mWalkRecord})
+        t->reset();
+    for (GlBuffer* b : {&mCellLocalBuffer, &mBrickMaxBuffer, &mVotBoxBuffer, &mWalkRecordBuffer})
+        b->reset();
+    if (!walk) return;
+    VotWalkGrid* grid = &walk->grid;
+    PalettedCells& cells = walk->cells;
+    const std::size_t blocks = vots.size() + grid->emptyBlocks.size();
+
+    // What the skip-box growth will read; the Vots' own boxes are also the first box table.
+    mSkipGrowth = std::make_shared<SkipGrowth>();
+    SkipGrowthInput& in = mSkipGrowth->input;
+    in.cells = grid->cells;
+    in.votBoxes.resize(vots.size());
+    in.votBounds.resize(vots.size());
+    for (std::size_t i = 0; i < vots.size(); ++i) {
+        in.votBoxes[i] = cellBlockOf(vots[i]);
+        in.votBounds[i] = vots[i].upperBound;
+    }
+
+    // One RGBA32UI texel per palette entry, the box and bound of the block it names (bound -inf for an
+    // empty block): a step reads it straight after the cell, and a brick's entries share cache lines,
+    // where one table by block index would cost another dependent read per step.
+    const std::vector<std::uint32_t> boxes =
+        boxTable(cells.palette, in.votBounds, blocks, [&](std::uint32_t block) -> const CellBlock& {
+            return block < vots.size() ? in.votBoxes[block] : grid->emptyBlocks[block - vots.size()];
+        });
+
+    auto bufferTexture = [](GlBuffer& buffer, GlTexture& texture, GLenum format, const void* data,
+                            std::size_t bytes) {
+        buffer = createBuffer();
+        glNamedBufferStorage(buffer.get(), static_cast<GLsizeiptr>(bytes), data, GL_DYNAMIC_STORAGE_BIT);
+        texture = createTexture(GL_TEXTURE_BUFFER);
+        glTextureBuffer(texture.get(), format, buffer.get());
+    };
+    bufferTexture(mCellLocalBuffer, mCellLocal, GL_R16UI, cells.local.data(),
+                  cells.local.size() * sizeof(std::uint16_t));
+    mBrickMaxima = grid->brickMax;
+    mPaletteStart = std::move(cells.paletteStart);
+    mPalette = std::move(cells.palette);
+    // Written by every frame before it draws: the bounds ahead depend on the view.
+    bufferTexture(mBrickMaxBuffer, mBrickMax, GL_RGBA32F, nullptr, 4 * mBrickMaxima.size() * sizeof(float));
+    bufferTexture(mVotBoxBuffer, mVotBox, GL_RGBA32UI, boxes.data(), boxes.size() * sizeof(std::uint32_t));
+    // Walk records by palette entry, like the box table: a step that evaluates reads the record straight
+    // after the box, with no lookup of the Vot's index between them; a Vot in two bricks has two copies,
+    // entries of empty blocks stay zero. Written straight into the mapped buffer, since a copy of our
+    // own would cost as much again; at least one record, so that an empty space binds a valid buffer.
+    const std::size_t recordBytes = WALK_RECORD_WORDS * sizeof(std::uint32_t);
+    const std::size_t entries = std::max<std::size_t>(mPalette.size(), 1);
+    mWalkRecordBuffer = createBuffer();
+    glNamedBufferStorage(mWalkRecordBuffer.get(), static_cast<GLsizeiptr>(entries * recordBytes), nullptr,
+                         GL_MAP_WRITE_BIT);
+    auto* mapped = static_cast<std::uint32_t*>(
+        glMapNamedBufferRange(mWalkRecordBuffer.get(), 0, static_cast<GLsizeiptr>(entries * recordBytes),
+                              GL_MAP_WRITE_BIT | GL_MAP_INVALIDATE_BUFFER_BIT));
+    if (!mapped) throw RenderError("VotRenderer: could not map the walk records for writing");
+    parallelChunks(entries, [&](std::size_t first, std::size_t last) {
+        for (std::size_t i = first; i < last; ++i) {
+            std::uint32_t* out = mapped + i * WALK_RECORD_WORDS;
+            if (i < mPalette.size() && mPalette[i] < vots.size())
+                std::copy_n(&votRecords[mPalette[i] * WALK_RECORD_WORDS], WALK_RECORD_WORDS, out);
+            else
+                std::fill_n(out, WALK_RECORD_WORDS, 0u);
+        }
+    });
+    glUnmapNamedBuffer(mWalkRecordBuffer.get());
+    mWalkRecord = createTexture(GL_TEXTURE_BUFFER);
+    glTextureBuffer(mWalkRecord.get(), GL_RGBA32UI, mWalkRecordBuffer.get());
+    in.cellVot = std::move(grid->cellVot);
+    in.emptyBlocks = std::move(grid->emptyBlocks);
+    checkGl("VotRenderer walk grid upload");
+    mCells = grid->cells;
+    mBricks = grid->bricks;
+    mWalkable = true;
+}
+
+void WalkPass::draw(const CameraMatrices& m, int width, int height, FloatTarget& target, bool culling,
+                    FrameStats& stats) {
+    applySkipBoxes(false);
+    const bool compute = mShader == Shader::Compute;
+    const GLuint p = program(compute);
+    glUseProgram(p);
+    setMatrixUniform(p, "uIndexToClip", m.indexToClip);
+    setMatrixUniform(p, "uClipToIndex", m.clipToIndex);
+    glProgramUniform2f(p, glGetUniformLocation(p, "uViewport"), float(width), float(height));
+    glProgramUniform3f(p, glGetUniformLocation(p, "uBoxLo"), -WALK_BOX_SLACK, -WALK_BOX_SLACK,
+                       -WALK_BOX_SLACK);
+    glProgramUniform3f(p, glGetUniformLocation(p, "uBoxHi"), float(mCells[0]) + WALK_BOX_SLACK,
+                       float(mCells[1]) + WALK_BOX_SLACK, float(mCells[2]) + WALK_BOX_SLACK);
+    glProgramUniform3i(p, glGetUniformLocation(p, "uCells"), mCells[0], mCells[1], mCells[2]);
+    glProgramUniform3i(p, glGetUniformLocation(p, "uBricks"), mBricks[0], mBricks[1], mBricks[2]);
+    glProgramUniform1i(p, glGetUniformLocation(p, "uBrickShift"), WALK_BRICK_SHIFT);
+    glProgramUniform1i(p, glGetUniformLocation(p, "uCull"), culling ? 1 : 0);
+    // The bounds ahead depend on the view: a few thousand bricks, recomputed per frame.
+    const std::vector<float> ahead =
+        brickMaximaAhead({mCells, mBricks, WALK_BRICK_SHIFT}, mBrickMaxima, rayFamilyOf(m.clipToIndex));
+    std::vector<float> brickBounds(4 * ahead.size()); // (bound, bound ahead, palette start, 0) per brick
+    for (std::size_t i = 0; i < ahead.size(); ++i) {
+        brickBounds[4 * i] = mBrickMaxima[i];
+        brickBounds[4 * i + 1] = ahead[i];
+        std::memcpy(&brickBounds[4 * i + 2], &mPaletteStart[i], sizeof(float));
+    }
+    glNamedBufferSubData(mBrickMaxBuffer.get(), 0,
+                         static_cast<GLsizeiptr>(brickBounds.size() * sizeof(float)), brickBounds.data());
+    glProgramUniform1i(p, glGetUniformLocation(p, "uCellLocal"), 0);
+    glProgramUniform1i(p, glGetUniformLocation(p, "uBrickMax"), 1);
+    glProgramUniform1i(p, glGetUniformLocation(p, "uVotBox"), 2);
+    glProgramUniform1i(p, glGetUniformLocation(p, "uWalkRecord"), 3);
+    glBindTextureUnit(0, mCellLocal.get());
+    glBindTextureUnit(1, mBrickMax.get());
+    glBindTextureUnit(2, mVotBox.get());
+    glBindTextureUnit(3, mWalkRecord.get());
+    stats.batches = 1;
+    stats.votsDrawn = 0;
+    if (compute) {
+        constexpr GLuint GROUP_SIDE = 8; // local_size in vot_walk.comp
+        glBindImageTexture(0, target.texture(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+        glDispatchCompute((static_cast<GLuint>(width) + GROUP_SIDE - 1) / GROUP_SIDE,
+                          (static_cast<GLuint>(height) + GROUP_SIDE - 1) / GROUP_SIDE, 1);
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
+                        GL_FRAMEBUFFER_BARRIER_BIT);
+        return;
+    }
+    target.clear(-INFINITY);
+    glBindVertexArray(mVertexArray.get());
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_FRONT); // back faces: every pixel whose ray meets the box, once, eye inside or not
+    glFrontFace(GL_CCW);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    glDrawArrays(GL_TRIANGLES, 0, 36);
+}
+
+} // namespace vots::render
