@@ -233,8 +233,8 @@ void BoxFitter::certify(const Box& box, const EpsField& eps, BoxOutcome& outcome
     maxCriterion = maxSample;
 
     if (!violated && mCertify == Certify::Cells) {
-        // Trilinear reference at cell centres and edge midpoints (DESIGN §3), walked on the half-integer
-        // lattice so each slice and row polynomial is built once: h counts the half coordinates.
+        // Trilinear reference at cell centres and edge midpoints (docs/DESIGN.md §3), walked on the
+        // half-integer lattice so each slice and row polynomial is built once: h counts the half coordinates.
         const Volume& v = mVolume;
         const int n[3] = {2 * box.cells(0), 2 * box.cells(1), 2 * box.cells(2)};
         for (int zi = 0; zi <= n[2] && !violated; ++zi) {

@@ -1,4 +1,4 @@
-// Background classification of cells and prefix-sum counting (DESIGN §4 "Background").
+// Background classification of cells and prefix-sum counting (docs/DESIGN.md §4 "Background").
 #include "CellMask.h"
 
 #include <algorithm>

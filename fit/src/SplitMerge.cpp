@@ -1,4 +1,4 @@
-// Fast generation (DESIGN §4, "faster strategies"): disjoint boxes, so each pixel rasterises fewer Vots.
+// Fast generation (docs/DESIGN.md §4, fast method): disjoint boxes, so each pixel rasterises fewer Vots.
 #include "SplitMerge.h"
 
 #include "ParallelFor.h"

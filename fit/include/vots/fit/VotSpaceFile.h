@@ -1,4 +1,4 @@
-// Vot-Space file version 1 (DESIGN §8): exact byte layout, CRC-32, atomic write; no other versions yet.
+// Vot-Space file version 1 (docs/DESIGN.md §8): exact byte layout, CRC-32, atomic write.
 #pragma once
 
 #include "vots/fit/VotSpace.h"
