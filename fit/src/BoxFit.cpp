@@ -150,7 +150,7 @@ BoxOutcome BoxFitter::fit(const Box& box, const EpsField& eps, FitCounters& coun
     };
     // The normal matrix depends only on the box's point counts and basis, not on where the box is or
     // on the data, and a fit visits the same few hundred shapes over and over: factor each shape once
-    // per thread (the factorisation was 9 % of a refit). Same factors, so the same solutions.
+    // per thread. Same factors, so the same solutions.
     const bool cacheable = box.points(0) <= 255 && box.points(1) <= 255 && box.points(2) <= 255;
     Vector solution;
     if (cacheable) {

@@ -12,7 +12,7 @@
 namespace vots::fit {
 
 /// What the fitting threads did, for FitStats. Each thread counts in its own cache line: two threads
-/// adding to one shared line made every cache hit wait for it (5 % of a refit).
+/// adding to one shared line would make every cache hit wait for that line.
 class FitCounters {
 public:
     void addFit() { mine().fits.fetch_add(1, std::memory_order_relaxed); }

@@ -20,7 +20,7 @@ namespace vots::fit {
 struct BoxHash {
     std::size_t operator()(const Box& b) const noexcept { return absl::HashOf(b.lo, b.hi); }
 };
-// Six int compares, inlined; Box's defaulted == went through a memcmp call (6 % of a refit).
+// Six int compares, inlined: Box's defaulted == compiles to a memcmp call, on the hottest path of a refit.
 struct BoxEqual {
     bool operator()(const Box& a, const Box& b) const noexcept {
         return a.lo[0] == b.lo[0] && a.lo[1] == b.lo[1] && a.lo[2] == b.lo[2] && a.hi[0] == b.hi[0] &&
@@ -44,8 +44,8 @@ struct FitCache::Impl {
     struct Shard {
         std::mutex mutex;
         // Open addressing over small slots (box -> entry number): a lookup costs about one cache miss,
-        // and misses never touch the large entries. std::unordered_map<Box, CachedBox> made the cache
-        // 25 % of a refit (1 M lookups), a flat map with the entries inline still 20 %.
+        // and misses never touch the large entries (a node map, or a flat map with the entries inline,
+        // would touch them).
         absl::flat_hash_map<Box, std::uint32_t, BoxHash, BoxEqual> index;
         std::deque<CachedBox> entries; // never moves an entry
     };
@@ -57,7 +57,7 @@ struct FitCache::Impl {
     Certify certify = Certify::Samples;
 
     // The background mask of the bound volume: the same for every refit at the same background, and
-    // ~20 ms to build on the CT.
+    // built on the fit's serial path.
     std::mutex maskMutex;
     std::shared_ptr<const CellMask> mask;
     std::optional<float> maskBackground;

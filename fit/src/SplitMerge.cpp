@@ -47,8 +47,8 @@ void splitBrick(const Box& brick, const CellMask& mask, const BoxTester& tester,
 
 // Which live box covers each cell of the boxes' bounding region. Each cell keeps the box it was
 // first given to; a merge only links the two old boxes to the new one (a union-find forest with path
-// halving), so it costs O(1) instead of rewriting every cell of the merged box. A hash map from faces
-// to boxes did the same job at 35 % of a refit's time (cache misses on 1 M nodes).
+// halving), so it costs O(1) instead of rewriting every cell of the merged box. A flat array rather
+// than a hash map from faces to boxes: a lookup is one read near the last one, not a cache miss.
 class CellOwners {
 public:
     static constexpr std::uint32_t NONE = 0xffffffffu;
@@ -130,7 +130,7 @@ std::vector<FittedBox> splitBricks(const CellMask& mask, const BoxTester& tester
     const std::size_t brickCount = static_cast<std::size_t>(bricks[0]) * bricks[1] * bricks[2];
     std::vector<std::vector<FittedBox>> perBrick(brickCount);
     // A brick's split and merge work in one vector per thread, kept from brick to brick: vectors grown
-    // afresh for every brick were most of a refit's page faults (~54 k per server refit at 1.3 %).
+    // afresh for every brick would fault in fresh pages again and again, most of a refit's page faults.
     std::vector<std::vector<FittedBox>> scratch(static_cast<std::size_t>(std::max(1, control.threads)));
     std::atomic<std::size_t> done{0};
     std::mutex progressMutex;
@@ -157,8 +157,8 @@ std::vector<FittedBox> splitBricks(const CellMask& mask, const BoxTester& tester
             control.progress(0.9 * static_cast<double>(finished) / static_cast<double>(brickCount), "split");
         }
     });
-    // One allocation, with room for the boxes the merge across bricks adds: each fresh page of a
-    // growing 30 MB vector is a page fault, ~2 us apiece on the team's VM, on the fit's serial part.
+    // One allocation, with room for the boxes the merge across bricks adds: a vector that grows would
+    // fault in its fresh pages again at every reallocation, on the fit's serial part.
     std::size_t total = 0;
     for (const auto& v : perBrick)
         total += v.size();
@@ -232,7 +232,8 @@ void mergeNeighbours(std::vector<FittedBox>& boxes, const BoxTester& tester, con
             break;
         }
     }
-    // Compacted in place, in the same order: a new vector of the survivors was another 30 MB of fresh pages.
+    // Compacted in place, in the same order: a new vector of the survivors would be as many fresh pages
+    // again.
     std::size_t keep = 0;
     for (std::size_t i = 0; i < boxes.size(); ++i)
         if (alive[i]) boxes[keep++] = boxes[i];
