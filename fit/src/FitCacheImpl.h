@@ -36,9 +36,9 @@ struct CachedBox {
 };
 
 struct FitCache::Impl {
-    // Shards by position: the boxes of one 32^3 brick share a shard, so a brick's split (hundreds of
-    // lookups in a row) works in one small table that stays in cache, instead of missing into a table
-    // of millions of entries at every lookup.
+    // Shards by position: the boxes of one zone (32^3 cells, SplitMerge.h) share a shard, so a zone's split
+    // (hundreds of lookups in a row) works in one small table that stays in cache, instead of missing into a
+    // table of millions of entries at every lookup.
     static constexpr std::size_t SHARDS = 1024;
     static constexpr int SHARD_CELLS_LOG2 = 5;
     struct Shard {
@@ -63,8 +63,8 @@ struct FitCache::Impl {
     std::optional<float> maskBackground;
 
     static std::size_t shardOf(const Box& box) {
-        const auto brick = [&](int a) { return static_cast<std::size_t>(box.lo[a] >> SHARD_CELLS_LOG2); };
-        return (brick(0) * 73856093u ^ brick(1) * 19349663u ^ brick(2) * 83492791u) % SHARDS;
+        const auto zone = [&](int a) { return static_cast<std::size_t>(box.lo[a] >> SHARD_CELLS_LOG2); };
+        return (zone(0) * 73856093u ^ zone(1) * 19349663u ^ zone(2) * 83492791u) % SHARDS;
     }
     void bind(const Volume& volume, int degreeIn, Certify certifyIn);
     std::shared_ptr<const CellMask> maskFor(const Volume& volume, std::optional<float> background);

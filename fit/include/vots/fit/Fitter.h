@@ -16,7 +16,7 @@ namespace vots::fit {
 
 enum class FitMethod {
     Paper, // docs/DESIGN.md §4: seed every non-background cell, grow face by face, lazy-greedy cover
-    Fast   // top-down split of bricks until each box fits, then merge face-sharing neighbours
+    Fast   // top-down split of zones until each box fits, then merge face-sharing neighbours
 };
 
 /// What a box's error is certified against (docs/DESIGN.md §3).
