@@ -25,8 +25,8 @@ await withPage(fakeTest, async (page) => {
     const countBefore = await viewer.votCount.textContent();
     // Timed inside the page, from the slider's change event to the first moment the new count, the idle
     // state and the loaded full-quality image are all there (DOM mutations and the image's load event).
-    // Node only looks every 200 ms: polling the page every few ms from here took a share of the 2 cores
-    // the fit needs (stop 10's figures were measured that way, with 10 ms polling).
+    // Node only looks every 200 ms: polling the page every few ms from here would take a share of the
+    // cores the fit needs and slow what it measures.
     await page.evaluate((before) => {
       window.__epsDone = null;
       const ready = () => {

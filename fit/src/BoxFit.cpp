@@ -150,7 +150,7 @@ BoxOutcome BoxFitter::fit(const Box& box, const EpsField& eps, FitCounters& coun
     };
     // The normal matrix depends only on the box's point counts and basis, not on where the box is or
     // on the data, and a fit visits the same few hundred shapes over and over: factor each shape once
-    // per thread (the factorisation was 9 % of a refit). Same factors, so the same solutions.
+    // per thread. Same factors, so the same solutions.
     const bool cacheable = box.points(0) <= 255 && box.points(1) <= 255 && box.points(2) <= 255;
     Vector solution;
     if (cacheable) {
@@ -233,8 +233,8 @@ void BoxFitter::certify(const Box& box, const EpsField& eps, BoxOutcome& outcome
     maxCriterion = maxSample;
 
     if (!violated && mCertify == Certify::Cells) {
-        // Trilinear reference at cell centres and edge midpoints (DESIGN §3), walked on the half-integer
-        // lattice so each slice and row polynomial is built once: h counts the half coordinates.
+        // Trilinear reference at cell centres and edge midpoints (docs/DESIGN.md §3), walked on the
+        // half-integer lattice so each slice and row polynomial is built once: h counts the half coordinates.
         const Volume& v = mVolume;
         const int n[3] = {2 * box.cells(0), 2 * box.cells(1), 2 * box.cells(2)};
         for (int zi = 0; zi <= n[2] && !violated; ++zi) {

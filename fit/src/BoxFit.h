@@ -1,4 +1,4 @@
-// Least-squares Vot for one box (DESIGN §3): rank-adaptive basis, scaled coordinates, LDLT, float certify.
+// Least-squares Vot for one box (docs/DESIGN.md §3): rank-adaptive basis, scaled coordinates, float certify.
 #pragma once
 
 #include "vots/fit/EpsField.h"
@@ -12,7 +12,7 @@
 namespace vots::fit {
 
 /// What the fitting threads did, for FitStats. Each thread counts in its own cache line: two threads
-/// adding to one shared line made every cache hit wait for it (5 % of a refit).
+/// adding to one shared line would make every cache hit wait for that line.
 class FitCounters {
 public:
     void addFit() { mine().fits.fetch_add(1, std::memory_order_relaxed); }
@@ -57,7 +57,7 @@ public:
         : mVolume(volume), mDegree(degree), mCertify(certify) {}
 
     /// Solves the least-squares problem on the box and certifies the float coefficients.
-    /// A single-cell box is always accepted: its 8-term trilinear basis is exact (DESIGN §2/§3).
+    /// A single-cell box is always accepted: its 8-term trilinear basis is exact (docs/DESIGN.md §2).
     BoxOutcome fit(const Box& box, const EpsField& eps, FitCounters& counters) const;
     /// Certifies given coefficients on the box (for reuse from a cache); fills err*, accepted, exact.
     void certify(const Box& box, const EpsField& eps, BoxOutcome& outcome, FitCounters& counters) const;

@@ -1,4 +1,4 @@
-// Background classification of cells and prefix-sum counting (DESIGN §4 "Background").
+// Background classification of cells and prefix-sum counting (docs/DESIGN.md §4 "Background").
 #include "CellMask.h"
 
 #include <algorithm>
@@ -15,9 +15,8 @@ CellMask::CellMask(const Volume& volume, std::optional<float> background) {
     if (background && cellCount > 0) {
         const float tau = *background;
         // A point is "low" when below tau; a cell is background when all 8 corners are low. Row by row
-        // over contiguous bytes (the compiler vectorises it): the whole mask, prefix sums included, takes
-        // ~22 ms on the CT, where an index lookup per corner and an 8-term prefix update per cell took
-        // ~110 ms on the fit's serial path.
+        // over contiguous bytes, which the compiler vectorises, rather than an index lookup per corner:
+        // the mask is built on the fit's serial path.
         std::vector<std::uint8_t> low(volume.sampleCount());
         for (std::size_t n = 0; n < low.size(); ++n)
             low[n] = volume.values[n] < tau ? 1 : 0;

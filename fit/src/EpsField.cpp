@@ -1,4 +1,4 @@
-// eps(Q) for a focus sphere with a linear ramp to the context eps (DESIGN §4, user-centric importance).
+// eps(Q) for a focus sphere with a linear ramp to the context eps (docs/DESIGN.md §4).
 #include "vots/fit/EpsField.h"
 
 #include <algorithm>

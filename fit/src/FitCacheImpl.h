@@ -20,7 +20,7 @@ namespace vots::fit {
 struct BoxHash {
     std::size_t operator()(const Box& b) const noexcept { return absl::HashOf(b.lo, b.hi); }
 };
-// Six int compares, inlined; Box's defaulted == went through a memcmp call (6 % of a refit).
+// Six int compares, inlined: Box's defaulted == compiles to a memcmp call, on the hottest path of a refit.
 struct BoxEqual {
     bool operator()(const Box& a, const Box& b) const noexcept {
         return a.lo[0] == b.lo[0] && a.lo[1] == b.lo[1] && a.lo[2] == b.lo[2] && a.hi[0] == b.hi[0] &&
@@ -36,16 +36,16 @@ struct CachedBox {
 };
 
 struct FitCache::Impl {
-    // Shards by position: the boxes of one 32^3 brick share a shard, so a brick's split (hundreds of
-    // lookups in a row) works in one small table that stays in cache, instead of missing into a table
-    // of millions of entries at every lookup.
+    // Shards by position: the boxes of one zone (32^3 cells, SplitMerge.h) share a shard, so a zone's split
+    // (hundreds of lookups in a row) works in one small table that stays in cache, instead of missing into a
+    // table of millions of entries at every lookup.
     static constexpr std::size_t SHARDS = 1024;
     static constexpr int SHARD_CELLS_LOG2 = 5;
     struct Shard {
         std::mutex mutex;
         // Open addressing over small slots (box -> entry number): a lookup costs about one cache miss,
-        // and misses never touch the large entries. std::unordered_map<Box, CachedBox> made the cache
-        // 25 % of a refit (1 M lookups), a flat map with the entries inline still 20 %.
+        // and misses never touch the large entries (a node map, or a flat map with the entries inline,
+        // would touch them).
         absl::flat_hash_map<Box, std::uint32_t, BoxHash, BoxEqual> index;
         std::deque<CachedBox> entries; // never moves an entry
     };
@@ -57,14 +57,14 @@ struct FitCache::Impl {
     Certify certify = Certify::Samples;
 
     // The background mask of the bound volume: the same for every refit at the same background, and
-    // ~20 ms to build on the CT.
+    // built on the fit's serial path.
     std::mutex maskMutex;
     std::shared_ptr<const CellMask> mask;
     std::optional<float> maskBackground;
 
     static std::size_t shardOf(const Box& box) {
-        const auto brick = [&](int a) { return static_cast<std::size_t>(box.lo[a] >> SHARD_CELLS_LOG2); };
-        return (brick(0) * 73856093u ^ brick(1) * 19349663u ^ brick(2) * 83492791u) % SHARDS;
+        const auto zone = [&](int a) { return static_cast<std::size_t>(box.lo[a] >> SHARD_CELLS_LOG2); };
+        return (zone(0) * 73856093u ^ zone(1) * 19349663u ^ zone(2) * 83492791u) % SHARDS;
     }
     void bind(const Volume& volume, int degreeIn, Certify certifyIn);
     std::shared_ptr<const CellMask> maskFor(const Volume& volume, std::optional<float> background);

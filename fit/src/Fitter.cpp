@@ -70,9 +70,9 @@ FitResult fitVotSpace(const Volume& volume, const FitOptions& options, FitCache*
     if (options.method == FitMethod::Paper) {
         boxes = greedyCover(growSeeds(mask, tester, control), mask, control);
     } else {
-        boxes = splitBricks(mask, tester, control);
+        boxes = splitZones(mask, tester, control);
         if (control.progress) control.progress(0.9, "merge");
-        mergeNeighbours(boxes, tester, control, BRICK_CELLS); // across brick borders
+        mergeNeighbours(boxes, tester, control, ZONE_CELLS); // across zone borders
     }
     if (control.progress) control.progress(1.0, "done");
 

@@ -1,4 +1,4 @@
-// Lazy-greedy set cover over cells (DESIGN §4 step 3): weights are re-evaluated only when popped.
+// Lazy-greedy set cover over cells (docs/DESIGN.md §4, paper method step 3): weights rechecked when popped.
 #include "PaperGrowth.h"
 
 #include <queue>

@@ -1,4 +1,4 @@
-// The paper's generator (DESIGN §4 steps 1-2): a cell seed at every foreground cell, grown face by face.
+// The paper's generator (docs/DESIGN.md §4, paper method): a seed at every foreground cell, grown, covered.
 #pragma once
 
 #include "BoxTester.h"
@@ -12,7 +12,7 @@ namespace vots::fit {
 /// One grown candidate per foreground cell (duplicates removed), each certified within eps.
 std::vector<FittedBox> growSeeds(const CellMask& mask, const BoxTester& tester, const FitControl& control);
 
-/// DESIGN §4 step 3: lazy-greedy cover of the foreground cells; returns the chosen candidates.
+/// Lazy-greedy cover of the foreground cells (docs/DESIGN.md §4, paper method step 3): the chosen boxes.
 std::vector<FittedBox> greedyCover(std::vector<FittedBox> candidates, const CellMask& mask,
                                    const FitControl& control);
 

@@ -1,4 +1,4 @@
-// Fast generation (DESIGN §4, "faster strategies"): disjoint boxes, so each pixel rasterises fewer Vots.
+// Fast generation (docs/DESIGN.md §4, fast method): disjoint boxes, so each pixel rasterises fewer Vots.
 #include "SplitMerge.h"
 
 #include "ParallelFor.h"
@@ -19,10 +19,10 @@ int longestAxis(const Box& box) {
     return axis;
 }
 
-void splitBrick(const Box& brick, const CellMask& mask, const BoxTester& tester, std::vector<FittedBox>& out,
-                const FitControl& control) {
+void splitZone(const Box& zone, const CellMask& mask, const BoxTester& tester, std::vector<FittedBox>& out,
+               const FitControl& control) {
     std::vector<Box> stack;
-    if (auto tight = mask.tightBox(brick)) stack.push_back(*tight);
+    if (auto tight = mask.tightBox(zone)) stack.push_back(*tight);
     while (!stack.empty()) {
         control.checkCancel();
         const Box box = stack.back();
@@ -47,8 +47,8 @@ void splitBrick(const Box& brick, const CellMask& mask, const BoxTester& tester,
 
 // Which live box covers each cell of the boxes' bounding region. Each cell keeps the box it was
 // first given to; a merge only links the two old boxes to the new one (a union-find forest with path
-// halving), so it costs O(1) instead of rewriting every cell of the merged box. A hash map from faces
-// to boxes did the same job at 35 % of a refit's time (cache misses on 1 M nodes).
+// halving), so it costs O(1) instead of rewriting every cell of the merged box. A flat array rather
+// than a hash map from faces to boxes: a lookup is one read near the last one, not a cache miss.
 class CellOwners {
 public:
     static constexpr std::uint32_t NONE = 0xffffffffu;
@@ -122,49 +122,49 @@ bool shareFace(const Box& b, const Box& n, int axis, bool high) {
 
 } // namespace
 
-std::vector<FittedBox> splitBricks(const CellMask& mask, const BoxTester& tester, const FitControl& control) {
+std::vector<FittedBox> splitZones(const CellMask& mask, const BoxTester& tester, const FitControl& control) {
     const auto cells = mask.cellDims();
-    std::array<int, 3> bricks{};
+    std::array<int, 3> zones{};
     for (int a = 0; a < 3; ++a)
-        bricks[a] = (cells[a] + BRICK_CELLS - 1) / BRICK_CELLS;
-    const std::size_t brickCount = static_cast<std::size_t>(bricks[0]) * bricks[1] * bricks[2];
-    std::vector<std::vector<FittedBox>> perBrick(brickCount);
-    // A brick's split and merge work in one vector per thread, kept from brick to brick: vectors grown
-    // afresh for every brick were most of a refit's page faults (~54 k per server refit at 1.3 %).
+        zones[a] = (cells[a] + ZONE_CELLS - 1) / ZONE_CELLS;
+    const std::size_t zoneCount = static_cast<std::size_t>(zones[0]) * zones[1] * zones[2];
+    std::vector<std::vector<FittedBox>> perZone(zoneCount);
+    // A zone's split and merge work in one vector per thread, kept from zone to zone: vectors grown
+    // afresh for every zone would fault in fresh pages again and again, most of a refit's page faults.
     std::vector<std::vector<FittedBox>> scratch(static_cast<std::size_t>(std::max(1, control.threads)));
     std::atomic<std::size_t> done{0};
     std::mutex progressMutex;
-    parallelFor(brickCount, control.threads, [&](std::size_t b, int thread) {
-        const int bx = static_cast<int>(b % static_cast<std::size_t>(bricks[0]));
-        const int by =
-            static_cast<int>((b / static_cast<std::size_t>(bricks[0])) % static_cast<std::size_t>(bricks[1]));
-        const int bz = static_cast<int>(b / (static_cast<std::size_t>(bricks[0]) * bricks[1]));
-        Box brick;
-        const int index[3] = {bx, by, bz};
+    parallelFor(zoneCount, control.threads, [&](std::size_t n, int thread) {
+        const int ix = static_cast<int>(n % static_cast<std::size_t>(zones[0]));
+        const int iy =
+            static_cast<int>((n / static_cast<std::size_t>(zones[0])) % static_cast<std::size_t>(zones[1]));
+        const int iz = static_cast<int>(n / (static_cast<std::size_t>(zones[0]) * zones[1]));
+        Box zone;
+        const int index[3] = {ix, iy, iz};
         for (int a = 0; a < 3; ++a) {
-            brick.lo[a] = index[a] * BRICK_CELLS;
-            brick.hi[a] = std::min(brick.lo[a] + BRICK_CELLS, cells[a]);
+            zone.lo[a] = index[a] * ZONE_CELLS;
+            zone.hi[a] = std::min(zone.lo[a] + ZONE_CELLS, cells[a]);
         }
         std::vector<FittedBox>& boxes = scratch[static_cast<std::size_t>(thread)];
         boxes.clear();
-        splitBrick(brick, mask, tester, boxes, control);
-        // Merging inside the brick first keeps most merge work parallel.
+        splitZone(zone, mask, tester, boxes, control);
+        // Merging inside the zone first keeps most merge work parallel.
         mergeNeighbours(boxes, tester, FitControl{1, nullptr, control.cancel});
-        perBrick[b].assign(boxes.begin(), boxes.end());
+        perZone[n].assign(boxes.begin(), boxes.end());
         const std::size_t finished = done.fetch_add(1) + 1;
         if (control.progress) {
             std::lock_guard lock(progressMutex);
-            control.progress(0.9 * static_cast<double>(finished) / static_cast<double>(brickCount), "split");
+            control.progress(0.9 * static_cast<double>(finished) / static_cast<double>(zoneCount), "split");
         }
     });
-    // One allocation, with room for the boxes the merge across bricks adds: each fresh page of a
-    // growing 30 MB vector is a page fault, ~2 us apiece on the team's VM, on the fit's serial part.
+    // One allocation, with room for the boxes the merge across zones adds: a vector that grows would
+    // fault in its fresh pages again at every reallocation, on the fit's serial part.
     std::size_t total = 0;
-    for (const auto& v : perBrick)
+    for (const auto& v : perZone)
         total += v.size();
     std::vector<FittedBox> all;
     all.reserve(total + total / 2);
-    for (auto& v : perBrick) {
+    for (auto& v : perZone) {
         all.insert(all.end(), v.begin(), v.end());
         std::vector<FittedBox>().swap(v);
     }
@@ -172,26 +172,26 @@ std::vector<FittedBox> splitBricks(const CellMask& mask, const BoxTester& tester
 }
 
 void mergeNeighbours(std::vector<FittedBox>& boxes, const BoxTester& tester, const FitControl& control,
-                     int brickCells) {
+                     int zoneCells) {
     if (boxes.size() >= CellOwners::NONE) throw InputError("too many boxes to merge");
     std::vector<bool> alive(boxes.size(), true);
     CellOwners owners(boxes);
-    auto onBrickPlane = [brickCells](const Box& b) {
+    auto onZonePlane = [zoneCells](const Box& b) {
         for (int a = 0; a < 3; ++a)
-            if (b.lo[a] % brickCells == 0 || b.hi[a] % brickCells == 0) return true;
+            if (b.lo[a] % zoneCells == 0 || b.hi[a] % zoneCells == 0) return true;
         return false;
     };
-    // A box from the per-brick merge has already been tried against every neighbour inside its brick
-    // and refused; only its faces on a brick plane can meet a box it has not been tried with. A box
+    // A box from the per-zone merge has already been tried against every neighbour inside its zone
+    // and refused; only its faces on a zone plane can meet a box it has not been tried with. A box
     // this merge makes is new to all its neighbours.
-    const std::size_t firstNew = brickCells > 0 ? boxes.size() : 0;
+    const std::size_t firstNew = zoneCells > 0 ? boxes.size() : 0;
     auto faceIsNew = [&](std::size_t i, int a, bool high) {
-        return i >= firstNew || (high ? boxes[i].box.hi[a] : boxes[i].box.lo[a]) % brickCells == 0;
+        return i >= firstNew || (high ? boxes[i].box.hi[a] : boxes[i].box.lo[a]) % zoneCells == 0;
     };
     std::vector<std::size_t> work;
     work.reserve(boxes.size());
     for (std::size_t i = 0; i < boxes.size(); ++i)
-        if (brickCells <= 0 || onBrickPlane(boxes[i].box)) work.push_back(i);
+        if (zoneCells <= 0 || onZonePlane(boxes[i].box)) work.push_back(i);
     while (!work.empty()) {
         control.checkCancel();
         const std::size_t i = work.back();
@@ -232,7 +232,8 @@ void mergeNeighbours(std::vector<FittedBox>& boxes, const BoxTester& tester, con
             break;
         }
     }
-    // Compacted in place, in the same order: a new vector of the survivors was another 30 MB of fresh pages.
+    // Compacted in place, in the same order: a new vector of the survivors would be as many fresh pages
+    // again.
     std::size_t keep = 0;
     for (std::size_t i = 0; i < boxes.size(); ++i)
         if (alive[i]) boxes[keep++] = boxes[i];

@@ -1,5 +1,4 @@
-// Sample type names, the value range and content CRC of a Volume; file reading lives in VolumeLoad.cpp and
-// the readers.
+// Sample type names, the value range and content CRC of a Volume (file reading: VolumeLoad.cpp).
 #include "vots/fit/Volume.h"
 
 #include "vots/fit/Error.h"
@@ -42,8 +41,8 @@ ScalarType parseScalarType(const std::string& text) {
 
 std::array<float, 2> Volume::valueRange() const {
     if (values.empty()) return {0.0f, 0.0f};
-    // A plain min/max the compiler vectorises; std::minmax_element tracks positions and does not
-    // (~18 ms against ~4 ms a call on the CT, three calls per `vots fit`). NaN samples are skipped alike.
+    // A plain min/max the compiler vectorises; std::minmax_element tracks positions and does not (a fit
+    // calls this more than once, on its serial path). NaN samples are skipped alike.
     float lo = values.front(), hi = values.front();
     for (const float v : values) {
         lo = std::min(lo, v);

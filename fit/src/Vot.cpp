@@ -1,4 +1,4 @@
-// Evaluation and derivatives of one Vot's Taylor polynomial (DESIGN §1), generic over the 20 monomials.
+// Evaluation and derivatives of one Vot's Taylor polynomial (docs/DESIGN.md §1), generic over the monomials.
 #include "vots/fit/Vot.h"
 
 namespace vots::fit {

@@ -1,4 +1,4 @@
-// Vot-Space file v1 (DESIGN §8): explicit little-endian packing and full validation; no file I/O here.
+// Vot-Space file v1 (docs/DESIGN.md §8): explicit little-endian packing and full validation; no file I/O.
 #include "vots/fit/VotSpaceFile.h"
 
 #include "vots/fit/Error.h"
@@ -16,7 +16,7 @@
 namespace vots::fit {
 namespace {
 
-// Header field offsets (DESIGN §8). Everything is little-endian, whatever the host.
+// Header field offsets (docs/DESIGN.md §8). Everything is little-endian, whatever the host.
 constexpr std::size_t OFF_MAGIC = 0;        // 4B "VOTS"
 constexpr std::size_t OFF_VERSION = 4;      // u32
 constexpr std::size_t OFF_HEADER_BYTES = 8; // u32 = 128
@@ -37,7 +37,7 @@ constexpr std::size_t REC_LO = 0;   // i32[3], box lo, grid index space
 constexpr std::size_t REC_HI = 12;  // i32[3], box hi, inclusive
 constexpr std::size_t REC_P = 24;   // f32[3], expansion point, grid index space
 constexpr std::size_t REC_ERR = 36; // f32, max |residual| at the box's grid samples
-constexpr std::size_t REC_C = 40;   // f32[20], Taylor coefficients, canonical order (DESIGN §1)
+constexpr std::size_t REC_C = 40;   // f32[20], Taylor coefficients, canonical order (docs/DESIGN.md §1)
 
 constexpr char MAGIC[4] = {'V', 'O', 'T', 'S'};
 constexpr std::uint32_t KNOWN_FLAGS = VotSpace::FLAG_EPS_VARIES;
@@ -164,7 +164,7 @@ void validateVot(const VotSpace& s, const Vot& v, std::size_t index) {
     if (!std::isfinite(v.err) || v.err < 0.f) fail(where + "err is not a finite number >= 0");
     for (std::size_t i = 0; i < MONOMIAL_COUNT; ++i) {
         if (!std::isfinite(v.c[i])) fail(where + "coefficient " + MONOMIAL_NAMES[i] + " is not finite");
-        // DESIGN §3: the header degree bounds every nonzero stored coefficient, so a reader that
+        // docs/DESIGN.md §2: the header degree bounds every nonzero stored coefficient, so a reader that
         // evaluates up to the header's degree is always right.
         if (v.c[i] != 0.f && monomialDegree(i) > s.degree)
             fail(where + "coefficient " + MONOMIAL_NAMES[i] + " is nonzero but the header degree is " +

@@ -1,4 +1,4 @@
-// Analytic maximum of a cubic polynomial along a ray (DESIGN §5), for the raster and walk MIP shaders.
+// Analytic maximum of a cubic polynomial along a ray (docs/DESIGN.md §5), for the raster and walk MIP shaders.
 // Needs vot_common.glsl (CLIP_SLACK) and ray_common.glsl (clipRayToBox) included before it.
 
 // vec4 linearProductN(...): coefficients in u of a product of N linear factors (a_i + b_i u).
@@ -24,7 +24,7 @@ bool cubicRayMax(float c[TAYLOR_TERMS], vec3 lo, vec3 hi, vec3 p, vec3 invScale,
     float tOut = min(span.y, farT);
     if (tIn > tOut) return false;
 
-    // Expand from the box entry point, not the near plane: float cancellation (EGL_NOTES).
+    // Expand from the box entry point, not the near plane: float cancellation (docs/DESIGN.md §5).
     vec3 s = (origin + tIn * dir - p) * invScale;
     vec4 g = taylorAlongRay(c, s, dir * invScale); // g(u) = g0 + g1 u + g2 u^2 + g3 u^3, u in [0, len]
     float len = tOut - tIn;

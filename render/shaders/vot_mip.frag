@@ -1,5 +1,5 @@
 #version 450 core
-// Raster strategy: analytic MIP of one Vot along the pixel's ray (DESIGN §5), max of a cubic over
+// Raster strategy: analytic MIP of one Vot along the pixel's ray (docs/DESIGN.md §5), max of a cubic over
 // [tIn, tOut].
 #include "vot_common.glsl"
 #include "ray_common.glsl"

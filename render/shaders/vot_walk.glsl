@@ -74,7 +74,7 @@ void walkStep(const bool mayEvaluate, inout ivec3 cell, inout float best, inout 
         return;
     }
     // llvmpipe runs every texel fetch for all lanes of a SIMD group, inside a branch or not, and the
-    // walk waits on memory more than on arithmetic (bench/RESULTS.md, stop 12): lanes that do not
+    // walk waits on memory more than on arithmetic (bench/RESULTS.md): lanes that do not
     // need a fetch read texel 0, which stays in cache, rather than an address of their own.
     bool skipBrick = brickMax == NEG_INF || (uCull != 0 && brickMax <= best);
     ivec3 local = cell - (brick << uBrickShift);
@@ -126,11 +126,10 @@ float walkPixel(vec2 fragCoord) {
     // within the sum of the sides; the budget only guards against the unforeseen.
     int budget = uCells.x + uCells.y + uCells.z + 3;
     // One loop that may evaluate at any step, not a walk-then-evaluate pair of loops: the rasteriser
-    // shades 8 pixels in lockstep, and nested loops made each wait for the slowest at every Vot
-    // (measured 1.3x slower on the CT, bench/RESULTS.md). llvmpipe runs an evaluation's code for all 8
-    // lanes whenever one of them evaluates, so each round adds a second step that cannot evaluate: a
-    // lane crossing empty or culled blocks moves on twice as fast (stop 12: perspective 5 % faster,
-    // oblique 2 %; a third such step was slower).
+    // shades 8 pixels in lockstep, and nested loops make each wait for the slowest at every Vot.
+    // llvmpipe runs an evaluation's code for all 8 lanes whenever one of them evaluates, so each round
+    // adds a second step that cannot evaluate: a lane crossing empty or culled blocks moves on twice as
+    // fast. A third such step costs more than it saves (bench/RESULTS.md compares them).
     gOrigin = origin, gDir = dir, gInvDir = invDir, gUp = up, gFarT = farT, gTOut = tOut;
     while (walking) {
         walkStep(true, cell, best, walking, budget);

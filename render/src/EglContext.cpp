@@ -71,7 +71,7 @@ std::string makeContext(EGLDisplay display, EglContext::Handles& out) {
         if (eglChooseConfig(display, configAttribs, &config, 1, &count) && count >= 1) break;
         config = nullptr;
     }
-    // 4.6 fails with EGL_BAD_MATCH on Mesa 22 llvmpipe (EGL_NOTES); 4.5 core is what we need.
+    // 4.6 fails with EGL_BAD_MATCH on Mesa 22 llvmpipe (docs/DESIGN.md §10); 4.5 core is what we need.
     const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION,
                                      4,
                                      EGL_CONTEXT_MINOR_VERSION,
@@ -184,7 +184,7 @@ EglContext::~EglContext() {
     if (!mHandles || mHandles->display == EGL_NO_DISPLAY) return;
     eglMakeCurrent(mHandles->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     eglDestroyContext(mHandles->display, mHandles->context);
-    // Not eglTerminate: the surfaceless display is shared process-wide (EGL_NOTES), and another
+    // Not eglTerminate: the surfaceless display is shared process-wide (docs/DESIGN.md §10), and another
     // context made on it later would die with it. EGL reclaims it at process exit.
 }
 

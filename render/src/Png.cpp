@@ -1,11 +1,10 @@
 // PNG encoding through stb_image_write, its deflate done by libdeflate, and atomic writes.
 //
-// Encoding is on the server's critical path (a 512x512 frame took 21 ms with stb's defaults, a quarter of
-// the frame budget), so: no alpha channel (always opaque), one grey channel when every pixel is grey,
-// and the "up" filter instead of stb's per-row trial of five filters. Measured on a CT frame with stb's
-// own deflate at level 4 (bench/RESULTS.md): RGBA 20.8 ms / 63 KB -> RGB 12 ms / 62 KB -> grey 4 ms /
-// 35 KB. stb's deflate is written for brevity, not speed (its header says so); libdeflate, already linked
-// for CRC-32, compresses the same rows several times faster and smaller (RESULTS, stop 14).
+// Encoding is on the server's critical path (with stb's defaults it took a large part of a frame's
+// time), so: no alpha channel (always opaque), one grey channel when every pixel is grey, and the "up"
+// filter instead of stb's per-row trial of five filters. stb's deflate is written for brevity, not speed
+// (its header says so); libdeflate, already linked for CRC-32, compresses the same rows faster and
+// smaller (bench/RESULTS.md, "PNG encoding", has the figures).
 #include "vots/render/Png.h"
 
 #include "vots/fit/Error.h"
@@ -18,7 +17,7 @@
 namespace {
 // stb_image_write's hook for a zlib stream; stb frees the result with free().
 unsigned char* deflateForStb(unsigned char* data, int length, int* outLength, int /*stbQuality*/) {
-    constexpr int LEVEL = 4; // CT frames: 28 % smaller than stb level 4, 2.5x faster (RESULTS)
+    constexpr int LEVEL = 4; // the knee of size against time on CT frames (bench/RESULTS.md)
     thread_local std::unique_ptr<libdeflate_compressor, decltype(&libdeflate_free_compressor)> compressor(
         libdeflate_alloc_compressor(LEVEL), &libdeflate_free_compressor);
     if (!compressor || length < 0) return nullptr;

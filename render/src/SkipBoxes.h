@@ -1,5 +1,4 @@
-// Skip boxes: each Vot's box grown over neighbours that a culled Vot's bound also culls, and each empty
-// block grown over the background around it.
+// Skip boxes: Vot boxes grown over neighbours a culled Vot's bound also culls; empty blocks over background.
 #pragma once
 
 #include "VotWalkGrid.h"
@@ -13,8 +12,9 @@
 
 namespace vots::render {
 
-/// Cells a skip box may grow beyond its Vot's box on each side: 16 gave the walk ~7 % faster CT frames
-/// at ~0.3 s of work per 170 k Vots on 2 cores (bench/RESULTS.md), so it runs after the first frame.
+/// Cells a skip box may grow beyond its Vot's box on each side. Wider growth lets a culled Vot step over
+/// more but costs more work per upload, which is why the growth runs after the first frame
+/// (bench/RESULTS.md compares limits).
 inline constexpr int MAX_SKIP_GROWTH = 16;
 
 /// For every Vot, then every empty block, its box grown one cell layer at a

@@ -23,7 +23,8 @@ template <typename At> inline void toBernstein(At at) {
 }
 
 // Applies the conversion along every axis of a 4x4x4 coefficient tensor ([z][y][x]); constant strides
-// let the compiler unroll what the pointer-table version could not (bounds were half of an upload).
+// let the compiler unroll it, which a table of pointers would not (every Vot's bounds are computed at
+// upload).
 void toBernstein3(double (&t)[4][4][4]) {
     for (int u = 0; u < 4; ++u)
         for (int v = 0; v < 4; ++v)
@@ -41,7 +42,7 @@ void toBernstein3(double (&t)[4][4][4]) {
 VotBounds computeVotBounds(const fit::Vot& vot) {
     // On the box, X - p = a + w t per axis with t in [0, 1]. Expanding every monomial (a + w t)^e gives
     // the polynomial in t's power basis, which converts exactly to Bernstein coefficients per axis
-    // (about 300 flops; sampling 64 points and interpolating took 10x longer and dominated upload).
+    // (about 300 flops, far fewer than sampling 64 points and interpolating would take).
     double shift[3][4][4] = {}; // shift[axis][e][k]: coefficient of t^k in (a + w t)^e
     double slackPower[3][4];    // (h + 1)^e, h the largest distance from p along the axis
     for (int axis = 0; axis < 3; ++axis) {
@@ -58,7 +59,7 @@ VotBounds computeVotBounds(const fit::Vot& vot) {
     double t[4][4][4] = {}; // [z][y][x] power of t
     double slackSum = 0.0;
     // Unrolled over the monomials at compile time: with constant exponents the loops are short and
-    // straight (the bounds were half of an upload while their trip counts were read from a table).
+    // straight, where trip counts read from a table would not let the compiler unroll them.
     auto addMonomial = [&]<std::size_t M>(std::integral_constant<std::size_t, M>) {
         constexpr auto e = fit::MONOMIAL_EXPONENTS[M];
         const double c = vot.c[M];

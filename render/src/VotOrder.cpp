@@ -42,7 +42,7 @@ std::vector<std::size_t> spatialOrder(const std::vector<fit::Vot>& vots) {
         all |= keys[i];
     }
     // Least significant digit first, 11 bits at a time, stable: equal keys keep file order, as a
-    // comparison sort on (key, index) would give, in a few linear passes instead of ~18 comparisons
+    // comparison sort on (key, index) would give, in a few linear passes instead of log2(n) comparisons
     // per Vot (a refit waits for the upload this is part of).
     constexpr int DIGIT_BITS = 11;
     constexpr std::size_t BUCKETS = std::size_t{1} << DIGIT_BITS;

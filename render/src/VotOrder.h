@@ -12,7 +12,7 @@ namespace vots::render {
 
 /// Z-order (Morton) of the boxes' low corners: Vots near each other in space are near in memory, so the
 /// walk, which reads the records of the Vots along neighbouring rays, touches few cache lines
-/// (bench/RESULTS.md: ~10 % faster frames on the CT than bound order). Ties keep file order.
+/// (bench/RESULTS.md compares it with bound order). Ties keep file order.
 std::vector<std::size_t> spatialOrder(const std::vector<fit::Vot>& vots);
 
 /// Descending upper bound, ties in file order: what Raster's batch culling wants, since the brightest

@@ -33,7 +33,7 @@ inline void packBoxCorners(std::uint32_t* words, const std::array<int, 3>& lo, c
     words[2] = u16(hi[1]) | u16(hi[2]) << 16;
 }
 
-/// What vot_walk.frag reads besides the Vot records. Cells and bricks are stored x fastest.
+/// What the walk shader (vot_walk.glsl) reads besides the Vot records. Cells and bricks are stored x fastest.
 struct VotWalkGrid {
     std::array<int, 3> cells{0, 0, 0};  // cells per axis: grid points - 1
     std::array<int, 3> bricks{0, 0, 0}; // bricks per axis: ceil(cells / brick side)
@@ -45,7 +45,7 @@ struct VotWalkGrid {
                                         // crosses empty space in a few steps
 };
 
-/// The cell grid as vot_walk.frag reads it, in half the bytes of cellVot: each brick has a palette of
+/// The cell grid as vot_walk.glsl reads it, in half the bytes of cellVot: each brick has a palette of
 /// the block ids its cells name, and each cell holds its index into that palette. Cells are stored
 /// brick by brick (bricks x fastest, cells x fastest inside a brick, padded to whole bricks), so a ray
 /// stays in few cache lines; the walk waits on these reads more than on anything else.

@@ -10,7 +10,7 @@
 namespace vots::render {
 
 /// Four RGBA32UI texels (uWalkRecord in vot_walk.glsl). The walk waits on the memory of the Vots it
-/// evaluates more than on their arithmetic (bench/RESULTS.md, stop 12), so the record is halved:
+/// evaluates more than on their arithmetic (bench/RESULTS.md), so the record is halved:
 ///   words 0-2   box corners in cells, 16 bits each (as the walk's box table packs them)
 ///   word 3      c_0, the value at the box centre (float)
 ///   words 4-6   the gradient terms (float)

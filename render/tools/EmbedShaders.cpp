@@ -1,5 +1,4 @@
-// Build-time tool: embeds render/shaders/* into a .cpp as raw strings and generates taylor.glsl from
-// Monomials.h.
+// Build-time tool: embeds render/shaders/* into a .cpp and generates taylor.glsl from Monomials.h.
 //
 // Usage: vots_embed_shaders OUT.cpp SHADER...   Each shader may `#include "name"` another file from
 // the same folder (inlined once) or "taylor.glsl", which is generated here from MONOMIAL_EXPONENTS,
@@ -31,8 +30,8 @@ std::string generateTaylor() {
         out << vots::fit::MONOMIAL_NAMES[i] << ' ';
     out << "\n";
     out << "const int TAYLOR_TERMS = " << MONOMIAL_COUNT << ";\n\n";
-    out << "// Coefficients g0..g3 of g(u) = f~(P + s + u*dir) for a Vot with Taylor coefficients c (DESIGN "
-           "§5).\n";
+    out << "// Coefficients g0..g3 of g(u) = f~(P + s + u*dir) for a Vot with Taylor coefficients c\n"
+           "// (docs/DESIGN.md §5).\n";
     out << "vec4 taylorAlongRay(float c[TAYLOR_TERMS], vec3 s, vec3 dir) {\n";
     out << "    vec4 g = vec4(0.0);\n";
     for (std::size_t i = 0; i < MONOMIAL_COUNT; ++i) {

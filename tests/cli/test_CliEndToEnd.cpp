@@ -61,7 +61,7 @@ TEST_F(CliEndToEnd, InfoJsonDescribesTheFit) {
     EXPECT_EQ(j.at("dims"), json({48, 62, 42}));
     EXPECT_EQ(j.at("spacing"), json({4.0, 4.0, 4.0}));
     EXPECT_EQ(j.at("requested_degree"), 2);
-    EXPECT_GE(j.at("degree").get<int>(), 2); // cell Vots may lift the header degree to 3 (DESIGN §3)
+    EXPECT_GE(j.at("degree").get<int>(), 2); // cell Vots may lift the header degree to 3 (docs/DESIGN.md §2)
     const double eps = j.at("eps").get<double>();
     EXPECT_NEAR(eps, 0.03 * 255, 1e-4); // 3 % of the value range 0..255
     const auto count = j.at("vot_count").get<std::size_t>();

@@ -60,8 +60,8 @@ TEST(CellVot, ReproducesTrilinearAtRandomPoints) {
     const FitResult fit = fitVotSpace(volume, options(1e-3f, 3));
     ASSERT_EQ(fit.space.vots.size(), 1u);
     const Vot& vot = fit.space.vots[0];
-    // DESIGN §2 closed form: c = mean, c_x = 1/4 sum s_i f, c_xy = 1/2 sum s_i s_j f, c_xyz = sum s_i s_j s_k
-    // f.
+    // docs/DESIGN.md §2 closed form: c = mean, c_x = 1/4 sum s_i f, c_xy = 1/2 sum s_i s_j f, c_xyz = sum s_i
+    // s_j s_k f.
     double c0 = 0, cx = 0, cxy = 0, cxyz = 0;
     for (int n = 0; n < 8; ++n) {
         const int i = n & 1, j = (n >> 1) & 1, k = (n >> 2) & 1;
@@ -86,7 +86,8 @@ TEST(CellVot, ReproducesTrilinearAtRandomPoints) {
 class LowDegreeCells : public ::testing::TestWithParam<int> {};
 
 TEST_P(LowDegreeCells, FallBackToExactTrilinearCellsWhateverTheDegree) {
-    // Random data with a tiny eps: only single cells fit, and they must use the 8-term basis (DESIGN §3).
+    // Random data with a tiny eps: only single cells fit, and they must use the 8-term basis (docs/DESIGN.md
+    // §2).
     const Volume volume = randomVolume({5, 4, 4}, 5u);
     const FitResult fit = fitVotSpace(volume, options(1e-3f, GetParam()));
     EXPECT_EQ(fit.space.vots.size(), 4u * 3u * 3u);
@@ -170,7 +171,7 @@ TEST(Fitter, RefitAtNewEpsReusesCacheAndMatchesFreshFit) {
 }
 
 TEST(Fitter, CertifyCellsBoundsTheErrorAtCellCentres) {
-    // A sharp step: a cubic through 0,0,1,1 overshoots between samples (DESIGN §3).
+    // A sharp step: a cubic through 0,0,1,1 overshoots between samples (docs/DESIGN.md §3).
     const Volume volume = sampleVolume({24, 12, 12}, [](int x, int, int) { return x < 12 ? 0.0 : 2000.0; });
     FitOptions o = options(50.f, 3);
     o.certify = Certify::Cells;

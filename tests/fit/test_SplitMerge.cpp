@@ -1,4 +1,4 @@
-// The merge across brick borders (white box, fit/src): trying only the faces that can meet a box not yet
+// The merge across zone borders (white box, fit/src): trying only the faces that can meet a box not yet
 // tried must reach the same cover as trying every face of every box, and leave no mergeable pair.
 #include "SplitMerge.h"
 #include "SyntheticFields.h"
@@ -33,9 +33,9 @@ Box unite(const Box& a, const Box& b) {
     return u;
 }
 
-// Three bricks along x, two along y and z, a smooth field with noise and empty corners, so the split
-// leaves boxes of many sizes on every brick plane.
-Volume bricksVolume() {
+// Three zones along x, two along y and z, a smooth field with noise and empty corners, so the split
+// leaves boxes of many sizes on every zone plane.
+Volume zonesVolume() {
     std::mt19937 rng(7);
     std::normal_distribution<double> noise(0.0, 3.0);
     return sampleVolume({81, 50, 41}, [&](int x, int y, int z) {
@@ -46,8 +46,8 @@ Volume bricksVolume() {
 
 } // namespace
 
-TEST(SplitMerge, MergeAcrossBricksMatchesTryingEveryFaceAndLeavesNoMergeablePair) {
-    const Volume volume = bricksVolume();
+TEST(SplitMerge, MergeAcrossZonesMatchesTryingEveryFaceAndLeavesNoMergeablePair) {
+    const Volume volume = zonesVolume();
     const BoxFitter fitter(volume, 3, Certify::Cells);
     const EpsField eps(30.f);
     FitCounters counters;
@@ -55,28 +55,28 @@ TEST(SplitMerge, MergeAcrossBricksMatchesTryingEveryFaceAndLeavesNoMergeablePair
     const CellMask mask(volume, -900.f);
     const FitControl control{2, nullptr, nullptr};
 
-    std::vector<FittedBox> perBrick = splitBricks(mask, tester, control);
-    std::vector<FittedBox> everyFace = perBrick;
-    mergeNeighbours(perBrick, tester, control, BRICK_CELLS);
+    std::vector<FittedBox> perZone = splitZones(mask, tester, control);
+    std::vector<FittedBox> everyFace = perZone;
+    mergeNeighbours(perZone, tester, control, ZONE_CELLS);
     mergeNeighbours(everyFace, tester, control);
 
-    ASSERT_GT(perBrick.size(), 100u) << "the field should need many boxes";
-    ASSERT_EQ(perBrick.size(), everyFace.size());
-    for (std::size_t i = 0; i < perBrick.size(); ++i)
-        ASSERT_EQ(perBrick[i].box, everyFace[i].box) << "box " << i;
+    ASSERT_GT(perZone.size(), 100u) << "the field should need many boxes";
+    ASSERT_EQ(perZone.size(), everyFace.size());
+    for (std::size_t i = 0; i < perZone.size(); ++i)
+        ASSERT_EQ(perZone[i].box, everyFace[i].box) << "box " << i;
 
     std::size_t crossing = 0, pairs = 0;
-    for (std::size_t i = 0; i < perBrick.size(); ++i) {
-        const Box& a = perBrick[i].box;
+    for (std::size_t i = 0; i < perZone.size(); ++i) {
+        const Box& a = perZone[i].box;
         for (int axis = 0; axis < 3; ++axis)
-            if (a.lo[axis] / BRICK_CELLS != (a.hi[axis] - 1) / BRICK_CELLS) ++crossing;
-        for (std::size_t j = i + 1; j < perBrick.size(); ++j) {
-            if (!shareWholeFace(a, perBrick[j].box)) continue;
+            if (a.lo[axis] / ZONE_CELLS != (a.hi[axis] - 1) / ZONE_CELLS) ++crossing;
+        for (std::size_t j = i + 1; j < perZone.size(); ++j) {
+            if (!shareWholeFace(a, perZone[j].box)) continue;
             ++pairs;
-            EXPECT_FALSE(tester.test(unite(a, perBrick[j].box)).accepted)
+            EXPECT_FALSE(tester.test(unite(a, perZone[j].box)).accepted)
                 << "boxes " << i << " and " << j << " could still merge";
         }
     }
-    EXPECT_GT(crossing, 0u) << "some merges should cross a brick plane";
+    EXPECT_GT(crossing, 0u) << "some merges should cross a zone plane";
     EXPECT_GT(pairs, 0u);
 }

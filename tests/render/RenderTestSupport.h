@@ -31,7 +31,7 @@ struct Polynomial {
 /// a grid of side n.
 Polynomial randomPolynomial(int degree, int n, double amplitude, std::uint32_t seed);
 
-/// Exact cell Vots (DESIGN §2): one per 2x2x2 cell, reproducing trilinear interpolation.
+/// Exact cell Vots (docs/DESIGN.md §2): one per 2x2x2 cell, reproducing trilinear interpolation.
 fit::VotSpace cellVotSpace(const fit::Volume& volume);
 
 /// The polynomial split into boxes of `side` cells, each Vot expanded around its own box centre moved

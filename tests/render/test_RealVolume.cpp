@@ -33,8 +33,8 @@ const Fitted& headCt() {
         options.eps = 0.01f * (range[1] - range[0]);
         options.degree = 3;
         options.background = fit::defaultBackground(f.volume);
-        // Samples-only certification lets a cubic overshoot between grid samples next to bone (DESIGN §3);
-        // MIP picks exactly those spikes, so the image test uses the cell-centre certification.
+        // Samples-only certification lets a cubic overshoot between grid samples next to bone (docs/DESIGN.md
+        // §3); MIP picks exactly those spikes, so the image test uses the cell-centre certification.
         options.certify = fit::Certify::Cells;
         f.space = fit::fitVotSpace(f.volume, options).space;
         f.eps = options.eps;
@@ -58,8 +58,8 @@ TEST(RealVolume, VotMipMatchesReferenceWithinEps) {
         const FloatImage a = vots.render(cam, 256, 256);
         const FloatImage b = grid.render(cam, 256, 256);
         // Allowance beyond eps: the reference reconstructs trilinearly and samples every 0.5 voxel, the
-        // Vots are certified at grid samples only (DESIGN §3 overshoot). Pixels whose reference max is
-        // below the fitter's background threshold have no Vot by design: compare them as background.
+        // Vots are certified at grid samples only (docs/DESIGN.md §3 overshoot). Pixels whose reference max
+        // is below the fitter's background threshold have no Vot by design: compare them as background.
         const double allowance = 0.05 * (f.volume.valueRange()[1] - f.volume.valueRange()[0]);
         std::size_t compared = 0, within = 0, above = 0, below = 0;
         double worst = 0;

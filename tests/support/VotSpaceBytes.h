@@ -1,4 +1,4 @@
-// Test helpers for editing Vot-Space file bytes (DESIGN §8) independently of the library's codec.
+// Test helpers for editing Vot-Space file bytes (docs/DESIGN.md §8) independently of the library's codec.
 #pragma once
 
 #include "vots/fit/VotSpace.h"

@@ -1,4 +1,4 @@
-// The error bound as a function of position: a constant, or a focus sphere with its own eps (DESIGN §4).
+// The error bound over space: a constant, or a focus sphere with its own eps (docs/DESIGN.md §4).
 #pragma once
 
 #include "vots/fit/Box.h"

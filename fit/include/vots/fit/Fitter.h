@@ -15,11 +15,11 @@
 namespace vots::fit {
 
 enum class FitMethod {
-    Paper, // DESIGN §4: seed every non-background cell, grow face by face, lazy-greedy cover
-    Fast   // top-down split of bricks until each box fits, then merge face-sharing neighbours
+    Paper, // docs/DESIGN.md §4: seed every non-background cell, grow face by face, lazy-greedy cover
+    Fast   // top-down split of zones until each box fits, then merge face-sharing neighbours
 };
 
-/// What a box's error is certified against (DESIGN §3).
+/// What a box's error is certified against (docs/DESIGN.md §3).
 enum class Certify {
     Samples, // grid samples only (the paper's F(T))
     Cells    // also the trilinear value at cell centres and edge midpoints inside the box

@@ -1,4 +1,4 @@
-// The one canonical order of the 20 Taylor monomials (DESIGN §1); file format, shaders and tests use it.
+// The canonical order of the 20 Taylor monomials (docs/DESIGN.md §1), used by file, shaders and tests.
 #pragma once
 
 #include <array>

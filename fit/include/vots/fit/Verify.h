@@ -18,7 +18,7 @@ struct VerifyReport {
     std::size_t samplesChecked = 0;  // (Vot, sample) pairs evaluated
     std::size_t violations = 0;      // samples with |residual| above the allowed bound
     double maxError = 0.0;           // max |residual| at grid samples over all Vots
-    double maxCellCentreError = 0.0; // max |f~ - trilinear| at cell centres inside boxes (DESIGN §3)
+    double maxCellCentreError = 0.0; // max |f~ - trilinear| at cell centres inside boxes (docs/DESIGN.md §3)
     std::string firstProblem;        // human-readable description of the first failure
 };
 

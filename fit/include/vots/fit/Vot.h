@@ -1,4 +1,4 @@
-// One Vot: a Taylor polynomial of degree <= 3 around an expansion point, valid in a box (DESIGN §1).
+// One Vot: a Taylor polynomial of degree <= 3 around an expansion point, valid in a box (docs/DESIGN.md §1).
 #pragma once
 
 #include "vots/fit/Box.h"
@@ -8,7 +8,7 @@
 
 namespace vots::fit {
 
-/// Plain data as stored in the Vot-Space file (DESIGN §8, record of 120 bytes).
+/// Plain data as stored in the Vot-Space file (docs/DESIGN.md §8, record of 120 bytes).
 struct Vot {
     Box box;                               // validity box, grid index space, closed, lo < hi
     std::array<float, 3> p{0.f, 0.f, 0.f}; // expansion point P, grid index space

@@ -1,4 +1,4 @@
-// A set of Vots covering a volume plus the grid it came from (DESIGN §8 header fields).
+// A set of Vots covering a volume plus the grid it came from (docs/DESIGN.md §8 header fields).
 #pragma once
 
 #include "vots/fit/Vot.h"

@@ -1,4 +1,4 @@
-// Vot-Space file version 1 (DESIGN §8): exact byte layout, CRC-32, atomic write; no other versions yet.
+// Vot-Space file version 1 (docs/DESIGN.md §8): exact byte layout, CRC-32, atomic write.
 #pragma once
 
 #include "vots/fit/VotSpace.h"
@@ -20,9 +20,9 @@ std::vector<std::uint8_t> encodeVotSpace(const VotSpace& space);
 /// (magic, version, header size, length/count mismatch, CRC, box outside grid, lo >= hi, non-finite).
 VotSpace decodeVotSpace(const std::uint8_t* data, std::size_t size);
 
-/// Writes to "<path>.tmp-<pid>", fsyncs, then renames over path, so a crash never leaves a
-/// half-written file under the real name. Throws InputError when the folder is not writable.
-/// betweenChunks, when given, runs between 1 MiB pieces of the write: there a background writer can
+/// Writes to "<path>.tmp-<pid>-<n>" (n counts the process's writes), fsyncs, then renames over path, so a
+/// crash never leaves a half-written file under the real name. Throws InputError when the folder is not
+/// writable. betweenChunks, when given, runs between 1 MiB pieces of the write: there a background writer can
 /// wait while foreground work runs (copying into the page cache costs CPU even at nice 19).
 void writeVotSpaceFile(const std::string& path, const VotSpace& space,
                        const std::function<void()>& betweenChunks = {});

@@ -12,7 +12,8 @@ inline constexpr unsigned VOT_BUFFER_BINDING = 0;   // SSBO "VotBuffer { GpuVot 
 inline constexpr unsigned INDEX_BUFFER_BINDING = 1; // SSBO "IndexBuffer { uint visible[]; }"
 
 /// One Vot as the shaders see it (GLSL struct GpuVot in vot_common.glsl). All positions in grid
-/// index space; values in data units. Records are stored sorted by descending upperBound.
+/// index space; values in data units. Records are stored in space order (VotOrder.h) when the walk
+/// draws the MIP, else by descending upperBound, the order Raster's batch culling wants.
 struct GpuVot {
     float lo[3];      // 12B (0)   box minimum corner, index space
     float upperBound; //  4B (12)  certified upper bound of the polynomial over the box (+ float margin)
