@@ -5,7 +5,8 @@
 #include "ray_common.glsl"
 #include "vot_ray_max.glsl"
 
-uniform sampler2D uPrevMax; // the max image after the previous batch (culling), or -inf
+// The max image after the previous batch (culling), or -inf.
+layout(binding = PREV_MAX_UNIT) uniform sampler2D uPrevMax;
 uniform int uUsePrevMax;
 
 flat in uint vVot;

@@ -2,10 +2,9 @@
 // Needs vot_common.glsl and ray_common.glsl included before it.
 #include "cubic_ray_max.glsl"
 
-// The Vot records of vots[] (GpuLayout.h) seen as a buffer texture, 8 RGBA32F texels per Vot: texel
+// The Vot records of vots[] (GpuLayout.h) seen as a buffer texture, VOT_TEXELS RGBA32F texels per Vot: texel
 // fetches gather all pixels' records at once, where llvmpipe loads SSBO data pixel by pixel.
-uniform samplerBuffer uVotData;
-const int VOT_TEXELS = 8;
+layout(binding = VOT_TEXTURE_UNIT) uniform samplerBuffer uVotData;
 
 // Max of Vot `vot` along origin + t dir, t in [0, farT], over its box grown by CLIP_SLACK. Returns false
 // (value untouched) when the ray misses the box.

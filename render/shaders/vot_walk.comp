@@ -3,8 +3,8 @@
 // fragment shaders on a few of their multiprocessors only, compute on all of them (bench/RESULTS.md).
 #include "vot_walk.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
-layout(r32f, binding = 0) uniform writeonly image2D uTarget;
+layout(local_size_x = WALK_GROUP_SIDE, local_size_y = WALK_GROUP_SIDE) in;
+layout(r32f, binding = WALK_TARGET_IMAGE_UNIT) uniform writeonly image2D uTarget;
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);

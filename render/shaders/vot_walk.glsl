@@ -6,20 +6,19 @@
 #include "cubic_ray_max.glsl"
 
 // Buffer textures, not 3D textures or SSBOs: llvmpipe gathers texel fetches for all lanes at once.
-uniform usamplerBuffer uCellLocal; // R16UI per cell, brick by brick (PalettedCells, VotWalkGrid.h): an
-                                   // index into the brick's palette
-uniform samplerBuffer uBrickMax;   // RGBA32F per brick, x fastest: max upperBound of the Vots touching it
-                                   // (or -inf); the max of that over every brick this view's rays can
-                                   // reach from it (BrickAhead.h); the bits of its first palette index
-uniform usamplerBuffer uVotBox;    // RGBA32UI per palette entry, for the block it names: a box [lo, hi) in
-                                   // cells, 16 bits each (lo.x | lo.y << 16, lo.z | hi.x << 16,
-                                   // hi.y | hi.z << 16), and the bound's bits (-inf for empty blocks). A
-                                   // Vot's box here is the box to step over when it is culled: its own,
-                                   // or its skip box once grown (SkipBoxes.h); its own box is in its
-                                   // walk record (uWalkRecord).
-uniform usamplerBuffer uWalkRecord; // 4 RGBA32UI texels per palette entry naming a Vot (WalkRecord.h):
-                                    // its box, its polynomial around the box centre in box units, the
-                                    // higher terms in 16 bits
+// R16UI per cell, brick by brick (PalettedCells, VotWalkGrid.h): an index into the brick's palette.
+layout(binding = WALK_CELL_LOCAL_UNIT) uniform usamplerBuffer uCellLocal;
+// RGBA32F per brick, x fastest: max upperBound of the Vots touching it (or -inf); the max of that over
+// every brick this view's rays can reach from it (BrickAhead.h); the bits of its first palette index.
+layout(binding = WALK_BRICK_MAX_UNIT) uniform samplerBuffer uBrickMax;
+// RGBA32UI per palette entry, for the block it names: a box [lo, hi) in cells, 16 bits each
+// (lo.x | lo.y << 16, lo.z | hi.x << 16, hi.y | hi.z << 16), and the bound's bits (-inf for empty
+// blocks). A Vot's box here is the box to step over when it is culled: its own, or its skip box once
+// grown (SkipBoxes.h); its own box is in its walk record (uWalkRecord).
+layout(binding = WALK_VOT_BOX_UNIT) uniform usamplerBuffer uVotBox;
+// WALK_RECORD_TEXELS RGBA32UI texels per palette entry naming a Vot (WalkRecord.h): its box, its
+// polynomial around the box centre in box units, the higher terms in 16 bits.
+layout(binding = WALK_RECORD_UNIT) uniform usamplerBuffer uWalkRecord;
 uniform ivec3 uCells;    // cells per axis (grid points - 1)
 uniform ivec3 uBricks;   // bricks per axis
 uniform int uBrickShift; // a brick is (1 << uBrickShift)^3 cells
@@ -39,7 +38,7 @@ void unpackBox(uvec4 texel, out ivec3 lo, out ivec3 hi) {
 // The max along this pixel's ray of the Vot that palette entry `entry` names (-inf when the ray misses
 // its box), and its box [lo, hi) in cells. The whole box is evaluated, as the raster strategy does.
 float walkRecordRayMax(int entry, out ivec3 lo, out ivec3 hi) {
-    int base = entry * 4;
+    int base = entry * WALK_RECORD_TEXELS;
     uvec4 r0 = texelFetch(uWalkRecord, base), r1 = texelFetch(uWalkRecord, base + 1);
     uvec4 r2 = texelFetch(uWalkRecord, base + 2), r3 = texelFetch(uWalkRecord, base + 3);
     unpackBox(r0, lo, hi);

@@ -2,6 +2,7 @@
 #include "RasterPass.h"
 
 #include "MaxPyramid.h"
+#include "ShaderContract.h"
 #include "Shaders.h"
 
 #include "vots/render/Error.h"
@@ -102,8 +103,6 @@ void RasterPass::bindChunk(std::size_t chunk, std::size_t votCount) {
 
 void RasterPass::setCommonState(GLuint program, const CameraMatrices& m, int width, int height) {
     glUseProgram(program);
-    if (program == mMipProgram.get())
-        glProgramUniform1i(program, glGetUniformLocation(program, "uVotData"), VOT_TEXTURE_UNIT);
     setMatrixUniform(program, "uIndexToClip", m.indexToClip);
     setMatrixUniform(program, "uClipToIndex", m.clipToIndex);
     glProgramUniform2f(program, glGetUniformLocation(program, "uViewport"), float(width), float(height));
@@ -152,8 +151,7 @@ void RasterPass::drawCulled(const CameraMatrices& m, int width, int height, Floa
     ensurePrevMax(width, height);
     const float minusInf = -INFINITY;
     glClearTexImage(mPrevMax.get(), 0, GL_RED, GL_FLOAT, &minusInf);
-    glBindTextureUnit(0, mPrevMax.get());
-    glProgramUniform1i(program, glGetUniformLocation(program, "uPrevMax"), 0);
+    glBindTextureUnit(PREV_MAX_UNIT, mPrevMax.get());
     glProgramUniform1i(program, glGetUniformLocation(program, "uUsePrevMax"), 1);
 
     float matrix[16];

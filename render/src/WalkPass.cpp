@@ -3,6 +3,7 @@
 
 #include "BrickAhead.h"
 #include "ParallelChunks.h"
+#include "ShaderContract.h"
 #include "Shaders.h"
 #include "WalkRecord.h"
 
@@ -19,8 +20,7 @@ namespace vots::render {
 
 namespace {
 
-constexpr int WALK_BRICK_SHIFT = 4;     // bricks of 16^3 cells (bench/RESULTS.md compares 8, 16, 32)
-constexpr float WALK_BOX_SLACK = 1e-3f; // the grid box drawn is grown like Raster's (BOX_SLACK)
+constexpr int WALK_BRICK_SHIFT = 4; // bricks of 16^3 cells (bench/RESULTS.md compares 8, 16, 32)
 
 // One RGBA32UI walk texel: box corners in 16 bits each, and the bound's bits.
 void packBox(std::uint32_t* texel, const std::array<int, 3>& lo, const std::array<int, 3>& hi, float bound) {
@@ -233,10 +233,9 @@ void WalkPass::draw(const CameraMatrices& m, int width, int height, FloatTarget&
     setMatrixUniform(p, "uIndexToClip", m.indexToClip);
     setMatrixUniform(p, "uClipToIndex", m.clipToIndex);
     glProgramUniform2f(p, glGetUniformLocation(p, "uViewport"), float(width), float(height));
-    glProgramUniform3f(p, glGetUniformLocation(p, "uBoxLo"), -WALK_BOX_SLACK, -WALK_BOX_SLACK,
-                       -WALK_BOX_SLACK);
-    glProgramUniform3f(p, glGetUniformLocation(p, "uBoxHi"), float(mCells[0]) + WALK_BOX_SLACK,
-                       float(mCells[1]) + WALK_BOX_SLACK, float(mCells[2]) + WALK_BOX_SLACK);
+    glProgramUniform3f(p, glGetUniformLocation(p, "uBoxLo"), -BOX_SLACK, -BOX_SLACK, -BOX_SLACK);
+    glProgramUniform3f(p, glGetUniformLocation(p, "uBoxHi"), float(mCells[0]) + BOX_SLACK,
+                       float(mCells[1]) + BOX_SLACK, float(mCells[2]) + BOX_SLACK);
     glProgramUniform3i(p, glGetUniformLocation(p, "uCells"), mCells[0], mCells[1], mCells[2]);
     glProgramUniform3i(p, glGetUniformLocation(p, "uBricks"), mBricks[0], mBricks[1], mBricks[2]);
     glProgramUniform1i(p, glGetUniformLocation(p, "uBrickShift"), WALK_BRICK_SHIFT);
@@ -252,19 +251,15 @@ void WalkPass::draw(const CameraMatrices& m, int width, int height, FloatTarget&
     }
     glNamedBufferSubData(mBrickMaxBuffer.get(), 0,
                          static_cast<GLsizeiptr>(brickBounds.size() * sizeof(float)), brickBounds.data());
-    glProgramUniform1i(p, glGetUniformLocation(p, "uCellLocal"), 0);
-    glProgramUniform1i(p, glGetUniformLocation(p, "uBrickMax"), 1);
-    glProgramUniform1i(p, glGetUniformLocation(p, "uVotBox"), 2);
-    glProgramUniform1i(p, glGetUniformLocation(p, "uWalkRecord"), 3);
-    glBindTextureUnit(0, mCellLocal.get());
-    glBindTextureUnit(1, mBrickMax.get());
-    glBindTextureUnit(2, mVotBox.get());
-    glBindTextureUnit(3, mWalkRecord.get());
+    glBindTextureUnit(WALK_CELL_LOCAL_UNIT, mCellLocal.get());
+    glBindTextureUnit(WALK_BRICK_MAX_UNIT, mBrickMax.get());
+    glBindTextureUnit(WALK_VOT_BOX_UNIT, mVotBox.get());
+    glBindTextureUnit(WALK_RECORD_UNIT, mWalkRecord.get());
     stats.batches = 1;
     stats.votsDrawn = 0;
     if (compute) {
-        constexpr GLuint GROUP_SIDE = 8; // local_size in vot_walk.comp
-        glBindImageTexture(0, target.texture(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+        constexpr auto GROUP_SIDE = static_cast<GLuint>(WALK_GROUP_SIDE);
+        glBindImageTexture(WALK_TARGET_IMAGE_UNIT, target.texture(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
         glDispatchCompute((static_cast<GLuint>(width) + GROUP_SIDE - 1) / GROUP_SIDE,
                           (static_cast<GLuint>(height) + GROUP_SIDE - 1) / GROUP_SIDE, 1);
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |

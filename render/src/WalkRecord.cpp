@@ -2,6 +2,8 @@
 // 16-bit higher-order terms.
 #include "WalkRecord.h"
 
+#include "ShaderContract.h"
+
 #include "VotWalkGrid.h"
 
 #include <algorithm>
@@ -16,9 +18,10 @@ namespace {
 constexpr double BINOMIAL[4][4] = {{1, 0, 0, 0}, {1, 1, 0, 0}, {1, 2, 1, 0}, {1, 3, 3, 1}};
 constexpr std::size_t FIRST_QUANTISED = 4; // monomials 4..19: degree 2 and 3
 constexpr double QUANTUM_STEPS = 32767.0;  // the largest term is +-32767 q
-// The shader clips rays to the box grown by 5e-5 cells (CLIP_SLACK); on a box side of one cell that
-// takes |u| to 1 + 1e-4, and a cubic monomial to at most 1.0003.
+// The shader clips rays to the box grown by CLIP_SLACK cells; on a box side of one cell that takes |u| to
+// 1 + 2 CLIP_SLACK, and a cubic monomial to (1 + 2 CLIP_SLACK)^3, which CLIP_GROWTH must cover.
 constexpr double CLIP_GROWTH = 1.001;
+static_assert((1.0 + 2.0 * CLIP_SLACK) * (1.0 + 2.0 * CLIP_SLACK) * (1.0 + 2.0 * CLIP_SLACK) <= CLIP_GROWTH);
 
 std::uint32_t floatBits(float f) {
     std::uint32_t bits;

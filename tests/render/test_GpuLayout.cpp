@@ -1,6 +1,8 @@
-// The C++ GpuVot mirror matches the std430 layout the linked Vot program reports (offsets, strides).
+// The C++ side of the shader contract matches what the linked programs report (record layout, units, work
+// group).
 #include "GlObjects.h"
 #include "RenderTestSupport.h"
+#include "ShaderContract.h"
 #include "Shaders.h"
 
 #include "vots/render/GpuLayout.h"
@@ -58,5 +60,63 @@ TEST(GpuLayout, GeneratedTaylorFollowsMonomialOrder) {
         EXPECT_NE(source.substr(at, end - at).find(std::string("// ") + vots::fit::MONOMIAL_NAMES[i]),
                   std::string::npos);
         pos = end;
+    }
+}
+
+namespace {
+GLint samplerUnit(const GlProgram& program, const char* name) {
+    const GLint location = glGetUniformLocation(program.get(), name);
+    EXPECT_NE(location, -1) << name << " not active in the program";
+    GLint unit = -1;
+    glGetUniformiv(program.get(), location, &unit);
+    return unit;
+}
+} // namespace
+
+TEST(GpuLayout, ContractValuesArePinned) {
+    // Changing one of these changes the file-independent GPU layout; this test is the reminder to change
+    // the other side's assumptions (record packing, culling bounds) with it.
+    EXPECT_EQ(VOT_TEXELS * 16, sizeof(GpuVot));
+    EXPECT_EQ(WALK_RECORD_TEXELS * 16, 64u); // one cache line per walk record
+    EXPECT_EQ(WALK_GROUP_SIDE, 8);
+    EXPECT_EQ(BOX_SLACK, 1e-3f);
+    EXPECT_EQ(CLIP_SLACK, 5e-5f);
+    // The generated GLSL holds the same numbers, written once per shader.
+    const std::string walk = shaders::VOT_WALK_COMP;
+    EXPECT_NE(walk.find("const int WALK_RECORD_TEXELS = " + std::to_string(WALK_RECORD_TEXELS) + ";"),
+              std::string::npos);
+    const std::size_t first = walk.find("const int TAYLOR_TERMS = ");
+    ASSERT_NE(first, std::string::npos);
+    EXPECT_EQ(walk.find("const int TAYLOR_TERMS = ", first + 1), std::string::npos);
+}
+
+TEST(GpuLayout, LinkedProgramsUseTheContractsUnits) {
+    vots::test::glContext();
+    const GlProgram fragmentWalk = buildProgram(shaders::WALK_BOX_VERT, shaders::VOT_WALK_FRAG, "walk test");
+    const GlProgram computeWalk = buildComputeProgram(shaders::VOT_WALK_COMP, "compute walk test");
+    for (const GlProgram* walk : {&fragmentWalk, &computeWalk}) {
+        EXPECT_EQ(samplerUnit(*walk, "uCellLocal"), WALK_CELL_LOCAL_UNIT);
+        EXPECT_EQ(samplerUnit(*walk, "uBrickMax"), WALK_BRICK_MAX_UNIT);
+        EXPECT_EQ(samplerUnit(*walk, "uVotBox"), WALK_VOT_BOX_UNIT);
+        EXPECT_EQ(samplerUnit(*walk, "uWalkRecord"), WALK_RECORD_UNIT);
+    }
+    GLint group[3] = {0, 0, 0};
+    glGetProgramiv(computeWalk.get(), GL_COMPUTE_WORK_GROUP_SIZE, group);
+    EXPECT_EQ(group[0], WALK_GROUP_SIDE);
+    EXPECT_EQ(group[1], WALK_GROUP_SIDE);
+    EXPECT_EQ(group[2], 1);
+    EXPECT_EQ(samplerUnit(computeWalk, "uTarget"), WALK_TARGET_IMAGE_UNIT);
+
+    const GlProgram mip = buildProgram(shaders::VOT_BOX_VERT, shaders::VOT_MIP_FRAG, "raster test");
+    EXPECT_EQ(samplerUnit(mip, "uVotData"), static_cast<GLint>(VOT_TEXTURE_UNIT));
+    EXPECT_EQ(samplerUnit(mip, "uPrevMax"), PREV_MAX_UNIT);
+    for (const auto& [name, binding] :
+         {std::pair{"VotBuffer", VOT_BUFFER_BINDING}, std::pair{"IndexBuffer", INDEX_BUFFER_BINDING}}) {
+        const GLuint index = glGetProgramResourceIndex(mip.get(), GL_SHADER_STORAGE_BLOCK, name);
+        ASSERT_NE(index, GL_INVALID_INDEX) << name;
+        const GLenum prop = GL_BUFFER_BINDING;
+        GLint value = -1;
+        glGetProgramResourceiv(mip.get(), GL_SHADER_STORAGE_BLOCK, index, 1, &prop, 1, nullptr, &value);
+        EXPECT_EQ(value, static_cast<GLint>(binding)) << name;
     }
 }

@@ -38,7 +38,8 @@ namespace vots::render {
 /// its max; the other Vots are evaluated with the same analytic maximum as Raster, from a 64-byte copy of
 /// their record (one cache line instead of two: the walk waits on memory). Needs disjoint boxes (the
 /// fast fit method); a Vot-Space with overlapping boxes (paper method) or beyond the GL limits is
-/// drawn with Raster instead, see mipStrategy(). Density images always use Raster.
+/// drawn with Raster instead, see mipStrategy(). Density images always use Raster. The walk is
+/// render/src/WalkPass.*, the raster strategy render/src/RasterPass.*; docs/DESIGN.md §6 and §7.
 ///
 /// Raster: one instanced unit cube per Vot. With culling, Vots are drawn in batches, in descending
 /// order of their bound when Raster is the MIP strategy (records are in space order for the walk); between
