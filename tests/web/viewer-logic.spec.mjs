@@ -1,0 +1,98 @@
+// Unit checks of the viewer's DOM-free modules under node: the URL hash both ways, and the eps slider scale.
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import { fileURLToPath, pathToFileURL } from 'node:url';
+
+// web/ is served as it is and has no package.json, so node would read its .js files as CommonJS:
+// load a copy that sits next to one saying they are ES modules.
+const WEB_JS = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..', 'web', 'js');
+const copy = fs.mkdtempSync(path.join(os.tmpdir(), 'vots-web-js-'));
+fs.cpSync(WEB_JS, copy, { recursive: true });
+fs.writeFileSync(path.join(copy, 'package.json'), '{"type": "module"}\n');
+const load = (name) => import(pathToFileURL(path.join(copy, name)).href);
+const { formatHash, parseHash } = await load('hash.js');
+const { epsBounds, epsLabel, epsToSlider, sliderToEps, SLIDER_STEPS } = await load('eps.js');
+const { initialView } = await load('view.js');
+fs.rmSync(copy, { recursive: true, force: true });
+
+const CT = {
+  name: 'cranium', modality: 'CT', range: [-1000, 3000], defaultEps: 80,
+  window: { level: 40, width: 400 }, presets: {},
+};
+const MR = { name: 'head', modality: 'MR', range: [0, 255], defaultEps: 5.1, window: { level: 100, width: 200 } };
+const NO_DEFAULT = { ...MR, name: 'bare', defaultEps: undefined };
+const DATASETS = [MR, CT, NO_DEFAULT];
+
+test('a hash the viewer writes reads back as the same view', () => {
+  const view = {
+    dataset: 'head', cam: { az: 30, el: -20, zoom: 1.25, panX: 0.5, panY: -0.25, proj: 'persp', fov: 40 },
+    eps: 7.5, degree: 2, mode: 'density', window: { level: 12.5, width: 80 }, colormap: 'bone',
+  };
+  const text = formatHash(view);
+  assert.equal(text, '#dataset=head&cam=az%3D30,el%3D-20,zoom%3D1.25,pan%3D0.5:-0.25,proj%3Dpersp,fov%3D40&eps=7.5' +
+    '&mode=density&window=12.5,80&colormap=bone&degree=2');
+  const { view: back, problems } = parseHash(text, DATASETS, initialView());
+  assert.deepEqual(problems, []);
+  assert.deepEqual(back, view);
+});
+
+test('an empty hash opens the Cranium CT at its server default eps and window', () => {
+  const { view, problems } = parseHash('', DATASETS, initialView());
+  assert.deepEqual(problems, []);
+  assert.equal(view.dataset, 'cranium');
+  assert.equal(view.eps, 80);
+  assert.deepEqual(view.window, { level: 40, width: 400 });
+  assert.equal(view.degree, undefined);
+});
+
+test('eps as a percentage of the range becomes data units with three digits', () => {
+  assert.equal(parseHash('#dataset=cranium&eps=1.5%25', DATASETS, initialView()).view.eps, 60);
+  assert.equal(parseHash('#dataset=head&eps=1%25', DATASETS, initialView()).view.eps, 2.55);
+});
+
+test('bad parts fall back and are each named, in the order of the link', () => {
+  const { view, problems } = parseHash('#dataset=nope&cam=az=x&eps=-1&mode=x&colormap=y&window=1', DATASETS,
+    initialView());
+  assert.equal(view.dataset, 'cranium');
+  assert.equal(view.eps, 80);
+  assert.equal(view.mode, 'mip');
+  assert.equal(view.colormap, 'grey');
+  assert.deepEqual(view.window, { level: 40, width: 400 });
+  assert.equal(problems.length, 6);
+  assert.match(problems[0], /Unknown dataset 'nope'.*head, cranium, bare/);
+  assert.match(problems[1], /az/);
+  assert.match(problems[2], /eps '-1' must be a positive number; using 80/);
+  assert.match(problems[3], /mode 'x'/);
+  assert.match(problems[4], /colour map 'y'/);
+  assert.match(problems[5], /window '1'/);
+});
+
+test('a link without eps keeps the current eps on the same dataset and takes the default on another', () => {
+  const current = { ...initialView(), dataset: 'cranium', eps: 120 };
+  assert.equal(parseHash('#dataset=cranium', DATASETS, current).view.eps, 120);
+  assert.equal(parseHash('#dataset=head', DATASETS, current).view.eps, 5.1);
+});
+
+test('with no server default there is no client-made eps: the view has none and the hash says none', () => {
+  const { view, problems } = parseHash('#dataset=bare', DATASETS, initialView());
+  assert.deepEqual(problems, []);
+  assert.equal(view.eps, null);
+  assert.doesNotMatch(formatHash(view), /eps=/);
+  assert.match(parseHash('#dataset=bare&eps=0', DATASETS, initialView()).problems[0], /server sent no default/);
+  assert.equal(epsLabel(NO_DEFAULT, null), '– (no default from the server)');
+});
+
+test('the eps slider is log-scaled over 0.1 % .. 50 % of the range, widened to hold the default', () => {
+  assert.deepEqual(epsBounds(CT), { min: 4, max: 2000 });
+  assert.deepEqual(epsBounds(NO_DEFAULT), epsBounds(MR));
+  assert.deepEqual(epsBounds({ ...CT, defaultEps: 3000 }), { min: 4, max: 3000 });
+  assert.equal(sliderToEps(CT, 0), 4);
+  assert.equal(sliderToEps(CT, SLIDER_STEPS), 2000);
+  assert.equal(epsToSlider(CT, 1e9), SLIDER_STEPS, 'beyond the ends clamps');
+  for (const pos of [0, 1, 250, 500, 999, 1000]) assert.equal(epsToSlider(CT, sliderToEps(CT, pos)), pos);
+  assert.ok(sliderToEps(CT, 600) > sliderToEps(CT, 599), 'the scale rises');
+  assert.equal(epsLabel(CT, 80), '80 (2.0 % of range)');
+});

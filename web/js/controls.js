@@ -1,0 +1,59 @@
+// The panel's controls from the view: dataset picker, window presets, window inputs, eps slider, projection, views.
+import { viewName } from './camera.js';
+import { epsLabel, epsToSlider } from './eps.js';
+import { fmtExact, fmtValue } from './format.js';
+
+const PRESET_LABELS = { bone: 'Bone', soft: 'Soft tissue', full: 'Full range' };
+
+export function fillDatasetPicker(select, datasets) {
+  select.replaceChildren(...datasets.map((d) => new Option(d.name, d.name)));
+}
+
+export function fillPresets(select, ds) {
+  const opts = [];
+  for (const key of Object.keys(ds.presets || {})) opts.push(new Option(PRESET_LABELS[key] || key, key));
+  // The dataset's own window gets an entry only when no named preset already is that window.
+  const same = (a, b) => a && b && Number(a.level) === Number(b.level) && Number(a.width) === Number(b.width);
+  if (!Object.values(ds.presets || {}).some((p) => same(p, ds.window))) {
+    opts.unshift(new Option('Dataset default', 'default'));
+  }
+  opts.push(new Option('Custom', 'custom'));
+  select.replaceChildren(...opts);
+}
+
+// The window a preset entry stands for; null for 'custom'.
+export function presetWindow(ds, key) {
+  if (key === 'default') return ds.window;
+  return (ds.presets || {})[key] || null;
+}
+
+function matchingPreset(select, ds, window) {
+  const same = (w) => w && Math.abs(w.level - window.level) < 1e-6 && Math.abs(w.width - window.width) < 1e-6;
+  for (const o of select.options) {
+    if (o.value !== 'custom' && same(presetWindow(ds, o.value))) return o.value;
+  }
+  return 'custom';
+}
+
+// el: the panel's elements (ui.js looks them up); ds: the view's dataset.
+export function syncControls(el, ds, view) {
+  el.dataset.value = ds.name;
+  el.datasetMeta.textContent = `${ds.dims.join('×')} · ${ds.modality || 'other'} · range ${fmtValue(ds.range[0])}..${fmtValue(ds.range[1])}`;
+  el.mode.value = view.mode;
+  el.colormap.value = view.colormap;
+  el.preset.value = matchingPreset(el.preset, ds, view.window);
+  el.level.value = fmtExact(view.window.level);
+  el.width.value = fmtExact(view.window.width);
+  el.epsSlider.value = String(epsToSlider(ds, view.eps));
+  el.epsValue.textContent = epsLabel(ds, view.eps);
+  el.projection.textContent = view.cam.proj === 'persp' ? 'Perspective' : 'Orthographic';
+  el.projection.setAttribute('aria-pressed', String(view.cam.proj === 'persp'));
+  el.projection.dataset.value = view.cam.proj;
+  syncViewButtons(el.viewButtons, view.cam);
+}
+
+// Cheap enough for every pointer move: only the six view buttons follow the camera while dragging.
+export function syncViewButtons(buttons, cam) {
+  const active = viewName(cam);
+  for (const b of buttons) b.setAttribute('aria-pressed', String(b.dataset.view === active));
+}

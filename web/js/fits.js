@@ -1,0 +1,91 @@
+// Fits: which eps each dataset has fitted, starting or joining the fit for an eps, and its progress bar.
+import { followJob, startFit } from './api.js';
+
+// progress: {box, bar, label} elements. banner: createBanner's object. showFacts({votCount, fitSeconds})
+// shows a finished fit's numbers; onReady(eps) runs once frames may use eps; onChange() whenever the status may differ.
+export function createFits({ progress, banner, showFacts, onReady, onChange }) {
+  const fitted = new Map(); // dataset name -> Set of eps known to be fitted
+  let token = 0; // bumped per request, so the answers of a superseded one are dropped
+  let follow = null;
+  let fitting = null; // {eps, progress, stage}
+
+  function markFitted(name, eps) {
+    if (!fitted.has(name)) fitted.set(name, new Set());
+    fitted.get(name).add(eps);
+  }
+
+  // A dataset's default eps counts as fitted: the server fits it first, and /render waits for it anyway.
+  function isFitted(name, eps, defaultEps) {
+    if (defaultEps === eps) return true;
+    return fitted.has(name) && fitted.get(name).has(eps);
+  }
+
+  function setProgress(p, stage) {
+    const value = Math.min(1, Math.max(0, Number(p) || 0));
+    fitting.progress = value;
+    fitting.stage = stage || fitting.stage;
+    progress.bar.value = value;
+    progress.label.textContent = `${Math.round(value * 100)} %${fitting.stage ? ` ${fitting.stage}` : ''}`;
+    onChange();
+  }
+
+  // Starts (or joins) the fit for eps; frames keep the old eps until it is done, then swap.
+  // defaultEps: the server's default for the dataset, or null when it sent none.
+  async function ensure({ dataset, eps, degree, defaultEps }) {
+    if (follow) follow.cancel();
+    follow = null;
+    if (!(eps > 0)) {
+      // Only the server knows the default rule: with no default and no choice there is nothing to fit.
+      token++;
+      fitting = null;
+      progress.box.hidden = true;
+      banner.show(`No error bound ε for '${dataset}': the server sent no default; choose one with the ε slider.`, 'fit');
+      return;
+    }
+    if (isFitted(dataset, eps, defaultEps)) {
+      fitting = null;
+      progress.box.hidden = true;
+      onReady(eps);
+      return;
+    }
+    const mine = ++token;
+    fitting = { eps, progress: 0, stage: 'queued' };
+    progress.box.hidden = false;
+    setProgress(0, 'queued');
+    try {
+      const job = await startFit({ dataset, eps, degree });
+      if (mine !== token) return;
+      let result = job;
+      if (job.state !== 'done') {
+        follow = followJob(job.job, (p) => {
+          if (mine === token) setProgress(p.progress, p.stage);
+        });
+        result = await follow.done;
+        if (mine !== token) return;
+      }
+      markFitted(dataset, eps);
+      showFacts({
+        votCount: Number.isFinite(Number(result.votCount)) ? Number(result.votCount) : undefined,
+        fitSeconds: Number.isFinite(Number(result.fitSeconds)) ? Number(result.fitSeconds) : undefined,
+      });
+      banner.clear('fit');
+      onReady(eps);
+    } catch (e) {
+      if (mine !== token) return;
+      banner.show(e.message, 'fit');
+    } finally {
+      if (mine === token) {
+        fitting = null;
+        follow = null;
+        progress.box.hidden = true;
+        onChange();
+      }
+    }
+  }
+
+  return {
+    ensure,
+    // The fit being waited for, {eps, progress, stage}, or null.
+    fitting: () => fitting,
+  };
+}

@@ -1,0 +1,151 @@
+// Frames: the /render request for the view, one in flight at a time, drafts while moving, the shown image.
+import { ApiError, fetchFrame, renderUrl } from './api.js';
+import { formatCamera } from './camera.js';
+import { fmtExact } from './format.js';
+
+const MAX_FRAME_PX = 2048; // longest side of a requested frame, in device pixels
+const DRAFT_DIVISOR = 3; // frames while dragging are this much smaller, scaled up by CSS
+const RESIZE_SETTLE_MS = 100; // a frame for the new view size once resizing pauses this long
+
+// view: the view object the wiring owns (read at request time). banner: createBanner's object.
+// showFacts({votCount, fitSeconds}) shows what a frame's headers say; isMoving() tells whether a drag or
+// wheel is still going (then the next frame is a draft too); onChange() runs whenever the status may differ.
+export function createFrames({ viewEl, image, view, banner, showFacts, isMoving, onChange }) {
+  // One random id per page: the server answers 409 "superseded" to our older requests.
+  const clientId = [...crypto.getRandomValues(new Uint8Array(8))].map((b) => b.toString(16).padStart(2, '0')).join('');
+  let renderEps = null; // eps used for frames: the target once its fit is done, else the previous one
+  let rafId = 0;
+  let wantDraft = false;
+  let inflight = null; // {url, draft, controller}
+  let draftPending = false; // a drag moved while a draft was in flight: send another when it lands
+  let shownUrl = null;
+  let shownObjectUrl = null;
+  let lastFrame = null; // {w, h, frameMs}
+  let resizeTimer = 0;
+
+  function frameSize(draft) {
+    const r = viewEl.getBoundingClientRect();
+    const dpr = window.devicePixelRatio || 1;
+    let w = Math.max(1, Math.round(r.width * dpr));
+    let h = Math.max(1, Math.round(r.height * dpr));
+    const s = Math.min(1, MAX_FRAME_PX / Math.max(w, h));
+    w = Math.max(1, Math.round(w * s));
+    h = Math.max(1, Math.round(h * s));
+    if (draft) {
+      w = Math.max(8, Math.round(w / DRAFT_DIVISOR));
+      h = Math.max(8, Math.round(h / DRAFT_DIVISOR));
+    }
+    return { w, h };
+  }
+
+  function frameUrl(draft) {
+    return renderUrl({
+      dataset: view.dataset,
+      cam: formatCamera(view.cam),
+      size: frameSize(draft),
+      eps: renderEps,
+      degree: view.degree,
+      mode: view.mode,
+      window: { level: fmtExact(view.window.level), width: fmtExact(view.window.width) },
+      colormap: view.colormap,
+      client: clientId,
+    });
+  }
+
+  // Asks for a frame on the next animation frame; several changes in one frame cost one request.
+  function schedule({ draft = false } = {}) {
+    wantDraft = draft;
+    if (!rafId) rafId = requestAnimationFrame(flush);
+    onChange();
+  }
+
+  function flush() {
+    rafId = 0;
+    if (!view.dataset || renderEps === null) return onChange();
+    const draft = wantDraft;
+    const url = frameUrl(draft);
+    if (inflight) {
+      if (inflight.url === url) return onChange();
+      // While dragging, let the current draft land (so frames keep coming) and then send the newest state.
+      if (draft && inflight.draft) {
+        draftPending = true;
+        return onChange();
+      }
+      // Anything else makes the in-flight frame stale: drop it; the server drops it too (superseded).
+      inflight.controller.abort();
+      inflight = null;
+    }
+    if (url === shownUrl) return onChange();
+    send(url, draft);
+  }
+
+  async function send(url, draft) {
+    const mine = { url, draft, controller: new AbortController() };
+    inflight = mine;
+    if (!draft) draftPending = false;
+    onChange();
+    try {
+      const frame = await fetchFrame(url, mine.controller.signal);
+      if (inflight !== mine) return;
+      const objectUrl = URL.createObjectURL(frame.blob);
+      const probe = new Image();
+      probe.src = objectUrl;
+      try {
+        await probe.decode();
+      } catch {
+        URL.revokeObjectURL(objectUrl);
+        throw new ApiError('Rendering: the server sent an image the browser cannot decode');
+      }
+      if (inflight !== mine) {
+        URL.revokeObjectURL(objectUrl);
+        return;
+      }
+      image.src = objectUrl;
+      image.dataset.quality = draft ? 'draft' : 'full';
+      image.dataset.frameUrl = url;
+      image.dataset.width = String(probe.naturalWidth);
+      image.dataset.height = String(probe.naturalHeight);
+      if (shownObjectUrl) URL.revokeObjectURL(shownObjectUrl);
+      shownObjectUrl = objectUrl;
+      shownUrl = url;
+      lastFrame = { w: probe.naturalWidth, h: probe.naturalHeight, frameMs: frame.frameMs };
+      showFacts({
+        votCount: frame.votCount !== null ? frame.votCount : undefined,
+        fitSeconds: frame.fitSeconds !== null ? frame.fitSeconds : undefined,
+      });
+      banner.clear('render');
+    } catch (e) {
+      if (inflight !== mine) return;
+      if (!(e instanceof ApiError && e.isIgnorable)) banner.show(e.message, 'render');
+    } finally {
+      if (inflight === mine) {
+        inflight = null;
+        if (draftPending) {
+          draftPending = false;
+          schedule({ draft: isMoving() });
+        }
+      }
+      onChange();
+    }
+  }
+
+  new ResizeObserver(() => {
+    clearTimeout(resizeTimer);
+    resizeTimer = setTimeout(() => {
+      resizeTimer = 0;
+      schedule();
+    }, RESIZE_SETTLE_MS);
+    onChange();
+  }).observe(viewEl);
+
+  return {
+    schedule,
+    // Frames from now on use this eps (null: none until a fit is done).
+    useEps(eps) {
+      renderEps = eps;
+    },
+    busy: () => Boolean(inflight || rafId || resizeTimer || draftPending),
+    hasShownFrame: () => shownUrl !== null,
+    lastFrame: () => lastFrame,
+  };
+}
