@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
+#include <string_view>
 #include <vector>
 
 namespace vots::cli {
@@ -28,17 +30,25 @@ std::vector<std::string> splitCommas(const std::string& text) {
     }
 }
 
-} // namespace
-
-double parseNumber(const std::string& text, const std::string& what) {
+/// The command line's number grammar (strtod's), finite numbers only.
+std::optional<double> readNumber(std::string_view view) {
+    const std::string text(view);
     const char* begin = text.c_str();
     char* end = nullptr;
     errno = 0;
     const double v = std::strtod(begin, &end);
     // strtod accepts "nan" and "inf"; a parameter must be an ordinary number.
     if (text.empty() || end != begin + text.size() || errno == ERANGE || !std::isfinite(v))
-        bad(what, text, "a finite number");
+        return std::nullopt;
     return v;
+}
+
+} // namespace
+
+double parseNumber(const std::string& text, const std::string& what) {
+    const auto v = readNumber(text);
+    if (!v) bad(what, text, "a finite number");
+    return *v;
 }
 
 std::array<double, 3> parseTriple(const std::string& text, const std::string& what) {
@@ -59,17 +69,15 @@ std::array<int, 3> parseDims(const std::string& text, const std::string& what) {
     return dims;
 }
 
-EpsArg parseEps(const std::string& text, const std::string& what, bool allowZero) {
-    EpsArg eps;
-    std::string number = text;
-    if (!number.empty() && number.back() == '%') {
-        eps.isPercent = true;
-        number.pop_back();
-    }
-    eps.value = parseNumber(number, what);
-    if (eps.value < 0 || (!allowZero && eps.value == 0))
+fit::EpsSpec parseEps(const std::string& text, const std::string& what, bool allowZero) {
+    fit::EpsRules rules;
+    rules.allowZero = allowZero;
+    rules.readNumber = readNumber;
+    const fit::EpsParse eps = fit::parseEps(text, rules);
+    if (eps.problem == fit::EpsProblem::NotANumber) bad(what, std::string(eps.numberText), "a finite number");
+    if (eps.problem != fit::EpsProblem::None)
         throw fit::InputError(what + " must be " + (allowZero ? ">= 0" : "> 0") + ", got '" + text + "'");
-    return eps;
+    return eps.spec;
 }
 
 std::string formatNumber(double value, int digits) {

@@ -1,6 +1,8 @@
 // Parsing of command-line values (numbers, triples, eps with %) into typed values; throws InputError.
 #pragma once
 
+#include "vots/fit/EpsSpec.h"
+
 #include <array>
 #include <string>
 
@@ -15,16 +17,8 @@ std::array<double, 3> parseTriple(const std::string& text, const std::string& wh
 /// "X,Y,Z" as three integers >= 1.
 std::array<int, 3> parseDims(const std::string& text, const std::string& what);
 
-/// An error bound: a plain value in data units, or a percentage of the value range ("2%").
-struct EpsArg {
-    double value = 0.0;
-    bool isPercent = false;
-    /// The bound in data units for a volume whose values span [lo, hi].
-    double resolve(double lo, double hi) const { return isPercent ? value / 100.0 * (hi - lo) : value; }
-};
-
-/// Parses and checks an eps argument (> 0 unless allowZero, finite).
-EpsArg parseEps(const std::string& text, const std::string& what, bool allowZero = false);
+/// Parses and checks an eps argument (> 0 unless allowZero, finite), numbers as parseNumber reads them.
+fit::EpsSpec parseEps(const std::string& text, const std::string& what, bool allowZero = false);
 
 /// Human-friendly number: up to `digits` significant digits, no exponent for everyday sizes.
 std::string formatNumber(double value, int digits = 6);

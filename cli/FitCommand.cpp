@@ -1,11 +1,11 @@
 // `vots fit`: volume file -> Vot-Space file; checks every argument before loading, writes only on success.
 #include "Args.h"
 #include "Commands.h"
-#include "FitMeta.h"
 #include "Progress.h"
 #include "RawOptions.h"
 
 #include "vots/fit/Error.h"
+#include "vots/fit/FitMeta.h"
 #include "vots/fit/Fitter.h"
 #include "vots/fit/VolumeLoad.h"
 #include "vots/fit/VotSpaceFile.h"
@@ -41,7 +41,7 @@ struct FitArgs {
 
 /// What can be checked without the volume; the rest is in validateFitOptions.
 struct CheckedArgs {
-    EpsArg eps;
+    fit::EpsSpec eps;
     std::optional<fit::FocusRegion> focus;
     std::optional<fit::RawLayout> raw;
 };
@@ -61,7 +61,7 @@ CheckedArgs checkArgs(const FitArgs& a) {
         f.centerIndex = parseTriple(a.focus.substr(0, lastComma), "--focus");
         f.radius = parseNumber(a.focus.substr(lastComma + 1), "--focus radius");
         if (f.radius <= 0) throw fit::InputError("--focus: the radius must be > 0, got '" + a.focus + "'");
-        const EpsArg e0 = parseEps(a.epsFocus, "--eps-focus", /*allowZero=*/true);
+        const fit::EpsSpec e0 = parseEps(a.epsFocus, "--eps-focus", /*allowZero=*/true);
         if (e0.isPercent) throw fit::InputError("--eps-focus takes a value in data units, not a percentage");
         f.epsFocus = static_cast<float>(e0.value);
         c.focus = f;
@@ -117,20 +117,18 @@ void runFit(const FitArgs& a) {
     fit::FitResult result = fit::fitVotSpace(volume, options);
     progress.finish();
 
-    double maxError = 0.0;
-    for (const fit::Vot& v : result.space.vots)
-        maxError = std::max(maxError, double{v.err});
-    FitRecord record;
+    const double maxError = fit::maxStoredError(result.space);
+    fit::FitProvenance record;
     std::error_code ec;
     const fs::path absolute = fs::absolute(a.input, ec);
     record.sourcePath = ec ? a.input : absolute.lexically_normal().string();
     record.volume = &volume;
-    record.epsArg = a.eps;
+    record.epsText = a.eps;
     record.options = options;
     record.options.progress = nullptr;
     record.stats = result.stats;
     record.maxError = maxError;
-    result.space.metaJson = buildFitMeta(record);
+    result.space.metaJson = fit::buildFitMeta(record);
     fit::writeVotSpaceFile(a.output, result.space);
 
     const std::size_t count = result.space.vots.size();

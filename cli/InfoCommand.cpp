@@ -1,8 +1,8 @@
 // `vots info`: summary of a .vots file (grid, degree, eps, Vot count, box sizes), as text or JSON.
 #include "Args.h"
 #include "Commands.h"
-#include "FitMeta.h"
 
+#include "vots/fit/FitMeta.h"
 #include "vots/fit/VotSpaceFile.h"
 
 #include <CLI/CLI.hpp>
@@ -44,7 +44,7 @@ struct Summary {
     std::optional<double> perNonBackgroundCell;
 };
 
-Summary summarise(const fit::VotSpace& s, const MetaView& meta) {
+Summary summarise(const fit::VotSpace& s, const fit::FitMetaView& meta) {
     Summary sum;
     for (const fit::Vot& v : s.vots) {
         ++sum.histogram[sizeClass(v.box)];
@@ -62,7 +62,8 @@ template <class T> json orNull(const std::optional<T>& v) {
     return v ? json(*v) : json(nullptr);
 }
 
-json toJson(const std::string& path, const fit::VotSpace& s, const MetaView& meta, const Summary& sum) {
+json toJson(const std::string& path, const fit::VotSpace& s, const fit::FitMetaView& meta,
+            const Summary& sum) {
     json hist = json::array();
     for (std::size_t k = 0; k < SIZE_LABELS.size(); ++k)
         hist.push_back({{"largest_side_cells", SIZE_LABELS[k]}, {"count", sum.histogram[k]}});
@@ -87,7 +88,8 @@ json toJson(const std::string& path, const fit::VotSpace& s, const MetaView& met
     };
 }
 
-void printText(const std::string& path, const fit::VotSpace& s, const MetaView& meta, const Summary& sum) {
+void printText(const std::string& path, const fit::VotSpace& s, const fit::FitMetaView& meta,
+               const Summary& sum) {
     std::ostringstream o;
     const auto row = [&o](const char* key) -> std::ostream& {
         return o << std::left << std::setw(12) << key;
@@ -122,7 +124,7 @@ void printText(const std::string& path, const fit::VotSpace& s, const MetaView& 
 
 void runInfo(const InfoArgs& a) {
     const fit::VotSpace space = fit::readVotSpaceFile(a.file);
-    const MetaView meta = readMeta(space.metaJson);
+    const fit::FitMetaView meta = fit::readFitMeta(space.metaJson);
     const Summary sum = summarise(space, meta);
     if (a.json)
         std::cout << toJson(a.file, space, meta, sum).dump(-1, ' ', false, json::error_handler_t::replace)

@@ -7,83 +7,77 @@
 #include "vots/fit/VolumeLoad.h"
 #include "vots/fit/VotSpaceFile.h"
 #include "vots/render/CameraText.h"
-#include "vots/render/Colormap.h"
-#include "vots/render/DisplaySettings.h"
 #include "vots/render/EglContext.h"
+#include "vots/render/FrameRequest.h"
 #include "vots/render/GridRenderer.h"
 #include "vots/render/Png.h"
-#include "vots/render/RenderMode.h"
 #include "vots/render/VotRenderer.h"
 
 #include <CLI/CLI.hpp>
 
+#include <array>
 #include <fstream>
 #include <memory>
 #include <optional>
+#include <tuple>
 
 namespace vots::cli {
 namespace {
+
+std::string sizeText(int width, int height) {
+    return std::to_string(width) + "x" + std::to_string(height);
+}
+
+std::string certifyName(fit::Certify certify) {
+    return certify == fit::Certify::Cells ? "cells" : "samples";
+}
 
 struct RenderArgs {
     std::string input;
     std::string output;
     std::string cam;
     std::string view;
-    std::string size = "512x512";
-    std::string mode = "mip";
+    std::string size = sizeText(render::DEFAULT_FRAME_SIDE, render::DEFAULT_FRAME_SIDE);
+    std::string mode{render::renderModeName(render::FrameRequest{}.mode)};
     std::string window;
-    std::string colormap = "grey";
-    std::string eps = "2%";
+    std::string colormap{render::colormapName(render::FrameRequest{}.colormap)};
+    std::string eps = formatNumber(fit::DEFAULT_EPS_PERCENT) + "%";
     int degree = 3;
     std::string background = "auto";
-    std::string certify = "cells";
+    std::string certify = certifyName(render::RENDER_FIT_CERTIFY);
     std::string volume;
 };
 
 struct CheckedArgs {
-    render::Camera camera;
-    int width = 0;
-    int height = 0;
-    render::RenderMode mode = render::RenderMode::Mip;
-    std::optional<render::DisplaySettings> window;
-    render::Colormap colormap = render::Colormap::Grey;
-    EpsArg eps;
+    render::FrameRequest frame;
+    fit::EpsSpec eps;
 };
 
 std::pair<int, int> parseSize(const std::string& text) {
-    const auto x = text.find('x');
-    auto bad = [&] { return fit::InputError("--size '" + text + "' is not WxH with 1 <= W, H <= 8192"); };
-    if (x == std::string::npos || text.size() > 16) throw bad();
-    int v[2];
-    const std::string parts[2] = {text.substr(0, x), text.substr(x + 1)};
-    for (int i = 0; i < 2; ++i) {
-        if (parts[i].empty() || parts[i].size() > 5 ||
-            parts[i].find_first_not_of("0123456789") != std::string::npos)
-            throw bad();
-        v[i] = std::stoi(parts[i]);
-    }
-    if (v[0] < 1 || v[1] < 1 || v[0] > render::MAX_IMAGE_SIDE || v[1] > render::MAX_IMAGE_SIDE) throw bad();
-    return {v[0], v[1]};
+    const render::SizeParse size = render::parseFrameSize(text, render::MAX_IMAGE_SIDE);
+    if (size.problem != render::SizeProblem::None)
+        throw fit::InputError("--size '" + text +
+                              "' is not WxH with 1 <= W, H <= " + std::to_string(render::MAX_IMAGE_SIDE));
+    return {size.width, size.height};
 }
 
 CheckedArgs checkArgs(const RenderArgs& a) {
     CheckedArgs c;
+    render::FrameRequest& f = c.frame;
     if (!a.cam.empty() && !a.view.empty()) throw fit::InputError("give --cam or --view, not both");
     if (!a.view.empty()) {
         const auto view = render::findView(a.view);
         if (!view)
             throw fit::InputError("--view '" + a.view +
                                   "' is unknown (anterior, posterior, left, right, superior, inferior)");
-        c.camera = render::cameraForView(*view);
+        f.camera = render::cameraForView(*view);
     } else if (!a.cam.empty()) {
-        c.camera = render::parseCamera(a.cam);
+        f.camera = render::parseCamera(a.cam);
     }
-    const auto [w, h] = parseSize(a.size);
-    c.width = w;
-    c.height = h;
-    c.mode = render::parseRenderMode(a.mode);
-    c.colormap = render::parseColormap(a.colormap);
-    if (!a.window.empty()) c.window = render::parseWindow(a.window, c.colormap);
+    std::tie(f.width, f.height) = parseSize(a.size);
+    f.mode = render::parseRenderMode(a.mode);
+    f.colormap = render::parseColormap(a.colormap);
+    if (!a.window.empty()) f.window = render::parseWindow(a.window, f.colormap);
     c.eps = parseEps(a.eps, "--eps");
     if (a.degree < 0 || a.degree > 3) throw fit::InputError("--degree must be 0..3");
     return c;
@@ -111,7 +105,6 @@ fit::VotSpace fitForRender(const fit::Volume& volume, const RenderArgs& a, const
         throw fit::InputError("--eps " + a.eps + " is 0 for this volume; give it in data units");
     options.degree = a.degree;
     options.background = resolveBackground(a.background, volume);
-    // Rendering needs the bound between samples too: MIP picks up overshoot (DESIGN §3).
     options.certify = a.certify == "samples" ? fit::Certify::Samples : fit::Certify::Cells;
     fit::validateFitOptions(volume, options);
     return fit::fitVotSpace(volume, options).space;
@@ -125,32 +118,27 @@ void runRender(const RenderArgs& a) {
     if (inputIsVots) {
         space = fit::readVotSpaceFile(a.input);
         if (!a.volume.empty()) volume = fit::loadVolume(a.volume);
-        if (c.mode == render::RenderMode::Reference && !volume)
+        if (c.frame.mode == render::RenderMode::Reference && !volume)
             throw fit::InputError("--mode reference on a .vots file needs the volume: add --volume PATH");
     } else {
         if (!a.volume.empty())
             throw fit::InputError("--volume is only for .vots input; INPUT is already a volume");
         volume = fit::loadVolume(a.input);
-        if (c.mode != render::RenderMode::Reference) space = fitForRender(*volume, a, c);
+        if (c.frame.mode != render::RenderMode::Reference) space = fitForRender(*volume, a, c);
     }
 
     const auto context = render::EglContext::createOrThrow();
-    render::RgbaImage image;
-    if (c.mode == render::RenderMode::Reference) {
-        render::GridRenderer grid;
-        grid.upload(*volume);
-        const auto range = grid.valueRange();
-        const auto display = c.window ? *c.window : render::windowForRange(range[0], range[1], c.colormap);
-        image = grid.renderRgba(c.camera, c.width, c.height, display);
+    std::optional<render::GridRenderer> grid;
+    std::optional<render::VotRenderer> vots;
+    if (c.frame.mode == render::RenderMode::Reference) {
+        grid.emplace().upload(*volume);
     } else {
-        render::VotRenderer renderer;
-        renderer.upload(*space);
-        // Default window: the data's full value range (the volume's when we have it).
-        auto range = c.mode == render::RenderMode::Density ? renderer.densityRange() : renderer.valueRange();
-        if (volume && c.mode == render::RenderMode::Mip) range = volume->valueRange();
-        const auto display = c.window ? *c.window : render::windowForRange(range[0], range[1], c.colormap);
-        image = renderer.renderRgba(c.camera, c.width, c.height, display, c.mode);
+        vots.emplace().upload(*space);
     }
+    std::optional<std::array<float, 2>> volumeRange;
+    if (volume) volumeRange = volume->valueRange();
+    const render::RgbaImage image =
+        render::renderFrame(c.frame, vots ? &*vots : nullptr, grid ? &*grid : nullptr, volumeRange);
     render::writePng(a.output, image);
 }
 

@@ -1,11 +1,11 @@
 // DatasetRegistry: finds volume files by stem, loads each once on demand, derives window presets.
-#include "vots/server/DatasetRegistry.h"
+#include "DatasetRegistry.h"
 
+#include "HttpError.h"
+#include "Params.h"
 #include "vots/fit/Error.h"
 #include "vots/fit/Fitter.h"
 #include "vots/fit/VolumeLoad.h"
-#include "vots/server/HttpError.h"
-#include "vots/server/Params.h"
 
 #include <algorithm>
 #include <iostream>
@@ -35,7 +35,7 @@ std::shared_ptr<const Dataset> loadDataset(const std::string& name, const fs::pa
     dataset->range = volume->valueRange();
     dataset->background = fit::defaultBackground(*volume);
     dataset->contentCrc = volume->contentCrc();
-    dataset->defaultEps = EpsSpec{DEFAULT_EPS_PERCENT, true}.resolve(dataset->range[0], dataset->range[1]);
+    dataset->defaultEps = static_cast<float>(fit::EpsSpec{}.resolve(dataset->range[0], dataset->range[1]));
     dataset->isCt = dataset->range[0] <= CT_MIN_HU;
     dataset->presets = windowPresets(dataset->range, dataset->isCt);
     dataset->volume = std::move(volume);
@@ -44,10 +44,10 @@ std::shared_ptr<const Dataset> loadDataset(const std::string& name, const fs::pa
 
 } // namespace
 
-std::map<std::string, WindowPreset> windowPresets(std::array<float, 2> range, bool isCt) {
+std::map<std::string, render::DisplaySettings> windowPresets(std::array<float, 2> range, bool isCt) {
     const float lo = range[0];
     const float span = std::max(range[1] - range[0], 1e-6f);
-    std::map<std::string, WindowPreset> presets;
+    std::map<std::string, render::DisplaySettings> presets;
     presets["full"] = {lo + 0.5f * span, span};
     if (isCt) {
         presets["bone"] = {300.f, 1500.f}; // common radiology bone window

@@ -1,12 +1,12 @@
 // GET /api/datasets: every volume in the data folders with its grid, value range, windows and defaults.
+#include "HttpError.h"
 #include "HttpJson.h"
 #include "ServerImpl.h"
-#include "vots/server/HttpError.h"
 
 namespace vots::server {
 namespace {
 
-nlohmann::json windowJson(const WindowPreset& w) {
+nlohmann::json windowJson(const render::DisplaySettings& w) {
     return {{"level", w.level}, {"width", w.width}};
 }
 
@@ -20,7 +20,7 @@ nlohmann::json datasetJson(const Dataset& d) {
             {"dims", v.dims},
             {"spacing", v.spacing},
             {"range", d.range},
-            {"window", windowJson({window.level, window.width})},
+            {"window", windowJson(window)},
             {"presets", presets},
             {"defaultEps", d.defaultEps},
             {"background", d.background},
@@ -30,7 +30,7 @@ nlohmann::json datasetJson(const Dataset& d) {
 } // namespace
 
 float resolveEps(const Dataset& dataset, const EpsSpec& eps) {
-    const float value = eps.resolve(dataset.range[0], dataset.range[1]);
+    const auto value = static_cast<float>(eps.resolve(dataset.range[0], dataset.range[1]));
     if (!(value > 0.f) || !std::isfinite(value))
         throw HttpError(400, "eps resolves to " + std::to_string(value) + " for dataset '" + dataset.name +
                                  "' (its values are constant); give eps in data units");

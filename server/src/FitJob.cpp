@@ -1,5 +1,5 @@
 // FitJob: one fit's visible state behind a mutex, with waits for "finished" and "changed".
-#include "vots/server/FitJobs.h"
+#include "FitJob.h"
 
 #include <algorithm>
 
@@ -71,8 +71,9 @@ void FitJob::setProgress(double fraction, const char* stage) {
     std::lock_guard lock(mMutex);
     mState.progress = std::max(mState.progress, std::min(1.0, std::max(0.0, fraction))); // never goes back
     const std::string stageText = stage ? stage : "";
-    // A fit reports every brick (~2,000 on the CT). Each wake-up reaches every SSE stream and, through
-    // it, a browser redrawing its progress bar: on 2 cores that took CPU from the fit itself. Watchers
+    // A fit reports every brick, thousands on a CT. Each wake-up reaches every SSE stream and, through
+    // it, a browser redrawing its progress bar: on a machine with few cores that takes CPU from the fit
+    // itself. Watchers
     // hear of each new stage at once and of progress at most PROGRESS_INTERVAL apart.
     const auto now = std::chrono::steady_clock::now();
     if (stageText == mState.stage && now - mLastNotified < PROGRESS_INTERVAL) return;

@@ -1,5 +1,7 @@
 // Canonical text of a FitKey: floats as their exact bit patterns, so the text is an exact identity.
-#include "vots/server/FitKey.h"
+#include "FitKey.h"
+
+#include "vots/render/FrameRequest.h"
 
 #include <bit>
 #include <cstdint>
@@ -36,6 +38,16 @@ std::string FitKey::text() const {
                hexBits(focus->centerIndex[2]) + "-" + hexBits(focus->radius) + "-" + hexBits(focus->epsFocus);
     }
     return out;
+}
+
+fit::FitOptions fitOptionsFor(const FitKey& key) {
+    fit::FitOptions options;
+    options.eps = key.eps;
+    options.degree = key.degree;
+    options.background = key.background;
+    options.focus = key.focus;
+    options.certify = render::RENDER_FIT_CERTIFY;
+    return options;
 }
 
 } // namespace vots::server

@@ -1,5 +1,5 @@
 // FrameCache: an LRU of encoded frames plus the renders in flight that identical requests can join.
-#include "vots/server/FrameCache.h"
+#include "FrameCache.h"
 
 namespace vots::server {
 

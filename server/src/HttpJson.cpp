@@ -1,8 +1,8 @@
 // JSON response helpers and the one place that decides which exception becomes which HTTP status.
 #include "HttpJson.h"
 
+#include "HttpError.h"
 #include "vots/fit/Error.h"
-#include "vots/server/HttpError.h"
 
 #include <iostream>
 

@@ -1,7 +1,7 @@
 // POST /api/fit, GET /api/jobs/{id} and its Server-Sent Events stream of progress.
+#include "HttpError.h"
 #include "HttpJson.h"
 #include "ServerImpl.h"
-#include "vots/server/HttpError.h"
 
 #include <chrono>
 

@@ -1,14 +1,9 @@
 // LowPriorityQueue: one nice-19 worker thread over a FIFO of tasks.
 #include "LowPriorityQueue.h"
 
-#include <sys/resource.h>
-#include <unistd.h>
+#include "vots/server/ThreadPriority.h"
 
 namespace vots::server {
-
-void lowerThisThreadToNice19() {
-    setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), 19);
-}
 
 LowPriorityQueue::LowPriorityQueue(std::size_t maxPending)
     : mMaxPending(maxPending), mThread([this] { loop(); }) {}

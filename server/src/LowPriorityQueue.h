@@ -10,12 +10,8 @@
 
 namespace vots::server {
 
-/// Nice 19 for the calling thread alone (Linux), inherited by threads it starts. Failure only means
-/// normal priority.
-void lowerThisThreadToNice19();
-
-/// For work nobody waits for (cache files): on a 2-core machine it must not slow a fit or a frame that
-/// someone is waiting for. Nice 19, not SCHED_IDLE: it still progresses on a busy machine.
+/// For work nobody waits for (cache files): it must not slow a fit or a frame that someone is waiting
+/// for. Nice 19, not SCHED_IDLE: it still progresses on a busy machine.
 class LowPriorityQueue {
 public:
     explicit LowPriorityQueue(std::size_t maxPending);

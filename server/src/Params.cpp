@@ -1,9 +1,9 @@
 // Query/body parsing for /render and /api/fit: every value checked, every failure a 400 naming the parameter.
-#include "vots/server/Params.h"
+#include "Params.h"
 
+#include "HttpError.h"
 #include "vots/fit/Error.h"
 #include "vots/render/CameraText.h"
-#include "vots/server/HttpError.h"
 
 #include <nlohmann/json.hpp>
 
@@ -19,16 +19,6 @@ constexpr std::size_t MAX_CLIENT_CHARS = 64;
 
 [[noreturn]] void bad(const std::string& message) {
     throw HttpError(400, message);
-}
-
-/// A finite decimal number taking the whole text (no leading '+', no whitespace, no hex).
-std::optional<double> parseFinite(std::string_view text) {
-    if (text.empty() || text.size() > 64) return std::nullopt;
-    double value = 0.0;
-    const char* end = text.data() + text.size();
-    const auto [ptr, ec] = std::from_chars(text.data(), end, value, std::chars_format::general);
-    if (ec != std::errc() || ptr != end || !std::isfinite(value)) return std::nullopt;
-    return value;
 }
 
 std::optional<int> parseInt(std::string_view text) {
@@ -106,13 +96,6 @@ QueryParams parseQueryString(std::string_view query) {
     return params;
 }
 
-float EpsSpec::resolve(float lo, float hi) const {
-    // The same arithmetic as `vots fit/render --eps`: double, then one rounding to float.
-    const double eps =
-        isPercent ? value / 100.0 * (static_cast<double>(hi) - static_cast<double>(lo)) : value;
-    return static_cast<float>(eps);
-}
-
 bool isDatasetName(std::string_view name) {
     if (name.empty() || name.size() > 128) return false;
     for (const char c : name) {
@@ -124,26 +107,29 @@ bool isDatasetName(std::string_view name) {
 }
 
 EpsSpec parseEpsSpec(std::string_view text) {
-    EpsSpec spec;
-    spec.isPercent = !text.empty() && text.back() == '%';
-    if (spec.isPercent) text.remove_suffix(1);
-    const auto value = parseFinite(text);
-    if (!value || *value <= 0.0)
+    fit::EpsRules rules;
+    rules.maxPercent = MAX_EPS_PERCENT;
+    const fit::EpsParse eps = fit::parseEps(text, rules);
+    if (eps.problem == fit::EpsProblem::NotANumber || eps.problem == fit::EpsProblem::NotPositive)
         bad("eps must be a finite number > 0, in data units or as a percentage ('2%')");
-    if (spec.isPercent && *value > MAX_EPS_PERCENT) bad("eps percentage must be at most 100%");
-    spec.value = *value;
-    return spec;
+    if (eps.problem == fit::EpsProblem::PercentTooLarge) bad("eps percentage must be at most 100%");
+    return eps.spec;
 }
 
 std::pair<int, int> parseSize(std::string_view text) {
-    const auto x = text.find('x');
-    if (x == std::string_view::npos) bad("size must be WxH, e.g. 512x512");
-    const auto w = parseInt(text.substr(0, x));
-    const auto h = parseInt(text.substr(x + 1));
-    if (!w || !h) bad("size must be WxH with whole numbers, e.g. 512x512");
-    if (*w < 1 || *h < 1 || *w > MAX_RENDER_SIDE || *h > MAX_RENDER_SIDE)
-        bad("size " + std::to_string(*w) + "x" + std::to_string(*h) + " outside 1..4096 per side");
-    return {*w, *h};
+    const render::SizeParse size = render::parseFrameSize(text, render::MAX_SERVED_SIDE);
+    switch (size.problem) {
+    case render::SizeProblem::None:
+        break;
+    case render::SizeProblem::NotWxH:
+        bad("size must be WxH, e.g. 512x512");
+    case render::SizeProblem::NotWholeNumbers:
+        bad("size must be WxH with whole numbers, e.g. 512x512");
+    case render::SizeProblem::OutOfRange:
+        bad("size " + std::to_string(size.width) + "x" + std::to_string(size.height) + " outside 1.." +
+            std::to_string(render::MAX_SERVED_SIDE) + " per side");
+    }
+    return {size.width, size.height};
 }
 
 RenderParams parseRenderParams(const QueryParams& query) {

@@ -1,16 +1,17 @@
 // RenderQueue: the render thread owns the GL context; jobs wait in a queue where newer frames replace older
 // ones.
-#include "vots/server/RenderQueue.h"
+#include "RenderQueue.h"
 
-#include "RenderDefaults.h"
+#include "ForegroundActivity.h"
+#include "HttpError.h"
+#include "ServerStats.h"
 #include "vots/fit/Error.h"
 #include "vots/render/EglContext.h"
 #include "vots/render/Error.h"
+#include "vots/render/FrameRequest.h"
 #include "vots/render/GridRenderer.h"
 #include "vots/render/Png.h"
 #include "vots/render/VotRenderer.h"
-#include "vots/server/HttpError.h"
-#include "vots/server/ServerStats.h"
 
 #include <chrono>
 #include <iostream>
@@ -27,8 +28,8 @@ struct RenderQueue::Renderers {
     std::shared_ptr<const fit::Volume> uploadedVolume;
 };
 
-RenderQueue::RenderQueue(ServerStats& stats, std::size_t maxWaiting)
-    : mStats(stats), mMaxWaiting(maxWaiting) {
+RenderQueue::RenderQueue(ServerStats& stats, ForegroundActivity& foreground, std::size_t maxWaiting)
+    : mStats(stats), mForeground(foreground), mMaxWaiting(maxWaiting) {
     mThread = std::thread([this] { threadMain(); });
     std::unique_lock lock(mMutex);
     mWake.wait(lock, [this] { return mReady; });
@@ -126,24 +127,21 @@ void RenderQueue::threadMain() {
 RenderResult RenderQueue::draw(Renderers& r, const RenderJob& job) {
     const RenderParams& p = job.params;
     RenderResult result;
-    const ForegroundMark mark(mStats, Foreground::Frame); // warm-ups and cache files wait meanwhile
+    const ForegroundMark mark(mForeground, Foreground::Frame); // warm-ups and cache files wait meanwhile
     const auto start = std::chrono::steady_clock::now();
-    render::RgbaImage image;
     if (p.mode == render::RenderMode::Reference) {
         if (r.uploadedVolume != job.volume) {
             r.grid->upload(*job.volume);
             r.uploadedVolume = job.volume;
         }
-        image = r.grid->renderRgba(p.camera, p.width, p.height, displayFor(p, job.valueRange, *r.vots));
     } else {
         if (r.uploadedSpace != job.space) {
             r.vots->upload(*job.space);
             r.uploadedSpace = job.space;
         }
-        image =
-            r.vots->renderRgba(p.camera, p.width, p.height, displayFor(p, job.valueRange, *r.vots), p.mode);
         result.votCount = job.space->vots.size();
     }
+    render::RgbaImage image = render::renderFrame(p, r.vots.get(), r.grid.get(), job.valueRange);
     result.frameMs =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     mStats.addFrame(result.frameMs);

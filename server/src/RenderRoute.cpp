@@ -1,10 +1,11 @@
 // GET /render: parse, find the dataset, wait for its Vot-Space (fitting if needed), render on the GL thread.
+#include "CacheMeta.h"
+#include "HttpError.h"
 #include "HttpJson.h"
 #include "ServerImpl.h"
 #include "vots/render/CameraText.h"
 #include "vots/render/Colormap.h"
 #include "vots/render/Png.h"
-#include "vots/server/HttpError.h"
 
 #include <chrono>
 #include <cstdio>
@@ -103,8 +104,7 @@ void installRenderRoute(Server::Impl& s) {
         res.set_header("X-Vots-Vot-Count", std::to_string(frame->votCount));
         res.set_header("X-Vots-Frame-Ms", formatMs(frame->frameMs));
         res.set_header("X-Vots-Frame-Cache", sourceName(source));
-        res.set_header("X-Vots-Fit-Seconds",
-                       formatMs(job.space ? VotSpaceCache::fitSecondsOf(*job.space) : 0.0));
+        res.set_header("X-Vots-Fit-Seconds", formatMs(job.space ? fitSecondsOf(*job.space) : 0.0));
         res.set_header("Cache-Control", "no-cache");
         res.set_content(frame->png, "image/png");
     });

@@ -3,7 +3,7 @@
 
 #include "HttpJson.h"
 #include "ServerImpl.h"
-#include "vots/server/StaticFiles.h"
+#include "StaticFiles.h"
 
 #include <sys/socket.h>
 
@@ -18,8 +18,8 @@ namespace {
 constexpr std::size_t MAX_BODY_BYTES = 64 * 1024; // POST bodies (a fit request is ~100 bytes)
 constexpr std::size_t MAX_TARGET_CHARS = 4096;    // httplib itself answers 414 above 8192
 // Debian's httplib is a compiled library that listens with a backlog of 5 (CPPHTTPLIB_LISTEN_BACKLOG
-// only changes it when httplib is built with the define). With one request per connection, 200 wrk
-// connections overflowed that queue and the dropped SYNs came back after 1, 3, 7, 15 s (timeouts).
+// only changes it when httplib is built with the define). With one request per connection, many clients
+// at once overflow that queue, and a dropped SYN is sent again only after seconds.
 constexpr int LISTEN_BACKLOG = 1024;
 // Cache files are written in pauses this long without frames or requested fits: a user moving the eps
 // slider again at once would otherwise share the cores with the last fit's file.
@@ -47,9 +47,9 @@ void raiseListenBacklog(const Server::Impl& s) {
 
 Server::Impl::Impl(ServerOptions opts)
     : options(std::move(opts)), registry(options.dataDirs), cache(options.cacheDir, options.memoryCacheBytes),
-      fitJobs(cache, stats, limitsFrom(options)), frames(options.frameCacheBytes) {
-    if (options.withRenderer) renderQueue = std::make_unique<RenderQueue>(stats);
-    cache.deferDiskWritesWhile([this] { return stats.busyWithin(DISK_WRITE_QUIET); });
+      fitJobs(cache, stats, foreground, limitsFrom(options)), frames(options.frameCacheBytes) {
+    if (options.withRenderer) renderQueue = std::make_unique<RenderQueue>(stats, foreground);
+    cache.deferDiskWritesWhile([this] { return foreground.busyWithin(DISK_WRITE_QUIET); });
 }
 
 std::vector<fs::path> defaultDataDirs() {
@@ -77,7 +77,7 @@ Server::Server(ServerOptions options) : mImpl(std::make_unique<Impl>(std::move(o
     http.new_task_queue = [threads] { return new httplib::ThreadPool(static_cast<std::size_t>(threads)); };
     http.set_payload_max_length(MAX_BODY_BYTES);
     // One request per connection: a kept-alive connection holds a pool thread, so with more clients
-    // than threads the others starved (wrk, 200 connections: 30 s timeouts). Closing after each
+    // than threads the others starve into timeouts. Closing after each
     // answer puts every client back in the pool's FIFO queue; reconnecting on loopback is cheap.
     http.set_keep_alive_max_count(1);
     http.set_socket_options([&s](socket_t sock) {

@@ -1,14 +1,15 @@
 // Server internals shared by the route files: the parts a request touches, in construction order.
 #pragma once
 
-#include "vots/server/DatasetRegistry.h"
-#include "vots/server/FitJobs.h"
-#include "vots/server/FrameCache.h"
-#include "vots/server/Params.h"
-#include "vots/server/RenderQueue.h"
+#include "DatasetRegistry.h"
+#include "FitJobs.h"
+#include "ForegroundActivity.h"
+#include "FrameCache.h"
+#include "Params.h"
+#include "RenderQueue.h"
+#include "ServerStats.h"
+#include "VotSpaceCache.h"
 #include "vots/server/Server.h"
-#include "vots/server/ServerStats.h"
-#include "vots/server/VotSpaceCache.h"
 
 #include <httplib.h>
 #include <nlohmann/json.hpp>
@@ -25,6 +26,7 @@ struct Server::Impl {
 
     ServerOptions options;
     ServerStats stats;
+    ForegroundActivity foreground; // frames and requested fits, which background work waits for
     DatasetRegistry registry;
     VotSpaceCache cache;
     FitJobs fitJobs;

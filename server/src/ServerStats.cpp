@@ -1,31 +1,9 @@
 // ServerStats: bounded windows of frame times and fit records behind one mutex.
-#include "vots/server/ServerStats.h"
+#include "ServerStats.h"
 
 #include <algorithm>
 
 namespace vots::server {
-
-void ServerStats::begin(Foreground work) {
-    std::lock_guard lock(mMutex);
-    ++inFlight(work).count;
-}
-
-void ServerStats::end(Foreground work) {
-    std::lock_guard lock(mMutex);
-    InFlight& w = inFlight(work);
-    w.count = std::max(0, w.count - 1);
-    w.lastEnd = std::chrono::steady_clock::now();
-}
-
-bool ServerStats::renderedWithin(std::chrono::milliseconds quiet) const {
-    std::lock_guard lock(mMutex);
-    return mFrameWork.within(quiet);
-}
-
-bool ServerStats::busyWithin(std::chrono::milliseconds quiet) const {
-    std::lock_guard lock(mMutex);
-    return mFrameWork.within(quiet) || mFitWork.within(quiet);
-}
 
 void ServerStats::addFrame(double ms) {
     std::lock_guard lock(mMutex);

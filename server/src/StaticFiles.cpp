@@ -1,5 +1,5 @@
 // Static file resolution that cannot leave the web folder, and the content types the viewer needs.
-#include "vots/server/StaticFiles.h"
+#include "StaticFiles.h"
 
 #include <algorithm>
 #include <cctype>

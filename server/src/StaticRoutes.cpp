@@ -1,7 +1,7 @@
 // Serving the viewer's files from the web folder (called from the pre-routing step for non-API paths).
 #include "HttpJson.h"
 #include "ServerImpl.h"
-#include "vots/server/StaticFiles.h"
+#include "StaticFiles.h"
 
 #include <fstream>
 #include <sstream>

@@ -1,6 +1,6 @@
 // libFuzzer target: the server's /render query parser and /api/fit body parser on arbitrary text.
-#include "vots/server/HttpError.h"
-#include "vots/server/Params.h"
+#include "HttpError.h"
+#include "Params.h"
 
 #include <cstdint>
 #include <cstdlib>
@@ -14,8 +14,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             vots::server::parseRenderParams(vots::server::parseQueryString(text));
         // What the parser accepts is what the route relies on: a plain dataset name and sane sizes.
         if (!vots::server::isDatasetName(params.dataset)) std::abort();
-        if (params.width < 1 || params.height < 1 || params.width > vots::server::MAX_RENDER_SIDE ||
-            params.height > vots::server::MAX_RENDER_SIDE)
+        if (params.width < 1 || params.height < 1 || params.width > vots::render::MAX_SERVED_SIDE ||
+            params.height > vots::render::MAX_SERVED_SIDE)
             std::abort();
     } catch (const vots::server::HttpError& e) {
         if (e.status() != 400) std::abort();

@@ -1,6 +1,6 @@
 // FrameCache: kept frames answered again, identical renders in flight shared, failures not inherited,
 // least recently used frames dropped over the budget.
-#include "vots/server/FrameCache.h"
+#include "FrameCache.h"
 
 #include <gtest/gtest.h>
 

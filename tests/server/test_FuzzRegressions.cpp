@@ -1,10 +1,10 @@
 // Replays the fuzz seeds and crashes of fuzz_camera and fuzz_render_query: each parses or is refused cleanly.
 #include "FuzzCorpus.h"
 
+#include "HttpError.h"
+#include "Params.h"
 #include "vots/fit/Error.h"
 #include "vots/render/CameraText.h"
-#include "vots/server/HttpError.h"
-#include "vots/server/Params.h"
 
 #include <gtest/gtest.h>
 

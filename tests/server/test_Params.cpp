@@ -1,6 +1,6 @@
 // Params: query splitting, defaults, and the 400s for malformed values (no server needed).
-#include "vots/server/HttpError.h"
-#include "vots/server/Params.h"
+#include "HttpError.h"
+#include "Params.h"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // StaticFiles: hostile targets are recognised; resolution never leaves the web folder.
-#include "vots/server/StaticFiles.h"
+#include "StaticFiles.h"
 
 #include "TempDir.h"
 

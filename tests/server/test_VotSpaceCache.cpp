@@ -1,6 +1,8 @@
 // VotSpaceCache and FitKey: exact keys, LRU eviction by bytes, disk round trip, foreign files ignored.
+#include "CacheMeta.h"
+#include "VotSpaceCache.h"
+
 #include "vots/fit/VotSpaceFile.h"
-#include "vots/server/VotSpaceCache.h"
 
 #include "TempDir.h"
 
@@ -18,6 +20,19 @@
 namespace vots::server {
 namespace {
 
+/// A 4^3 dataset named after the key, as the registry would load it.
+Dataset datasetFor(const FitKey& key) {
+    auto volume = std::make_shared<fit::Volume>();
+    volume->dims = {4, 4, 4};
+    volume->name = key.dataset;
+    volume->values.assign(64, 0.f);
+    Dataset dataset;
+    dataset.name = key.dataset;
+    dataset.path = key.dataset + ".nrrd";
+    dataset.volume = volume;
+    return dataset;
+}
+
 std::shared_ptr<const fit::VotSpace> spaceWith(std::size_t vots, const FitKey& key) {
     fit::VotSpace space;
     space.dims = {4, 4, 4};
@@ -26,7 +41,9 @@ std::shared_ptr<const fit::VotSpace> spaceWith(std::size_t vots, const FitKey& k
     vot.box.lo = {0, 0, 0};
     vot.box.hi = {3, 3, 3};
     space.vots.assign(vots, vot);
-    space.metaJson = VotSpaceCache::metaFor(key, 1.5);
+    fit::FitStats stats;
+    stats.seconds = 1.5;
+    space.metaJson = cacheMetaFor(key, datasetFor(key), stats, space);
     return std::make_shared<const fit::VotSpace>(std::move(space));
 }
 
@@ -49,8 +66,8 @@ TEST(FitKey, TextIsExactAndFileSafe) {
 TEST(VotSpaceCache, EvictsLeastRecentlyUsedOverBudget) {
     const FitKey k1{"a", 1.f, 3, 0.f, std::nullopt}, k2{"a", 2.f, 3, 0.f, std::nullopt},
         k3{"a", 3.f, 3, 0.f, std::nullopt};
-    const std::size_t one =
-        sizeof(fit::VotSpace) + 100 * sizeof(fit::Vot) + VotSpaceCache::metaFor(k1, 1.5).size();
+    const std::size_t one = VotSpaceLru::bytesOf(*spaceWith(100, k1));
+    ASSERT_EQ(VotSpaceLru::bytesOf(*spaceWith(100, k3)), one);
     VotSpaceCache cache({}, 2 * one + 10);
     cache.store(k1, spaceWith(100, k1));
     cache.store(k2, spaceWith(100, k2));
@@ -110,7 +127,7 @@ TEST(VotSpaceCache, DiskRoundTripAndForeignFilesIgnored) {
     const auto space = cache.find(key);
     ASSERT_TRUE(space);
     EXPECT_EQ(space->vots.size(), 5u);
-    EXPECT_EQ(VotSpaceCache::fitSecondsOf(*space), 1.5);
+    EXPECT_EQ(fitSecondsOf(*space), 1.5);
 
     // A file under another key's name (copied or renamed) is not trusted.
     const FitKey other{"a", 2.f, 3, 0.f, std::nullopt};

@@ -17,7 +17,7 @@ struct ServerOptions {
     std::size_t frameCacheBytes = std::size_t{64} << 20; // encoded /render answers kept in memory
     int maxRunningFits = 2;
     int maxQueuedFits = 8;
-    bool warmUpFits = true; // fit eps / 2 into the box cache while idle (FitJobs.h)
+    bool warmUpFits = true; // fit eps / 2 into the box cache while idle (WarmUpFits)
     int httpThreads = 12;   // connections served at once (SSE holds one); few, so the accept thread keeps up
     bool withRenderer = true; // false: never try EGL (tests of the 503 path)
     // Loaded, fitted at its default eps and uploaded as the server starts, when the data folders have

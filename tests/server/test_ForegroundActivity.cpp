@@ -1,6 +1,6 @@
-// ServerStats' foreground activity, which background work waits on: a frame (or, for cache files, a
-// requested fit) in flight or just ended counts, also one that ended by an exception.
-#include "vots/server/ServerStats.h"
+// ForegroundActivity, which background work waits on: a frame (or, for cache files, a requested fit) in
+// flight or just ended counts, also one that ended by an exception.
+#include "ForegroundActivity.h"
 
 #include <gtest/gtest.h>
 
@@ -12,8 +12,8 @@ namespace {
 
 using namespace std::chrono_literals;
 
-TEST(ServerStats, RenderActivityCoversFramesInFlightAndAQuietTimeAfter) {
-    ServerStats stats;
+TEST(ForegroundActivity, RenderActivityCoversFramesInFlightAndAQuietTimeAfter) {
+    ForegroundActivity stats;
     EXPECT_FALSE(stats.renderedWithin(50ms)) << "no frame yet";
     {
         const ForegroundMark mark(stats, Foreground::Frame);
@@ -32,8 +32,8 @@ TEST(ServerStats, RenderActivityCoversFramesInFlightAndAQuietTimeAfter) {
     EXPECT_FALSE(stats.renderedWithin(50ms)) << "a failed frame must not leave the renderer busy for ever";
 }
 
-TEST(ServerStats, RequestedFitsKeepTheServerBusyButDoNotCountAsRendering) {
-    ServerStats stats;
+TEST(ForegroundActivity, RequestedFitsKeepTheServerBusyButDoNotCountAsRendering) {
+    ForegroundActivity stats;
     EXPECT_FALSE(stats.busyWithin(50ms));
     {
         const ForegroundMark mark(stats, Foreground::Fit);

@@ -1,10 +1,10 @@
 // The one render thread: owns the EglContext and renderers; handlers post jobs and wait on a future.
 #pragma once
 
+#include "Params.h"
 #include "vots/fit/Volume.h"
 #include "vots/fit/VotSpace.h"
 #include "vots/render/Image.h"
-#include "vots/server/Params.h"
 
 #include <array>
 #include <condition_variable>
@@ -19,6 +19,7 @@
 
 namespace vots::server {
 
+class ForegroundActivity;
 class ServerStats;
 
 /// What to draw. The Vot-Space is needed for mip and density, the volume for reference and the
@@ -27,9 +28,8 @@ struct RenderJob {
     RenderParams params;
     std::shared_ptr<const fit::VotSpace> space;
     std::shared_ptr<const fit::Volume> volume;
-    std::array<float, 2> valueRange{0.f,
-                                    0.f}; // the volume's min and max sample, as the registry keeps it:
-                                          // scanning the volume per frame took ~16 ms of the render thread
+    std::array<float, 2> valueRange{0.f, 0.f}; // the volume's min and max sample, as the registry keeps
+                                               // it, so that no frame scans the volume
 };
 
 struct RenderResult {
@@ -42,7 +42,7 @@ struct RenderResult {
 class RenderQueue {
 public:
     /// Starts the thread and waits until it has (or has failed to get) a context.
-    RenderQueue(ServerStats& stats, std::size_t maxWaiting = 64);
+    RenderQueue(ServerStats& stats, ForegroundActivity& foreground, std::size_t maxWaiting = 64);
     ~RenderQueue(); // answers waiting jobs with 503 and joins
 
     RenderQueue(const RenderQueue&) = delete;
@@ -70,6 +70,7 @@ private:
     RenderResult draw(Renderers& renderers, const RenderJob& job);
 
     ServerStats& mStats;
+    ForegroundActivity& mForeground;
     const std::size_t mMaxWaiting;
     mutable std::mutex mMutex;
     std::condition_variable mWake;

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "vots/fit/EpsField.h"
+#include "vots/fit/Fitter.h"
 
 #include <cstdint>
 #include <optional>
@@ -21,5 +22,9 @@ struct FitKey {
     /// Equal keys give equal text and vice versa.
     std::string text() const;
 };
+
+/// The options of the fit a key stands for (all cores, no progress, no cancel): the fit is made to be
+/// rendered, so it certifies cells (render::RENDER_FIT_CERTIFY), the "_cells" of the key's text.
+fit::FitOptions fitOptionsFor(const FitKey& key);
 
 } // namespace vots::server

@@ -1,15 +1,18 @@
-// Writes and reads the meta JSON block of `vots fit` files; key names live only here.
-#include "FitMeta.h"
+// Writes and reads the meta JSON block of .vots files; the key names live only here.
+#include "vots/fit/FitMeta.h"
+
+#include "vots/fit/VotSpace.h"
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 #ifndef VOTS_VERSION
 #define VOTS_VERSION "unknown"
 #endif
 
-namespace vots::cli {
+namespace vots::fit {
 namespace {
 
 using json = nlohmann::ordered_json;
@@ -19,11 +22,11 @@ json finiteOrNull(double v) {
     return std::isfinite(v) ? json(v) : json(nullptr);
 }
 
-const char* methodName(fit::FitMethod m) {
-    return m == fit::FitMethod::Paper ? "paper" : "fast";
+const char* methodName(FitMethod m) {
+    return m == FitMethod::Paper ? "paper" : "fast";
 }
-const char* certifyName(fit::Certify c) {
-    return c == fit::Certify::Cells ? "cells" : "samples";
+const char* certifyName(Certify c) {
+    return c == Certify::Cells ? "cells" : "samples";
 }
 
 template <class T> std::optional<T> field(const json& j, const json::json_pointer& ptr) {
@@ -41,17 +44,17 @@ template <class T> std::optional<T> field(const json& j, const json::json_pointe
 
 } // namespace
 
-std::string buildFitMeta(const FitRecord& r) {
-    const fit::Volume& vol = *r.volume;
+std::string buildFitMeta(const FitProvenance& r) {
+    const Volume& vol = *r.volume;
     const auto range = vol.valueRange();
-    const fit::FitOptions& o = r.options;
+    const FitOptions& o = r.options;
     json focus = nullptr;
     if (o.focus)
         focus = {{"center_index", o.focus->centerIndex},
                  {"radius", o.focus->radius},
                  {"eps_focus", o.focus->epsFocus}};
-    const fit::FitStats& s = r.stats;
-    const json meta = {
+    const FitStats& s = r.stats;
+    json meta = {
         {"software", {{"name", "vots"}, {"version", VOTS_VERSION}}},
         {"source",
          {{"path", r.sourcePath},
@@ -59,12 +62,12 @@ std::string buildFitMeta(const FitRecord& r) {
           {"dims", vol.dims},
           {"spacing", vol.spacing},
           {"origin", vol.origin},
-          {"type", fit::scalarTypeName(vol.sourceType)},
+          {"type", scalarTypeName(vol.sourceType)},
           {"value_range", {range[0], range[1]}}}},
         {"fit",
          {{"requested_degree", o.degree},
           {"eps", o.eps},
-          {"eps_arg", r.epsArg},
+          {"eps_arg", r.epsText.empty() ? json(nullptr) : json(r.epsText)},
           {"background", o.background ? finiteOrNull(*o.background) : json(nullptr)},
           {"method", methodName(o.method)},
           {"certify", certifyName(o.certify)},
@@ -81,25 +84,29 @@ std::string buildFitMeta(const FitRecord& r) {
           {"max_error", finiteOrNull(s.maxError)}}},
         {"max_error", finiteOrNull(r.maxError)},
     };
+    if (!r.cacheKey.empty()) meta["key"] = r.cacheKey;
     // File names need not be UTF-8; replace bad bytes rather than fail after a long fit.
     return meta.dump(-1, ' ', false, json::error_handler_t::replace);
 }
 
-MetaView readMeta(const std::string& metaJson) {
-    MetaView view;
+FitMetaView readFitMeta(const std::string& metaJson) {
+    FitMetaView view;
     const json j = json::parse(metaJson, nullptr, /*allow_exceptions=*/false);
     if (!j.is_object()) return view;
     view.isJson = true;
     view.requestedDegree = field<int>(j, json::json_pointer("/fit/requested_degree"));
     view.fitSeconds = field<double>(j, json::json_pointer("/fit/seconds"));
+    if (!view.fitSeconds) // the server's cache blocks before this schema: {"key", "fitSeconds", ...}
+        view.fitSeconds = field<double>(j, json::json_pointer("/fitSeconds"));
     view.coveredCells = field<std::uint64_t>(j, json::json_pointer("/stats/covered_cells"));
     view.sourcePath = field<std::string>(j, json::json_pointer("/source/path"));
     view.method = field<std::string>(j, json::json_pointer("/fit/method"));
+    view.cacheKey = field<std::string>(j, json::json_pointer("/key"));
     const auto radius = field<double>(j, json::json_pointer("/fit/focus/radius"));
     const auto epsFocus = field<double>(j, json::json_pointer("/fit/focus/eps_focus"));
     const json::json_pointer centre("/fit/focus/center_index");
     if (radius && epsFocus && j.contains(centre) && j.at(centre).is_array() && j.at(centre).size() == 3) {
-        fit::FocusRegion f;
+        FocusRegion f;
         for (std::size_t a = 0; a < 3; ++a) {
             if (!j.at(centre)[a].is_number()) return view;
             f.centerIndex[a] = j.at(centre)[a].get<double>();
@@ -111,4 +118,11 @@ MetaView readMeta(const std::string& metaJson) {
     return view;
 }
 
-} // namespace vots::cli
+double maxStoredError(const VotSpace& space) {
+    double maxError = 0.0;
+    for (const Vot& v : space.vots)
+        maxError = std::max(maxError, double{v.err});
+    return maxError;
+}
+
+} // namespace vots::fit

@@ -2,10 +2,8 @@
 #pragma once
 
 #include "vots/fit/EpsField.h"
-#include "vots/render/Camera.h"
-#include "vots/render/Colormap.h"
-#include "vots/render/DisplaySettings.h"
-#include "vots/render/RenderMode.h"
+#include "vots/fit/EpsSpec.h"
+#include "vots/render/FrameRequest.h"
 
 #include <map>
 #include <optional>
@@ -17,31 +15,17 @@ namespace vots::server {
 /// Query parameters as httplib hands them over (already percent-decoded; a key may repeat).
 using QueryParams = std::multimap<std::string, std::string>;
 
-inline constexpr int MAX_RENDER_SIDE = 4096;        // size= accepts 1..4096 per side
 inline constexpr std::size_t MAX_PARAM_CHARS = 512; // any single query value longer than this is refused
-inline constexpr int DEFAULT_SIZE = 512;
-inline constexpr double DEFAULT_EPS_PERCENT = 2.0;
 inline constexpr int DEFAULT_DEGREE = 3;
 
-/// An error bound as the client wrote it: data units, or a percentage of the value range ("2%").
-struct EpsSpec {
-    double value = DEFAULT_EPS_PERCENT;
-    bool isPercent = true;
-    /// The bound in data units for values spanning [lo, hi], as float (what the fitter gets).
-    float resolve(float lo, float hi) const;
-};
+using fit::EpsSpec;
 
-/// A typed /render request. Every field is validated; dataset is a plain identifier.
-struct RenderParams {
+/// A typed /render request: the frame, and the fit it is drawn from. Every field is validated; dataset
+/// is a plain identifier.
+struct RenderParams : render::FrameRequest {
     std::string dataset;
-    render::Camera camera = render::cameraForView(render::ViewPreset::Anterior);
-    int width = DEFAULT_SIZE;
-    int height = DEFAULT_SIZE;
     EpsSpec eps;
     int degree = DEFAULT_DEGREE;
-    render::RenderMode mode = render::RenderMode::Mip;
-    std::optional<render::DisplaySettings> window; // nullopt: the full range (see RenderQueue)
-    render::Colormap colormap = render::Colormap::Grey;
     std::string client; // optional id; a newer request from the same client supersedes a waiting one
 };
 
@@ -61,9 +45,10 @@ QueryParams parseQueryString(std::string_view query);
 /// True for names made of [A-Za-z0-9_-] only, 1..128 characters (never a path).
 bool isDatasetName(std::string_view name);
 
-/// Parses "20" (data units) or "2%" (of the value range); > 0 and finite. Throws HttpError 400.
+/// Parses "20" (data units) or "2%" (of the value range, at most 100 %); > 0 and finite. Throws
+/// HttpError 400.
 EpsSpec parseEpsSpec(std::string_view text);
-/// Parses "WxH" with both sides in 1..MAX_RENDER_SIDE. Throws HttpError 400.
+/// Parses "WxH" with both sides in 1..render::MAX_SERVED_SIDE. Throws HttpError 400.
 std::pair<int, int> parseSize(std::string_view text);
 
 /// Throws HttpError 400 naming the parameter for anything missing, unknown, repeated or malformed.

@@ -14,27 +14,21 @@
 
 namespace vots::server {
 
-/// A named window (level/width, data units).
-struct WindowPreset {
-    float level = 0.f;
-    float width = 1.f;
-};
-
 /// A loaded volume plus what the API reports about it.
 struct Dataset {
     std::string name;           // file stem, a plain identifier
     std::filesystem::path path; // the file it came from
     std::shared_ptr<const fit::Volume> volume;
-    std::array<float, 2> range{0, 0};            // min and max sample, data units
-    float background = 0.f;                      // fit::defaultBackground(volume)
-    std::uint32_t contentCrc = 0;                // volume->contentCrc()
-    float defaultEps = 0.f;                      // 2 % of the range, data units
-    bool isCt = false;                           // range looks like Hounsfield units (min <= -900)
-    std::map<std::string, WindowPreset> presets; // "bone", "soft", "full"
+    std::array<float, 2> range{0, 0};                       // min and max sample, data units
+    float background = 0.f;                                 // fit::defaultBackground(volume)
+    std::uint32_t contentCrc = 0;                           // volume->contentCrc()
+    float defaultEps = 0.f;                                 // fit::EpsSpec{} resolved, data units
+    bool isCt = false;                                      // range looks like Hounsfield units (min <= -900)
+    std::map<std::string, render::DisplaySettings> presets; // "bone", "soft", "full" (grey)
 };
 
 /// Window presets for a value range: HU presets when it looks like CT, else fractions of the range.
-std::map<std::string, WindowPreset> windowPresets(std::array<float, 2> range, bool isCt);
+std::map<std::string, render::DisplaySettings> windowPresets(std::array<float, 2> range, bool isCt);
 
 /// Thread-safe. Scans the folders once at construction for .nrrd/.nhdr/.nii/.nii.gz/.mhd/.mha files;
 /// the first folder that has a name wins. Loading happens on the first find() of a name.

@@ -1,0 +1,46 @@
+// The meta block of a .vots file: one JSON schema for `vots fit` and the server's cache, and its reader.
+#pragma once
+
+#include "vots/fit/EpsField.h"
+#include "vots/fit/Fitter.h"
+#include "vots/fit/Volume.h"
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace vots::fit {
+
+/// Everything recorded about one fit.
+struct FitProvenance {
+    std::string sourcePath; // the volume file, absolute
+    const Volume* volume = nullptr;
+    std::string epsText; // as the person typed it ("2%" or "20"); empty: none typed (null in the block)
+    FitOptions options;  // resolved (eps in data units, background value); progress and cancel unused
+    FitStats stats;
+    double maxError = 0.0; // max of the stored Vots' err
+    std::string cacheKey;  // the server's key for the fit (its cache files carry it); empty: no key
+};
+
+/// The meta block (one JSON object). Files without a cache key have exactly the keys `vots fit` wrote
+/// before the server shared this schema.
+std::string buildFitMeta(const FitProvenance& fit);
+
+/// The fields read back; each is absent when the block lacks it or is not JSON (files of other tools).
+struct FitMetaView {
+    bool isJson = false;
+    std::optional<int> requestedDegree;
+    std::optional<double> fitSeconds;          // also read from the server's earlier cache blocks
+    std::optional<std::uint64_t> coveredCells; // non-background cells
+    std::optional<FocusRegion> focus;
+    std::optional<std::string> sourcePath;
+    std::optional<std::string> method;
+    std::optional<std::string> cacheKey;
+};
+
+FitMetaView readFitMeta(const std::string& metaJson);
+
+/// The largest error bound stored in the Vots (0 for none).
+double maxStoredError(const VotSpace& space);
+
+} // namespace vots::fit

@@ -1,0 +1,65 @@
+// One frame as `vots render` and GET /render ask for it: camera, size, mode, window, colour map, defaults.
+#pragma once
+
+#include "vots/fit/Fitter.h"
+#include "vots/render/Camera.h"
+#include "vots/render/Colormap.h"
+#include "vots/render/DisplaySettings.h"
+#include "vots/render/Image.h"
+#include "vots/render/RenderMode.h"
+
+#include <array>
+#include <optional>
+#include <string_view>
+
+namespace vots::render {
+
+class GridRenderer;
+class VotRenderer;
+
+inline constexpr int DEFAULT_FRAME_SIDE = 512;
+/// Largest side GET /render draws: each frame is one HTTP answer a browser decodes. `vots render`
+/// allows MAX_IMAGE_SIDE, what the renderers accept.
+inline constexpr int MAX_SERVED_SIDE = 4096;
+
+/// A fit made to be rendered certifies cells, not only samples: a MIP picks up the overshoot between
+/// samples, so the bound must hold there too (docs/DESIGN.md, the fit).
+inline constexpr fit::Certify RENDER_FIT_CERTIFY = fit::Certify::Cells;
+
+struct FrameRequest {
+    Camera camera = cameraForView(ViewPreset::Anterior);
+    int width = DEFAULT_FRAME_SIDE;
+    int height = DEFAULT_FRAME_SIDE;
+    RenderMode mode = RenderMode::Mip;
+    std::optional<DisplaySettings> window; // nullopt: the full range (see renderFrame)
+    Colormap colormap = Colormap::Grey;
+};
+
+/// Why a size text is refused; the callers word the message.
+enum class SizeProblem {
+    None,
+    NotWxH,          // no 'x'
+    NotWholeNumbers, // a side is not an integer of at most 9 characters
+    OutOfRange       // a side outside 1..maxSide (width and height hold the numbers read)
+};
+
+struct SizeParse {
+    int width = 0;
+    int height = 0;
+    SizeProblem problem = SizeProblem::None;
+};
+
+/// Reads "WxH" (decimal integers, an optional '-', no '+' or spaces), each side in 1..maxSide.
+SizeParse parseFrameSize(std::string_view text, int maxSide);
+
+/// The display window the frame gets: the request's, or one over `fullRange` in its colour map.
+DisplaySettings displayFor(const FrameRequest& frame, std::array<float, 2> fullRange);
+
+/// Draws the frame as RGBA with the renderer its mode needs, which holds the data already: `grid` for
+/// reference, `vots` for mip and density. Without a window the frame shows the full range: of the
+/// volume's samples (`volumeRange`, where the caller has the volume; else the Vot-Space's values), for
+/// density the Vot renderer's density range.
+RgbaImage renderFrame(const FrameRequest& frame, VotRenderer* vots, GridRenderer* grid,
+                      std::optional<std::array<float, 2>> volumeRange);
+
+} // namespace vots::render

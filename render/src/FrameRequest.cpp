@@ -1,0 +1,61 @@
+// The frame rules shared by `vots render` and GET /render: size text, default window, which renderer.
+#include "vots/render/FrameRequest.h"
+
+#include "vots/render/GridRenderer.h"
+#include "vots/render/VotRenderer.h"
+
+#include <charconv>
+#include <stdexcept>
+
+namespace vots::render {
+namespace {
+
+std::optional<int> readSide(std::string_view text) {
+    if (text.empty() || text.size() > 9) return std::nullopt;
+    int value = 0;
+    const char* end = text.data() + text.size();
+    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+    if (ec != std::errc() || ptr != end) return std::nullopt;
+    return value;
+}
+
+} // namespace
+
+SizeParse parseFrameSize(std::string_view text, int maxSide) {
+    SizeParse size;
+    const auto x = text.find('x');
+    if (x == std::string_view::npos) {
+        size.problem = SizeProblem::NotWxH;
+        return size;
+    }
+    const auto w = readSide(text.substr(0, x));
+    const auto h = readSide(text.substr(x + 1));
+    if (!w || !h) {
+        size.problem = SizeProblem::NotWholeNumbers;
+        return size;
+    }
+    size.width = *w;
+    size.height = *h;
+    if (*w < 1 || *h < 1 || *w > maxSide || *h > maxSide) size.problem = SizeProblem::OutOfRange;
+    return size;
+}
+
+DisplaySettings displayFor(const FrameRequest& frame, std::array<float, 2> fullRange) {
+    if (frame.window) return *frame.window;
+    return windowForRange(fullRange[0], fullRange[1], frame.colormap);
+}
+
+RgbaImage renderFrame(const FrameRequest& frame, VotRenderer* vots, GridRenderer* grid,
+                      std::optional<std::array<float, 2>> volumeRange) {
+    if (frame.mode == RenderMode::Reference) {
+        if (!grid) throw std::logic_error("renderFrame: a reference frame needs the grid renderer");
+        const auto display = displayFor(frame, volumeRange ? *volumeRange : grid->valueRange());
+        return grid->renderRgba(frame.camera, frame.width, frame.height, display);
+    }
+    if (!vots) throw std::logic_error("renderFrame: a mip or density frame needs the Vot renderer");
+    std::array<float, 2> range = volumeRange ? *volumeRange : vots->valueRange();
+    if (frame.mode == RenderMode::Density) range = vots->densityRange();
+    return vots->renderRgba(frame.camera, frame.width, frame.height, displayFor(frame, range), frame.mode);
+}
+
+} // namespace vots::render

@@ -1,0 +1,83 @@
+// Fit jobs on worker threads: bounded queue, at most N running, one job per FitKey, results to the cache.
+#pragma once
+
+#include "BoxCaches.h"
+#include "DatasetRegistry.h"
+#include "FitJob.h"
+#include "FitKey.h"
+#include "WarmUpFits.h"
+
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace vots::server {
+
+class ForegroundActivity;
+class ServerStats;
+class VotSpaceCache;
+
+struct FitJobLimits {
+    int maxRunning = 2;    // fits at once
+    int maxQueued = 8;     // waiting fits beyond those; more is refused with 429
+    int keepFinished = 32; // finished jobs remembered for /api/jobs/{id}
+    bool warmUp = true;    // fit eps / 2 into the box cache while idle (WarmUpFits)
+};
+
+/// Owns the worker threads and the warm-ups that follow their fits. Thread-safe.
+class FitJobs {
+public:
+    FitJobs(VotSpaceCache& cache, ServerStats& stats, ForegroundActivity& foreground,
+            FitJobLimits limits = {});
+    ~FitJobs(); // shutdown(), then joins the workers
+    FitJobs(const FitJobs&) = delete;
+    FitJobs& operator=(const FitJobs&) = delete;
+
+    /// Returns the job for this key: an active one, a finished one from the memory cache, or a new
+    /// queued one. Throws HttpError 429 when the queue is full.
+    std::shared_ptr<FitJob> submit(std::shared_ptr<const Dataset> dataset, const FitKey& key);
+    /// Throws HttpError 404 for an unknown or forgotten id.
+    std::shared_ptr<FitJob> find(std::uint64_t id) const;
+    /// Queued plus running.
+    int activeCount() const;
+    WarmUpSummary warmUps() const { return mWarmUps.summary(); }
+    /// Refuses new jobs (503), fails queued ones and cancels running fits; idempotent.
+    void shutdown();
+
+private:
+    struct Pending {
+        std::shared_ptr<FitJob> job;
+        std::shared_ptr<const Dataset> dataset;
+    };
+    void workerLoop();
+    void run(const Pending& pending);
+    void rememberLocked(const std::shared_ptr<FitJob>& job);
+
+    VotSpaceCache& mCache;
+    ServerStats& mStats;
+    ForegroundActivity& mForeground;
+    const FitJobLimits mLimits;
+    std::atomic<bool> mCancel{false};
+    BoxCaches mBoxCaches;
+    WarmUpFits mWarmUps; // after mBoxCaches, which its thread uses until it is joined
+
+    mutable std::mutex mMutex;
+    std::condition_variable mWake;
+    bool mStopping = false;
+    std::deque<Pending> mQueue;
+    int mRunning = 0;
+    std::uint64_t mNextId = 1;
+    std::map<std::string, std::shared_ptr<FitJob>> mActiveByKey; // queued or running
+    std::map<std::uint64_t, std::shared_ptr<FitJob>> mById;      // active + recent finished
+    std::deque<std::uint64_t> mFinishedOrder;
+    std::vector<std::thread> mWorkers;
+};
+
+} // namespace vots::server
