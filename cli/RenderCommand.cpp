@@ -12,6 +12,7 @@
 #include "vots/render/GridRenderer.h"
 #include "vots/render/Png.h"
 #include "vots/render/VotRenderer.h"
+#include "vots/server/RenderPolicy.h"
 
 #include <CLI/CLI.hpp>
 
@@ -133,7 +134,9 @@ void runRender(const RenderArgs& a) {
     if (c.frame.mode == render::RenderMode::Reference) {
         grid.emplace().upload(*volume);
     } else {
-        vots.emplace().upload(*space);
+        vots.emplace();
+        server::applyRenderPolicy(*vots);
+        vots->upload(*space);
     }
     std::optional<std::array<float, 2>> volumeRange;
     if (volume) volumeRange = volume->valueRange();

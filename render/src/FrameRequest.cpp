@@ -47,15 +47,12 @@ DisplaySettings displayFor(const FrameRequest& frame, std::array<float, 2> fullR
 
 RgbaImage renderFrame(const FrameRequest& frame, VotRenderer* vots, GridRenderer* grid,
                       std::optional<std::array<float, 2>> volumeRange) {
-    if (frame.mode == RenderMode::Reference) {
-        if (!grid) throw std::logic_error("renderFrame: a reference frame needs the grid renderer");
-        const auto display = displayFor(frame, volumeRange ? *volumeRange : grid->valueRange());
-        return grid->renderRgba(frame.camera, frame.width, frame.height, display);
-    }
-    if (!vots) throw std::logic_error("renderFrame: a mip or density frame needs the Vot renderer");
-    std::array<float, 2> range = volumeRange ? *volumeRange : vots->valueRange();
+    Renderer* const renderer = frame.mode == RenderMode::Reference ? static_cast<Renderer*>(grid) : vots;
+    if (!renderer) throw std::logic_error("renderFrame: no renderer for this frame's mode");
+    std::array<float, 2> range = volumeRange ? *volumeRange : renderer->valueRange();
     if (frame.mode == RenderMode::Density) range = vots->densityRange();
-    return vots->renderRgba(frame.camera, frame.width, frame.height, displayFor(frame, range), frame.mode);
+    return renderer->renderRgba(frame.camera, frame.width, frame.height, displayFor(frame, range),
+                                frame.mode);
 }
 
 } // namespace vots::render

@@ -12,6 +12,7 @@
 #include "vots/render/GridRenderer.h"
 #include "vots/render/Png.h"
 #include "vots/render/VotRenderer.h"
+#include "vots/server/RenderPolicy.h"
 
 #include <chrono>
 #include <iostream>
@@ -81,6 +82,7 @@ void RenderQueue::threadMain() {
         renderers.context = render::EglContext::create(&error);
         if (renderers.context) {
             renderers.vots = std::make_unique<render::VotRenderer>();
+            applyRenderPolicy(*renderers.vots);
             renderers.grid = std::make_unique<render::GridRenderer>();
         }
     } catch (const std::exception& e) { // a shader that does not compile on this driver, say

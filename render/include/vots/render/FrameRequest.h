@@ -23,7 +23,7 @@ inline constexpr int DEFAULT_FRAME_SIDE = 512;
 inline constexpr int MAX_SERVED_SIDE = 4096;
 
 /// A fit made to be rendered certifies cells, not only samples: a MIP picks up the overshoot between
-/// samples, so the bound must hold there too (docs/DESIGN.md, the fit).
+/// samples, so the bound must hold there too (docs/DESIGN.md §3).
 inline constexpr fit::Certify RENDER_FIT_CERTIFY = fit::Certify::Cells;
 
 struct FrameRequest {

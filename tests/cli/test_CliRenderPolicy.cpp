@@ -1,0 +1,53 @@
+// `vots render` sets the renderer policy itself: VOTS_WALK_SHADER picks the walk stage (same image either
+// way) and a value that names none is ignored with one warning.
+#include "CliRunner.h"
+#include "TempDir.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+namespace vots::test {
+namespace {
+
+const std::string HEAD = std::string(VOTS_SHARED_DATA_DIR) + "/HeadMRVolume_48x62x42_uint8.nrrd";
+const std::string WARNING =
+    "vots: warning: VOTS_WALK_SHADER=sideways is neither fragment nor compute; choosing by renderer";
+
+/// Renders the head with VOTS_WALK_SHADER set to `shader` (unset when empty); returns the run and PNG.
+std::pair<CliResult, std::string> renderWith(const TempDir& dir, const std::string& shader) {
+    const std::string png = dir.file("head-" + (shader.empty() ? std::string("default") : shader) + ".png");
+    if (shader.empty())
+        ::unsetenv("VOTS_WALK_SHADER");
+    else
+        ::setenv("VOTS_WALK_SHADER", shader.c_str(), 1);
+    const CliResult r = runVots({"render", HEAD, "-o", png, "--size", "64x48", "--cam", "az=30,el=20"});
+    ::unsetenv("VOTS_WALK_SHADER");
+    return {r, slurpText(png)};
+}
+
+TEST(CliRenderPolicy, WalkShaderOverrideKeepsTheImageAndWarnsOnNonsense) {
+    TempDir dir;
+    const auto [plain, reference] = renderWith(dir, "");
+    if (plain.exitCode != 0 && plain.err.find("EGL") != std::string::npos)
+        GTEST_SKIP() << "no EGL context here: " << plain.err;
+    ASSERT_EQ(plain.exitCode, 0) << plain.err;
+    ASSERT_FALSE(reference.empty());
+    EXPECT_EQ(plain.err.find("VOTS_WALK_SHADER"), std::string::npos) << plain.err;
+    for (const std::string shader : {"fragment", "compute"}) {
+        const auto [run, png] = renderWith(dir, shader);
+        EXPECT_EQ(run.exitCode, 0) << shader << ": " << run.err;
+        EXPECT_EQ(png, reference) << "the " << shader << " walk drew another image";
+    }
+    const auto [nonsense, png] = renderWith(dir, "sideways");
+    EXPECT_EQ(nonsense.exitCode, 0) << nonsense.err;
+    EXPECT_EQ(png, reference);
+    const std::vector<std::string> lines = nonsense.errLines();
+    EXPECT_EQ(std::count(lines.begin(), lines.end(), WARNING), 1) << nonsense.err;
+}
+
+} // namespace
+} // namespace vots::test
