@@ -1,5 +1,4 @@
-// RenderQueue: the render thread owns the GL context; jobs wait in a queue where newer frames replace older
-// ones.
+// RenderQueue: the render thread owns the GL context; a newer frame of a client replaces its waiting one.
 #include "RenderQueue.h"
 
 #include "ForegroundActivity.h"

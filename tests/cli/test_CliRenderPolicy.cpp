@@ -1,5 +1,4 @@
-// `vots render` sets the renderer policy itself: VOTS_WALK_SHADER picks the walk stage (same image either
-// way) and a value that names none is ignored with one warning.
+// `vots render` applies VOTS_WALK_SHADER: the same image for either walk stage, one warning for nonsense.
 #include "CliRunner.h"
 #include "TempDir.h"
 

@@ -1,5 +1,4 @@
-// FrameCache: kept frames answered again, identical renders in flight shared, failures not inherited,
-// least recently used frames dropped over the budget.
+// FrameCache: frames answered again, renders in flight shared, failures not kept, LRU over the budget.
 #include "FrameCache.h"
 
 #include <gtest/gtest.h>

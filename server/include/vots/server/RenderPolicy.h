@@ -1,5 +1,4 @@
-// What the process, not the renderer, decides for a VotRenderer: the walk-shader override and thread
-// priority.
+// The renderer settings the process decides, not the renderer: walk-shader override, thread priority.
 #pragma once
 
 namespace vots::render {
