@@ -8,9 +8,7 @@
 #include <stdexcept>
 
 namespace vots::render {
-namespace {
-
-std::optional<int> readSide(std::string_view text) {
+std::optional<int> parsePlainInt(std::string_view text) {
     if (text.empty() || text.size() > 9) return std::nullopt;
     int value = 0;
     const char* end = text.data() + text.size();
@@ -19,8 +17,6 @@ std::optional<int> readSide(std::string_view text) {
     return value;
 }
 
-} // namespace
-
 SizeParse parseFrameSize(std::string_view text, int maxSide) {
     SizeParse size;
     const auto x = text.find('x');
@@ -28,8 +24,8 @@ SizeParse parseFrameSize(std::string_view text, int maxSide) {
         size.problem = SizeProblem::NotWxH;
         return size;
     }
-    const auto w = readSide(text.substr(0, x));
-    const auto h = readSide(text.substr(x + 1));
+    const auto w = parsePlainInt(text.substr(0, x));
+    const auto h = parsePlainInt(text.substr(x + 1));
     if (!w || !h) {
         size.problem = SizeProblem::NotWholeNumbers;
         return size;

@@ -3,6 +3,7 @@
 
 #include "DisplayPass.h"
 #include "FloatTarget.h"
+#include "FrameReadout.h"
 #include "GlObjects.h"
 #include "Shaders.h"
 
@@ -15,13 +16,6 @@
 #include <string>
 
 namespace vots::render {
-
-namespace {
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t0) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-} // namespace
 
 struct GridRenderer::Impl {
     GlProgram program = buildProgram(shaders::FULLSCREEN_VERT, shaders::GRID_MIP_FRAG, "grid_mip");
@@ -38,7 +32,7 @@ struct GridRenderer::Impl {
     void draw(const Camera& camera, int width, int height) {
         if (!hasData) throw RenderError("GridRenderer: render() before upload()");
         const CameraMatrices m = computeCameraMatrices(camera, bounds, width, height);
-        const auto t0 = Clock::now();
+        const auto t0 = FrameClock::now();
         stats = FrameStats{};
         target.bind(width, height);
         target.clear(-INFINITY);
@@ -122,20 +116,14 @@ void checkGridMode(RenderMode mode) {
 FloatImage GridRenderer::render(const Camera& camera, int width, int height, RenderMode mode) {
     checkGridMode(mode);
     mImpl->draw(camera, width, height);
-    const auto t0 = Clock::now();
-    FloatImage image = mImpl->target.readback();
-    mImpl->stats.readbackMs = msSince(t0);
-    return image;
+    return readFloatFrame(mImpl->target, mImpl->stats);
 }
 
 RgbaImage GridRenderer::renderRgba(const Camera& camera, int width, int height,
                                    const DisplaySettings& display, RenderMode mode) {
     checkGridMode(mode);
     mImpl->draw(camera, width, height);
-    const auto t0 = Clock::now();
-    RgbaImage image = mImpl->display.apply(mImpl->target.texture(), width, height, display);
-    mImpl->stats.readbackMs = msSince(t0);
-    return image;
+    return readDisplayedFrame(mImpl->display, mImpl->target, display, mImpl->stats);
 }
 
 } // namespace vots::render

@@ -3,6 +3,7 @@
 
 #include "DisplayPass.h"
 #include "FloatTarget.h"
+#include "FrameReadout.h"
 #include "ParallelChunks.h"
 #include "RasterPass.h"
 #include "VotBounds.h"
@@ -23,15 +24,6 @@
 #include <string_view>
 
 namespace vots::render {
-
-namespace {
-
-using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t0) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-
-} // namespace
 
 struct VotRenderer::Impl {
     WalkPass walk;
@@ -58,7 +50,7 @@ struct VotRenderer::Impl {
                 "VotRenderer draws mip or density; reference needs the volume (GridRenderer)");
         if (!hasData) throw RenderError("VotRenderer: render() before upload()");
         const CameraMatrices m = computeCameraMatrices(camera, bounds, width, height);
-        const auto t0 = Clock::now();
+        const auto t0 = FrameClock::now();
         stats = FrameStats{};
         stats.votsTotal = vots.size();
         target.bind(width, height);
@@ -185,19 +177,13 @@ const FrameStats& VotRenderer::lastFrameStats() const {
 
 FloatImage VotRenderer::render(const Camera& camera, int width, int height, RenderMode mode) {
     mImpl->draw(camera, width, height, mode);
-    const auto t0 = Clock::now();
-    FloatImage image = mImpl->target.readback();
-    mImpl->stats.readbackMs = msSince(t0);
-    return image;
+    return readFloatFrame(mImpl->target, mImpl->stats);
 }
 
 RgbaImage VotRenderer::renderRgba(const Camera& camera, int width, int height, const DisplaySettings& display,
                                   RenderMode mode) {
     mImpl->draw(camera, width, height, mode);
-    const auto t0 = Clock::now();
-    RgbaImage image = mImpl->display.apply(mImpl->target.texture(), width, height, display);
-    mImpl->stats.readbackMs = msSince(t0);
-    return image;
+    return readDisplayedFrame(mImpl->display, mImpl->target, display, mImpl->stats);
 }
 
 } // namespace vots::render

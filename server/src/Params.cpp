@@ -21,17 +21,8 @@ constexpr std::size_t MAX_CLIENT_CHARS = 64;
     throw HttpError(400, message);
 }
 
-std::optional<int> parseInt(std::string_view text) {
-    if (text.empty() || text.size() > 9) return std::nullopt;
-    int value = 0;
-    const char* end = text.data() + text.size();
-    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-    if (ec != std::errc() || ptr != end) return std::nullopt;
-    return value;
-}
-
 int parseDegree(std::string_view text) {
-    const auto degree = parseInt(text);
+    const auto degree = render::parsePlainInt(text);
     if (!degree || *degree < 0 || *degree > 3) bad("degree must be 0, 1, 2 or 3");
     return *degree;
 }

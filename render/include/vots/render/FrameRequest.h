@@ -51,6 +51,8 @@ struct SizeParse {
 
 /// Reads "WxH" (decimal integers, an optional '-', no '+' or spaces), each side in 1..maxSide.
 SizeParse parseFrameSize(std::string_view text, int maxSide);
+/// A decimal integer of at most 9 digits with nothing around it (a size side, a degree), or nullopt.
+std::optional<int> parsePlainInt(std::string_view text);
 
 /// The display window the frame gets: the request's, or one over `fullRange` in its colour map.
 DisplaySettings displayFor(const FrameRequest& frame, std::array<float, 2> fullRange);
