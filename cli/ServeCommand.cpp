@@ -102,7 +102,7 @@ void addServeCommand(CLI::App& app) {
     cmd->add_option("--data", args->data,
                     "Folder with volumes (repeatable); default ./data and ../shared/data");
     cmd->add_option("--web", args->web,
-                    "Folder with the web viewer; default ./web or the source tree's web/");
+                    "Folder with the web viewer; default ./web, else the binary's ../share/vots/web");
     cmd->add_option("--cache-dir", args->cacheDir, "Folder for fitted Vot-Spaces")->capture_default_str();
     cmd->add_option("--frame-cache-mb", args->frameCacheMb,
                     "Memory for rendered images answered again to identical /render requests (0: none)")

@@ -63,10 +63,9 @@ std::vector<fs::path> defaultDataDirs() {
 fs::path defaultWebDir() {
     std::error_code ec;
     if (fs::is_directory("web", ec)) return "web";
-#ifdef VOTS_SOURCE_DIR
-    const fs::path source = fs::path(VOTS_SOURCE_DIR) / "web";
-    if (fs::is_directory(source, ec)) return source;
-#endif
+    // Installed, bin/vots finds share/vots/web; the build tree links the same place to the source's web/.
+    const fs::path beside = fs::read_symlink("/proc/self/exe", ec).parent_path() / VOTS_WEB_DIR_FROM_BIN;
+    if (!ec && fs::is_directory(beside, ec)) return beside.lexically_normal();
     return {};
 }
 

@@ -27,7 +27,8 @@ struct ServerOptions {
 
 /// The folders `vots serve` uses when none are given: ./data and ../shared/data when present.
 std::vector<std::filesystem::path> defaultDataDirs();
-/// ./web when present, else <source tree>/web when present, else empty.
+/// ./web when present, else ../share/vots/web beside the executable when present (installed, or the
+/// build tree's link to the source's web/), else empty.
 std::filesystem::path defaultWebDir();
 
 class Server {

@@ -1,0 +1,34 @@
+# Install rules (bin/vots, share/vots/web), the build tree's matching web link, and CPack's Debian package.
+install(TARGETS vots RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+if(TARGET vots_server)
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/web/ DESTINATION ${CMAKE_INSTALL_DATADIR}/vots/web)
+  # A build-tree `vots serve` looks where an installed one does (server/src/Server.cpp, defaultWebDir);
+  # a link there to the source's web/ makes that the same rule, and edits to web/ show without a rebuild.
+  get_target_property(VOTS_CLI_BINARY_DIR vots BINARY_DIR)
+  set(VOTS_BUILD_TREE_WEB ${VOTS_CLI_BINARY_DIR}/${VOTS_WEB_DIR_FROM_BIN})
+  cmake_path(GET VOTS_BUILD_TREE_WEB PARENT_PATH VOTS_BUILD_TREE_WEB_PARENT)
+  file(MAKE_DIRECTORY ${VOTS_BUILD_TREE_WEB_PARENT})
+  file(CREATE_LINK ${PROJECT_SOURCE_DIR}/web ${VOTS_BUILD_TREE_WEB} SYMBOLIC)
+endif()
+
+set(CPACK_GENERATOR DEB)
+set(CPACK_PACKAGE_NAME vots)
+set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "Fits volumes into Vot-Spaces, renders them as MIP, serves them over HTTP")
+set(CPACK_STRIP_FILES ON)
+set(VOTS_PACKAGE_MAINTAINER "Vots maintainers <vots@localhost>" CACHE STRING "The .deb's Maintainer field")
+set(CPACK_DEBIAN_PACKAGE_MAINTAINER "${VOTS_PACKAGE_MAINTAINER}")
+set(CPACK_DEBIAN_PACKAGE_SECTION science)
+set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
+# libEGL (glvnd) alone has no driver: a vendor must be installed (Mesa: llvmpipe without a GPU).
+set(VOTS_DEB_DEPENDS "libegl-mesa0 | libegl-vendor, libgl1-mesa-dri")
+find_program(VOTS_DPKG_SHLIBDEPS dpkg-shlibdeps)
+if(VOTS_DPKG_SHLIBDEPS)
+  # The libraries the binary links, with versions, from dpkg-shlibdeps (package dpkg-dev).
+  set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+else()
+  # Debian 12's packages of what `ldd vots` lists (a build without dpkg-dev).
+  string(PREPEND VOTS_DEB_DEPENDS "libc6, libstdc++6, libgcc-s1, libdeflate0, zlib1g, libabsl20220623, "
+                                  "libepoxy0, libegl1, libcpp-httplib0.11, ")
+endif()
+set(CPACK_DEBIAN_PACKAGE_DEPENDS "${VOTS_DEB_DEPENDS}")
+include(CPack)
