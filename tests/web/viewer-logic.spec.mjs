@@ -76,6 +76,19 @@ test('a link without eps keeps the current eps on the same dataset and takes the
   assert.equal(parseHash('#dataset=head', DATASETS, current).view.eps, 5.1);
 });
 
+test('a bad eps in the link names the eps that stays: the current one on the same dataset', () => {
+  const current = { ...initialView(), dataset: 'cranium', eps: 120 };
+  const same = parseHash('#dataset=cranium&eps=abc', DATASETS, current);
+  assert.equal(same.view.eps, 120);
+  assert.match(same.problems[0], /eps 'abc' must be a positive number; using 120\./);
+  const other = parseHash('#dataset=head&eps=0', DATASETS, current);
+  assert.equal(other.view.eps, 5.1);
+  assert.match(other.problems[0], /eps '0' must be a positive number; using 5\.1\./);
+  const bare = parseHash('#dataset=bare&eps=-2', DATASETS, { ...initialView(), dataset: 'bare', eps: 3 });
+  assert.equal(bare.view.eps, 3);
+  assert.match(bare.problems[0], /using 3\./);
+});
+
 test('with no server default there is no client-made eps: the view has none and the hash says none', () => {
   const { view, problems } = parseHash('#dataset=bare', DATASETS, initialView());
   assert.deepEqual(problems, []);

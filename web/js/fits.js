@@ -43,6 +43,8 @@ export function createFits({ progress, banner, showFacts, onReady, onChange }) {
       return;
     }
     if (isFitted(dataset, eps, defaultEps)) {
+      // Supersede a fit still in flight for another eps: its reply must not swap frames away from this one.
+      token++;
       fitting = null;
       progress.box.hidden = true;
       onReady(eps);

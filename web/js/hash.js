@@ -57,9 +57,10 @@ export function parseHash(hash, datasets, current) {
   const epsText = q.get('eps') || '';
   let eps = Number(epsText.replace(/%$/, ''));
   if (epsText.endsWith('%')) eps = Number(((eps / 100) * rangeSpan(ds)).toPrecision(3));
-  const def = defaultEpsOf(ds);
+  // Without a usable eps in the link, the current eps stays on the same dataset; a new one starts at its default.
+  const keptEps = switching || !(current.eps > 0) ? defaultEpsOf(ds) : current.eps;
   if (q.has('eps') && !(eps > 0)) {
-    problems.push(`eps '${epsText}' must be a positive number; ${def === null ? 'the server sent no default' : `using ${def}`}.`);
+    problems.push(`eps '${epsText}' must be a positive number; ${keptEps === null ? 'the server sent no default' : `using ${keptEps}`}.`);
   }
 
   const degree = q.get('degree');
@@ -77,7 +78,7 @@ export function parseHash(hash, datasets, current) {
   const view = {
     dataset: ds.name,
     cam,
-    eps: eps > 0 ? eps : (switching || !(current.eps > 0) ? def : current.eps),
+    eps: eps > 0 ? eps : keptEps,
     degree: degree !== null && /^[0-3]$/.test(degree) ? Number(degree) : undefined,
     mode: MODES.includes(mode) ? mode : 'mip',
     window: winOk ? { level: win[0], width: win[1] } : { level: Number(ds.window.level), width: Number(ds.window.width) },

@@ -12,6 +12,8 @@ import { attachInput } from './input.js';
 import { statusLine } from './status.js';
 import { homeCamera, initialView } from './view.js';
 
+const EPS_KEY_SETTLE_MS = 300; // keyboard steps of the eps slider fit once it has rested this long
+
 const $ = (id) => document.getElementById(id);
 const el = {
   view: $('view'),
@@ -110,7 +112,27 @@ function applyHash() {
 
 // ---------- user actions ----------
 
+let epsSettleTimer = 0; // a keyboard step of the eps slider waiting to settle
+
+function cancelSliderSettle() {
+  clearTimeout(epsSettleTimer);
+  epsSettleTimer = 0;
+}
+
+// The eps the slider shows becomes the view's; false without a dataset.
+function readSliderEps() {
+  const ds = currentDataset();
+  if (!ds) return false;
+  view.eps = sliderToEps(ds, Number(el.epsSlider.value));
+  return true;
+}
+
 function commit({ refit = false } = {}) {
+  // A keyboard step still settling is part of what the user chose: a commit now takes it along.
+  if (epsSettleTimer) {
+    cancelSliderSettle();
+    refit = readSliderEps() || refit;
+  }
   writeHash();
   syncPanel();
   if (refit) ensureFitted();
@@ -120,6 +142,7 @@ function commit({ refit = false } = {}) {
 el.dataset.addEventListener('change', () => {
   const ds = findDataset(el.dataset.value);
   if (!ds) return;
+  cancelSliderSettle(); // a step on the old dataset's slider means nothing for the new one
   view.dataset = ds.name;
   view.cam = homeCamera(view.cam);
   view.window = { level: Number(ds.window.level), width: Number(ds.window.width) };
@@ -166,11 +189,25 @@ el.epsSlider.addEventListener('input', () => {
   if (ds) el.epsValue.textContent = epsLabel(ds, sliderToEps(ds, Number(el.epsSlider.value)));
 });
 
+// Chromium fires `change` for every arrow-key step, and each eps is a fit job the server may refuse (429) when
+// they pile up: keyboard steps fit once the slider rests. A pointer release is one deliberate choice: fit at once.
+let epsByKey = false;
+el.epsSlider.addEventListener('keydown', () => {
+  epsByKey = true;
+});
+el.epsSlider.addEventListener('pointerdown', () => {
+  epsByKey = false;
+});
 el.epsSlider.addEventListener('change', () => {
-  const ds = currentDataset();
-  if (!ds) return;
-  view.eps = sliderToEps(ds, Number(el.epsSlider.value));
-  commit({ refit: true });
+  cancelSliderSettle();
+  if (!epsByKey) {
+    if (readSliderEps()) commit({ refit: true });
+    return;
+  }
+  epsSettleTimer = setTimeout(() => {
+    epsSettleTimer = 0;
+    if (readSliderEps()) commit({ refit: true });
+  }, EPS_KEY_SETTLE_MS);
 });
 
 for (const b of el.viewButtons) {
@@ -188,6 +225,7 @@ el.projection.addEventListener('click', () => {
 // A pasted or edited link changes the hash without a reload: adopt it.
 window.addEventListener('hashchange', () => {
   if (!datasets.length || location.hash === formatHash(view)) return;
+  cancelSliderSettle(); // the link says what the view is now
   const before = view.dataset;
   applyHash();
   if (view.dataset !== before) fillPresets(el.preset, currentDataset());

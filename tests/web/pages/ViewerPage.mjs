@@ -147,6 +147,25 @@ export class ViewerPage {
     }, position);
   }
 
+  // Steps the eps slider with the keyboard as a user holding or tapping a key would: focus, then `presses`
+  // key presses `gapMs` apart (the browser itself fires `input` and `change` for each step).
+  async stepEpsSlider(presses, { key = 'ArrowRight', gapMs = 20 } = {}) {
+    await this.epsSlider.focus();
+    for (let i = 0; i < presses; i++) {
+      await this.page.keyboard.press(key);
+      if (gapMs > 0) await this.page.waitForTimeout(gapMs);
+    }
+  }
+
+  // Collects the bodies of the page's POST /api/fit requests from now on, into the returned array.
+  recordFitRequests() {
+    const fits = [];
+    this.page.on('request', (r) => {
+      if (r.url().endsWith('/api/fit') && r.method() === 'POST') fits.push(r.postDataJSON());
+    });
+    return fits;
+  }
+
   // Records in the page whether the progress bar ever becomes visible (fits on tiny data can be quick).
   async watchProgress() {
     await this.page.evaluate(() => {
