@@ -1,4 +1,4 @@
-// Arrow keys on the eps slider: a run of steps fits once, for the eps the slider comes to rest on.
+// Arrow keys on the eps slider: a run of steps fits once, for the eps the slider comes to rest on; a drag fits once.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { withPage, pickDataset } from './support/browser.mjs';
@@ -38,5 +38,26 @@ test('twenty arrow-key steps of the eps slider start one fit, for the final eps'
     assert.ok(fits[0].eps > Number(ds.defaultEps), `the eps should have grown: ${fits[0].eps}`);
     assert.deepEqual(refused, [], 'the server refused fit jobs');
     assert.ok(!(await viewer.error.isVisible()), `an error is shown: ${await viewer.error.textContent()}\n${log.join('\n')}`);
+  });
+});
+
+test('a mouse drag of the eps slider fits once, on release', async (t) => {
+  const ds = await pickDataset();
+  await withPage(t, async (page) => {
+    const viewer = new ViewerPage(page);
+    await viewer.open({ dataset: ds.name, cam: 'az=30,el=15,zoom=1,pan=0:0,proj=ortho,fov=30' });
+    await viewer.waitForIdle();
+    const position = Number(await viewer.epsSlider.inputValue());
+    const fits = viewer.recordFitRequests();
+    await viewer.dragEpsSlider(60);
+    const moved = Number(await viewer.epsSlider.inputValue());
+    assert.ok(moved > position, `the drag did not move the slider (${position} -> ${moved})`);
+    for (const start = Date.now(); fits.length === 0; await page.waitForTimeout(50)) {
+      assert.ok(Date.now() - start < 10000, 'no fit was requested within 10 s of the release');
+    }
+    await viewer.waitForIdle();
+    await page.waitForTimeout(QUIET_MS);
+    assert.equal(fits.length, 1, `expected one POST /api/fit for one drag, saw ${JSON.stringify(fits)}`);
+    assert.equal(Number((await viewer.hashParams()).eps), fits[0].eps, 'the fit is for the eps the link now holds');
   });
 });

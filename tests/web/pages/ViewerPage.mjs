@@ -157,6 +157,22 @@ export class ViewerPage {
     }
   }
 
+  // Drags the eps slider's thumb with the mouse by dx CSS pixels, in small steps like a hand, then releases.
+  async dragEpsSlider(dx, { steps = 10 } = {}) {
+    const box = await this.epsSlider.boundingBox();
+    const value = Number(await this.epsSlider.inputValue());
+    const max = Number(await this.epsSlider.getAttribute('max'));
+    const x = box.x + (box.width * value) / max;
+    const y = box.y + box.height / 2;
+    await this.page.mouse.move(x, y);
+    await this.page.mouse.down();
+    for (let i = 1; i <= steps; i++) {
+      await this.page.mouse.move(x + (dx * i) / steps, y);
+      await this.page.waitForTimeout(15);
+    }
+    await this.page.mouse.up();
+  }
+
   // Collects the bodies of the page's POST /api/fit requests from now on, into the returned array.
   recordFitRequests() {
     const fits = [];
