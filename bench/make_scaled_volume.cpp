@@ -1,5 +1,4 @@
-// Makes large test volumes: a volume resampled trilinearly onto a new grid plus Gaussian noise, streamed to
-// NRRD.
+// Makes large test volumes: a CT resampled trilinearly onto a new grid plus Gaussian noise, streamed to NRRD.
 //
 // The scale benchmarks need CTs far bigger than any we may commit, so they are generated: the same
 // arguments give the same bytes (fixed-seed std::mt19937_64 with std::normal_distribution, one draw
