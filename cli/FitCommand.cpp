@@ -5,10 +5,10 @@
 #include "RawOptions.h"
 
 #include "vots/fit/Error.h"
-#include "vots/fit/FitMeta.h"
 #include "vots/fit/Fitter.h"
 #include "vots/fit/VolumeLoad.h"
 #include "vots/fit/VotSpaceFile.h"
+#include "vots/server/FitMeta.h"
 
 #include <CLI/CLI.hpp>
 
@@ -117,8 +117,8 @@ void runFit(const FitArgs& a) {
     fit::FitResult result = fit::fitVotSpace(volume, options);
     progress.finish();
 
-    const double maxError = fit::maxStoredError(result.space);
-    fit::FitProvenance record;
+    const double maxError = server::maxStoredError(result.space);
+    server::FitProvenance record;
     std::error_code ec;
     const fs::path absolute = fs::absolute(a.input, ec);
     record.sourcePath = ec ? a.input : absolute.lexically_normal().string();
@@ -128,7 +128,7 @@ void runFit(const FitArgs& a) {
     record.options.progress = nullptr;
     record.stats = result.stats;
     record.maxError = maxError;
-    result.space.metaJson = fit::buildFitMeta(record);
+    result.space.metaJson = server::buildFitMeta(record);
     fit::writeVotSpaceFile(a.output, result.space);
 
     const std::size_t count = result.space.vots.size();

@@ -2,8 +2,8 @@
 #include "Args.h"
 #include "Commands.h"
 
-#include "vots/fit/FitMeta.h"
 #include "vots/fit/VotSpaceFile.h"
+#include "vots/server/FitMeta.h"
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -44,7 +44,7 @@ struct Summary {
     std::optional<double> perNonBackgroundCell;
 };
 
-Summary summarise(const fit::VotSpace& s, const fit::FitMetaView& meta) {
+Summary summarise(const fit::VotSpace& s, const server::FitMetaView& meta) {
     Summary sum;
     for (const fit::Vot& v : s.vots) {
         ++sum.histogram[sizeClass(v.box)];
@@ -62,7 +62,7 @@ template <class T> json orNull(const std::optional<T>& v) {
     return v ? json(*v) : json(nullptr);
 }
 
-json toJson(const std::string& path, const fit::VotSpace& s, const fit::FitMetaView& meta,
+json toJson(const std::string& path, const fit::VotSpace& s, const server::FitMetaView& meta,
             const Summary& sum) {
     json hist = json::array();
     for (std::size_t k = 0; k < SIZE_LABELS.size(); ++k)
@@ -88,7 +88,7 @@ json toJson(const std::string& path, const fit::VotSpace& s, const fit::FitMetaV
     };
 }
 
-void printText(const std::string& path, const fit::VotSpace& s, const fit::FitMetaView& meta,
+void printText(const std::string& path, const fit::VotSpace& s, const server::FitMetaView& meta,
                const Summary& sum) {
     std::ostringstream o;
     const auto row = [&o](const char* key) -> std::ostream& {
@@ -124,7 +124,7 @@ void printText(const std::string& path, const fit::VotSpace& s, const fit::FitMe
 
 void runInfo(const InfoArgs& a) {
     const fit::VotSpace space = fit::readVotSpaceFile(a.file);
-    const fit::FitMetaView meta = fit::readFitMeta(space.metaJson);
+    const server::FitMetaView meta = server::readFitMeta(space.metaJson);
     const Summary sum = summarise(space, meta);
     if (a.json)
         std::cout << toJson(a.file, space, meta, sum).dump(-1, ' ', false, json::error_handler_t::replace)

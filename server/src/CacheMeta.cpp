@@ -1,7 +1,7 @@
 // CacheMeta: the server's use of fit's meta schema, with the FitKey text as the cache key.
 #include "CacheMeta.h"
 
-#include "vots/fit/FitMeta.h"
+#include "vots/server/FitMeta.h"
 
 #include <filesystem>
 
@@ -9,24 +9,24 @@ namespace vots::server {
 
 std::string cacheMetaFor(const FitKey& key, const Dataset& dataset, const fit::FitStats& stats,
                          const fit::VotSpace& space) {
-    fit::FitProvenance fit;
+    FitProvenance fit;
     std::error_code ec;
     const auto absolute = std::filesystem::absolute(dataset.path, ec);
     fit.sourcePath = ec ? dataset.path.string() : absolute.lexically_normal().string();
     fit.volume = dataset.volume.get();
     fit.options = fitOptionsFor(key);
     fit.stats = stats;
-    fit.maxError = fit::maxStoredError(space);
+    fit.maxError = maxStoredError(space);
     fit.cacheKey = key.text();
-    return fit::buildFitMeta(fit);
+    return buildFitMeta(fit);
 }
 
 bool carriesKey(const fit::VotSpace& space, const std::string& keyText) {
-    return fit::readFitMeta(space.metaJson).cacheKey == keyText;
+    return readFitMeta(space.metaJson).cacheKey == keyText;
 }
 
 double fitSecondsOf(const fit::VotSpace& space) {
-    return fit::readFitMeta(space.metaJson).fitSeconds.value_or(0.0);
+    return readFitMeta(space.metaJson).fitSeconds.value_or(0.0);
 }
 
 } // namespace vots::server

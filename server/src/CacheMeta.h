@@ -11,7 +11,7 @@
 
 namespace vots::server {
 
-/// The meta block of a fit of `key` made of the dataset: fit::buildFitMeta with the key as cache key,
+/// The meta block of a fit of `key` made of the dataset: buildFitMeta (FitMeta.h) with the key as cache key,
 /// so `vots info` reads a cache file like a `vots fit` file.
 std::string cacheMetaFor(const FitKey& key, const Dataset& dataset, const fit::FitStats& stats,
                          const fit::VotSpace& space);

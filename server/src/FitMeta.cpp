@@ -1,5 +1,5 @@
 // Writes and reads the meta JSON block of .vots files; the key names live only here.
-#include "vots/fit/FitMeta.h"
+#include "vots/server/FitMeta.h"
 
 #include "vots/fit/VotSpace.h"
 
@@ -12,7 +12,7 @@
 #define VOTS_VERSION "unknown"
 #endif
 
-namespace vots::fit {
+namespace vots::server {
 namespace {
 
 using json = nlohmann::ordered_json;
@@ -22,11 +22,11 @@ json finiteOrNull(double v) {
     return std::isfinite(v) ? json(v) : json(nullptr);
 }
 
-const char* methodName(FitMethod m) {
-    return m == FitMethod::Paper ? "paper" : "fast";
+const char* methodName(fit::FitMethod m) {
+    return m == fit::FitMethod::Paper ? "paper" : "fast";
 }
-const char* certifyName(Certify c) {
-    return c == Certify::Cells ? "cells" : "samples";
+const char* certifyName(fit::Certify c) {
+    return c == fit::Certify::Cells ? "cells" : "samples";
 }
 
 template <class T> std::optional<T> field(const json& j, const json::json_pointer& ptr) {
@@ -45,15 +45,15 @@ template <class T> std::optional<T> field(const json& j, const json::json_pointe
 } // namespace
 
 std::string buildFitMeta(const FitProvenance& r) {
-    const Volume& vol = *r.volume;
+    const fit::Volume& vol = *r.volume;
     const auto range = vol.valueRange();
-    const FitOptions& o = r.options;
+    const fit::FitOptions& o = r.options;
     json focus = nullptr;
     if (o.focus)
         focus = {{"center_index", o.focus->centerIndex},
                  {"radius", o.focus->radius},
                  {"eps_focus", o.focus->epsFocus}};
-    const FitStats& s = r.stats;
+    const fit::FitStats& s = r.stats;
     json meta = {
         {"software", {{"name", "vots"}, {"version", VOTS_VERSION}}},
         {"source",
@@ -106,7 +106,7 @@ FitMetaView readFitMeta(const std::string& metaJson) {
     const auto epsFocus = field<double>(j, json::json_pointer("/fit/focus/eps_focus"));
     const json::json_pointer centre("/fit/focus/center_index");
     if (radius && epsFocus && j.contains(centre) && j.at(centre).is_array() && j.at(centre).size() == 3) {
-        FocusRegion f;
+        fit::FocusRegion f;
         for (std::size_t a = 0; a < 3; ++a) {
             if (!j.at(centre)[a].is_number()) return view;
             f.centerIndex[a] = j.at(centre)[a].get<double>();
@@ -118,11 +118,11 @@ FitMetaView readFitMeta(const std::string& metaJson) {
     return view;
 }
 
-double maxStoredError(const VotSpace& space) {
+double maxStoredError(const fit::VotSpace& space) {
     double maxError = 0.0;
-    for (const Vot& v : space.vots)
+    for (const fit::Vot& v : space.vots)
         maxError = std::max(maxError, double{v.err});
     return maxError;
 }
 
-} // namespace vots::fit
+} // namespace vots::server
