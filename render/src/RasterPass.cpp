@@ -215,7 +215,6 @@ void RasterPass::draw(RenderMode mode, const CameraMatrices& m, int width, int h
         drawAll(program, vots.size(), stats);
     }
     glDisable(GL_BLEND);
-    glDisable(GL_CULL_FACE);
 }
 
 } // namespace vots::render
