@@ -6,11 +6,13 @@
 #include "cubic_ray_max.glsl"
 
 // Buffer textures, not 3D textures or SSBOs: llvmpipe gathers texel fetches for all lanes at once.
-// R16UI per cell, brick by brick (PalettedCells, VotWalkGrid.h): an index into the brick's palette.
-layout(binding = WALK_CELL_LOCAL_UNIT) uniform usamplerBuffer uCellLocal;
-// RGBA32F per brick, x fastest: max upperBound of the Vots touching it (or -inf); the max of that over
-// every brick this view's rays can reach from it (BrickAhead.h); the bits of its first palette index.
-layout(binding = WALK_BRICK_MAX_UNIT) uniform samplerBuffer uBrickMax;
+// RGBA32UI: the cell tables of bricks with more than one block (PalettedCells, VotWalkGrid.h), each
+// cell's index into its brick's palette in 1 to 16 bits.
+layout(binding = WALK_CELL_TABLE_UNIT) uniform usamplerBuffer uCellTable;
+// RGBA32UI per brick, x fastest: the bits of the max upperBound of the Vots touching it (or -inf) and
+// of the max of that over every brick this view's rays can reach from it (BrickAhead.h); its first
+// palette index; its cell table's first word << CELL_TABLE_CODE_BITS | width code (0: no table).
+layout(binding = WALK_BRICK_MAX_UNIT) uniform usamplerBuffer uBrickMax;
 // RGBA32UI per palette entry, for the block it names: a box [lo, hi) in cells, 16 bits each
 // (lo.x | lo.y << 16, lo.z | hi.x << 16, hi.y | hi.z << 16), and the bound's bits (-inf for empty
 // blocks). A Vot's box here is the box to step over when it is culled: its own, or its skip box once
@@ -66,9 +68,9 @@ void walkStep(const bool mayEvaluate, inout ivec3 cell, inout float best, inout 
     ivec3 lo, hi; // the block of cells [lo, hi) the ray leaves next; it contains `cell`
     ivec3 brick = cell >> uBrickShift;
     int brickIndex = brick.x + uBricks.x * (brick.y + uBricks.y * brick.z);
-    vec4 brickBounds = texelFetch(uBrickMax, brickIndex);
-    float brickMax = brickBounds.x;
-    if (uCull != 0 && brickBounds.y <= best) { // nothing further along can raise the max
+    uvec4 brickRecord = texelFetch(uBrickMax, brickIndex);
+    float brickMax = uintBitsToFloat(brickRecord.x);
+    if (uCull != 0 && uintBitsToFloat(brickRecord.y) <= best) { // nothing further along can raise the max
         walking = false;
         return;
     }
@@ -78,8 +80,13 @@ void walkStep(const bool mayEvaluate, inout ivec3 cell, inout float best, inout 
     bool skipBrick = brickMax == NEG_INF || (uCull != 0 && brickMax <= best);
     ivec3 local = cell - (brick << uBrickShift);
     int inBrick = (((local.z << uBrickShift) | local.y) << uBrickShift) | local.x;
-    uint paletteIndex = texelFetch(uCellLocal, skipBrick ? 0 : (brickIndex << (3 * uBrickShift)) | inBrick).r;
-    int entry = skipBrick ? 0 : int(floatBitsToUint(brickBounds.z) + paletteIndex);
+    uint code = brickRecord.w & ((1u << CELL_TABLE_CODE_BITS) - 1u);
+    uint bitsLog = max(code, 1u) - 1u; // a cell's index has 2^bitsLog bits
+    uint bit = uint(inBrick) << bitsLog;
+    uint word = (brickRecord.w >> CELL_TABLE_CODE_BITS) + (bit >> 5);
+    uvec4 cellTexel = texelFetch(uCellTable, skipBrick || code == 0u ? 0 : int(word >> 2));
+    uint paletteIndex = code == 0u ? 0u : bitfieldExtract(cellTexel[word & 3u], int(bit & 31u), 1 << bitsLog);
+    int entry = skipBrick ? 0 : int(brickRecord.z + paletteIndex);
     uvec4 box = texelFetch(uVotBox, entry);
     float bound = uintBitsToFloat(box.w);
     bool stepOver = bound == NEG_INF || (uCull != 0 && bound <= best); // -inf: an empty block

@@ -1,6 +1,7 @@
 // The numbers C++ and GLSL must agree on; vots_embed_shaders writes them into contract.glsl for the shaders.
 #pragma once
 
+#include "VotWalkGrid.h"
 #include "WalkRecord.h"
 
 #include "vots/fit/Monomials.h"
@@ -21,7 +22,7 @@ inline constexpr float BOX_SLACK = 1e-3f;
 inline constexpr float CLIP_SLACK = 5e-5f;
 
 /// Texture units of the walk's buffer textures and the image unit of the compute walk's target.
-inline constexpr int WALK_CELL_LOCAL_UNIT = 0;
+inline constexpr int WALK_CELL_TABLE_UNIT = 0;
 inline constexpr int WALK_BRICK_MAX_UNIT = 1;
 inline constexpr int WALK_VOT_BOX_UNIT = 2;
 inline constexpr int WALK_RECORD_UNIT = 3;
@@ -41,14 +42,15 @@ struct ContractFloat {
     float value;
 };
 
-inline constexpr std::array<ContractInt, 13> CONTRACT_INTS{{
+inline constexpr std::array<ContractInt, 14> CONTRACT_INTS{{
     {"TAYLOR_TERMS", static_cast<long long>(fit::MONOMIAL_COUNT)},
     {"VOT_BUFFER_BINDING", VOT_BUFFER_BINDING},
     {"INDEX_BUFFER_BINDING", INDEX_BUFFER_BINDING},
     {"VOT_TEXTURE_UNIT", VOT_TEXTURE_UNIT},
     {"VOT_TEXELS", VOT_TEXELS},
     {"WALK_RECORD_TEXELS", static_cast<long long>(WALK_RECORD_TEXELS)},
-    {"WALK_CELL_LOCAL_UNIT", WALK_CELL_LOCAL_UNIT},
+    {"WALK_CELL_TABLE_UNIT", WALK_CELL_TABLE_UNIT},
+    {"CELL_TABLE_CODE_BITS", CELL_TABLE_CODE_BITS},
     {"WALK_BRICK_MAX_UNIT", WALK_BRICK_MAX_UNIT},
     {"WALK_VOT_BOX_UNIT", WALK_VOT_BOX_UNIT},
     {"WALK_RECORD_UNIT", WALK_RECORD_UNIT},

@@ -186,22 +186,22 @@ PalettedCells palettedCells(const VotWalkGrid& grid) {
     const int side = 1 << grid.brickShift;
     const std::size_t brickCells = std::size_t{1} << (3 * grid.brickShift);
     const std::size_t brickCount = grid.brickMax.size();
-    PalettedCells out;
-    out.local.assign(brickCount * brickCells, 0);
     std::uint32_t ids = 1;
     for (const std::uint32_t id : grid.cellVot)
         ids = std::max(ids, id + 1);
     const std::size_t nx = static_cast<std::size_t>(grid.cells[0]);
     const std::size_t nxy = nx * static_cast<std::size_t>(grid.cells[1]);
-    std::vector<std::vector<std::uint32_t>> palettes(brickCount);
+    std::vector<std::vector<std::uint32_t>> palettes(brickCount), tables(brickCount);
+    std::vector<std::uint32_t> codes(brickCount, 0);
     // Split by cells so that every core gets a share of the bricks (parallelChunks splits only large counts).
-    parallelChunks(out.local.size(), [&](std::size_t firstCell, std::size_t lastCell) {
+    parallelChunks(brickCount * brickCells, [&](std::size_t firstCell, std::size_t lastCell) {
         // Which brick last gave each id a palette entry, and that entry's index in the brick's palette.
         std::vector<std::uint32_t> seenInBrick(ids, UINT32_MAX);
         std::vector<std::uint16_t> localOf(ids, 0);
+        std::vector<std::uint16_t> local(brickCells);
         for (std::size_t brick = firstCell / brickCells; brick < lastCell / brickCells; ++brick) {
             std::vector<std::uint32_t>& palette = palettes[brick];
-            std::uint16_t* local = &out.local[brick * brickCells];
+            std::fill(local.begin(), local.end(), std::uint16_t{0});
             const int x0 = static_cast<int>(brick % static_cast<std::size_t>(grid.bricks[0])) * side;
             const std::size_t yz = brick / static_cast<std::size_t>(grid.bricks[0]);
             const int y0 = static_cast<int>(yz % static_cast<std::size_t>(grid.bricks[1])) * side;
@@ -211,9 +211,9 @@ PalettedCells palettedCells(const VotWalkGrid& grid) {
                     const std::size_t row =
                         static_cast<std::size_t>(z) * nxy + static_cast<std::size_t>(y) * nx;
                     std::uint16_t* localRow =
-                        local + (static_cast<std::size_t>(z - z0) * static_cast<std::size_t>(side) +
-                                 static_cast<std::size_t>(y - y0)) *
-                                    static_cast<std::size_t>(side);
+                        local.data() + (static_cast<std::size_t>(z - z0) * static_cast<std::size_t>(side) +
+                                        static_cast<std::size_t>(y - y0)) *
+                                           static_cast<std::size_t>(side);
                     for (int x = x0; x < std::min(x0 + side, grid.cells[0]); ++x) {
                         const std::uint32_t id = grid.cellVot[row + static_cast<std::size_t>(x)];
                         if (seenInBrick[id] != brick) {
@@ -224,14 +224,36 @@ PalettedCells palettedCells(const VotWalkGrid& grid) {
                         localRow[x - x0] = localOf[id];
                     }
                 }
+            if (palette.size() <= 1) continue; // one block: the brick needs no table
+            std::uint32_t code = 1;            // bits = 2^(code - 1)
+            while ((std::size_t{1} << (std::size_t{1} << (code - 1))) < palette.size())
+                ++code;
+            codes[brick] = code;
+            const std::size_t bits = std::size_t{1} << (code - 1);
+            std::vector<std::uint32_t>& table = tables[brick];
+            table.assign((brickCells * bits / 32 + 3) / 4 * 4, 0u);
+            for (std::size_t i = 0; i < brickCells; ++i)
+                table[i * bits / 32] |= std::uint32_t{local[i]} << (i * bits % 32);
         }
     });
+    PalettedCells out;
     out.paletteStart.resize(brickCount);
+    out.cellTable.resize(brickCount);
+    std::size_t words = 0;
+    for (std::size_t brick = 0; brick < brickCount; ++brick)
+        words += tables[brick].size();
+    out.cellWords.reserve(std::max<std::size_t>(words, 4));
     for (std::size_t brick = 0; brick < brickCount; ++brick) {
         out.paletteStart[brick] = static_cast<std::uint32_t>(out.palette.size());
         out.palette.insert(out.palette.end(), palettes[brick].begin(), palettes[brick].end());
+        // Offsets past MAX_CELL_WORDS wrap; the caller checks cellWords.size() against it.
+        out.cellTable[brick] =
+            static_cast<std::uint32_t>(out.cellWords.size() << CELL_TABLE_CODE_BITS) | codes[brick];
+        out.cellWords.insert(out.cellWords.end(), tables[brick].begin(), tables[brick].end());
+        std::vector<std::uint32_t>().swap(tables[brick]);
     }
     if (out.palette.empty()) out.palette.push_back(0); // a buffer texture needs a texel
+    if (out.cellWords.empty()) out.cellWords.assign(4, 0u);
     return out;
 }
 

@@ -4,6 +4,7 @@
 #include "vots/render/GpuLayout.h"
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -45,16 +46,38 @@ struct VotWalkGrid {
                                         // crosses empty space in a few steps
 };
 
-/// The cell grid as vot_walk.glsl reads it, in half the bytes of cellVot: each brick has a palette of
-/// the block ids its cells name, and each cell holds its index into that palette. Cells are stored
-/// brick by brick (bricks x fastest, cells x fastest inside a brick, padded to whole bricks), so a ray
-/// stays in few cache lines; the walk waits on these reads more than on anything else.
+/// The cell grid as vot_walk.glsl reads it, in a size that follows the Vots rather than the cells: each
+/// brick has a palette of the block ids its cells name; a brick whose cells all name one block (inside
+/// one Vot, or background) stores nothing more, and a mixed brick stores each cell's index into its
+/// palette in as few bits as the palette needs (1, 2, 4, 8 or 16). A mixed brick's cells are packed x
+/// fastest, cell i at bit i * bits of its table, so that a ray stays in few cache lines; the walk waits
+/// on these reads more than on anything else.
 struct PalettedCells {
-    std::vector<std::uint16_t> local;        // per cell: index into its brick's palette (a brick has 4096
-                                             // cells at most, so 16 bits always do)
+    std::vector<std::uint32_t> cellWords;    // the mixed bricks' tables, each padded to a multiple of 4
+                                             // words (one RGBA32UI texel)
+    std::vector<std::uint32_t> cellTable;    // per brick: word offset << 3 | width code (cellTableOf)
     std::vector<std::uint32_t> palette;      // block ids (as cellVot), brick after brick
     std::vector<std::uint32_t> paletteStart; // per brick: the index of its first palette entry
 };
+
+/// A brick's cellTable word: its table's first word in cellWords and a width code, 0 for a brick with
+/// one palette entry (no table), k for 2^(k-1) bits per cell.
+inline constexpr int CELL_TABLE_CODE_BITS = 3;
+/// Offsets stay below 2^29 words (2 GiB) so that offset and code fit 32 bits.
+inline constexpr std::size_t MAX_CELL_WORDS = std::size_t{1} << (32 - CELL_TABLE_CODE_BITS);
+
+/// The palette index of cell `inBrick` (x fastest inside the brick) of brick `brick`, as the shader
+/// decodes it.
+inline std::uint32_t paletteIndexOf(const PalettedCells& cells, std::size_t brick, std::size_t inBrick) {
+    const std::uint32_t table = cells.cellTable[brick];
+    const std::uint32_t code = table & ((1u << CELL_TABLE_CODE_BITS) - 1);
+    if (code == 0) return 0;
+    const std::size_t bits = std::size_t{1} << (code - 1);
+    const std::size_t bit = inBrick * bits;
+    const std::uint32_t word = cells.cellWords[(table >> CELL_TABLE_CODE_BITS) + bit / 32];
+    return (word >> (bit % 32)) & ((1u << bits) - 1);
+}
+
 PalettedCells palettedCells(const VotWalkGrid& grid);
 
 /// Builds the grid for Vots (in their GPU order) on a grid of `dims` points. Returns nullopt, with the

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <bit>
 #include <cstring>
 #include <iostream>
 
@@ -139,8 +140,9 @@ std::optional<WalkPass::Grid> WalkPass::gridFor(const std::vector<GpuVot>& vots,
     PalettedCells cells = palettedCells(*grid);
     GLint maxTexels = 0;
     glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
-    const std::size_t cellCount = grid->brickMax.size() << (3 * grid->brickShift);
-    if (std::max(cellCount, WALK_RECORD_TEXELS * cells.palette.size()) >= static_cast<std::size_t>(maxTexels))
+    const std::size_t cellTexels = cells.cellWords.size() / 4;
+    if (cells.cellWords.size() >= MAX_CELL_WORDS ||
+        std::max(cellTexels, WALK_RECORD_TEXELS * cells.palette.size()) >= static_cast<std::size_t>(maxTexels))
         return std::nullopt;
     return Grid{std::move(*grid), std::move(cells)};
 }
@@ -148,9 +150,9 @@ std::optional<WalkPass::Grid> WalkPass::gridFor(const std::vector<GpuVot>& vots,
 void WalkPass::upload(std::optional<Grid>&& walk, const std::vector<GpuVot>& vots,
                       const std::uint32_t* votRecords) {
     mWalkable = false;
-    for (GlTexture* t : {&mCellLocal, &mBrickMax, &mVotBox, &mWalkRecord})
+    for (GlTexture* t : {&mCellTable, &mBrickMax, &mVotBox, &mWalkRecord})
         t->reset();
-    for (GlBuffer* b : {&mCellLocalBuffer, &mBrickMaxBuffer, &mVotBoxBuffer, &mWalkRecordBuffer})
+    for (GlBuffer* b : {&mCellTableBuffer, &mBrickMaxBuffer, &mVotBoxBuffer, &mWalkRecordBuffer})
         b->reset();
     if (!walk) return;
     VotWalkGrid* grid = &walk->grid;
@@ -183,13 +185,16 @@ void WalkPass::upload(std::optional<Grid>&& walk, const std::vector<GpuVot>& vot
         texture = createTexture(GL_TEXTURE_BUFFER);
         glTextureBuffer(texture.get(), format, buffer.get());
     };
-    bufferTexture(mCellLocalBuffer, mCellLocal, GL_R16UI, cells.local.data(),
-                  cells.local.size() * sizeof(std::uint16_t));
+    bufferTexture(mCellTableBuffer, mCellTable, GL_RGBA32UI, cells.cellWords.data(),
+                  cells.cellWords.size() * sizeof(std::uint32_t));
+    std::vector<std::uint32_t>().swap(cells.cellWords);
     mBrickMaxima = grid->brickMax;
     mPaletteStart = std::move(cells.paletteStart);
+    mCellTableOf = std::move(cells.cellTable);
     mPalette = std::move(cells.palette);
     // Written by every frame before it draws: the bounds ahead depend on the view.
-    bufferTexture(mBrickMaxBuffer, mBrickMax, GL_RGBA32F, nullptr, 4 * mBrickMaxima.size() * sizeof(float));
+    bufferTexture(mBrickMaxBuffer, mBrickMax, GL_RGBA32UI, nullptr,
+                  4 * mBrickMaxima.size() * sizeof(std::uint32_t));
     bufferTexture(mVotBoxBuffer, mVotBox, GL_RGBA32UI, boxes.data(), boxes.size() * sizeof(std::uint32_t));
     // Walk records by palette entry, like the box table: a step that evaluates reads the record straight
     // after the box, with no lookup of the Vot's index between them; a Vot in two bricks has two copies,
@@ -243,15 +248,18 @@ void WalkPass::draw(const CameraMatrices& m, int width, int height, FloatTarget&
     // The bounds ahead depend on the view: a few thousand bricks, recomputed per frame.
     const std::vector<float> ahead =
         brickMaximaAhead({mCells, mBricks, WALK_BRICK_SHIFT}, mBrickMaxima, rayFamilyOf(m.clipToIndex));
-    std::vector<float> brickBounds(4 * ahead.size()); // (bound, bound ahead, palette start, 0) per brick
+    // (bound, bound ahead, palette start, cell table) per brick
+    std::vector<std::uint32_t> brickBounds(4 * ahead.size());
     for (std::size_t i = 0; i < ahead.size(); ++i) {
-        brickBounds[4 * i] = mBrickMaxima[i];
-        brickBounds[4 * i + 1] = ahead[i];
-        std::memcpy(&brickBounds[4 * i + 2], &mPaletteStart[i], sizeof(float));
+        brickBounds[4 * i] = std::bit_cast<std::uint32_t>(mBrickMaxima[i]);
+        brickBounds[4 * i + 1] = std::bit_cast<std::uint32_t>(ahead[i]);
+        brickBounds[4 * i + 2] = mPaletteStart[i];
+        brickBounds[4 * i + 3] = mCellTableOf[i];
     }
     glNamedBufferSubData(mBrickMaxBuffer.get(), 0,
-                         static_cast<GLsizeiptr>(brickBounds.size() * sizeof(float)), brickBounds.data());
-    glBindTextureUnit(WALK_CELL_LOCAL_UNIT, mCellLocal.get());
+                         static_cast<GLsizeiptr>(brickBounds.size() * sizeof(std::uint32_t)),
+                         brickBounds.data());
+    glBindTextureUnit(WALK_CELL_TABLE_UNIT, mCellTable.get());
     glBindTextureUnit(WALK_BRICK_MAX_UNIT, mBrickMax.get());
     glBindTextureUnit(WALK_VOT_BOX_UNIT, mVotBox.get());
     glBindTextureUnit(WALK_RECORD_UNIT, mWalkRecord.get());

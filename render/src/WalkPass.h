@@ -23,8 +23,8 @@
 namespace vots::render {
 
 /// Each pixel walks its ray front to back through a grid holding, per cell, the index of the block
-/// covering it (a Vot, or an empty block of background), paletted per brick of 16^3 cells, with each
-/// brick's largest Vot bound; see VotRenderer.h for what is stepped over. Lives on the GL context's
+/// covering it (a Vot, or an empty block of background), paletted per brick of 16^3 cells and stored
+/// only for bricks of more than one block (PalettedCells), with each brick's largest Vot bound; see VotRenderer.h for what is stepped over. Lives on the GL context's
 /// thread, like its owner VotRenderer.
 class WalkPass {
 public:
@@ -83,16 +83,17 @@ private:
     std::function<void()> mBackgroundThreadStart;
     GlVertexArray mVertexArray = createVertexArray();
     // Buffer textures over their own buffers.
-    GlBuffer mCellLocalBuffer, mBrickMaxBuffer, mVotBoxBuffer, mWalkRecordBuffer;
-    GlTexture mCellLocal;  // R16UI per cell, brick by brick: index into the brick's palette
-    GlTexture mBrickMax;   // RGBA32F per brick, x fastest: its bound, the bound ahead for this frame, and
-                           // the bits of its first palette index
+    GlBuffer mCellTableBuffer, mBrickMaxBuffer, mVotBoxBuffer, mWalkRecordBuffer;
+    GlTexture mCellTable;  // RGBA32UI: the mixed bricks' packed cell tables (PalettedCells::cellWords)
+    GlTexture mBrickMax;   // RGBA32UI per brick, x fastest: the bits of its bound and of the bound ahead
+                           // for this frame, its first palette index, its cell table word
     GlTexture mWalkRecord; // RGBA32UI, WALK_RECORD_TEXELS per palette entry (WalkRecord.h): the record of
                            // the Vot it names, zeros for an empty block
     GlTexture mVotBox;     // RGBA32UI per palette entry: the packed box to step over and the bound of the
                            // block the entry names (each brick has its own copies of its blocks' boxes)
     std::vector<float> mBrickMaxima;          // per brick: max upperBound of the Vots touching it
     std::vector<std::uint32_t> mPaletteStart; // per brick: its first palette index
+    std::vector<std::uint32_t> mCellTableOf;  // per brick: PalettedCells::cellTable
     std::vector<std::uint32_t> mPalette;      // the palette's block ids, to rewrite mVotBox with skip boxes
     std::array<int, 3> mCells{0, 0, 0};
     std::array<int, 3> mBricks{0, 0, 0};

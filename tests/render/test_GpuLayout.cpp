@@ -95,7 +95,7 @@ TEST(GpuLayout, LinkedProgramsUseTheContractsUnits) {
     const GlProgram fragmentWalk = buildProgram(shaders::WALK_BOX_VERT, shaders::VOT_WALK_FRAG, "walk test");
     const GlProgram computeWalk = buildComputeProgram(shaders::VOT_WALK_COMP, "compute walk test");
     for (const GlProgram* walk : {&fragmentWalk, &computeWalk}) {
-        EXPECT_EQ(samplerUnit(*walk, "uCellLocal"), WALK_CELL_LOCAL_UNIT);
+        EXPECT_EQ(samplerUnit(*walk, "uCellTable"), WALK_CELL_TABLE_UNIT);
         EXPECT_EQ(samplerUnit(*walk, "uBrickMax"), WALK_BRICK_MAX_UNIT);
         EXPECT_EQ(samplerUnit(*walk, "uVotBox"), WALK_VOT_BOX_UNIT);
         EXPECT_EQ(samplerUnit(*walk, "uWalkRecord"), WALK_RECORD_UNIT);

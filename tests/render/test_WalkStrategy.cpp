@@ -316,24 +316,37 @@ TEST(WalkStrategy, GridCoversEveryCellOnce) {
     };
     expectMaxima(grid->brickMax, grid->bricks, 8);
 
-    // What the shader reads: per cell, brick by brick, an index into its brick's palette of ids.
+    // What the shader reads: per cell, brick by brick, an index into its brick's palette of ids, kept
+    // only for bricks of more than one block, in as few bits as their palette needs.
     const PalettedCells cells = palettedCells(*grid);
     ASSERT_EQ(cells.paletteStart.size(), grid->brickMax.size());
-    ASSERT_EQ(cells.local.size(), grid->brickMax.size() * 512);
+    ASSERT_EQ(cells.cellTable.size(), grid->brickMax.size());
+    std::size_t tableWords = 0;
     for (std::size_t brick = 0; brick < cells.paletteStart.size(); ++brick) {
         const std::uint32_t start = cells.paletteStart[brick];
         const std::uint32_t end = brick + 1 < cells.paletteStart.size() ? cells.paletteStart[brick + 1]
                                                                         : std::uint32_t(cells.palette.size());
         const std::set<std::uint32_t> distinct(cells.palette.begin() + start, cells.palette.begin() + end);
         EXPECT_EQ(distinct.size(), end - start) << "brick " << brick << " lists an id twice";
+        const std::uint32_t code = cells.cellTable[brick] & ((1u << CELL_TABLE_CODE_BITS) - 1);
+        if (end - start == 1) {
+            EXPECT_EQ(code, 0u) << "brick " << brick << " of one block has a cell table";
+        } else {
+            const std::uint32_t bits = 1u << (code - 1);
+            EXPECT_GE(std::uint64_t{1} << bits, end - start) << "brick " << brick << ": too few bits";
+            EXPECT_LT(std::uint64_t{1} << (bits / 2), end - start) << "brick " << brick << ": more bits than needed";
+            EXPECT_EQ(cells.cellTable[brick] >> CELL_TABLE_CODE_BITS, tableWords) << "brick " << brick;
+            tableWords += (512 * bits / 32 + 3) / 4 * 4;
+        }
     }
+    EXPECT_EQ(std::max<std::size_t>(tableWords, 4), cells.cellWords.size());
     for (int z = 0; z < 20; ++z)
         for (int y = 0; y < 20; ++y)
             for (int x = 0; x < 20; ++x) {
                 const std::size_t brick = std::size_t(x / 8 + 3 * (y / 8 + 3 * (z / 8)));
                 const std::size_t inBrick = std::size_t(x % 8 + 8 * (y % 8 + 8 * (z % 8)));
                 const std::uint32_t id =
-                    cells.palette[cells.paletteStart[brick] + cells.local[brick * 512 + inBrick]];
+                    cells.palette[cells.paletteStart[brick] + paletteIndexOf(cells, brick, inBrick)];
                 ASSERT_EQ(id, grid->cellVot[static_cast<std::size_t>((z * 20 + y) * 20 + x)])
                     << "cell " << x << "," << y << "," << z;
             }
