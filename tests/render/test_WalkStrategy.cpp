@@ -334,7 +334,8 @@ TEST(WalkStrategy, GridCoversEveryCellOnce) {
         } else {
             const std::uint32_t bits = 1u << (code - 1);
             EXPECT_GE(std::uint64_t{1} << bits, end - start) << "brick " << brick << ": too few bits";
-            EXPECT_LT(std::uint64_t{1} << (bits / 2), end - start) << "brick " << brick << ": more bits than needed";
+            EXPECT_LT(std::uint64_t{1} << (bits / 2), end - start)
+                << "brick " << brick << ": more bits than needed";
             EXPECT_EQ(cells.cellTable[brick] >> CELL_TABLE_CODE_BITS, tableWords) << "brick " << brick;
             tableWords += (512 * bits / 32 + 3) / 4 * 4;
         }
