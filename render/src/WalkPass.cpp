@@ -11,9 +11,9 @@
 #include "vots/render/Error.h"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
-#include <bit>
 #include <cstring>
 #include <iostream>
 
@@ -142,7 +142,8 @@ std::optional<WalkPass::Grid> WalkPass::gridFor(const std::vector<GpuVot>& vots,
     glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
     const std::size_t cellTexels = cells.cellWords.size() / 4;
     if (cells.cellWords.size() >= MAX_CELL_WORDS ||
-        std::max(cellTexels, WALK_RECORD_TEXELS * cells.palette.size()) >= static_cast<std::size_t>(maxTexels))
+        std::max(cellTexels, WALK_RECORD_TEXELS * cells.palette.size()) >=
+            static_cast<std::size_t>(maxTexels))
         return std::nullopt;
     return Grid{std::move(*grid), std::move(cells)};
 }

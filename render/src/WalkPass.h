@@ -24,8 +24,8 @@ namespace vots::render {
 
 /// Each pixel walks its ray front to back through a grid holding, per cell, the index of the block
 /// covering it (a Vot, or an empty block of background), paletted per brick of 16^3 cells and stored
-/// only for bricks of more than one block (PalettedCells), with each brick's largest Vot bound; see VotRenderer.h for what is stepped over. Lives on the GL context's
-/// thread, like its owner VotRenderer.
+/// only for bricks of more than one block (PalettedCells), with each brick's largest Vot bound; see
+/// VotRenderer.h for what is stepped over. Lives on the GL context's thread, like its owner VotRenderer.
 class WalkPass {
 public:
     using Shader = VotRenderer::WalkShader;
