@@ -170,6 +170,25 @@ void saveForInspection(const render::FloatImage& image, const std::string& name)
                      render::applyDisplay(image, render::windowForRange(lo, hi)));
 }
 
+ImageComparison compareImages(const render::FloatImage& a, const render::FloatImage& b, double tolerance) {
+    ImageComparison c;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+        const float x = a.pixels[i], y = b.pixels[i];
+        if (x == y || (std::isnan(x) && std::isnan(y))) {
+            ++c.bitIdentical;
+            continue;
+        }
+        if (std::isfinite(x) != std::isfinite(y)) {
+            ++c.finiteMismatch;
+            continue;
+        }
+        const double d = std::abs(double(x) - y);
+        c.worst = std::max(c.worst, d);
+        if (d > tolerance) ++c.beyondTolerance;
+    }
+    return c;
+}
+
 } // namespace vots::test
 
 int main(int argc, char** argv) {

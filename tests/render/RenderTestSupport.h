@@ -10,6 +10,7 @@
 #include "SampleVolume.h" // sampleVolume(), shared with the other modules' tests
 
 #include <array>
+#include <cstddef>
 #include <functional>
 #include <random>
 #include <string>
@@ -42,6 +43,15 @@ fit::VotSpace polynomialVotSpace(const Polynomial& p, const std::array<int, 3>& 
 /// Max of f along a pixel's ray within the index box [0, dims-1], by dense sampling on the CPU (double).
 double cpuRayMax(const render::CameraMatrices& m, const std::array<int, 3>& dims, int width, int height,
                  int px, int py, const std::function<double(double, double, double)>& f, int samples);
+
+/// How two float images of one size differ, pixel by pixel.
+struct ImageComparison {
+    std::size_t finiteMismatch = 0; // background (non-finite) in one image only
+    std::size_t beyondTolerance = 0;
+    std::size_t bitIdentical = 0;
+    double worst = 0; // the largest difference of pixels finite in both
+};
+ImageComparison compareImages(const render::FloatImage& a, const render::FloatImage& b, double tolerance);
 
 /// Writes a PNG under /tmp/vots_render_tests/ for looking at (grey, full range of finite values).
 void saveForInspection(const render::FloatImage& image, const std::string& name);

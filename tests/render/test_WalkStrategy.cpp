@@ -21,32 +21,6 @@ namespace {
 
 using Strategy = VotRenderer::Strategy;
 
-struct Comparison {
-    std::size_t finiteMismatch = 0; // background in one image only
-    std::size_t beyondTolerance = 0;
-    std::size_t bitIdentical = 0;
-    double worst = 0;
-};
-
-Comparison compare(const FloatImage& a, const FloatImage& b, double tolerance) {
-    Comparison c;
-    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
-        const float x = a.pixels[i], y = b.pixels[i];
-        if (x == y || (std::isnan(x) && std::isnan(y))) {
-            ++c.bitIdentical;
-            continue;
-        }
-        if (std::isfinite(x) != std::isfinite(y)) {
-            ++c.finiteMismatch;
-            continue;
-        }
-        const double d = std::abs(double(x) - y);
-        c.worst = std::max(c.worst, d);
-        if (d > tolerance) ++c.beyondTolerance;
-    }
-    return c;
-}
-
 // The most any walk record of the space strays from its Vot (WalkRecord.h).
 double largestRecordError(const fit::VotSpace& space) {
     double largest = 0.0;
@@ -98,7 +72,7 @@ TEST(WalkStrategy, MatchesRasterOnFittedCt) {
         const Camera cam = parseCamera(text);
         const FloatImage a = walk.render(cam, 200, 160);
         const FloatImage b = raster.render(cam, 200, 160);
-        const Comparison c = compare(a, b, tiny);
+        const test::ImageComparison c = test::compareImages(a, b, tiny);
         // Both evaluate each Vot with the same analytic maximum, so beyond the records' rounding they
         // can differ only where a ray grazes a face shared by two Vots (within 5e-5 voxel): Raster's
         // slack evaluates both, the walk one of them.
@@ -150,7 +124,7 @@ TEST(WalkStrategy, ComputeAndFragmentShadersGiveTheSameImage) {
             for (float v : a.pixels)
                 finite += std::isfinite(v) ? 1 : 0;
             EXPECT_GT(finite, a.pixels.size() / 10) << text; // not a blank image
-            const Comparison c = compare(a, b, 0.0);
+            const test::ImageComparison c = test::compareImages(a, b, 0.0);
             EXPECT_EQ(c.finiteMismatch + c.beyondTolerance, 0u) << text << ", worst " << c.worst;
         }
     }
@@ -221,7 +195,8 @@ TEST(WalkStrategy, OffCentreExpansionPointsRenderTheSamePolynomial) {
     for (const char* text : {"anterior", "az=30,el=20", "az=-50,el=-30,zoom=1.4,proj=persp,fov=40"}) {
         const Camera cam = parseCamera(text);
         const FloatImage a = centred.render(cam, 64, 48), b = offCentre.render(cam, 64, 48);
-        const Comparison c = compare(a, b, 1e-3 + 2.0 * recordError); // float rounding at values ~100
+        const test::ImageComparison c =
+            test::compareImages(a, b, 1e-3 + 2.0 * recordError); // float rounding at values ~100
         EXPECT_EQ(c.finiteMismatch + c.beyondTolerance, 0u) << text << ", worst " << c.worst;
     }
 }
