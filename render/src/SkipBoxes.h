@@ -5,7 +5,6 @@
 
 #include "vots/render/GpuLayout.h"
 
-#include <array>
 #include <atomic>
 #include <cstdint>
 #include <vector>
@@ -25,11 +24,9 @@ inline constexpr int MAX_SKIP_GROWTH = 16;
 /// Vot count up are background). Returns an empty vector soon after `cancel` becomes true.
 /// What the growth reads, owned by it, so that a new upload never waits for a cancelled growth.
 struct SkipGrowthInput {
-    std::vector<std::uint32_t> cellVot; // the walk grid's cell -> index array, x fastest
-    std::array<int, 3> cells{0, 0, 0};  // cells per axis
-    std::vector<CellBlock> votBoxes;    // per Vot, in GPU order
-    std::vector<float> votBounds;       // per Vot: upperBound
-    std::vector<CellBlock> emptyBlocks; // the walk grid's empty blocks
+    VotWalkGrid grid;                // the walk grid: each cell's block, the empty blocks
+    std::vector<CellBlock> votBoxes; // per Vot, in GPU order
+    std::vector<float> votBounds;    // per Vot: upperBound
 };
 
 std::vector<CellBlock> growSkipBoxes(const SkipGrowthInput& input, const std::atomic<bool>& cancel);

@@ -34,18 +34,6 @@ inline void packBoxCorners(std::uint32_t* words, const std::array<int, 3>& lo, c
     words[2] = u16(hi[1]) | u16(hi[2]) << 16;
 }
 
-/// What the walk shader (vot_walk.glsl) reads besides the Vot records. Cells and bricks are stored x fastest.
-struct VotWalkGrid {
-    std::array<int, 3> cells{0, 0, 0};  // cells per axis: grid points - 1
-    std::array<int, 3> bricks{0, 0, 0}; // bricks per axis: ceil(cells / brick side)
-    int brickShift = 3;                 // brick side = 1 << brickShift cells
-    std::vector<std::uint32_t> cellVot; // < Vot count: the Vot covering the cell; else Vot count + index
-                                        // into emptyBlocks
-    std::vector<float> brickMax;        // max upperBound over the Vots touching the brick, or -inf
-    std::vector<CellBlock> emptyBlocks; // disjoint blocks covering every background cell, so the walk
-                                        // crosses empty space in a few steps
-};
-
 /// The cell grid as vot_walk.glsl reads it, in a size that follows the Vots rather than the cells: each
 /// brick has a palette of the block ids its cells name; a brick whose cells all name one block (inside
 /// one Vot, or background) stores nothing more, and a mixed brick stores each cell's index into its
@@ -55,8 +43,8 @@ struct VotWalkGrid {
 struct PalettedCells {
     std::vector<std::uint32_t> cellWords;    // the mixed bricks' tables, each padded to a multiple of 4
                                              // words (one RGBA32UI texel)
-    std::vector<std::uint32_t> cellTable;    // per brick: word offset << 3 | width code (cellTableOf)
-    std::vector<std::uint32_t> palette;      // block ids (as cellVot), brick after brick
+    std::vector<std::uint32_t> cellTable;    // per brick: word offset << 3 | width code (below)
+    std::vector<std::uint32_t> palette;      // block ids (VotWalkGrid), brick after brick
     std::vector<std::uint32_t> paletteStart; // per brick: the index of its first palette entry
 };
 
@@ -78,12 +66,26 @@ inline std::uint32_t paletteIndexOf(const PalettedCells& cells, std::size_t bric
     return (word >> (bit % 32)) & ((1u << bits) - 1);
 }
 
-PalettedCells palettedCells(const VotWalkGrid& grid);
+/// What the walk shader (vot_walk.glsl) reads besides the Vot records. Bricks are stored x fastest. Block
+/// ids: below the Vot count, the Vot's index; from it up, the Vot count + an index into emptyBlocks.
+struct VotWalkGrid {
+    std::array<int, 3> cells{0, 0, 0};  // cells per axis: grid points - 1
+    std::array<int, 3> bricks{0, 0, 0}; // bricks per axis: ceil(cells / brick side)
+    int brickShift = 3;                 // brick side = 1 << brickShift cells
+    std::vector<float> brickMax;        // max upperBound over the Vots touching the brick, or -inf
+    std::vector<CellBlock> emptyBlocks; // disjoint blocks, each inside one brick, covering every
+                                        // background cell, so the walk crosses empty space in few steps
+    PalettedCells index;                // each cell's block id, per brick
+};
+
+/// The block id of a cell inside the grid.
+std::uint32_t blockAt(const VotWalkGrid& grid, const std::array<int, 3>& cell);
 
 /// Builds the grid for Vots (in their GPU order) on a grid of `dims` points. Returns nullopt, with the
 /// reason in *whyNot, when the walk could not see every Vot: boxes that overlap (a cell covered twice,
-/// as the paper method produces) or leave the grid. Background cells are covered greedily with
-/// near-cubic empty blocks.
+/// as the paper method produces) or leave the grid. Works brick by brick, so that its memory follows
+/// the Vots and the mixed bricks, never the cell count; background cells are covered greedily with
+/// near-cubic empty blocks inside each brick (the walk steps over all-background bricks whole).
 std::optional<VotWalkGrid> buildVotWalkGrid(const std::vector<GpuVot>& vots, const std::array<int, 3>& dims,
                                             int brickShift, std::string* whyNot);
 

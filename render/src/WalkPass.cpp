@@ -120,7 +120,7 @@ void WalkPass::applySkipBoxes(bool wait) {
         // Out of memory, say: the Vots' own boxes stay, which are exact too, only slower.
     }
     mSkipTask = {};
-    if (grown.size() == in.votBounds.size() + in.emptyBlocks.size()) {
+    if (grown.size() == in.votBounds.size() + in.grid.emptyBlocks.size()) {
         const std::vector<std::uint32_t> texels =
             boxTable(mPalette, in.votBounds, grown.size(),
                      [&](std::uint32_t block) -> const CellBlock& { return grown[block]; });
@@ -137,7 +137,7 @@ std::optional<WalkPass::Grid> WalkPass::gridFor(const std::vector<GpuVot>& vots,
         if (dims[a] - 1 > 0xffff) return std::nullopt; // box corners are packed in 16 bits
     std::optional<VotWalkGrid> grid = buildVotWalkGrid(vots, dims, WALK_BRICK_SHIFT, nullptr);
     if (!grid) return std::nullopt;
-    PalettedCells cells = palettedCells(*grid);
+    const PalettedCells& cells = grid->index;
     GLint maxTexels = 0;
     glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &maxTexels);
     const std::size_t cellTexels = cells.cellWords.size() / 4;
@@ -145,7 +145,7 @@ std::optional<WalkPass::Grid> WalkPass::gridFor(const std::vector<GpuVot>& vots,
         std::max(cellTexels, WALK_RECORD_TEXELS * cells.palette.size()) >=
             static_cast<std::size_t>(maxTexels))
         return std::nullopt;
-    return Grid{std::move(*grid), std::move(cells)};
+    return grid;
 }
 
 void WalkPass::upload(std::optional<Grid>&& walk, const std::vector<GpuVot>& vots,
@@ -156,14 +156,13 @@ void WalkPass::upload(std::optional<Grid>&& walk, const std::vector<GpuVot>& vot
     for (GlBuffer* b : {&mCellTableBuffer, &mBrickMaxBuffer, &mVotBoxBuffer, &mWalkRecordBuffer})
         b->reset();
     if (!walk) return;
-    VotWalkGrid* grid = &walk->grid;
-    PalettedCells& cells = walk->cells;
+    VotWalkGrid* grid = &*walk;
+    const PalettedCells& cells = grid->index;
     const std::size_t blocks = vots.size() + grid->emptyBlocks.size();
 
     // What the skip-box growth will read; the Vots' own boxes are also the first box table.
     mSkipGrowth = std::make_shared<SkipGrowth>();
     SkipGrowthInput& in = mSkipGrowth->input;
-    in.cells = grid->cells;
     in.votBoxes.resize(vots.size());
     in.votBounds.resize(vots.size());
     for (std::size_t i = 0; i < vots.size(); ++i) {
@@ -188,11 +187,10 @@ void WalkPass::upload(std::optional<Grid>&& walk, const std::vector<GpuVot>& vot
     };
     bufferTexture(mCellTableBuffer, mCellTable, GL_RGBA32UI, cells.cellWords.data(),
                   cells.cellWords.size() * sizeof(std::uint32_t));
-    std::vector<std::uint32_t>().swap(cells.cellWords);
     mBrickMaxima = grid->brickMax;
-    mPaletteStart = std::move(cells.paletteStart);
-    mCellTableOf = std::move(cells.cellTable);
-    mPalette = std::move(cells.palette);
+    mPaletteStart = cells.paletteStart;
+    mCellTableOf = cells.cellTable;
+    mPalette = cells.palette;
     // Written by every frame before it draws: the bounds ahead depend on the view.
     bufferTexture(mBrickMaxBuffer, mBrickMax, GL_RGBA32UI, nullptr,
                   4 * mBrickMaxima.size() * sizeof(std::uint32_t));
@@ -222,11 +220,10 @@ void WalkPass::upload(std::optional<Grid>&& walk, const std::vector<GpuVot>& vot
     glUnmapNamedBuffer(mWalkRecordBuffer.get());
     mWalkRecord = createTexture(GL_TEXTURE_BUFFER);
     glTextureBuffer(mWalkRecord.get(), GL_RGBA32UI, mWalkRecordBuffer.get());
-    in.cellVot = std::move(grid->cellVot);
-    in.emptyBlocks = std::move(grid->emptyBlocks);
     checkGl("VotRenderer walk grid upload");
     mCells = grid->cells;
     mBricks = grid->bricks;
+    in.grid = std::move(*grid);
     mWalkable = true;
 }
 

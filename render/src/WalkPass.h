@@ -31,10 +31,7 @@ public:
     using Shader = VotRenderer::WalkShader;
 
     /// The walk grid of a Vot-Space, built on the CPU before anything reaches GL.
-    struct Grid {
-        VotWalkGrid grid;
-        PalettedCells cells;
-    };
+    using Grid = VotWalkGrid;
 
     WalkPass();
     ~WalkPass();

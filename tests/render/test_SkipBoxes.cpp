@@ -12,7 +12,7 @@ struct Scene {
     std::array<int, 3> cells{24, 20, 18};
     std::vector<GpuVot> vots;
     std::vector<std::uint32_t> cellVot; // x fastest; background: vots.size() and up
-    std::vector<CellBlock> emptyBlocks; // the background boxes
+    VotWalkGrid grid;                   // the walk grid of the Vots, with its empty blocks
 };
 
 // Boxes of 2 or 3 cells tiling the grid, every fifth left out as background, random bounds.
@@ -30,11 +30,7 @@ Scene randomScene(std::uint32_t seed) {
                                  std::min(z + 3, s.cells[2])});
     std::vector<std::uint32_t> id(boxes.size());
     for (std::size_t i = 0; i < boxes.size(); ++i) {
-        if (i % 5 == 4) {
-            s.emptyBlocks.push_back(
-                {{boxes[i][0], boxes[i][1], boxes[i][2]}, {boxes[i][3], boxes[i][4], boxes[i][5]}});
-            continue;
-        }
+        if (i % 5 == 4) continue;
         GpuVot v{};
         for (int a = 0; a < 3; ++a)
             v.lo[a] = float(boxes[i][a]), v.hi[a] = float(boxes[i][3 + a]);
@@ -50,18 +46,21 @@ Scene randomScene(std::uint32_t seed) {
                     s.cellVot[static_cast<std::size_t>((z * s.cells[1] + y) * s.cells[0] + x)] =
                         i % 5 == 4 ? static_cast<std::uint32_t>(s.vots.size() + i) : id[i];
     }
+    std::string why;
+    std::optional<VotWalkGrid> grid =
+        buildVotWalkGrid(s.vots, {s.cells[0] + 1, s.cells[1] + 1, s.cells[2] + 1}, 3, &why);
+    EXPECT_TRUE(grid) << why;
+    if (grid) s.grid = std::move(*grid);
     return s;
 }
 
 SkipGrowthInput growthInput(const Scene& s) {
     SkipGrowthInput in;
-    in.cellVot = s.cellVot;
-    in.cells = s.cells;
+    in.grid = s.grid;
     for (const GpuVot& v : s.vots) {
         in.votBoxes.push_back(cellBlockOf(v));
         in.votBounds.push_back(v.upperBound);
     }
-    in.emptyBlocks = s.emptyBlocks;
     return in;
 }
 
@@ -69,7 +68,7 @@ TEST(SkipBoxes, CoverOnlyWhatTheirVotsBoundAlsoCulls) {
     const Scene s = randomScene(7u);
     const std::atomic<bool> cancel{false};
     const std::vector<CellBlock> skip = growSkipBoxes(growthInput(s), cancel);
-    ASSERT_EQ(skip.size(), s.vots.size() + s.emptyBlocks.size());
+    ASSERT_EQ(skip.size(), s.vots.size() + s.grid.emptyBlocks.size());
     std::size_t grownBoxes = 0;
     for (std::size_t i = 0; i < s.vots.size(); ++i) {
         const GpuVot& v = s.vots[i];
@@ -98,8 +97,8 @@ TEST(SkipBoxes, CoverOnlyWhatTheirVotsBoundAlsoCulls) {
     EXPECT_GT(grownBoxes, s.vots.size() / 4); // growth happens, not only the own boxes
     // Empty blocks grow over background only: the walk steps over them whatever the pixel's max.
     std::size_t grownEmpty = 0;
-    for (std::size_t k = 0; k < s.emptyBlocks.size(); ++k) {
-        const CellBlock& own = s.emptyBlocks[k];
+    for (std::size_t k = 0; k < s.grid.emptyBlocks.size(); ++k) {
+        const CellBlock& own = s.grid.emptyBlocks[k];
         const CellBlock& b = skip[s.vots.size() + k];
         for (int a = 0; a < 3; ++a) {
             ASSERT_LE(b.lo[a], own.lo[a]);

@@ -249,29 +249,43 @@ TEST(WalkStrategy, GridCoversEveryCellOnce) {
     const auto grid = buildVotWalkGrid(vots, {N, N, N}, 3, &why);
     ASSERT_TRUE(grid) << why;
     EXPECT_EQ(grid->bricks, (std::array<int, 3>{3, 3, 3}));
-    std::vector<int> covered(grid->cellVot.size(), 0);
-    for (const CellBlock& b : grid->emptyBlocks)
+    // The Vot of each cell, from the boxes alone (-1: background).
+    std::vector<int> votOf(20 * 20 * 20, -1);
+    for (std::size_t k = 0; k < vots.size(); ++k)
+        for (int z = int(vots[k].lo[2]); z < int(vots[k].hi[2]); ++z)
+            for (int y = int(vots[k].lo[1]); y < int(vots[k].hi[1]); ++y)
+                for (int x = int(vots[k].lo[0]); x < int(vots[k].hi[0]); ++x)
+                    votOf[static_cast<std::size_t>((z * 20 + y) * 20 + x)] = int(k);
+    std::vector<int> covered(votOf.size(), 0);
+    for (const CellBlock& b : grid->emptyBlocks) {
+        for (int a = 0; a < 3; ++a) // inside one brick
+            EXPECT_EQ(b.lo[a] / 8, (b.hi[a] - 1) / 8);
         for (int z = b.lo[2]; z < b.hi[2]; ++z)
             for (int y = b.lo[1]; y < b.hi[1]; ++y)
                 for (int x = b.lo[0]; x < b.hi[0]; ++x)
                     ++covered[static_cast<std::size_t>((z * 20 + y) * 20 + x)];
-    std::size_t votCells = 0;
-    for (std::size_t i = 0; i < grid->cellVot.size(); ++i) {
-        const std::uint32_t id = grid->cellVot[i];
-        ASSERT_NE(id, EMPTY_CELL);
-        if (id < vots.size()) {
-            ++votCells;
-            EXPECT_EQ(covered[i], 0);
-        } else {
-            EXPECT_EQ(covered[i], 1); // empty blocks are disjoint and name their own cells
-            const CellBlock& b = grid->emptyBlocks[id - vots.size()];
-            const int x = int(i % 20), y = int(i / 20 % 20), z = int(i / 400);
-            EXPECT_TRUE(x >= b.lo[0] && x < b.hi[0] && y >= b.lo[1] && y < b.hi[1] && z >= b.lo[2] &&
-                        z < b.hi[2]);
-        }
     }
+    std::size_t votCells = 0;
+    for (int z = 0; z < 20; ++z)
+        for (int y = 0; y < 20; ++y)
+            for (int x = 0; x < 20; ++x) {
+                const std::size_t i = static_cast<std::size_t>((z * 20 + y) * 20 + x);
+                const std::uint32_t id = blockAt(*grid, {x, y, z});
+                if (votOf[i] >= 0) {
+                    ++votCells;
+                    ASSERT_EQ(id, std::uint32_t(votOf[i])) << "cell " << x << "," << y << "," << z;
+                    EXPECT_EQ(covered[i], 0);
+                } else {
+                    ASSERT_GE(id, vots.size()) << "cell " << x << "," << y << "," << z;
+                    ASSERT_LT(id, vots.size() + grid->emptyBlocks.size());
+                    EXPECT_EQ(covered[i], 1); // empty blocks are disjoint and name their own cells
+                    const CellBlock& b = grid->emptyBlocks[id - vots.size()];
+                    EXPECT_TRUE(x >= b.lo[0] && x < b.hi[0] && y >= b.lo[1] && y < b.hi[1] && z >= b.lo[2] &&
+                                z < b.hi[2]);
+                }
+            }
     EXPECT_GT(votCells, 0u);
-    EXPECT_LT(grid->emptyBlocks.size(), grid->cellVot.size() - votCells); // blocks, not single cells
+    EXPECT_LT(grid->emptyBlocks.size(), votOf.size() - votCells); // blocks, not single cells
     // Brick maxima: the largest bound of the Vots whose boxes touch the brick.
     auto expectMaxima = [&](const std::vector<float>& maxima, const std::array<int, 3>& count, int side) {
         for (int z = 0; z < count[2]; ++z)
@@ -293,7 +307,7 @@ TEST(WalkStrategy, GridCoversEveryCellOnce) {
 
     // What the shader reads: per cell, brick by brick, an index into its brick's palette of ids, kept
     // only for bricks of more than one block, in as few bits as their palette needs.
-    const PalettedCells cells = palettedCells(*grid);
+    const PalettedCells& cells = grid->index;
     ASSERT_EQ(cells.paletteStart.size(), grid->brickMax.size());
     ASSERT_EQ(cells.cellTable.size(), grid->brickMax.size());
     std::size_t tableWords = 0;
@@ -316,16 +330,6 @@ TEST(WalkStrategy, GridCoversEveryCellOnce) {
         }
     }
     EXPECT_EQ(std::max<std::size_t>(tableWords, 4), cells.cellWords.size());
-    for (int z = 0; z < 20; ++z)
-        for (int y = 0; y < 20; ++y)
-            for (int x = 0; x < 20; ++x) {
-                const std::size_t brick = std::size_t(x / 8 + 3 * (y / 8 + 3 * (z / 8)));
-                const std::size_t inBrick = std::size_t(x % 8 + 8 * (y % 8 + 8 * (z % 8)));
-                const std::uint32_t id =
-                    cells.palette[cells.paletteStart[brick] + paletteIndexOf(cells, brick, inBrick)];
-                ASSERT_EQ(id, grid->cellVot[static_cast<std::size_t>((z * 20 + y) * 20 + x)])
-                    << "cell " << x << "," << y << "," << z;
-            }
 
     vots.push_back(vots.front());
     EXPECT_FALSE(buildVotWalkGrid(vots, {N, N, N}, 3, &why));
@@ -333,7 +337,7 @@ TEST(WalkStrategy, GridCoversEveryCellOnce) {
 }
 
 TEST(WalkStrategy, EmptyBlocksCoverTallGridsExactlyOnce) {
-    // Tall enough for the empty cells to be covered in several slabs on a machine with several cores.
+    // Tall enough for the bricks to be indexed on several cores, with partial bricks in x and y.
     const std::array<int, 3> dims{12, 10, 140};
     std::vector<GpuVot> vots;
     for (int z = 0; z + 3 < dims[2] - 1; z += 7) {
@@ -348,7 +352,7 @@ TEST(WalkStrategy, EmptyBlocksCoverTallGridsExactlyOnce) {
     const auto grid = buildVotWalkGrid(vots, dims, 4, &why);
     ASSERT_TRUE(grid) << why;
     const int nx = dims[0] - 1, ny = dims[1] - 1, nz = dims[2] - 1;
-    std::vector<int> covered(grid->cellVot.size(), 0);
+    std::vector<int> covered(static_cast<std::size_t>(nx * ny * nz), 0);
     for (const CellBlock& b : grid->emptyBlocks)
         for (int z = b.lo[2]; z < b.hi[2]; ++z)
             for (int y = b.lo[1]; y < b.hi[1]; ++y)
@@ -358,7 +362,7 @@ TEST(WalkStrategy, EmptyBlocksCoverTallGridsExactlyOnce) {
         for (int y = 0; y < ny; ++y)
             for (int x = 0; x < nx; ++x) {
                 const std::size_t i = static_cast<std::size_t>((z * ny + y) * nx + x);
-                const std::uint32_t id = grid->cellVot[i];
+                const std::uint32_t id = blockAt(*grid, {x, y, z});
                 ASSERT_LT(id, vots.size() + grid->emptyBlocks.size()) << x << "," << y << "," << z;
                 if (id < vots.size()) {
                     const GpuVot& v = vots[id];
