@@ -26,8 +26,13 @@ public:
     GridRenderer();
     ~GridRenderer() override;
 
-    /// Uploads the samples as a 3D texture; throws fit::InputError if a side exceeds the GL limit.
+    /// Uploads the samples as 3D textures: one, or slabs of the z range when the depth exceeds the GL
+    /// limit or a texture would pass 1 GiB; throws fit::InputError if x or y exceeds the GL limit.
     void upload(const fit::Volume& volume);
+    /// The most z planes one texture holds at the next upload (0: from the GL limit and 1 GiB); for
+    /// tests, which split small volumes.
+    void setSlabPlaneLimit(int planes);
+    int slabCount() const;
     bool hasData() const override;
     const SceneBounds& bounds() const override;
     std::array<float, 2> valueRange() const override; // min and max sample
