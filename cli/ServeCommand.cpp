@@ -116,6 +116,9 @@ void addServeCommand(CLI::App& app) {
                     "Address to listen on (0.0.0.0: every interface). Any but loopback requires an access "
                     "token: the --token-file one, else one generated and printed once on stderr")
         ->capture_default_str();
+    cmd->add_option("--port", args->port, "TCP port (0: any free port)")
+        ->check(CLI::Range(0, 65535))
+        ->capture_default_str();
     cmd->add_option("--token-file", args->tokenFile,
                     "File holding the access token (16..256 of A-Za-z0-9-._~+/=) that every API request must "
                     "show as 'Authorization: Bearer TOKEN' or token=TOKEN; the viewer takes it from its "
@@ -124,9 +127,6 @@ void addServeCommand(CLI::App& app) {
         "--allow-host", args->allowHosts,
         "Host name the server also answers to, as NAME (any port) or NAME:PORT (repeatable; "
         "e.g. a reverse proxy's name). Requests naming other hosts get 421, against DNS rebinding");
-    cmd->add_option("--port", args->port, "TCP port (0: any free port)")
-        ->check(CLI::Range(0, 65535))
-        ->capture_default_str();
     cmd->add_option("--data", args->data,
                     "Folder with volumes (repeatable); default ./data and ../shared/data");
     cmd->add_option("--web", args->web,
