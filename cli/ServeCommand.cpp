@@ -2,6 +2,7 @@
 #include "Commands.h"
 
 #include "vots/fit/Error.h"
+#include "vots/server/Exposure.h"
 #include "vots/server/Server.h"
 
 #include <CLI/CLI.hpp>
@@ -28,10 +29,14 @@ struct ServeArgs {
     int frameCacheMb = 64;
     bool noWarmUp = false;
     std::string prepare = "cranium"; // the viewer's first dataset when the data folders have it
+    std::string tokenFile;
+    std::vector<std::string> allowHosts;
 };
 
-bool isLoopback(const std::string& host) {
-    return host == "127.0.0.1" || host == "localhost" || host == "::1";
+/// "host:port" as a URL writes it: an IPv6 address in brackets.
+std::string urlAuthority(const std::string& host, int port) {
+    const bool ipv6 = host.find(':') != std::string::npos && host.front() != '[';
+    return (ipv6 ? "[" + host + "]" : host) + ":" + std::to_string(port);
 }
 
 std::string joined(const std::vector<fs::path>& dirs) {
@@ -51,9 +56,12 @@ void runServe(const ServeArgs& a) {
     options.frameCacheBytes = static_cast<std::size_t>(a.frameCacheMb) << 20;
     options.warmUpFits = !a.noWarmUp;
     options.prepareDataset = a.prepare;
-    if (!isLoopback(a.host))
-        std::cerr << "vots serve: warning: listening on " << a.host
-                  << " exposes the server to the network; it has no authentication\n";
+    options.allowedHosts = a.allowHosts;
+    // Beyond loopback anyone on the network could read the images and start fits: a token is required,
+    // the given one or else a fresh one, which only this process ever shows.
+    const bool generatedToken = a.tokenFile.empty() && !server::isLoopbackHost(a.host);
+    if (!a.tokenFile.empty()) options.accessToken = server::readAccessTokenFile(a.tokenFile);
+    if (generatedToken) options.accessToken = server::generateAccessToken();
 
     // Signals are taken by sigwait below, so every thread the server starts must have them blocked.
     sigset_t stopSignals;
@@ -71,11 +79,21 @@ void runServe(const ServeArgs& a) {
         throw fit::InputError("cannot listen on " + a.host + ":" + std::to_string(port) +
                               " (in use, or not an address of this machine)");
     }
-    std::cout << "vots serve: listening on http://" << a.host << ":" << port << "/\n"
+    const std::string url = "http://" + urlAuthority(a.host, port) + "/";
+    std::cout << "vots serve: listening on " << url << "\n"
               << "  data:  " << joined(options.dataDirs) << "\n"
               << "  web:   " << (options.webDir.empty() ? "(none)" : options.webDir.string()) << "\n"
               << "  cache: " << options.cacheDir.string() << "\n"
+              << "  token: "
+              << (options.accessToken.empty() ? "none (loopback only)"
+                  : generatedToken            ? "required, generated (printed once on stderr)"
+                                              : "required, from " + a.tokenFile)
+              << "\n"
               << "  " << srv.rendererSummary() << std::endl;
+    if (generatedToken)
+        std::cerr << "vots serve: access token: " << options.accessToken << "\n"
+                  << "  send 'Authorization: Bearer TOKEN', or open the viewer at " << url
+                  << "#token=" << options.accessToken << std::endl;
 
     std::thread listener([&srv] {
         srv.listenAfterBind();
@@ -94,11 +112,21 @@ void addServeCommand(CLI::App& app) {
     auto args = std::make_shared<ServeArgs>();
     CLI::App* cmd =
         app.add_subcommand("serve", "Serve datasets, fits and MIP images over HTTP (see docs/API.md)");
-    cmd->add_option("--host", args->host, "Address to listen on (0.0.0.0: every interface)")
+    cmd->add_option("--host", args->host,
+                    "Address to listen on (0.0.0.0: every interface). Any but loopback requires an access "
+                    "token: the --token-file one, else one generated and printed once on stderr")
         ->capture_default_str();
     cmd->add_option("--port", args->port, "TCP port (0: any free port)")
         ->check(CLI::Range(0, 65535))
         ->capture_default_str();
+    cmd->add_option("--token-file", args->tokenFile,
+                    "File holding the access token (16..256 of A-Za-z0-9-._~+/=) that every API request must "
+                    "show as 'Authorization: Bearer TOKEN' or token=TOKEN; the viewer takes it from its "
+                    "URL's #token=TOKEN. Also asks for a token on loopback");
+    cmd->add_option(
+        "--allow-host", args->allowHosts,
+        "Host name the server also answers to, as NAME (any port) or NAME:PORT (repeatable; "
+        "e.g. a reverse proxy's name). Requests naming other hosts get 421, against DNS rebinding");
     cmd->add_option("--data", args->data,
                     "Folder with volumes (repeatable); default ./data and ../shared/data");
     cmd->add_option("--web", args->web,

@@ -30,6 +30,8 @@ std::string statusText(int status) {
         return "request body too large";
     case 414:
         return "request target too long";
+    case 415:
+        return "unsupported media type";
     case 416:
         return "range not satisfiable";
     case 503:

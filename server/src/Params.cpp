@@ -129,6 +129,7 @@ RenderParams parseRenderParams(const QueryParams& query) {
     std::set<std::string> seen;
     for (const auto& [key, value] : query) {
         if (!key.empty() && key[0] == '_') continue; // cache busters such as _=1699999999
+        if (key == "token") continue;                // the access token, checked by RequestGuard
         if (!KNOWN.count(key)) bad("unknown parameter '" + key.substr(0, 32) + "'");
         if (!seen.insert(key).second) bad("parameter '" + key + "' given more than once");
         if (value.size() > MAX_PARAM_CHARS) bad("parameter '" + key + "' is too long");

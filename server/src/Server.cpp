@@ -37,6 +37,12 @@ bool isApiPath(const std::string& path) {
     return path.rfind("/api/", 0) == 0 || path == "/api" || path == "/render";
 }
 
+httplib::Server::HandlerResponse refuse(httplib::Response& res, const Refusal& refusal) {
+    if (refusal.status == 401) res.set_header("WWW-Authenticate", "Bearer");
+    sendError(res, refusal.status, refusal.message);
+    return httplib::Server::HandlerResponse::Handled;
+}
+
 // listen() again on a listening socket only changes its backlog (Linux, BSD).
 void raiseListenBacklog(const Server::Impl& s) {
     const int sock = s.listenSocket.load();
@@ -47,7 +53,8 @@ void raiseListenBacklog(const Server::Impl& s) {
 
 Server::Impl::Impl(ServerOptions opts)
     : options(std::move(opts)), registry(options.dataDirs), cache(options.cacheDir, options.memoryCacheBytes),
-      fitJobs(cache, stats, foreground, limitsFrom(options)), frames(options.frameCacheBytes) {
+      fitJobs(cache, stats, foreground, limitsFrom(options)), frames(options.frameCacheBytes),
+      guard(options.allowedHosts, options.accessToken) {
     if (options.withRenderer) renderQueue = std::make_unique<RenderQueue>(stats, foreground);
     cache.deferDiskWritesWhile([this] { return foreground.busyWithin(DISK_WRITE_QUIET); });
 }
@@ -84,8 +91,8 @@ Server::Server(ServerOptions options) : mImpl(std::make_unique<Impl>(std::move(o
         s.listenSocket = sock;
     });
 
-    // Every request passes here first: hostile targets are refused before any route sees them, and
-    // non-API paths are static files.
+    // Every request passes here first: hostile targets and foreign Host names are refused before any
+    // route sees them, API requests pass the token and cross-site checks, and other paths are static files.
     http.set_pre_routing_handler([&s](const httplib::Request& req, httplib::Response& res) {
         if (req.target.size() > MAX_TARGET_CHARS) {
             sendError(res, 414, "request target too long");
@@ -95,7 +102,13 @@ Server::Server(ServerOptions options) : mImpl(std::make_unique<Impl>(std::move(o
             sendError(res, 400, "path-like or encoded characters ('..', backslash, NUL) are not accepted");
             return httplib::Server::HandlerResponse::Handled;
         }
-        if (isApiPath(req.path)) return httplib::Server::HandlerResponse::Unhandled;
+        if (const auto refused = s.guard.checkHost(req)) return refuse(res, *refused);
+        if (isApiPath(req.path)) {
+            if (const auto refused = s.guard.checkApi(req)) return refuse(res, *refused);
+            return httplib::Server::HandlerResponse::Unhandled;
+        }
+        // The viewer's own files need no token: they hold nothing secret, and the page has to load to
+        // read the token from its URL.
         if (req.method != "GET" && req.method != "HEAD") {
             sendError(res, 405, "static files are GET only");
             return httplib::Server::HandlerResponse::Handled;
@@ -135,12 +148,16 @@ Server::~Server() {
 
 bool Server::bindToPort(const std::string& host, int port) {
     if (!mImpl->http.bind_to_port(host, port)) return false;
+    mImpl->guard.bound(host, port);
     raiseListenBacklog(*mImpl);
     return true;
 }
 int Server::bindToAnyPort(const std::string& host) {
     const int port = mImpl->http.bind_to_any_port(host);
-    if (port > 0) raiseListenBacklog(*mImpl);
+    if (port > 0) {
+        mImpl->guard.bound(host, port);
+        raiseListenBacklog(*mImpl);
+    }
     return port;
 }
 

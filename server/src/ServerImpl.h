@@ -7,6 +7,7 @@
 #include "FrameCache.h"
 #include "Params.h"
 #include "RenderQueue.h"
+#include "RequestGuard.h"
 #include "ServerStats.h"
 #include "VotSpaceCache.h"
 #include "vots/server/Server.h"
@@ -32,6 +33,7 @@ struct Server::Impl {
     FitJobs fitJobs;
     std::unique_ptr<RenderQueue> renderQueue; // null when options.withRenderer is false
     FrameCache frames;                        // encoded /render answers
+    RequestGuard guard;                       // Host, token and cross-site checks before any route
     std::atomic<int> listenSocket{-1};        // the socket httplib binds, so its backlog can be raised
     std::thread preparing;                    // prepareDataset(options.prepareDataset); joined by ~Server
     httplib::Server http;                     // destroyed first: no handler runs after the rest is gone

@@ -122,7 +122,8 @@ fi
 q="/render?dataset=HeadMRVolume_48x62x42_uint8&size=256x256&eps=5%25&cam=az%3D"
 (for i in $(seq 1 100); do
     exec 3<>/dev/tcp/127.0.0.1/"$SERVER_PORT"
-    printf 'GET %s%d HTTP/1.1\r\nHost: x\r\n\r\n' "$q" "$i" >&3
+    # Its own name: any other Host is refused (421) before a frame would be rendered.
+    printf 'GET %s%d HTTP/1.1\r\nHost: 127.0.0.1:%s\r\n\r\n' "$q" "$i" "$SERVER_PORT" >&3
     exec 3>&-
 done) &
 closer=$!

@@ -8,15 +8,17 @@
 #include <chrono>
 #include <memory>
 #include <stdexcept>
+#include <string>
 #include <thread>
 
 namespace vots::test {
 
 class LoopbackServer {
 public:
-    explicit LoopbackServer(server::ServerOptions options)
+    /// bindHost: where it listens ("0.0.0.0" for the rules of an exposed server); clients use 127.0.0.1.
+    explicit LoopbackServer(server::ServerOptions options, const std::string& bindHost = "127.0.0.1")
         : mServer(std::make_unique<server::Server>(std::move(options))) {
-        mPort = mServer->bindToAnyPort("127.0.0.1");
+        mPort = mServer->bindToAnyPort(bindHost);
         if (mPort < 0) throw std::runtime_error("cannot bind a loopback port");
         mThread = std::thread([this] { mServer->listenAfterBind(); });
         // httplib 0.11.4 has no wait_until_ready: poll until the accept loop runs.

@@ -97,6 +97,8 @@ if [ -z "${VOTS_URL:-}" ]; then
   server_pid=$!
 
   export VOTS_URL="http://127.0.0.1:$port"
+  # Specs that need a server of their own (token.spec.mjs) start this binary over this data.
+  export VOTS_BIN="$bin" VOTS_DATA="$data"
   ready=""
   for _ in $(seq 1 600); do
     if ! kill -0 "$server_pid" 2>/dev/null; then

@@ -16,6 +16,7 @@ const load = (name) => import(pathToFileURL(path.join(copy, name)).href);
 const { formatHash, parseHash } = await load('hash.js');
 const { epsBounds, epsLabel, epsToSlider, sliderToEps, SLIDER_STEPS } = await load('eps.js');
 const { initialView } = await load('view.js');
+const access = await load('access.js');
 fs.rmSync(copy, { recursive: true, force: true });
 
 const CT = {
@@ -108,4 +109,23 @@ test('the eps slider is log-scaled over 0.1 % .. 50 % of the range, widened to h
   for (const pos of [0, 1, 250, 500, 999, 1000]) assert.equal(epsToSlider(CT, sliderToEps(CT, pos)), pos);
   assert.ok(sliderToEps(CT, 600) > sliderToEps(CT, 599), 'the scale rises');
   assert.equal(epsLabel(CT, 80), '80 (2.0 % of range)');
+});
+
+test('the access token: taken from the hash, kept when a link lacks it, sent as a header and as token=', () => {
+  assert.equal(access.tokenHashPart(), '');
+  assert.deepEqual(access.withToken({ cache: 'no-store' }), { cache: 'no-store' }); // none: requests unchanged
+  assert.equal(access.withTokenQuery('api/jobs/1/events'), 'api/jobs/1/events');
+  assert.equal(access.adoptToken('#dataset=head&token=a%2Bb/c'), 'a+b/c');
+  assert.equal(access.adoptToken('#dataset=head'), 'a+b/c'); // a pasted link without one keeps it
+  assert.equal(access.tokenHashPart(), '&token=a%2Bb%2Fc');
+  const init = access.withToken({ method: 'POST', headers: { 'Content-Type': 'application/json' } });
+  assert.deepEqual(init.headers, { 'Content-Type': 'application/json', Authorization: 'Bearer a+b/c' });
+  assert.equal(init.method, 'POST');
+  assert.equal(access.withTokenQuery('api/jobs/1/events'), 'api/jobs/1/events?token=a%2Bb%2Fc');
+  assert.equal(access.withTokenQuery('render?dataset=x'), 'render?dataset=x&token=a%2Bb%2Fc');
+  // The view hash plus the token still reads back as the same view.
+  const view = { ...initialView(), dataset: 'head', eps: 7.5, window: { level: 12.5, width: 80 } };
+  const { view: back, problems } = parseHash(formatHash(view) + access.tokenHashPart(), DATASETS, initialView());
+  assert.deepEqual(problems, []);
+  assert.deepEqual(back, view);
 });

@@ -1,4 +1,5 @@
 // Thin client for the vots HTTP contract (datasets, render, fit jobs); knows no DOM and no UI state.
+import { withToken, withTokenQuery } from './access.js';
 
 // Thrown for every failure the user should see; `superseded`/`aborted` ones are expected and ignored.
 export class ApiError extends Error {
@@ -31,7 +32,7 @@ async function errorFromResponse(res, what) {
 async function request(url, init, what) {
   let res;
   try {
-    res = await fetch(url, init);
+    res = await fetch(url, withToken(init));
   } catch (e) {
     if (e.name === 'AbortError') throw new ApiError(`${what}: aborted`, { aborted: true });
     throw new ApiError(`${what}: cannot reach the server (${e.message})`);
@@ -141,7 +142,7 @@ export function followJob(id, onProgress) {
     pollTimer = setTimeout(poll, 300);
   };
 
-  source = new EventSource(`api/jobs/${encodeURIComponent(id)}/events`);
+  source = new EventSource(withTokenQuery(`api/jobs/${encodeURIComponent(id)}/events`));
   source.addEventListener('progress', (e) => {
     if (!cancelled) onProgress(parse(e.data));
   });

@@ -1,4 +1,5 @@
 // Viewer wiring: looks up the page's elements, owns the view and the dataset list, and connects the modules.
+import { adoptToken, tokenHashPart } from './access.js';
 import { fetchDatasets } from './api.js';
 import { toView } from './camera.js';
 import { createBanner } from './banner.js';
@@ -53,7 +54,8 @@ function showFacts({ votCount, fitSeconds }) {
 }
 
 const banner = createBanner({ box: el.error, text: el.errorText, closeButton: el.errorClose, onShow: updateStatus });
-const writeHash = createHashWriter(() => formatHash(view));
+const viewHash = () => formatHash(view) + tokenHashPart(); // the token stays for reloads and copied links
+const writeHash = createHashWriter(viewHash);
 const input = attachInput({
   viewEl: el.view,
   keyTarget: document,
@@ -224,7 +226,8 @@ el.projection.addEventListener('click', () => {
 
 // A pasted or edited link changes the hash without a reload: adopt it.
 window.addEventListener('hashchange', () => {
-  if (!datasets.length || location.hash === formatHash(view)) return;
+  if (!datasets.length || location.hash === viewHash()) return;
+  adoptToken(location.hash);
   cancelSliderSettle(); // the link says what the view is now
   const before = view.dataset;
   applyHash();
@@ -237,6 +240,7 @@ window.addEventListener('hashchange', () => {
 // ---------- start ----------
 
 async function start() {
+  adoptToken(location.hash); // before the first request: a server beyond loopback asks for it
   updateStatus();
   try {
     datasets = await fetchDatasets();

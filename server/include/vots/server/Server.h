@@ -23,6 +23,11 @@ struct ServerOptions {
     // Loaded, fitted at its default eps and uploaded as the server starts, when the data folders have
     // it: the viewer's first image then waits for none of that. Empty: none.
     std::string prepareDataset;
+    // Security (docs/API.md): Host names answered besides the bound address (and, bound to loopback, the
+    // loopback names), as NAME (any port) or NAME:PORT; and the token every request but the viewer's
+    // files must show (empty: none asked for).
+    std::vector<std::string> allowedHosts;
+    std::string accessToken;
 };
 
 /// The folders `vots serve` uses when none are given: ./data and ../shared/data when present.

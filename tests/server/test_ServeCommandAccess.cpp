@@ -1,0 +1,167 @@
+// `vots serve` itself: beyond loopback it generates a token and prints it once on stderr; a --token-file
+// token is asked for on loopback too; and no token ever reaches the server's output.
+#include "ServerFixture.h"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <fstream>
+#include <iterator>
+#include <regex>
+
+extern char** environ;
+
+namespace vots::test {
+namespace {
+
+std::string slurp(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+/// `vots serve --port 0 ...` over the world's folders, output captured in files; SIGTERM at stop().
+class ServeProcess {
+public:
+    ServeProcess(const ServerWorld& world, std::vector<std::string> extra)
+        : mOut(world.dir().file("serve.out")), mErr(world.dir().file("serve.err")) {
+        std::vector<std::string> words{VOTS_CLI,      "serve",
+                                       "--port",      "0",
+                                       "--data",      world.data().string(),
+                                       "--web",       world.web().string(),
+                                       "--cache-dir", world.cache().string(),
+                                       "--prepare",   "",
+                                       "--no-warm-up"};
+        words.insert(words.end(), extra.begin(), extra.end());
+        std::vector<char*> argv;
+        for (std::string& w : words)
+            argv.push_back(w.data());
+        argv.push_back(nullptr);
+        posix_spawn_file_actions_t actions;
+        posix_spawn_file_actions_init(&actions);
+        posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+        posix_spawn_file_actions_addopen(&actions, 1, mOut.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        posix_spawn_file_actions_addopen(&actions, 2, mErr.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        const int rc = posix_spawn(&mPid, VOTS_CLI, &actions, nullptr, argv.data(), environ);
+        posix_spawn_file_actions_destroy(&actions);
+        if (rc != 0) throw std::runtime_error("cannot start vots serve");
+        static const std::regex listening(R"(listening on http://[^ ]*:(\d+)/)");
+        for (int i = 0; i < 1200 && mPort < 0 && running(); ++i) {
+            std::smatch m;
+            const std::string out = slurp(mOut);
+            if (std::regex_search(out, m, listening) && out.find("renderer") != std::string::npos)
+                mPort = std::stoi(m[1].str());
+            else
+                std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        }
+    }
+    ~ServeProcess() { stop(); }
+
+    int port() const { return mPort; }
+    std::unique_ptr<httplib::Client> client() const {
+        auto c = std::make_unique<httplib::Client>("127.0.0.1", mPort);
+        c->set_read_timeout(60);
+        return c;
+    }
+    /// Stops it (SIGTERM) and returns its exit code; stdout and stderr are complete afterwards.
+    int stop() {
+        if (mPid > 0) {
+            ::kill(mPid, SIGTERM);
+            int status = 0;
+            ::waitpid(mPid, &status, 0);
+            mExit = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+            mPid = -1;
+        }
+        return mExit;
+    }
+    std::string output() const { return slurp(mOut) + slurp(mErr); }
+    std::string err() const { return slurp(mErr); }
+
+private:
+    bool running() {
+        int status = 0;
+        if (::waitpid(mPid, &status, WNOHANG) == 0) return true;
+        mExit = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+        mPid = -1;
+        return false;
+    }
+
+    std::string mOut, mErr;
+    pid_t mPid = -1;
+    int mPort = -1;
+    int mExit = -1;
+};
+
+TEST(ServeCommandAccess, BeyondLoopbackAGeneratedTokenIsPrintedOnceAndRequired) {
+    ServerWorld world;
+    ServeProcess serve(world, {"--host", "0.0.0.0"});
+    ASSERT_GT(serve.port(), 0) << serve.output();
+    std::smatch m;
+    std::string err;
+    const std::regex printed("access token: ([0-9a-f]{32})\n");
+    for (int i = 0; i < 100 && !std::regex_search(err = serve.err(), m, printed); ++i) // printed after stdout
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    ASSERT_TRUE(std::regex_search(err, m, printed)) << err;
+    const std::string token = m[1].str();
+    auto c = serve.client();
+    const auto without = c->Get("/api/datasets");
+    ASSERT_TRUE(without);
+    EXPECT_EQ(without->status, 401);
+    const auto with = c->Get("/api/datasets", {{"Authorization", "Bearer " + token}});
+    ASSERT_TRUE(with);
+    EXPECT_EQ(with->status, 200);
+    const auto shell = c->Get("/");
+    ASSERT_TRUE(shell);
+    EXPECT_EQ(shell->status, 200);
+    EXPECT_EQ(serve.stop(), 0);
+    // Printed once (the line and the viewer link), never again.
+    const std::string all = serve.output();
+    std::size_t count = 0;
+    for (auto at = all.find(token); at != std::string::npos; at = all.find(token, at + 1))
+        ++count;
+    EXPECT_EQ(count, 2u) << all;
+}
+
+TEST(ServeCommandAccess, ATokenFileIsRequiredOnLoopbackTooAndNeverLogged) {
+    ServerWorld world;
+    const std::string token = "Zk3-secret_token.0123456789";
+    world.dir().write("token", token + "\n");
+    ServeProcess serve(world, {"--token-file", world.dir().file("token")});
+    ASSERT_GT(serve.port(), 0) << serve.output();
+    auto c = serve.client();
+    const auto without = c->Get("/api/datasets");
+    ASSERT_TRUE(without);
+    EXPECT_EQ(without->status, 401);
+    // Requests that show it and fail in many ways, so any line about them would carry it.
+    const std::string q = "token=" + token;
+    for (const std::string& path :
+         std::vector<std::string>{"/api/datasets?" + q, "/render?dataset=nope&" + q, "/render?cam=bad&" + q,
+                                  "/render?dataset=" + std::string(NEGHIP) + "&size=0x0&" + q,
+                                  "/api/jobs/999?" + q, "/api/nothing?" + q, "/missing.html?" + q}) {
+        const auto res = c->Get(path.c_str(), {{"Authorization", "Bearer " + token}});
+        ASSERT_TRUE(res) << path;
+        EXPECT_NE(res->status, 401) << path;
+        EXPECT_EQ(res->body.find(token), std::string::npos) << path << ": " << res->body;
+    }
+    const auto badFit =
+        c->Post("/api/fit", {{"Authorization", "Bearer " + token}}, "{\"dataset\":1}", "application/json");
+    ASSERT_TRUE(badFit);
+    EXPECT_EQ(badFit->status, 400);
+    EXPECT_EQ(serve.stop(), 0);
+    const std::string all = serve.output();
+    EXPECT_NE(all.find("token: required"), std::string::npos) << all;
+    EXPECT_EQ(all.find(token), std::string::npos) << all;
+}
+
+TEST(ServeCommandAccess, AShortTokenFileIsRefused) {
+    ServerWorld world;
+    world.dir().write("token", "short\n");
+    ServeProcess serve(world, {"--token-file", world.dir().file("token")});
+    EXPECT_LT(serve.port(), 0);
+    EXPECT_EQ(serve.stop(), 2);
+    EXPECT_NE(serve.err().find("must be 16..256 characters"), std::string::npos) << serve.err();
+}
+
+} // namespace
+} // namespace vots::test

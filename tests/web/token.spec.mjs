@@ -1,0 +1,98 @@
+// The viewer against a server that asks for a token: opened with #token=..., it renders, refits and keeps the
+// token in its hash; opened without it, it says why nothing shows.
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import { spawn } from 'node:child_process';
+import crypto from 'node:crypto';
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { withPage, pickDataset } from './support/browser.mjs';
+import { ViewerPage } from './pages/ViewerPage.mjs';
+
+const WEB = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..', 'web');
+const BIN = process.env.VOTS_BIN; // set by run.sh when it started the server itself
+const DATA = process.env.VOTS_DATA;
+
+// A second `vots serve` on a free loopback port that requires a token from a file.
+let server = null;
+
+async function startTokenServer() {
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'vots-web-token-'));
+  const token = crypto.randomBytes(16).toString('hex');
+  fs.writeFileSync(path.join(dir, 'token'), `${token}\n`);
+  const child = spawn(BIN, ['serve', '--port', '0', '--data', DATA, '--web', WEB, '--cache-dir', path.join(dir, 'cache'),
+    '--prepare', '', '--no-warm-up', '--token-file', path.join(dir, 'token')], { stdio: ['ignore', 'pipe', 'pipe'] });
+  let output = '';
+  const url = await new Promise((resolve, reject) => {
+    const timer = setTimeout(() => reject(new Error(`no listening line within 60 s:\n${output}`)), 60000);
+    const read = (chunk) => {
+      output += chunk;
+      const m = output.match(/listening on (http:\/\/\S+?)\/\n/);
+      if (m && output.includes('renderer')) {
+        clearTimeout(timer);
+        resolve(m[1]);
+      }
+    };
+    child.stdout.on('data', read);
+    child.stderr.on('data', read);
+    child.on('exit', (code) => reject(new Error(`vots serve exited (${code}):\n${output}`)));
+  });
+  return { url, token, child, dir, output: () => output };
+}
+
+before(async () => {
+  if (BIN && DATA) server = await startTokenServer();
+});
+
+after(() => {
+  if (!server) return;
+  server.child.kill('SIGTERM');
+  fs.rmSync(server.dir, { recursive: true, force: true });
+});
+
+test('opened with #token=..., the viewer renders, refits and keeps the token in its hash', async (t) => {
+  if (!server) return t.skip('needs VOTS_BIN and VOTS_DATA (run.sh sets them when it starts the server)');
+  const ds = await pickDataset();
+  const denied = await fetch(`${server.url}/api/datasets`);
+  assert.equal(denied.status, 401, 'the server must ask for the token');
+  await withPage(t, async (page) => {
+    const viewer = new ViewerPage(page);
+    const statuses = [];
+    page.on('response', (r) => {
+      if (r.url().startsWith(server.url)) statuses.push([new URL(r.url()).pathname, r.status()]);
+    });
+    await page.goto(`${server.url}/#dataset=${encodeURIComponent(ds.name)}&token=${server.token}`);
+    await viewer.waitForIdle();
+    const frame = await viewer.framePixels();
+    assert.ok(frame.variance > 20, `frame looks blank: luminance variance ${frame.variance.toFixed(2)}`);
+    assert.equal((await viewer.hashParams()).token, server.token, 'the view hash dropped the token');
+
+    // A refit: POST /api/fit with the header, and its event stream with token= (EventSource sends no headers).
+    const position = Number(await viewer.epsSlider.inputValue());
+    await viewer.setEpsSlider(Math.min(1000, position + 200));
+    await viewer.waitForIdle();
+    assert.ok(!(await viewer.error.isVisible()), `unexpected error: ${await viewer.error.textContent()}`);
+    const refused = statuses.filter(([, s]) => s >= 400);
+    assert.deepEqual(refused, [], `refused requests: ${JSON.stringify(refused)}`);
+    for (const wanted of ['/api/datasets', '/render', '/api/fit']) {
+      assert.ok(statuses.some(([p, s]) => p === wanted && s < 300), `no answered ${wanted}: ${JSON.stringify(statuses)}`);
+    }
+    assert.ok(statuses.some(([p, s]) => /^\/api\/jobs\/\d+\/events$/.test(p) && s === 200),
+      `the fit's event stream was not answered: ${JSON.stringify(statuses)}`);
+    assert.equal((await viewer.hashParams()).token, server.token, 'the hash lost the token after the refit');
+  });
+  assert.ok(!server.output().includes(server.token), 'the token appears in the server output');
+});
+
+test('opened without the token, the viewer names the refusal', async (t) => {
+  if (!server) return t.skip('needs VOTS_BIN and VOTS_DATA (run.sh sets them when it starts the server)');
+  await withPage(t, async (page) => {
+    const viewer = new ViewerPage(page);
+    await page.goto(`${server.url}/`); // the shell itself loads without the token
+    const message = await viewer.waitForError(20000);
+    assert.match(message, /401/);
+    assert.match(message, /token/);
+  });
+});
