@@ -20,7 +20,7 @@ mkdir -p "$dir"
 measure() {
     local out
     out=$(/usr/bin/time -f '%e %M' "$@" 2>&1 >/dev/null | tail -1)
-    awk '{ printf "%.2f %.0f", $1, $2 / 1024 }' <<<"$out"
+    awk '{ printf "%.2f %.0f\n", $1, $2 / 1024 }' <<<"$out"
 }
 
 echo "| slices | samples | Vots | fit s | fit peak MiB | one-shot vots render s (peak MiB) | one-shot reference s (peak MiB) | walk ms anterior / oblique / persp, 512^2 | walk ms, 1024^2 |"
@@ -40,7 +40,7 @@ for n in "$@"; do
     read -r ref_s ref_mib < <(measure "$vots" render "$fitted" --mode reference --volume "$volume" --cam az=30,el=20 \
         -o "$dir/ref$n.png")
     walk() { # medians of the three views at one size, "a / o / p"
-        "$build/bench/render_bench" "$volume" --vots "$fitted" --size "$1" --frames 5 --warmup 1 --strategy walk |
+        "$build/bench/render_bench" "$volume" --vots "$fitted" --size "$1" --frames 5 --warmup 1 --strategy walk 2>/dev/null |
             awk -F'|' '/\| (anterior|oblique|persp) \|/ { gsub(/ /, "", $8); v[$3] = $8 }
                 END { printf "%s / %s / %s", v[" anterior "], v[" oblique "], v[" persp "] }'
     }
