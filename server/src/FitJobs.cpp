@@ -9,11 +9,21 @@
 
 #include "vots/fit/Error.h"
 
+#include <malloc.h>
+
 #include <algorithm>
 #include <iostream>
 
 namespace vots::server {
 namespace {
+
+// The fitter's freed working memory goes back to the kernel: otherwise malloc keeps it in its arenas,
+// where it still counts as resident and the memory budget (MemoryAdmission) would refuse the next fit.
+void returnFreedMemory() {
+#ifdef __GLIBC__
+    ::malloc_trim(0);
+#endif
+}
 
 FitRecord recordFor(const JobSnapshot& job, const char* source) {
     return FitRecord{job.key, job.dataset, job.eps, job.degree, job.votCount, job.fitSeconds, source};
@@ -112,6 +122,7 @@ void FitJobs::workerLoop() {
             ++mRunning;
         }
         run(pending);
+        returnFreedMemory();
         std::lock_guard lock(mMutex);
         --mRunning;
         mActiveByKey.erase(pending.job->key().text());
