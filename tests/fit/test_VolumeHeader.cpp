@@ -2,6 +2,7 @@
 // memory sizes as text and the default budget.
 #include "VolumeFixtures.h"
 
+#include "FuzzCorpus.h"
 #include "TempDir.h"
 #include "vots/fit/Error.h"
 #include "vots/fit/MemoryBudget.h"
@@ -59,6 +60,37 @@ TEST(VolumeHeader, AgreesWithTheReaderOnEveryFormat) {
                              "hydrogen-3d-orbital_64x64x64_float32.nrrd"}) {
         const std::string path = std::string(VOTS_SHARED_DATA_DIR) + "/" + name;
         if (std::filesystem::exists(path)) expectSameAsLoad(path);
+    }
+}
+
+// Over the fuzz inputs (hostile headers): the header reader throws only InputError, and every file the
+// reader loads is also sized by the header reader, with the same grid, so none is refused wrongly.
+TEST(VolumeHeader, AgreesWithTheReaderOnTheFuzzInputs) {
+    for (const auto& [target, extension] : {std::pair{"fuzz_nrrd", ".nrrd"}, std::pair{"fuzz_nifti", ".nii"},
+                                            std::pair{"fuzz_metaimage", ".mha"}}) {
+        const auto inputs = fuzzInputs(target);
+        ASSERT_FALSE(inputs.empty()) << target;
+        int loaded = 0;
+        for (const auto& [name, bytes] : inputs) {
+            SCOPED_TRACE(std::string(target) + "/" + name);
+            const TempDir dir;
+            const std::string path = dir.write(std::string("input") + extension, bytes);
+            std::optional<fit::VolumeHeaderInfo> header;
+            try {
+                header = fit::volumeHeaderInfo(path);
+            } catch (const fit::InputError&) {
+            }
+            try {
+                const fit::Volume volume = fit::loadVolume(path);
+                ++loaded;
+                ASSERT_TRUE(header.has_value()) << "loads, but its header was refused";
+                for (int a = 0; a < 3; ++a)
+                    EXPECT_EQ(header->dims[a], static_cast<std::uint64_t>(volume.dims[a]));
+                EXPECT_EQ(header->sourceType, volume.sourceType);
+            } catch (const fit::InputError&) {
+            }
+        }
+        EXPECT_GT(loaded, 0) << target << ": no seed loads, so nothing was compared";
     }
 }
 
