@@ -1,6 +1,7 @@
 // `vots fit`: volume file -> Vot-Space file; checks every argument before loading, writes only on success.
 #include "Args.h"
 #include "Commands.h"
+#include "MemoryBudgetOption.h"
 #include "Progress.h"
 #include "RawOptions.h"
 
@@ -36,6 +37,7 @@ struct FitArgs {
     std::string epsFocus;
     int threads = 0;
     bool progress = false;
+    std::string memoryBudget; // empty: the default
     RawArgs raw;
 };
 
@@ -94,6 +96,7 @@ std::optional<float> resolveBackground(const std::string& text, const fit::Volum
 void runFit(const FitArgs& a) {
     const CheckedArgs checked = checkArgs(a);
     checkOutput(a);
+    checkVolumeFitsBudget(a.input, checked.raw, a.memoryBudget);
 
     const fit::Volume volume = fit::loadVolume(a.input, checked.raw);
     const auto range = volume.valueRange();
@@ -170,6 +173,7 @@ void addFitCommand(CLI::App& app) {
     focus->needs(epsFocus);
     cmd->add_option("--threads", args->threads, "Worker threads (0: all cores)")->capture_default_str();
     cmd->add_flag("--progress", args->progress, "Show progress on stderr");
+    addMemoryBudgetOption(*cmd, args->memoryBudget);
     addRawOptions(*cmd, args->raw);
     cmd->callback([args] { runFit(*args); });
 }

@@ -1,6 +1,7 @@
 // `vots render`: a .vots file or a volume -> MIP / density / reference PNG, headless; argument checks first.
 #include "Args.h"
 #include "Commands.h"
+#include "MemoryBudgetOption.h"
 
 #include "vots/fit/Error.h"
 #include "vots/fit/Fitter.h"
@@ -47,6 +48,7 @@ struct RenderArgs {
     std::string background = "auto";
     std::string certify = certifyName(render::RENDER_FIT_CERTIFY);
     std::string volume;
+    std::string memoryBudget; // empty: the default
 };
 
 struct CheckedArgs {
@@ -118,12 +120,17 @@ void runRender(const RenderArgs& a) {
     std::optional<fit::VotSpace> space;
     if (inputIsVots) {
         space = fit::readVotSpaceFile(a.input);
-        if (!a.volume.empty()) volume = fit::loadVolume(a.volume);
+        if (!a.volume.empty()) {
+            checkVolumeFitsBudget(a.volume, std::nullopt, a.memoryBudget);
+            volume = fit::loadVolume(a.volume);
+        }
         if (c.frame.mode == render::RenderMode::Reference && !volume)
             throw fit::InputError("--mode reference on a .vots file needs the volume: add --volume PATH");
     } else {
         if (!a.volume.empty())
             throw fit::InputError("--volume is only for .vots input; INPUT is already a volume");
+        // The fit's estimate also for --mode reference: it covers the samples, their texture and the read.
+        checkVolumeFitsBudget(a.input, std::nullopt, a.memoryBudget);
         volume = fit::loadVolume(a.input);
         if (c.frame.mode != render::RenderMode::Reference) space = fitForRender(*volume, a, c);
     }
@@ -171,6 +178,7 @@ void addRenderCommand(CLI::App& app) {
         ->check(CLI::IsMember({"cells", "samples"}))
         ->capture_default_str();
     cmd->add_option("--volume", args->volume, "The volume of a .vots input (for --mode reference)");
+    addMemoryBudgetOption(*cmd, args->memoryBudget);
     cmd->callback([args] { runRender(*args); });
 }
 

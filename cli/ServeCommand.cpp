@@ -1,7 +1,9 @@
 // `vots serve`: options -> vots::server::Server, then serve until SIGINT/SIGTERM; no HTTP logic here.
 #include "Commands.h"
+#include "MemoryBudgetOption.h"
 
 #include "vots/fit/Error.h"
+#include "vots/fit/MemoryBudget.h"
 #include "vots/server/Exposure.h"
 #include "vots/server/Server.h"
 
@@ -31,6 +33,7 @@ struct ServeArgs {
     std::string prepare = "cranium"; // the viewer's first dataset when the data folders have it
     std::string tokenFile;
     std::vector<std::string> allowHosts;
+    std::string memoryBudget; // empty: the default
 };
 
 /// "host:port" as a URL writes it: an IPv6 address in brackets.
@@ -62,6 +65,7 @@ void runServe(const ServeArgs& a) {
     const bool generatedToken = a.tokenFile.empty() && !server::isLoopbackHost(a.host);
     if (!a.tokenFile.empty()) options.accessToken = server::readAccessTokenFile(a.tokenFile);
     if (generatedToken) options.accessToken = server::generateAccessToken();
+    options.memoryBudgetBytes = resolveMemoryBudget(a.memoryBudget);
 
     // Signals are taken by sigwait below, so every thread the server starts must have them blocked.
     sigset_t stopSignals;
@@ -89,6 +93,8 @@ void runServe(const ServeArgs& a) {
                   : generatedToken            ? "required, generated (printed once on stderr)"
                                               : "required, from " + a.tokenFile)
               << "\n"
+              << "  memory budget: " << fit::formatBytes(srv.memoryBudget())
+              << (a.memoryBudget.empty() ? " (default: 80 % of the memory available)" : "") << "\n"
               << "  " << srv.rendererSummary() << std::endl;
     if (generatedToken)
         std::cerr << "vots serve: access token: " << options.accessToken << "\n"
@@ -140,6 +146,7 @@ void addServeCommand(CLI::App& app) {
                     "Dataset to load, fit at its default eps and upload as the server starts, so the "
                     "viewer's first image is quick (skipped when the data folders lack it; '' for none)")
         ->capture_default_str();
+    addMemoryBudgetOption(*cmd, args->memoryBudget);
     cmd->add_flag(
         "--no-warm-up", args->noWarmUp,
         "Do not fit at half the last eps in idle time (it makes later refits to a smaller eps faster)");

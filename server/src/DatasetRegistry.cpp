@@ -5,6 +5,7 @@
 #include "Params.h"
 #include "vots/fit/Error.h"
 #include "vots/fit/Fitter.h"
+#include "vots/fit/MemoryBudget.h"
 #include "vots/fit/VolumeLoad.h"
 
 #include <algorithm>
@@ -27,9 +28,13 @@ std::string volumeStem(const fs::path& file) {
     return {};
 }
 
-std::shared_ptr<const Dataset> loadDataset(const std::string& name, const fs::path& path) {
+std::shared_ptr<const Dataset> loadDataset(const std::string& name, const fs::path& path,
+                                           const fit::VolumeHeaderInfo& header) {
     auto volume = std::make_shared<fit::Volume>(fit::loadVolume(path.string()));
     auto dataset = std::make_shared<Dataset>();
+    dataset->loadAndFitBytes = fit::estimateLoadAndFitBytes(header);
+    const std::uint64_t held = fit::estimateLoadedVolumeBytes(header);
+    dataset->fitBytes = dataset->loadAndFitBytes > held ? dataset->loadAndFitBytes - held : 0;
     dataset->name = name;
     dataset->path = path;
     dataset->range = volume->valueRange();
@@ -59,7 +64,8 @@ std::map<std::string, render::DisplaySettings> windowPresets(std::array<float, 2
     return presets;
 }
 
-DatasetRegistry::DatasetRegistry(const std::vector<fs::path>& dataDirs) {
+DatasetRegistry::DatasetRegistry(const std::vector<fs::path>& dataDirs, MemoryAdmission& memory)
+    : mMemory(memory) {
     for (const fs::path& dir : dataDirs) {
         std::error_code ec;
         fs::directory_iterator it(dir, ec);
@@ -103,9 +109,22 @@ std::shared_ptr<const Dataset> DatasetRegistry::find(const std::string& name) {
     std::lock_guard loadLock(entry->loadMutex);
     if (!entry->dataset && entry->loadError.empty()) {
         try {
-            auto dataset = loadDataset(name, entry->path);
+            if (!entry->header) {
+                auto header = fit::volumeHeaderInfo(entry->path.string());
+                std::lock_guard lock(mMutex); // header() reads it under mMutex
+                entry->header = header;
+            }
+            // Refused before anything is allocated. Admitted against load and fit together: a volume that
+            // loads but cannot be fitted is of no use. Given back once loaded: the samples are then
+            // resident, and each fit job is admitted for its own part (Dataset::fitBytes).
+            const MemoryReservation admitted =
+                mMemory.admit(fit::estimateLoadAndFitBytes(*entry->header),
+                              "dataset '" + name + "' (" + entry->header->describe() + ")");
+            auto dataset = loadDataset(name, entry->path, *entry->header);
             std::lock_guard lock(mMutex); // loaded() reads dataset under mMutex
             entry->dataset = std::move(dataset);
+        } catch (const HttpError&) {
+            throw;                          // over the memory budget now; not remembered as a load error
         } catch (const std::exception& e) { // InputError for a malformed file, bad_alloc for a huge one
             entry->loadError = e.what();
             std::cerr << "vots serve: warning: dataset '" << name << "' cannot be loaded: " << e.what()
@@ -114,6 +133,13 @@ std::shared_ptr<const Dataset> DatasetRegistry::find(const std::string& name) {
     }
     if (!entry->dataset) throw HttpError(500, "dataset '" + name + "' cannot be loaded: " + entry->loadError);
     return entry->dataset;
+}
+
+std::optional<fit::VolumeHeaderInfo> DatasetRegistry::header(const std::string& name) const {
+    std::lock_guard lock(mMutex);
+    const auto it = mEntries.find(name);
+    if (it == mEntries.end()) return std::nullopt;
+    return it->second->header;
 }
 
 std::vector<std::shared_ptr<const Dataset>> DatasetRegistry::loaded() const {

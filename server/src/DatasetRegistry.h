@@ -1,7 +1,10 @@
 // The volumes the server offers: found by name in the data folders, loaded lazily once, then kept.
 #pragma once
 
+#include "MemoryAdmission.h"
+
 #include "vots/fit/Volume.h"
+#include "vots/fit/VolumeHeader.h"
 #include "vots/render/DisplaySettings.h"
 
 #include <array>
@@ -9,6 +12,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,22 +29,29 @@ struct Dataset {
     float defaultEps = 0.f;                                 // fit::EpsSpec{} resolved, data units
     bool isCt = false;                                      // range looks like Hounsfield units (min <= -900)
     std::map<std::string, render::DisplaySettings> presets; // "bone", "soft", "full" (grey)
+    std::uint64_t loadAndFitBytes = 0;                      // fit::estimateLoadAndFitBytes of its header
+    std::uint64_t fitBytes = 0; // what one fit needs beyond the loaded volume (admitted per fit job)
 };
 
 /// Window presets for a value range: HU presets when it looks like CT, else fractions of the range.
 std::map<std::string, render::DisplaySettings> windowPresets(std::array<float, 2> range, bool isCt);
 
 /// Thread-safe. Scans the folders once at construction for .nrrd/.nhdr/.nii/.nii.gz/.mhd/.mha files;
-/// the first folder that has a name wins. Loading happens on the first find() of a name.
+/// the first folder that has a name wins. Loading happens on the first find() of a name, once `memory`
+/// admits the load and fit its header announces.
 class DatasetRegistry {
 public:
-    explicit DatasetRegistry(const std::vector<std::filesystem::path>& dataDirs);
+    DatasetRegistry(const std::vector<std::filesystem::path>& dataDirs, MemoryAdmission& memory);
 
     /// All names found, sorted.
     std::vector<std::string> names() const;
     /// The dataset, loading it on first use. Throws HttpError 400 for a name that is not a plain
-    /// identifier, 404 for an unknown one, 500 when the file cannot be read (the reason is kept).
+    /// identifier, 404 for an unknown one, 500 when the file cannot be read (the reason is kept), 507
+    /// when its header announces more than the memory budget leaves (asked again next time: memory may
+    /// have been freed meanwhile).
     std::shared_ptr<const Dataset> find(const std::string& name);
+    /// The header of a dataset find() has looked at, loaded or not (nullopt before, or when unreadable).
+    std::optional<fit::VolumeHeaderInfo> header(const std::string& name) const;
     /// Already loaded datasets only (never loads), for stats.
     std::vector<std::shared_ptr<const Dataset>> loaded() const;
 
@@ -49,8 +60,10 @@ private:
         std::filesystem::path path;
         std::mutex loadMutex; // held while this one file loads, so others load in parallel
         std::shared_ptr<const Dataset> dataset;
+        std::optional<fit::VolumeHeaderInfo> header; // read before loading; written under mMutex
         std::string loadError;
     };
+    MemoryAdmission& mMemory;
     mutable std::mutex mMutex;
     std::map<std::string, std::unique_ptr<Entry>> mEntries;
 };

@@ -3,6 +3,8 @@
 #include "HttpJson.h"
 #include "ServerImpl.h"
 
+#include "vots/fit/MemoryBudget.h"
+
 namespace vots::server {
 namespace {
 
@@ -24,7 +26,22 @@ nlohmann::json datasetJson(const Dataset& d) {
             {"presets", presets},
             {"defaultEps", d.defaultEps},
             {"background", d.background},
-            {"modality", d.isCt ? "CT" : "other"}};
+            {"modality", d.isCt ? "CT" : "other"},
+            {"fits", true},
+            {"memoryNeeded", d.loadAndFitBytes}};
+}
+
+// A dataset the memory budget refuses: what its header announces and why it is not loaded, so the
+// viewer can show it greyed out with the reason instead of leaving it out.
+nlohmann::json refusedJson(const std::string& name, const std::optional<fit::VolumeHeaderInfo>& header,
+                           const std::string& reason) {
+    nlohmann::json out = {{"name", name}, {"fits", false}, {"error", reason}};
+    if (header) {
+        out["dims"] = header->dims;
+        out["sourceType"] = fit::scalarTypeName(header->sourceType);
+        out["memoryNeeded"] = fit::estimateLoadAndFitBytes(*header);
+    }
+    return out;
 }
 
 } // namespace
@@ -53,11 +70,16 @@ void installDatasetRoutes(Server::Impl& s) {
         for (const std::string& name : s.registry.names()) {
             try {
                 list.push_back(datasetJson(*s.registry.find(name))); // loads on first use
-            } catch (const HttpError&) {
-                // A file that does not load is left out (and was logged once by the registry).
+            } catch (const HttpError& e) {
+                // Over the memory budget: listed as such. Any other file that does not load is left out
+                // (and was logged once by the registry).
+                if (e.status() == 507) list.push_back(refusedJson(name, s.registry.header(name), e.what()));
             }
         }
-        sendJson(res, 200, {{"datasets", list}});
+        sendJson(res, 200,
+                 {{"datasets", list},
+                  {"memoryBudget", s.memory.budget()},
+                  {"memoryAvailable", s.memory.available()}});
     });
 }
 

@@ -9,11 +9,21 @@
 
 #include "vots/fit/Error.h"
 
+#include <malloc.h>
+
 #include <algorithm>
 #include <iostream>
 
 namespace vots::server {
 namespace {
+
+// The fitter's freed working memory goes back to the kernel: otherwise malloc keeps it in its arenas,
+// where it still counts as resident and the memory budget (MemoryAdmission) would refuse the next fit.
+void returnFreedMemory() {
+#ifdef __GLIBC__
+    ::malloc_trim(0);
+#endif
+}
 
 FitRecord recordFor(const JobSnapshot& job, const char* source) {
     return FitRecord{job.key, job.dataset, job.eps, job.degree, job.votCount, job.fitSeconds, source};
@@ -22,8 +32,8 @@ FitRecord recordFor(const JobSnapshot& job, const char* source) {
 } // namespace
 
 FitJobs::FitJobs(VotSpaceCache& cache, ServerStats& stats, ForegroundActivity& foreground,
-                 FitJobLimits limits)
-    : mCache(cache), mStats(stats), mForeground(foreground), mLimits(limits),
+                 MemoryAdmission& memory, FitJobLimits limits)
+    : mCache(cache), mStats(stats), mForeground(foreground), mMemory(memory), mLimits(limits),
       mWarmUps(mBoxCaches, foreground, limits.warmUp) {
     for (int i = 0; i < std::max(1, mLimits.maxRunning); ++i)
         mWorkers.emplace_back([this] { workerLoop(); });
@@ -70,9 +80,10 @@ std::shared_ptr<FitJob> FitJobs::submit(std::shared_ptr<const Dataset> dataset, 
     }
     if (static_cast<int>(mQueue.size()) + mRunning >= mLimits.maxRunning + mLimits.maxQueued)
         throw HttpError(429, "too many fit jobs; try again when one has finished");
+    MemoryReservation memory = mMemory.admit(dataset->fitBytes, "a fit of dataset '" + key.dataset + "'");
     auto job = std::make_shared<FitJob>(mNextId++, key);
     mWarmUps.giveWay(); // somebody waits for this one
-    mQueue.push_back(Pending{job, std::move(dataset)});
+    mQueue.push_back(Pending{job, std::move(dataset), std::move(memory)});
     mActiveByKey[text] = job;
     mById[job->id()] = job;
     mWake.notify_one();
@@ -111,11 +122,14 @@ void FitJobs::workerLoop() {
             ++mRunning;
         }
         run(pending);
+        returnFreedMemory();
         std::lock_guard lock(mMutex);
         --mRunning;
         mActiveByKey.erase(pending.job->key().text());
         rememberLocked(pending.job);
-        if (pending.job->snapshot().state == JobState::Done && !mStopping && mRunning == 0 && mQueue.empty())
+        // A warm-up holds no reservation (a requested fit makes it give way), so it starts only with room.
+        if (pending.job->snapshot().state == JobState::Done && !mStopping && mRunning == 0 &&
+            mQueue.empty() && mMemory.available() >= pending.dataset->fitBytes)
             mWarmUps.afterIdleFit(pending.dataset, pending.job->key());
     }
 }

@@ -5,6 +5,7 @@
 #include "DatasetRegistry.h"
 #include "FitJob.h"
 #include "FitKey.h"
+#include "MemoryAdmission.h"
 #include "WarmUpFits.h"
 
 #include <atomic>
@@ -34,14 +35,15 @@ struct FitJobLimits {
 /// Owns the worker threads and the warm-ups that follow their fits. Thread-safe.
 class FitJobs {
 public:
-    FitJobs(VotSpaceCache& cache, ServerStats& stats, ForegroundActivity& foreground,
+    FitJobs(VotSpaceCache& cache, ServerStats& stats, ForegroundActivity& foreground, MemoryAdmission& memory,
             FitJobLimits limits = {});
     ~FitJobs(); // shutdown(), then joins the workers
     FitJobs(const FitJobs&) = delete;
     FitJobs& operator=(const FitJobs&) = delete;
 
     /// Returns the job for this key: an active one, a finished one from the memory cache, or a new
-    /// queued one. Throws HttpError 429 when the queue is full.
+    /// queued one. Throws HttpError 429 when the queue is full, 507 when the memory budget does not leave
+    /// room for the fit (Dataset::fitBytes; reserved until the job ends). Warm-ups start only with room.
     std::shared_ptr<FitJob> submit(std::shared_ptr<const Dataset> dataset, const FitKey& key);
     /// Throws HttpError 404 for an unknown or forgotten id.
     std::shared_ptr<FitJob> find(std::uint64_t id) const;
@@ -55,6 +57,7 @@ private:
     struct Pending {
         std::shared_ptr<FitJob> job;
         std::shared_ptr<const Dataset> dataset;
+        MemoryReservation memory; // the fit's working memory, given back when the job ends
     };
     void workerLoop();
     void run(const Pending& pending);
@@ -63,6 +66,7 @@ private:
     VotSpaceCache& mCache;
     ServerStats& mStats;
     ForegroundActivity& mForeground;
+    MemoryAdmission& mMemory;
     const FitJobLimits mLimits;
     std::atomic<bool> mCancel{false};
     BoxCaches mBoxCaches;

@@ -5,6 +5,8 @@
 #include "ServerImpl.h"
 #include "StaticFiles.h"
 
+#include "vots/fit/MemoryBudget.h"
+
 #include <sys/socket.h>
 
 #include <algorithm>
@@ -52,8 +54,10 @@ void raiseListenBacklog(const Server::Impl& s) {
 } // namespace
 
 Server::Impl::Impl(ServerOptions opts)
-    : options(std::move(opts)), registry(options.dataDirs), cache(options.cacheDir, options.memoryCacheBytes),
-      fitJobs(cache, stats, foreground, limitsFrom(options)), frames(options.frameCacheBytes),
+    : options(std::move(opts)),
+      memory(options.memoryBudgetBytes ? options.memoryBudgetBytes : fit::defaultMemoryBudget()),
+      registry(options.dataDirs, memory), cache(options.cacheDir, options.memoryCacheBytes),
+      fitJobs(cache, stats, foreground, memory, limitsFrom(options)), frames(options.frameCacheBytes),
       guard(options.allowedHosts, options.accessToken) {
     if (options.withRenderer) renderQueue = std::make_unique<RenderQueue>(stats, foreground);
     cache.deferDiskWritesWhile([this] { return foreground.busyWithin(DISK_WRITE_QUIET); });
@@ -164,6 +168,10 @@ int Server::bindToAnyPort(const std::string& host) {
 bool Server::listenAfterBind() {
     return mImpl->http.listen_after_bind();
 }
+std::uint64_t Server::memoryBudget() const {
+    return mImpl->memory.budget();
+}
+
 bool Server::isRunning() const {
     return mImpl->http.is_running();
 }

@@ -5,6 +5,7 @@
 #include "FitJobs.h"
 #include "ForegroundActivity.h"
 #include "FrameCache.h"
+#include "MemoryAdmission.h"
 #include "Params.h"
 #include "RenderQueue.h"
 #include "RequestGuard.h"
@@ -28,6 +29,7 @@ struct Server::Impl {
     ServerOptions options;
     ServerStats stats;
     ForegroundActivity foreground; // frames and requested fits, which background work waits for
+    MemoryAdmission memory;        // --memory-budget: loads and fit jobs are admitted against it
     DatasetRegistry registry;
     VotSpaceCache cache;
     FitJobs fitJobs;

@@ -5,8 +5,17 @@ import { fmtExact, fmtValue } from './format.js';
 
 const PRESET_LABELS = { bone: 'Bone', soft: 'Soft tissue', full: 'Full range' };
 
+// A dataset the server's memory budget refuses ("fits": false) is listed, disabled, with the reason.
 export function fillDatasetPicker(select, datasets) {
-  select.replaceChildren(...datasets.map((d) => new Option(d.name, d.name)));
+  select.replaceChildren(...datasets.map((d) => {
+    if (d.fits !== false) return new Option(d.name, d.name);
+    const gb = Number(d.memoryNeeded) / 2 ** 30;
+    const needs = Number.isFinite(gb) ? `needs ${gb >= 10 ? gb.toFixed(0) : gb.toFixed(1)} GB, ` : '';
+    const option = new Option(`${d.name} (${needs}too large for the server's memory)`, d.name);
+    option.disabled = true;
+    option.title = d.error || '';
+    return option;
+  }));
 }
 
 export function fillPresets(select, ds) {

@@ -242,17 +242,21 @@ window.addEventListener('hashchange', () => {
 async function start() {
   adoptToken(location.hash); // before the first request: a server beyond loopback asks for it
   updateStatus();
+  let listed;
   try {
-    datasets = await fetchDatasets();
+    listed = await fetchDatasets();
   } catch (e) {
     banner.show(e.message, 'datasets');
     return;
   }
+  // Datasets over the server's memory budget are listed (disabled, with the reason) but never opened.
+  datasets = listed.filter((d) => d.fits !== false);
   if (!datasets.length) {
-    banner.show('The server has no datasets to show.', 'datasets');
+    const refused = listed.find((d) => d.fits === false);
+    banner.show(refused ? refused.error : 'The server has no datasets to show.', 'datasets');
     return;
   }
-  fillDatasetPicker(el.dataset, datasets);
+  fillDatasetPicker(el.dataset, listed);
   applyHash();
   fillPresets(el.preset, currentDataset());
   writeHash();

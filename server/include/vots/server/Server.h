@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -28,6 +29,10 @@ struct ServerOptions {
     // files must show (empty: none asked for).
     std::vector<std::string> allowedHosts;
     std::string accessToken;
+    // Loads and fits are refused (507) when their estimate from the header exceeds the budget minus the
+    // process's resident memory: never an allocation the kernel kills the server for. 0: the default,
+    // fit::defaultMemoryBudget() (80 % of the memory available at start).
+    std::uint64_t memoryBudgetBytes = 0;
 };
 
 /// The folders `vots serve` uses when none are given: ./data and ../shared/data when present.
@@ -50,6 +55,9 @@ public:
     bool listenAfterBind();
     void stop();
     bool isRunning() const;
+
+    /// The memory budget in force (the option, or the default it resolved to).
+    std::uint64_t memoryBudget() const;
 
     /// One line about the renderer ("llvmpipe ..." or why there is none).
     std::string rendererSummary() const;

@@ -1,0 +1,29 @@
+// The --memory-budget option of `fit`, `render` and `serve`, and the check a load makes against it.
+#pragma once
+
+#include "vots/fit/VolumeLoad.h"
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+namespace CLI {
+class App;
+}
+
+namespace vots::cli {
+
+/// Adds --memory-budget SIZE to a command; `text` stays empty when it is not given.
+void addMemoryBudgetOption(CLI::App& command, std::string& text);
+
+/// The budget in bytes: the option's value, or fit::defaultMemoryBudget() when it is empty.
+/// Throws InputError for a malformed size.
+std::uint64_t resolveMemoryBudget(const std::string& text);
+
+/// Reads only the volume's header and throws one-line InputError (exit 2) when loading and fitting
+/// it would need more than the budget leaves after what this process holds: checked before any of
+/// the samples are read, so a header announcing a huge volume costs nothing.
+void checkVolumeFitsBudget(const std::string& path, const std::optional<fit::RawLayout>& raw,
+                           const std::string& budgetText);
+
+} // namespace vots::cli

@@ -1,0 +1,41 @@
+// Memory a load and fit will take, estimated from a header alone, and the budget it is checked against.
+#pragma once
+
+#include "vots/fit/VolumeHeader.h"
+
+#include <cstdint>
+#include <string>
+
+namespace vots::fit {
+
+/// The fitter's peak resident memory as a linear model of the volume: the one place its factors live.
+/// peak = samples * perSample + storedBytes * perStoredByte + fixedBytes
+struct FitMemoryModel {
+    double perSample = 0.0;     // bytes per sample whatever the file's type (float samples, masks)
+    double perStoredByte = 0.0; // per byte of the samples as the file stores them (the read payload)
+    double fixedBytes = 0.0;    // independent of the size (code, threads, caches)
+};
+
+/// The model the estimates use, measured on the current fitter (docs/API.md, "Memory budget").
+FitMemoryModel fitMemoryModel();
+
+/// Peak resident bytes of loading this volume and fitting it once (`vots fit`, a server's first fit),
+/// saturating at UINT64_MAX.
+std::uint64_t estimateLoadAndFitBytes(const VolumeHeaderInfo& header);
+/// The part of that peak that stays once the volume is loaded (the samples as a Volume holds them),
+/// so that a later fit of a loaded volume needs estimateLoadAndFitBytes - this.
+std::uint64_t estimateLoadedVolumeBytes(const VolumeHeaderInfo& header);
+
+/// "8G", "512M", "1.5G", "64K", "1T" (powers of 1024; an optional trailing B or iB) or plain bytes.
+/// Throws InputError naming `what` for anything else, zero or negative.
+std::uint64_t parseMemorySize(const std::string& text, const std::string& what);
+/// "1.5 GB", "512 MB", "900 B" (powers of 1024), for messages.
+std::string formatBytes(std::uint64_t bytes);
+
+/// The default budget: 80 % of the memory available now (MemAvailable of /proc/meminfo, or the
+/// cgroup's limit minus its usage when that is smaller), plus what this process already holds.
+std::uint64_t defaultMemoryBudget();
+/// Resident memory of this process now (/proc/self/statm); 0 where unknown.
+std::uint64_t residentBytes();
+
+} // namespace vots::fit

@@ -1,0 +1,171 @@
+// Header-only reading of NRRD, NIfTI-1 and MetaImage files: the announced dims and sample type, no samples.
+// The readers (NrrdReader.cpp, ...) validate everything else when the volume is loaded; this file reads
+// just the fields that size the load, in the same way, so both agree on the grid.
+#include "vots/fit/VolumeHeader.h"
+
+#include "Gzip.h"
+#include "HeaderText.h"
+#include "InputFile.h"
+#include "SampleDecode.h"
+
+#include <bit>
+#include <cstring>
+#include <limits>
+#include <map>
+
+namespace vots::fit {
+
+namespace {
+
+using namespace detail;
+
+constexpr std::size_t MAX_TEXT_HEADER_BYTES = std::size_t{1} << 20; // as the NRRD and MetaImage readers
+constexpr std::size_t NIFTI_HEADER_BYTES = 348;
+constexpr std::size_t GZIP_PREFIX_BYTES = std::size_t{1} << 16; // far more than 348 inflated bytes need
+
+std::uint64_t saturatingProduct(std::uint64_t a, std::uint64_t b) {
+    if (a != 0 && b > std::numeric_limits<std::uint64_t>::max() / a)
+        return std::numeric_limits<std::uint64_t>::max();
+    return a * b;
+}
+
+VolumeHeaderInfo infoFrom(const std::string& path, const std::array<long long, 3>& dims, ScalarType type) {
+    VolumeHeaderInfo info;
+    info.sourceType = type;
+    for (int a = 0; a < 3; ++a) {
+        if (dims[a] <= 0)
+            throwInputError(path, std::string("size along ") + "xyz"[a] + " is " + std::to_string(dims[a]) +
+                                      " (must be positive)");
+        info.dims[a] = static_cast<std::uint64_t>(dims[a]);
+    }
+    return info;
+}
+
+// "key: value" lines after the magic line, up to the blank line before attached data.
+VolumeHeaderInfo nrrdInfo(const std::string& path) {
+    const std::string text = readFilePrefix(path, MAX_TEXT_HEADER_BYTES);
+    if (text.size() < 8 || text.compare(0, 7, "NRRD000") != 0)
+        throwInputError(path, "not a NRRD file (it does not start with NRRD000x)");
+    std::string type, sizes, dimension;
+    HeaderLine line = lineAt(text, 0);
+    while (line.next < text.size()) {
+        line = lineAt(text, line.next);
+        if (line.text.empty()) break;
+        if (line.text.front() == '#' || line.text.find(":=") != std::string::npos) continue;
+        const std::size_t colon = line.text.find(':');
+        if (colon == std::string::npos) continue; // the reader names a bad line when it loads
+        const std::string key = toLower(trim(line.text.substr(0, colon)));
+        const std::string value = trim(line.text.substr(colon + 1));
+        if (key == "type") type = value;
+        if (key == "sizes") sizes = value;
+        if (key == "dimension") dimension = value;
+        if (key == "data file" || key == "datafile") {
+            // A LIST of names follows to the end of the header; nothing after it sizes the volume.
+            const std::vector<std::string> words = splitWords(value);
+            if (!words.empty() && words[0] == "LIST") break;
+        }
+    }
+    const long long rank = parseIntegers(path, "dimension", dimension, 1)[0];
+    if (rank != 3)
+        throwInputError(path, "dimension is " + std::to_string(rank) + "; only 3D volumes are supported");
+    const std::optional<ScalarType> scalar = findScalarType(type);
+    if (!scalar) throwInputError(path, "missing or unsupported 'type' field '" + quotable(type) + "'");
+    const std::vector<long long> n = parseIntegers(path, "sizes", sizes, 3);
+    return infoFrom(path, {n[0], n[1], n[2]}, *scalar);
+}
+
+// "Key = Value" lines up to ElementDataFile, which always comes last.
+VolumeHeaderInfo metaImageInfo(const std::string& path) {
+    static const std::map<std::string, ScalarType> TYPES = {
+        {"MET_UCHAR", ScalarType::UInt8},   {"MET_CHAR", ScalarType::Int8},
+        {"MET_USHORT", ScalarType::UInt16}, {"MET_SHORT", ScalarType::Int16},
+        {"MET_UINT", ScalarType::UInt32},   {"MET_INT", ScalarType::Int32},
+        {"MET_FLOAT", ScalarType::Float32}, {"MET_DOUBLE", ScalarType::Float64}};
+    const std::string text = readFilePrefix(path, MAX_TEXT_HEADER_BYTES);
+    std::map<std::string, std::string> fields;
+    std::size_t offset = 0;
+    while (offset < text.size()) {
+        const HeaderLine line = lineAt(text, offset);
+        offset = line.next;
+        const std::size_t equals = line.text.find('=');
+        if (equals == std::string::npos || line.text.front() == '#') continue;
+        const std::string key = toLower(trim(line.text.substr(0, equals)));
+        fields[key] = trim(line.text.substr(equals + 1));
+        if (key == "elementdatafile") break;
+    }
+    if (!fields.count("ndims") || !fields.count("dimsize") || !fields.count("elementtype"))
+        throwInputError(path, "not a MetaImage header with NDims, DimSize and ElementType");
+    const long long rank = parseIntegers(path, "NDims", fields["ndims"], 1)[0];
+    if (rank != 3)
+        throwInputError(path, "NDims is " + std::to_string(rank) + "; only 3D volumes are supported");
+    const auto type = TYPES.find(fields["elementtype"]);
+    if (type == TYPES.end())
+        throwInputError(path, "unsupported ElementType '" + quotable(fields["elementtype"]) + "'");
+    const std::vector<long long> n = parseIntegers(path, "DimSize", fields["dimsize"], 3);
+    return infoFrom(path, {n[0], n[1], n[2]}, type->second);
+}
+
+// The fixed-offset fields of a NIfTI-1 header in the file's byte order (sizeof_hdr 348 tells which).
+VolumeHeaderInfo niftiInfo(const std::string& path) {
+    const std::uint64_t fileSize = regularFileSize(path);
+    const std::vector<unsigned char> start = readFileBytes(path, 0, fileSize < 2 ? 0 : 2);
+    std::vector<unsigned char> header;
+    if (hasGzipMagic(start.data(), start.size())) {
+        const auto prefix = readFileBytes(
+            path, 0, static_cast<std::size_t>(std::min<std::uint64_t>(fileSize, GZIP_PREFIX_BYTES)));
+        Inflater inflater(path, prefix.data(), prefix.size());
+        header = inflater.readExactly(NIFTI_HEADER_BYTES);
+    } else {
+        if (fileSize < NIFTI_HEADER_BYTES) throwInputError(path, "too short for a NIfTI-1 header");
+        header = readFileBytes(path, 0, NIFTI_HEADER_BYTES);
+    }
+    std::uint32_t sizeofHdr = 0;
+    std::memcpy(&sizeofHdr, header.data(), sizeof sizeofHdr);
+    const bool swap = sizeofHdr != NIFTI_HEADER_BYTES;
+    if (swap && byteSwapped(sizeofHdr) != NIFTI_HEADER_BYTES)
+        throwInputError(path, "not a NIfTI-1 file (sizeof_hdr is not 348)");
+    const auto int16At = [&](std::size_t offset) {
+        std::uint16_t bits = 0;
+        std::memcpy(&bits, header.data() + offset, sizeof bits);
+        return std::bit_cast<std::int16_t>(swap ? byteSwapped(bits) : bits);
+    };
+    const int rank = int16At(40);
+    if (rank < 3 || rank > 7)
+        throwInputError(path, "has " + std::to_string(rank) + " dimensions; only 3D volumes are supported");
+    static const std::map<int, ScalarType> TYPES = {{2, ScalarType::UInt8},    {4, ScalarType::Int16},
+                                                    {8, ScalarType::Int32},    {16, ScalarType::Float32},
+                                                    {64, ScalarType::Float64}, {256, ScalarType::Int8},
+                                                    {512, ScalarType::UInt16}, {768, ScalarType::UInt32}};
+    const auto type = TYPES.find(int16At(70));
+    if (type == TYPES.end())
+        throwInputError(path, "unsupported NIfTI datatype " + std::to_string(int16At(70)));
+    return infoFrom(path, {int16At(42), int16At(44), int16At(46)}, type->second);
+}
+
+} // namespace
+
+std::uint64_t VolumeHeaderInfo::sampleCount() const {
+    return saturatingProduct(saturatingProduct(dims[0], dims[1]), dims[2]);
+}
+
+std::uint64_t VolumeHeaderInfo::storedBytes() const {
+    return saturatingProduct(sampleCount(), scalarTypeSize(sourceType));
+}
+
+std::string VolumeHeaderInfo::describe() const {
+    return std::to_string(dims[0]) + "x" + std::to_string(dims[1]) + "x" + std::to_string(dims[2]) + " " +
+           scalarTypeName(sourceType);
+}
+
+VolumeHeaderInfo volumeHeaderInfo(const std::string& path, const std::optional<RawLayout>& raw) {
+    if (raw) return infoFrom(path, {raw->dims[0], raw->dims[1], raw->dims[2]}, raw->type);
+    const std::string extension = volumeExtension(path);
+    if (extension == ".nrrd" || extension == ".nhdr") return nrrdInfo(path);
+    if (extension == ".nii" || extension == ".nii.gz") return niftiInfo(path);
+    if (extension == ".mhd" || extension == ".mha") return metaImageInfo(path);
+    regularFileSize(path); // "no such file" first, as loadVolume
+    throwInputError(path, "unknown volume format '" + extension +
+                              "' (expected .nrrd, .nhdr, .nii, .nii.gz, .mhd, .mha, or a raw layout)");
+}
+
+} // namespace vots::fit
