@@ -10,6 +10,7 @@
 #include <random>
 #include <string>
 #include <thread>
+#include <utility>
 
 namespace vots::test {
 namespace {
@@ -41,9 +42,14 @@ TEST(ServerWarmUp, AnIdleServerFitsHalfTheLastEps) {
     EXPECT_EQ(warm["finished"], 1) << warm.dump();
     EXPECT_FLOAT_EQ(warm["lastEps"].get<float>(), job["eps"].get<float>() / 2) << warm.dump();
     // 4 % -> 2 %, 2 % -> 1 %, and 1 % -> none: half of it is below 1 % of the range.
-    for (const char* eps : {"\"4%\"", "\"2%\"", "\"1%\""}) {
+    // A warm-up starts a moment after its fit is done (the worker first returns freed memory), so each
+    // round waits for its warm-up to have started and finished before the next fit.
+    const std::pair<const char*, int> rounds[] = {{"\"4%\"", 2}, {"\"2%\"", 3}, {"\"1%\"", 3}};
+    for (const auto& [eps, started] : rounds) {
         ASSERT_EQ(waitForJob(*c, postFit(*c, HEAD_MR, eps))["state"], "done");
-        waitForWarmUps(*c, [](const nlohmann::json& w) { return !w["running"].get<bool>(); });
+        waitForWarmUps(*c, [started = started](const nlohmann::json& w) {
+            return w["started"] == started && !w["running"].get<bool>();
+        });
     }
     std::this_thread::sleep_for(200ms);
     const auto last = bodyJson(c->Get("/api/stats"))["warmUps"];
