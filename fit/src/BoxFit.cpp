@@ -1,6 +1,8 @@
 // Least-squares fit of a box from separable moment sums, and the float32 residual certification scan.
 #include "BoxFit.h"
 
+#include "SampleAccess.h"
+
 #include <Eigen/Dense>
 #include <absl/container/flat_hash_map.h>
 
@@ -99,34 +101,35 @@ BoxOutcome BoxFitter::fit(const Box& box, const EpsField& eps, FitCounters& coun
     double moments[4][4][4] = {};
     double sumSquares = 0.0;
     const int nx = box.points(0);
-    const float* values = mVolume.values.data();
     const auto& ux = powers[0];
-    for (int k = 0; k < box.points(2); ++k) {
-        double slab[4][4] = {};
-        for (int j = 0; j < box.points(1); ++j) {
-            const float* row = values + mVolume.indexOf(box.lo[0], box.lo[1] + j, box.lo[2] + k);
-            double r0 = 0, r1 = 0, r2 = 0, r3 = 0;
-            for (int i = 0; i < nx; ++i) {
-                const double f = row[i];
-                const auto& u = ux[static_cast<std::size_t>(i)];
-                r0 += f;
-                r1 += f * u[1];
-                r2 += f * u[2];
-                r3 += f * u[3];
-                sumSquares += f * f;
+    visitSamples(mVolume, [&](const auto* values) {
+        for (int k = 0; k < box.points(2); ++k) {
+            double slab[4][4] = {};
+            for (int j = 0; j < box.points(1); ++j) {
+                const auto* row = values + mVolume.indexOf(box.lo[0], box.lo[1] + j, box.lo[2] + k);
+                double r0 = 0, r1 = 0, r2 = 0, r3 = 0;
+                for (int i = 0; i < nx; ++i) {
+                    const double f = sampleAsFloat(row[i]);
+                    const auto& u = ux[static_cast<std::size_t>(i)];
+                    r0 += f;
+                    r1 += f * u[1];
+                    r2 += f * u[2];
+                    r3 += f * u[3];
+                    sumSquares += f * f;
+                }
+                const auto& v = powers[1][static_cast<std::size_t>(j)];
+                const double rs[4] = {r0, r1, r2, r3};
+                for (int p = 0; p < 4; ++p)
+                    for (int q = 0; q < 4; ++q)
+                        slab[p][q] += rs[p] * v[q];
             }
-            const auto& v = powers[1][static_cast<std::size_t>(j)];
-            const double rs[4] = {r0, r1, r2, r3};
+            const auto& w = powers[2][static_cast<std::size_t>(k)];
             for (int p = 0; p < 4; ++p)
                 for (int q = 0; q < 4; ++q)
-                    slab[p][q] += rs[p] * v[q];
+                    for (int s = 0; s < 4; ++s)
+                        moments[p][q][s] += slab[p][q] * w[s];
         }
-        const auto& w = powers[2][static_cast<std::size_t>(k)];
-        for (int p = 0; p < 4; ++p)
-            for (int q = 0; q < 4; ++q)
-                for (int s = 0; s < 4; ++s)
-                    moments[p][q][s] += slab[p][q] * w[s];
-    }
+    });
 
     using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 20, 20>; // on the stack
     using Vector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 20, 1>;
@@ -215,63 +218,16 @@ void BoxFitter::certify(const Box& box, const EpsField& eps, BoxOutcome& outcome
         return varies && absResidual <= eps.at(x, y, z);
     };
 
-    for (int z = box.lo[2]; z <= box.hi[2] && !violated; ++z) {
-        const SliceCoefficients q = sliceCoefficients(outcome.c, z - pz);
-        for (int y = box.lo[1]; y <= box.hi[1] && !violated; ++y) {
-            const auto r = rowCoefficients(q, y - py);
-            const float* row = mVolume.values.data() + mVolume.indexOf(0, y, z);
-            for (int x = box.lo[0]; x <= box.hi[0]; ++x) {
-                const double res = std::abs(horner(r, x - px) - static_cast<double>(row[x]));
-                maxSample = std::max(maxSample, res);
-                if (!alwaysAccept && !allowed(x, y, z, res)) {
-                    violated = true;
-                    break;
-                }
-            }
-        }
-    }
-    maxCriterion = maxSample;
-
-    if (!violated && mCertify == Certify::Cells) {
-        // Trilinear reference at cell centres and edge midpoints (docs/DESIGN.md §3), walked on the
-        // half-integer lattice so each slice and row polynomial is built once: h counts the half coordinates.
-        const Volume& v = mVolume;
-        const int n[3] = {2 * box.cells(0), 2 * box.cells(1), 2 * box.cells(2)};
-        for (int zi = 0; zi <= n[2] && !violated; ++zi) {
-            const double z = box.lo[2] + 0.5 * zi;
-            const int z0 = box.lo[2] + zi / 2, zh = zi & 1;
+    visitSamples(mVolume, [&](const auto* values) {
+        for (int z = box.lo[2]; z <= box.hi[2] && !violated; ++z) {
             const SliceCoefficients q = sliceCoefficients(outcome.c, z - pz);
-            for (int yi = 0; yi <= n[1] && !violated; ++yi) {
-                const int yh = yi & 1;
-                const double y = box.lo[1] + 0.5 * yi;
-                const int y0 = box.lo[1] + yi / 2;
+            for (int y = box.lo[1]; y <= box.hi[1] && !violated; ++y) {
                 const auto r = rowCoefficients(q, y - py);
-                // Only points with 1 or 3 half coordinates count (h = xh + yh + zh): one parity of xi.
-                const int xhWanted = (yh + zh) % 2 == 0 ? 1 : 0;
-                const bool centres = yh + zh == 2;
-                const float* c00 = v.values.data() + v.indexOf(0, y0, z0); // corners (y0|y0+1, z0|z0+1)
-                const float* c10 = yh ? c00 + v.dims[0] : c00;
-                const float* c01 = zh ? c00 + v.indexOf(0, 0, 1) : c00;
-                const float* c11 = zh ? c10 + v.indexOf(0, 0, 1) : c10;
-                for (int xi = xhWanted; xi <= n[0]; xi += 2) {
-                    const int x0 = box.lo[0] + xi / 2;
-                    double reference = 0.0;
-                    // The same sums in the same order (and precision) as evaluating the trilinear
-                    // interpolant corner by corner, so the certified errors do not change.
-                    if (centres) { // h == 3: mean of the cell's 8 corners, x fastest, then y, then z
-                        for (const float* base : {c00, c10, c01, c11}) {
-                            reference += base[x0];
-                            reference += base[x0 + 1];
-                        }
-                        reference /= 8.0;
-                    } else if (xhWanted) { // edge along x
-                        reference = 0.5 * (c00[x0] + c00[x0 + 1]);
-                    } else { // edge along y or z
-                        reference = 0.5 * (c00[x0] + c11[x0]);
-                    }
-                    const double x = box.lo[0] + 0.5 * xi;
-                    const double res = std::abs(horner(r, x - px) - reference);
-                    maxCriterion = std::max(maxCriterion, res);
+                const auto* row = values + mVolume.indexOf(0, y, z);
+                for (int x = box.lo[0]; x <= box.hi[0]; ++x) {
+                    const double res =
+                        std::abs(horner(r, x - px) - static_cast<double>(sampleAsFloat(row[x])));
+                    maxSample = std::max(maxSample, res);
                     if (!alwaysAccept && !allowed(x, y, z, res)) {
                         violated = true;
                         break;
@@ -279,6 +235,58 @@ void BoxFitter::certify(const Box& box, const EpsField& eps, BoxOutcome& outcome
                 }
             }
         }
+    });
+    maxCriterion = maxSample;
+
+    if (!violated && mCertify == Certify::Cells) {
+        // Trilinear reference at cell centres and edge midpoints (docs/DESIGN.md §3), walked on the
+        // half-integer lattice so each slice and row polynomial is built once: h counts the half coordinates.
+        const Volume& v = mVolume;
+        const int n[3] = {2 * box.cells(0), 2 * box.cells(1), 2 * box.cells(2)};
+        visitSamples(v, [&](const auto* values) {
+            for (int zi = 0; zi <= n[2] && !violated; ++zi) {
+                const double z = box.lo[2] + 0.5 * zi;
+                const int z0 = box.lo[2] + zi / 2, zh = zi & 1;
+                const SliceCoefficients q = sliceCoefficients(outcome.c, z - pz);
+                for (int yi = 0; yi <= n[1] && !violated; ++yi) {
+                    const int yh = yi & 1;
+                    const double y = box.lo[1] + 0.5 * yi;
+                    const int y0 = box.lo[1] + yi / 2;
+                    const auto r = rowCoefficients(q, y - py);
+                    // Only points with 1 or 3 half coordinates count (h = xh + yh + zh): one parity of xi.
+                    const int xhWanted = (yh + zh) % 2 == 0 ? 1 : 0;
+                    const bool centres = yh + zh == 2;
+                    const auto* c00 = values + v.indexOf(0, y0, z0); // corners (y0|y0+1, z0|z0+1)
+                    const auto* c10 = yh ? c00 + v.dims[0] : c00;
+                    const auto* c01 = zh ? c00 + v.indexOf(0, 0, 1) : c00;
+                    const auto* c11 = zh ? c10 + v.indexOf(0, 0, 1) : c10;
+                    for (int xi = xhWanted; xi <= n[0]; xi += 2) {
+                        const int x0 = box.lo[0] + xi / 2;
+                        double reference = 0.0;
+                        // The same sums in the same order (and precision) as evaluating the trilinear
+                        // interpolant corner by corner, so the certified errors do not change.
+                        if (centres) { // h == 3: mean of the cell's 8 corners, x fastest, then y, then z
+                            for (const auto* base : {c00, c10, c01, c11}) {
+                                reference += sampleAsFloat(base[x0]);
+                                reference += sampleAsFloat(base[x0 + 1]);
+                            }
+                            reference /= 8.0;
+                        } else if (xhWanted) { // edge along x
+                            reference = 0.5 * (sampleAsFloat(c00[x0]) + sampleAsFloat(c00[x0 + 1]));
+                        } else { // edge along y or z
+                            reference = 0.5 * (sampleAsFloat(c00[x0]) + sampleAsFloat(c11[x0]));
+                        }
+                        const double x = box.lo[0] + 0.5 * xi;
+                        const double res = std::abs(horner(r, x - px) - reference);
+                        maxCriterion = std::max(maxCriterion, res);
+                        if (!alwaysAccept && !allowed(x, y, z, res)) {
+                            violated = true;
+                            break;
+                        }
+                    }
+                }
+            }
+        });
     }
     outcome.accepted = !violated;
     outcome.exact = !violated;

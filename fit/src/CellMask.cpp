@@ -1,52 +1,107 @@
-// Background classification of cells and prefix-sum counting (docs/DESIGN.md §4 "Background").
+// Background classification of cells and brick-level counting (docs/DESIGN.md §4 "Background").
 #include "CellMask.h"
 
+#include "SampleAccess.h"
+
 #include <algorithm>
+#include <bit>
 
 namespace vots::fit {
+namespace {
+
+constexpr int B = CellMask::BRICK_CELLS;
+
+// Bits of a brick word whose coordinate along `axis` lies in [first, end) (0 <= first < end <= 4).
+std::uint64_t axisMask(int axis, int first, int end) {
+    std::uint64_t mask = 0;
+    for (unsigned bit = 0; bit < 64; ++bit) {
+        const int c = static_cast<int>(bit >> (2 * axis) & 3u);
+        if (c >= first && c < end) mask |= std::uint64_t{1} << bit;
+    }
+    return mask;
+}
+
+struct AxisMasks {
+    std::uint64_t table[3][B + 1][B + 1]{};
+    AxisMasks() {
+        for (int a = 0; a < 3; ++a)
+            for (int s = 0; s <= B; ++s)
+                for (int e = s; e <= B; ++e)
+                    table[a][s][e] = axisMask(a, s, e);
+    }
+};
+const AxisMasks AXIS_MASKS;
+
+// Sets the foreground bits from the samples: a cell is background when all 8 corners are below tau.
+// Slice by slice over contiguous bytes, which the compiler vectorises; two slices of "low" flags are
+// all the scratch it needs (a flag per sample would be as large as the samples).
+template <typename T>
+void markForeground(const T* values, const std::array<int, 3>& dims, std::optional<float> background,
+                    const std::array<int, 3>& cells, const auto& setRow) {
+    const std::size_t nx = static_cast<std::size_t>(dims[0]);
+    const std::size_t nxy = nx * static_cast<std::size_t>(dims[1]);
+    std::vector<std::uint8_t> row(static_cast<std::size_t>(cells[0]), 0);
+    if (!background) {
+        for (int k = 0; k < cells[2]; ++k)
+            for (int j = 0; j < cells[1]; ++j)
+                setRow(j, k, row.data()); // all zero: no cell is background
+        return;
+    }
+    const float tau = *background;
+    std::vector<std::uint8_t> lowBelow(nxy), lowAbove(nxy);
+    auto markLow = [&](int z, std::vector<std::uint8_t>& low) {
+        const T* slice = values + static_cast<std::size_t>(z) * nxy;
+        for (std::size_t n = 0; n < nxy; ++n)
+            low[n] = sampleAsFloat(slice[n]) < tau ? 1 : 0;
+    };
+    markLow(0, lowBelow);
+    for (int k = 0; k < cells[2]; ++k) {
+        markLow(k + 1, lowAbove);
+        for (int j = 0; j < cells[1]; ++j) {
+            const std::uint8_t* r00 = lowBelow.data() + static_cast<std::size_t>(j) * nx;
+            const std::uint8_t* r10 = r00 + nx;
+            const std::uint8_t* r01 = lowAbove.data() + static_cast<std::size_t>(j) * nx;
+            const std::uint8_t* r11 = r01 + nx;
+            for (int i = 0; i < cells[0]; ++i)
+                row[static_cast<std::size_t>(i)] =
+                    r00[i] & r00[i + 1] & r10[i] & r10[i + 1] & r01[i] & r01[i + 1] & r11[i] & r11[i + 1];
+            setRow(j, k, row.data());
+        }
+        lowBelow.swap(lowAbove);
+    }
+}
+
+} // namespace
 
 CellMask::CellMask(const Volume& volume, std::optional<float> background) {
     for (int a = 0; a < 3; ++a) {
         mCells[a] = std::max(volume.dims[a] - 1, 0);
-        mPointDims[a] = std::max(volume.dims[a] - 1, 0);
+        mBrickDims[a] = (mCells[a] + B - 1) / B;
     }
-    const std::size_t cellCount = static_cast<std::size_t>(totalCells());
-    mBackground.assign(cellCount, 0);
-    if (background && cellCount > 0) {
-        const float tau = *background;
-        // A point is "low" when below tau; a cell is background when all 8 corners are low. Row by row
-        // over contiguous bytes, which the compiler vectorises, rather than an index lookup per corner:
-        // the mask is built on the fit's serial path.
-        std::vector<std::uint8_t> low(volume.sampleCount());
-        for (std::size_t n = 0; n < low.size(); ++n)
-            low[n] = volume.values[n] < tau ? 1 : 0;
-        const std::size_t nx = static_cast<std::size_t>(volume.dims[0]);
-        const std::size_t nxy = nx * static_cast<std::size_t>(volume.dims[1]);
-        for (int k = 0; k < mCells[2]; ++k)
-            for (int j = 0; j < mCells[1]; ++j) {
-                const std::uint8_t* r00 =
-                    low.data() + static_cast<std::size_t>(k) * nxy + static_cast<std::size_t>(j) * nx;
-                const std::uint8_t* r10 = r00 + nx;
-                const std::uint8_t* r01 = r00 + nxy;
-                const std::uint8_t* r11 = r01 + nx;
-                std::uint8_t* out = mBackground.data() + index(0, j, k);
-                for (int i = 0; i < mCells[0]; ++i)
-                    out[i] =
-                        r00[i] & r00[i + 1] & r10[i] & r10[i + 1] & r01[i] & r01[i + 1] & r11[i] & r11[i + 1];
-            }
+    mBricks.assign(static_cast<std::size_t>(mBrickDims[0]) * mBrickDims[1] * mBrickDims[2], 0);
+    if (totalCells() > 0) {
+        auto setRow = [&](int j, int k, const std::uint8_t* isBackgroundRow) {
+            std::uint64_t* words = mBricks.data() + brickIndex(0, j >> 2, k >> 2);
+            const unsigned rowBits = static_cast<unsigned>((j & 3) << 2 | (k & 3) << 4);
+            for (int i = 0; i < mCells[0]; ++i)
+                words[i >> 2] |= std::uint64_t{isBackgroundRow[i] ? 0u : 1u} << (rowBits | (i & 3));
+        };
+        visitSamples(volume, [&](const auto* values) {
+            markForeground(values, volume.dims, background, mCells, setRow);
+        });
     }
-    // The 3D prefix sum as three 1D passes (x, then y, then z), each over whole rows.
-    const std::size_t px = static_cast<std::size_t>(mCells[0]) + 1,
-                      py = static_cast<std::size_t>(mCells[1]) + 1,
-                      pz = static_cast<std::size_t>(mCells[2]) + 1;
-    mPrefix.assign(px * py * pz, 0);
-    auto row = [&](std::size_t j, std::size_t k) { return mPrefix.data() + px * (j + py * k); };
-    for (int k = 1; k <= mCells[2]; ++k)
-        for (int j = 1; j <= mCells[1]; ++j) {
+    // The 3D prefix sum over bricks as three 1D passes (x, then y, then z), each over whole rows.
+    const std::size_t px = static_cast<std::size_t>(mBrickDims[0]) + 1,
+                      py = static_cast<std::size_t>(mBrickDims[1]) + 1,
+                      pz = static_cast<std::size_t>(mBrickDims[2]) + 1;
+    mBrickPrefix.assign(px * py * pz, 0);
+    auto row = [&](std::size_t j, std::size_t k) { return mBrickPrefix.data() + px * (j + py * k); };
+    for (int k = 1; k <= mBrickDims[2]; ++k)
+        for (int j = 1; j <= mBrickDims[1]; ++j) {
             std::uint32_t* out = row(static_cast<std::size_t>(j), static_cast<std::size_t>(k));
-            const std::uint8_t* bg = mBackground.data() + index(0, j - 1, k - 1);
-            for (int i = 1; i <= mCells[0]; ++i)
-                out[i] = out[i - 1] + (bg[i - 1] ? 0u : 1u);
+            const std::uint64_t* words = mBricks.data() + brickIndex(0, j - 1, k - 1);
+            for (int i = 1; i <= mBrickDims[0]; ++i)
+                out[i] = out[i - 1] + static_cast<std::uint32_t>(std::popcount(words[i - 1]));
         }
     for (std::size_t k = 1; k < pz; ++k)
         for (std::size_t j = 1; j < py; ++j) {
@@ -64,18 +119,58 @@ CellMask::CellMask(const Volume& volume, std::optional<float> background) {
         }
 }
 
-std::int64_t CellMask::prefix(int i, int j, int k) const {
-    const std::size_t px = static_cast<std::size_t>(mCells[0]) + 1,
-                      py = static_cast<std::size_t>(mCells[1]) + 1;
-    return mPrefix[static_cast<std::size_t>(i) +
-                   px * (static_cast<std::size_t>(j) + py * static_cast<std::size_t>(k))];
+std::int64_t CellMask::brickPrefix(int bx, int by, int bz) const {
+    const std::size_t px = static_cast<std::size_t>(mBrickDims[0]) + 1,
+                      py = static_cast<std::size_t>(mBrickDims[1]) + 1;
+    return mBrickPrefix[static_cast<std::size_t>(bx) +
+                        px * (static_cast<std::size_t>(by) + py * static_cast<std::size_t>(bz))];
 }
 
 std::int64_t CellMask::countCells(const std::array<int, 3>& lo, const std::array<int, 3>& hi) const {
     if (hi[0] <= lo[0] || hi[1] <= lo[1] || hi[2] <= lo[2]) return 0;
-    return prefix(hi[0], hi[1], hi[2]) - prefix(lo[0], hi[1], hi[2]) - prefix(hi[0], lo[1], hi[2]) -
-           prefix(hi[0], hi[1], lo[2]) + prefix(lo[0], lo[1], hi[2]) + prefix(lo[0], hi[1], lo[2]) +
-           prefix(hi[0], lo[1], lo[2]) - prefix(lo[0], lo[1], lo[2]);
+    // Bricks the box touches [first, end) and those wholly inside it [innerFirst, innerEnd).
+    std::array<int, 3> first{}, end{}, innerFirst{}, innerEnd{};
+    bool hasInner = true;
+    for (int a = 0; a < 3; ++a) {
+        first[a] = lo[a] / B;
+        end[a] = (hi[a] + B - 1) / B;
+        innerFirst[a] = (lo[a] + B - 1) / B;
+        innerEnd[a] = hi[a] / B;
+        if (innerFirst[a] >= innerEnd[a]) hasInner = false;
+    }
+    std::int64_t count = 0;
+    if (hasInner) {
+        const auto &f = innerFirst, &e = innerEnd;
+        count = brickPrefix(e[0], e[1], e[2]) - brickPrefix(f[0], e[1], e[2]) -
+                brickPrefix(e[0], f[1], e[2]) - brickPrefix(e[0], e[1], f[2]) +
+                brickPrefix(f[0], f[1], e[2]) + brickPrefix(f[0], e[1], f[2]) +
+                brickPrefix(e[0], f[1], f[2]) - brickPrefix(f[0], f[1], f[2]);
+    }
+    // The part of a brick inside the box, as bits: each axis's range within the brick.
+    auto range = [&](int axis, int brick) {
+        const int s = std::max(lo[axis] - brick * B, 0), e = std::min(hi[axis] - brick * B, B);
+        return AXIS_MASKS.table[axis][s][e];
+    };
+    auto inside = [&](int axis, int brick) { return brick >= innerFirst[axis] && brick < innerEnd[axis]; };
+    for (int bz = first[2]; bz < end[2]; ++bz) {
+        const std::uint64_t mz = range(2, bz);
+        for (int by = first[1]; by < end[1]; ++by) {
+            const std::uint64_t myz = mz & range(1, by);
+            const std::uint64_t* words = mBricks.data() + brickIndex(0, by, bz);
+            auto add = [&](int bx) { count += std::popcount(words[bx] & myz & range(0, bx)); };
+            if (hasInner && inside(2, bz) && inside(1, by)) {
+                // The inner bricks of this row are already counted: only the cut ones at its ends.
+                for (int bx = first[0]; bx < innerFirst[0]; ++bx)
+                    add(bx);
+                for (int bx = innerEnd[0]; bx < end[0]; ++bx)
+                    add(bx);
+            } else {
+                for (int bx = first[0]; bx < end[0]; ++bx)
+                    add(bx);
+            }
+        }
+    }
+    return count;
 }
 
 std::int64_t CellMask::countForeground(const Box& box) const {

@@ -1,4 +1,4 @@
-// Which cells are background (all 8 corners below the threshold), with O(1) counts over boxes.
+// Which cells are background (all 8 corners below the threshold), with fast counts over boxes.
 #pragma once
 
 #include "vots/fit/Box.h"
@@ -10,35 +10,44 @@
 
 namespace vots::fit {
 
-/// Cell (i,j,k) spans grid points [i,i+1]x[j,j+1]x[k,k+1]. Keeps a 3D prefix sum of non-background
-/// cells so that counts and tight bounds over any box cost O(1) per query slab.
+/// Cell (i,j,k) spans grid points [i,i+1]x[j,j+1]x[k,k+1]. One bit per cell, packed in bricks of
+/// 4x4x4 cells (one 64-bit word each), and a 3D prefix sum of foreground cells per brick: a count over
+/// a box is O(1) for the bricks inside it plus one masked popcount per brick its faces cut. A prefix sum
+/// per cell would cost 4 bytes a cell, as much as the float samples (docs/DESIGN.md §4 "Background").
 class CellMask {
 public:
     CellMask(const Volume& volume, std::optional<float> background);
 
     std::array<int, 3> cellDims() const { return mCells; }
-    bool isBackground(int i, int j, int k) const { return mBackground[index(i, j, k)] != 0; }
+    bool isBackground(int i, int j, int k) const {
+        return (mBricks[brickIndex(i >> 2, j >> 2, k >> 2)] >> bitInBrick(i, j, k) & 1u) == 0;
+    }
     /// Non-background cells inside the closed point box (cells [lo, hi-1]).
     std::int64_t countForeground(const Box& box) const;
-    std::int64_t totalForeground() const { return countForeground(Box{{0, 0, 0}, mPointDims}); }
+    std::int64_t totalForeground() const { return countForeground(Box{{0, 0, 0}, mCells}); }
     std::int64_t totalCells() const { return std::int64_t{mCells[0]} * mCells[1] * mCells[2]; }
     /// Smallest box (in points) inside `box` that contains all its non-background cells.
     std::optional<Box> tightBox(const Box& box) const;
 
+    static constexpr int BRICK_CELLS = 4; // per axis: 4^3 = 64 cells, one word
+
 private:
-    std::size_t index(int i, int j, int k) const {
-        return static_cast<std::size_t>(i) +
-               static_cast<std::size_t>(mCells[0]) *
-                   (static_cast<std::size_t>(j) +
-                    static_cast<std::size_t>(mCells[1]) * static_cast<std::size_t>(k));
+    std::size_t brickIndex(int bx, int by, int bz) const {
+        return static_cast<std::size_t>(bx) +
+               static_cast<std::size_t>(mBrickDims[0]) *
+                   (static_cast<std::size_t>(by) +
+                    static_cast<std::size_t>(mBrickDims[1]) * static_cast<std::size_t>(bz));
     }
-    std::int64_t prefix(int i, int j, int k) const; // count over cells [0,i) x [0,j) x [0,k)
+    static unsigned bitInBrick(int i, int j, int k) {
+        return static_cast<unsigned>((i & 3) | (j & 3) << 2 | (k & 3) << 4);
+    }
+    std::int64_t brickPrefix(int bx, int by, int bz) const; // foreground in bricks [0,bx) x [0,by) x [0,bz)
     std::int64_t countCells(const std::array<int, 3>& lo, const std::array<int, 3>& hiExclusive) const;
 
     std::array<int, 3> mCells{0, 0, 0};
-    std::array<int, 3> mPointDims{0, 0, 0}; // hi corner of the whole grid, as a point box
-    std::vector<std::uint8_t> mBackground;
-    std::vector<std::uint32_t> mPrefix; // (cx+1)(cy+1)(cz+1)
+    std::array<int, 3> mBrickDims{0, 0, 0};
+    std::vector<std::uint64_t> mBricks;      // bit (i&3) + 4 (j&3) + 16 (k&3) set: foreground cell
+    std::vector<std::uint32_t> mBrickPrefix; // (bx+1)(by+1)(bz+1)
 };
 
 } // namespace vots::fit

@@ -1,6 +1,8 @@
 // FitCache: remembers every box fitted for one volume/degree/certify so a new eps reuses the work.
 #include "FitCacheImpl.h"
 
+#include "SampleAccess.h"
+
 namespace vots::fit {
 
 FitCache::FitCache() : mImpl(std::make_unique<Impl>()) {}
@@ -10,8 +12,7 @@ std::size_t FitCache::size() const {
 }
 
 void FitCache::Impl::bind(const Volume& volume, int degreeIn, Certify certifyIn) {
-    if (volumeData == volume.values.data() && dims == volume.dims && degree == degreeIn &&
-        certify == certifyIn)
+    if (volumeData == sampleData(volume) && dims == volume.dims && degree == degreeIn && certify == certifyIn)
         return;
     for (auto& shard : shards) {
         std::lock_guard lock(shard.mutex);
@@ -22,7 +23,7 @@ void FitCache::Impl::bind(const Volume& volume, int degreeIn, Certify certifyIn)
         std::lock_guard lock(maskMutex);
         mask.reset();
     }
-    volumeData = volume.values.data();
+    volumeData = sampleData(volume);
     dims = volume.dims;
     degree = degreeIn;
     certify = certifyIn;

@@ -51,7 +51,7 @@ struct FitCache::Impl {
     };
     std::array<Shard, SHARDS> shards;
     // Identity of what the cached errors belong to; a mismatch clears the cache.
-    const float* volumeData = nullptr;
+    const void* volumeData = nullptr; // the bound volume's samples (float or compact)
     std::array<int, 3> dims{0, 0, 0};
     int degree = -1;
     Certify certify = Certify::Samples;

@@ -33,7 +33,7 @@ void validateFitOptions(const Volume& volume, const FitOptions& options) {
     for (int a = 0; a < 3; ++a)
         if (volume.dims[a] < 2)
             throw InputError("volume needs at least 2 grid points along every axis to form a cell");
-    if (volume.values.size() != volume.sampleCount())
+    if (volume.heldSamples() != volume.sampleCount())
         throw InputError("volume sample count does not match its dims");
     if (options.focus) {
         const auto& f = *options.focus;

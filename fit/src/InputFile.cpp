@@ -42,18 +42,32 @@ std::ifstream openAt(const std::string& path, std::uint64_t offset) {
 
 } // namespace
 
-std::vector<unsigned char> readFileBytes(const std::string& path, std::uint64_t offset, std::size_t count) {
-    // Check the size first, so a header that claims gigabytes costs nothing before it is caught.
+namespace {
+
+void checkFileHolds(const std::string& path, std::uint64_t offset, std::size_t count) {
     const std::uint64_t size = regularFileSize(path);
     if (offset > size || size - offset < count) {
         const std::uint64_t have = offset > size ? 0 : size - offset;
         throwInputError(path, "truncated: needs " + std::to_string(count) + " bytes from byte " +
                                   std::to_string(offset) + ", file has only " + std::to_string(have));
     }
-    std::vector<unsigned char> bytes(count);
+}
+
+} // namespace
+
+void readFileBytesInto(const std::string& path, std::uint64_t offset, std::size_t count,
+                       unsigned char* destination) {
+    checkFileHolds(path, offset, count);
     std::ifstream in = openAt(path, offset);
-    in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(count));
+    in.read(reinterpret_cast<char*>(destination), static_cast<std::streamsize>(count));
     if (static_cast<std::size_t>(in.gcount()) != count) throwInputError(path, "read error (file changed?)");
+}
+
+std::vector<unsigned char> readFileBytes(const std::string& path, std::uint64_t offset, std::size_t count) {
+    // Check the size first, so a header that claims gigabytes costs nothing before it is caught.
+    checkFileHolds(path, offset, count);
+    std::vector<unsigned char> bytes(count);
+    readFileBytesInto(path, offset, count, bytes.data());
     return bytes;
 }
 

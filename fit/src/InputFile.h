@@ -17,6 +17,10 @@ std::uint64_t regularFileSize(const std::string& path);
 /// Exactly `count` bytes starting at `offset`; throws when the file is shorter.
 std::vector<unsigned char> readFileBytes(const std::string& path, std::uint64_t offset, std::size_t count);
 
+/// The same bytes written at `destination` (which holds at least `count`), so they land where they stay.
+void readFileBytesInto(const std::string& path, std::uint64_t offset, std::size_t count,
+                       unsigned char* destination);
+
 /// The first min(file size, maxBytes) bytes, for header parsing.
 std::string readFilePrefix(const std::string& path, std::size_t maxBytes);
 

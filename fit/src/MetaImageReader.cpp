@@ -150,7 +150,7 @@ std::vector<unsigned char> readPayload(const std::string& path, const MetaHeader
 
 } // namespace
 
-Volume loadMetaImage(const std::string& path) {
+Volume loadMetaImage(const std::string& path, SampleStorage storage) {
     const std::uint64_t fileSize = regularFileSize(path);
     const MetaHeader header = parseHeader(path, readFilePrefix(path, MAX_HEADER_BYTES), fileSize);
 
@@ -185,7 +185,7 @@ Volume loadMetaImage(const std::string& path) {
     volume.sourceType = type;
     volume.name = fileStem(path);
     const std::vector<unsigned char> payload = readPayload(path, header, shape.bytes);
-    volume.values = decodeSamples(path, payload.data(), shape.samples, type, bigEndian);
+    storeSamples(volume, path, payload.data(), shape.samples, type, bigEndian, storage);
     return volume;
 }
 

@@ -172,7 +172,7 @@ std::vector<unsigned char> readGzipped(const std::string& path, std::uint64_t fi
 
 } // namespace
 
-Volume loadNifti(const std::string& path) {
+Volume loadNifti(const std::string& path, SampleStorage storage) {
     const std::uint64_t fileSize = regularFileSize(path);
     const std::vector<unsigned char> magic = readFileBytes(path, 0, fileSize < 2 ? 0 : 2);
     NiftiInfo info;
@@ -185,7 +185,9 @@ Volume loadNifti(const std::string& path) {
     volume.origin = info.origin;
     volume.sourceType = info.type;
     volume.name = fileStem(path);
-    volume.values = decodeSamples(path, payload.data(), info.shape.samples, info.type, info.bigEndian);
+    // Scaled samples are not integers any more: only unscaled ones stay compact.
+    storeSamples(volume, path, payload.data(), info.shape.samples, info.type, info.bigEndian,
+                 info.slope != 0.0 ? SampleStorage::Float : storage);
     if (info.slope != 0.0) {
         std::size_t bad = 0;
         for (float& v : volume.values) {

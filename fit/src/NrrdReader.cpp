@@ -229,31 +229,38 @@ std::vector<std::pair<std::string, std::uint64_t>> dataSources(const std::string
     return sources;
 }
 
-// Reads one data file's share of the payload (`bytes` long) and appends it.
-void appendData(const NrrdHeader& header, bool gzip, const std::string& file, std::uint64_t offset,
-                std::size_t bytes, std::vector<unsigned char>& payload) {
+// Where one raw data file's share of the payload (`bytes` long) starts; throws unless the file holds
+// exactly that share from there.
+std::uint64_t rawDataStart(const NrrdHeader& header, const std::string& file, std::uint64_t offset,
+                           std::size_t bytes) {
     const std::uint64_t size = regularFileSize(file);
     if (header.lineSkip > 0) offset = skipLines(file, offset, header.lineSkip);
-    std::vector<unsigned char> part;
-    if (gzip) {
-        if (header.byteSkip < 0) throwInputError(file, "'byte skip: -1' cannot be used with gzip encoding");
-        const std::vector<unsigned char> packed =
-            readFileBytes(file, offset, static_cast<std::size_t>(size - offset));
-        Inflater inflater(file, packed.data(), packed.size());
-        inflater.skip(static_cast<std::size_t>(header.byteSkip)); // byte skip counts decompressed bytes
-        part = inflater.readExactly(bytes);
-        inflater.expectEnd();
-    } else {
-        // byte skip -1: the samples are the last bytes of the file, whatever precedes them.
-        const std::uint64_t start = header.byteSkip < 0
-                                        ? (size >= bytes ? size - bytes : 0)
-                                        : offset + static_cast<std::uint64_t>(header.byteSkip);
-        const std::uint64_t have = size > start ? size - start : 0;
-        if (have > bytes)
-            throwInputError(file, "holds " + std::to_string(have) + " data bytes but the header describes " +
-                                      std::to_string(bytes) + " (wrong sizes or type?)");
-        part = readFileBytes(file, start, bytes);
-    }
+    // byte skip -1: the samples are the last bytes of the file, whatever precedes them.
+    const std::uint64_t start = header.byteSkip < 0 ? (size >= bytes ? size - bytes : 0)
+                                                    : offset + static_cast<std::uint64_t>(header.byteSkip);
+    const std::uint64_t have = size > start ? size - start : 0;
+    if (have > bytes)
+        throwInputError(file, "holds " + std::to_string(have) + " data bytes but the header describes " +
+                                  std::to_string(bytes) + " (wrong sizes or type?)");
+    if (have < bytes) // the message readFileBytes gives for a short file
+        throwInputError(file, "truncated: needs " + std::to_string(bytes) + " bytes from byte " +
+                                  std::to_string(start) + ", file has only " + std::to_string(have));
+    return start;
+}
+
+// Reads one gzip data file's share of the payload (`bytes` long) and appends it. Decompressed output
+// grows with the data, not with the header's claim, so it cannot go straight into the samples.
+void appendGzipData(const NrrdHeader& header, const std::string& file, std::uint64_t offset,
+                    std::size_t bytes, std::vector<unsigned char>& payload) {
+    const std::uint64_t size = regularFileSize(file);
+    if (header.lineSkip > 0) offset = skipLines(file, offset, header.lineSkip);
+    if (header.byteSkip < 0) throwInputError(file, "'byte skip: -1' cannot be used with gzip encoding");
+    const std::vector<unsigned char> packed =
+        readFileBytes(file, offset, static_cast<std::size_t>(size - offset));
+    Inflater inflater(file, packed.data(), packed.size());
+    inflater.skip(static_cast<std::size_t>(header.byteSkip)); // byte skip counts decompressed bytes
+    std::vector<unsigned char> part = inflater.readExactly(bytes);
+    inflater.expectEnd();
     if (payload.empty())
         payload = std::move(part);
     else
@@ -262,7 +269,7 @@ void appendData(const NrrdHeader& header, bool gzip, const std::string& file, st
 
 } // namespace
 
-Volume loadNrrd(const std::string& path) {
+Volume loadNrrd(const std::string& path, SampleStorage storage) {
     const std::uint64_t fileSize = regularFileSize(path);
     const std::string text = readFilePrefix(path, MAX_HEADER_BYTES);
     const NrrdHeader header = parseHeader(path, text, fileSize);
@@ -302,11 +309,22 @@ Volume loadNrrd(const std::string& path) {
         throwInputError(path, std::to_string(sources.size()) + " data files cannot split " +
                                   std::to_string(shape.bytes) + " bytes evenly");
     const std::size_t perFile = shape.bytes / sources.size();
-    std::vector<unsigned char> payload;
+    const bool bigEndian = header.endian == "big";
+    if (gzip) {
+        std::vector<unsigned char> payload;
+        for (const auto& [file, offset] : sources)
+            appendGzipData(header, file, offset, perFile, payload);
+        storeSamples(volume, path, payload.data(), shape.samples, *type, bigEndian, storage);
+        return volume;
+    }
+    // Every file's size is checked before the samples' memory is taken.
+    std::vector<std::uint64_t> starts;
     for (const auto& [file, offset] : sources)
-        appendData(header, gzip, file, offset, perFile, payload);
-
-    volume.values = decodeSamples(path, payload.data(), shape.samples, *type, header.endian == "big");
+        starts.push_back(rawDataStart(header, file, offset, perFile));
+    readSamples(volume, path, shape.samples, *type, bigEndian, storage, [&](unsigned char* destination) {
+        for (std::size_t n = 0; n < sources.size(); ++n)
+            readFileBytesInto(sources[n].first, starts[n], perFile, destination + n * perFile);
+    });
     return volume;
 }
 

@@ -9,7 +9,7 @@ namespace vots::fit {
 
 using namespace detail;
 
-Volume loadRaw(const std::string& path, const RawLayout& layout) {
+Volume loadRaw(const std::string& path, const RawLayout& layout, SampleStorage storage) {
     const std::uint64_t fileSize = regularFileSize(path);
     const CheckedShape shape =
         checkShape(path, {layout.dims[0], layout.dims[1], layout.dims[2]}, layout.type);
@@ -28,8 +28,10 @@ Volume loadRaw(const std::string& path, const RawLayout& layout) {
                                   std::to_string(shape.dims[2]) + " " + scalarTypeName(layout.type) +
                                   " with " + std::to_string(layout.headerBytes) + " header bytes needs " +
                                   std::to_string(expected));
-    const std::vector<unsigned char> payload = readFileBytes(path, layout.headerBytes, shape.bytes);
-    volume.values = decodeSamples(path, payload.data(), shape.samples, layout.type, layout.bigEndian);
+    readSamples(volume, path, shape.samples, layout.type, layout.bigEndian, storage,
+                [&](unsigned char* destination) {
+                    readFileBytesInto(path, layout.headerBytes, shape.bytes, destination);
+                });
     return volume;
 }
 

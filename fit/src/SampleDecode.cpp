@@ -185,4 +185,147 @@ std::vector<float> decodeSamples(const std::string& path, const unsigned char* b
     return values;
 }
 
+bool keepsCompact(ScalarType type, SampleStorage storage) {
+    return storage == SampleStorage::Source && scalarTypeSize(type) <= 2;
+}
+
+namespace {
+
+template <typename T>
+std::vector<T> decodeCompact(const unsigned char* bytes, std::size_t count, bool bigEndian) {
+    using U = typename UnsignedOfSize<sizeof(T)>::Type;
+    const bool swap = bigEndian != (std::endian::native == std::endian::big);
+    std::vector<T> out(count);
+    std::memcpy(out.data(), bytes, count * sizeof(T));
+    if (swap && sizeof(T) > 1)
+        for (T& value : out)
+            value = std::bit_cast<T>(byteSwapped(std::bit_cast<U>(value)));
+    return out;
+}
+
+// Decodes samples whose file bytes sit at the start of `dst`'s own memory, from the last to the first:
+// a float is never narrower than the sample it replaces, so each write lands on bytes already read.
+template <typename T> std::size_t decodeInPlace(float* dst, std::size_t count, bool swap) {
+    using U = typename UnsignedOfSize<sizeof(T)>::Type;
+    static_assert(sizeof(T) <= sizeof(float));
+    const unsigned char* src = reinterpret_cast<const unsigned char*>(dst);
+    std::size_t bad = 0;
+    for (std::size_t i = count; i-- > 0;) {
+        U bits;
+        std::memcpy(&bits, src + i * sizeof(T), sizeof(T));
+        if (swap) bits = byteSwapped(bits);
+        const T value = std::bit_cast<T>(bits);
+        float out = static_cast<float>(value);
+        if constexpr (std::is_floating_point_v<T>) {
+            if (!std::isfinite(value)) {
+                ++bad;
+                out = 0.0f;
+            }
+        }
+        std::memcpy(reinterpret_cast<unsigned char*>(dst) + i * sizeof(float), &out, sizeof(float));
+    }
+    return bad;
+}
+
+template <typename T>
+std::vector<T> readCompact(std::size_t count, bool bigEndian, const PayloadReader& read) {
+    using U = typename UnsignedOfSize<sizeof(T)>::Type;
+    std::vector<T> out(count);
+    read(reinterpret_cast<unsigned char*>(out.data()));
+    if (sizeof(T) > 1 && bigEndian != (std::endian::native == std::endian::big))
+        for (T& value : out)
+            value = std::bit_cast<T>(byteSwapped(std::bit_cast<U>(value)));
+    return out;
+}
+
+} // namespace
+
+void readSamples(Volume& volume, const std::string& path, std::size_t count, ScalarType type, bool bigEndian,
+                 SampleStorage storage, const PayloadReader& read) {
+    if (type == ScalarType::Float64) {
+        std::vector<unsigned char> payload(count * sizeof(double));
+        read(payload.data());
+        storeSamples(volume, path, payload.data(), count, type, bigEndian, storage);
+        return;
+    }
+    if (keepsCompact(type, storage)) {
+        volume.values.clear();
+        switch (type) {
+        case ScalarType::UInt8:
+            volume.compact = readCompact<std::uint8_t>(count, bigEndian, read);
+            return;
+        case ScalarType::Int8:
+            volume.compact = readCompact<std::int8_t>(count, bigEndian, read);
+            return;
+        case ScalarType::UInt16:
+            volume.compact = readCompact<std::uint16_t>(count, bigEndian, read);
+            return;
+        case ScalarType::Int16:
+            volume.compact = readCompact<std::int16_t>(count, bigEndian, read);
+            return;
+        default: // keepsCompact holds only for the types above
+            break;
+        }
+    }
+    std::vector<float> values(count);
+    read(reinterpret_cast<unsigned char*>(values.data()));
+    const bool swap = bigEndian != (std::endian::native == std::endian::big);
+    std::size_t bad = 0;
+    switch (type) {
+    case ScalarType::UInt8:
+        decodeInPlace<std::uint8_t>(values.data(), count, swap);
+        break;
+    case ScalarType::Int8:
+        decodeInPlace<std::int8_t>(values.data(), count, swap);
+        break;
+    case ScalarType::UInt16:
+        decodeInPlace<std::uint16_t>(values.data(), count, swap);
+        break;
+    case ScalarType::Int16:
+        decodeInPlace<std::int16_t>(values.data(), count, swap);
+        break;
+    case ScalarType::UInt32:
+        decodeInPlace<std::uint32_t>(values.data(), count, swap);
+        break;
+    case ScalarType::Int32:
+        decodeInPlace<std::int32_t>(values.data(), count, swap);
+        break;
+    case ScalarType::Float32:
+        bad = decodeInPlace<float>(values.data(), count, swap);
+        break;
+    case ScalarType::Float64: // read above
+        break;
+    }
+    if (bad > 0)
+        throwInputError(path, std::to_string(bad) + " of " + std::to_string(count) +
+                                  " samples are not finite (NaN, Inf or beyond float range)");
+    volume.compact = std::monostate{};
+    volume.values = std::move(values);
+}
+
+void storeSamples(Volume& volume, const std::string& path, const unsigned char* bytes, std::size_t count,
+                  ScalarType type, bool bigEndian, SampleStorage storage) {
+    if (!keepsCompact(type, storage)) {
+        volume.values = decodeSamples(path, bytes, count, type, bigEndian);
+        return;
+    }
+    volume.values.clear();
+    switch (type) {
+    case ScalarType::UInt8:
+        volume.compact = decodeCompact<std::uint8_t>(bytes, count, bigEndian);
+        break;
+    case ScalarType::Int8:
+        volume.compact = decodeCompact<std::int8_t>(bytes, count, bigEndian);
+        break;
+    case ScalarType::UInt16:
+        volume.compact = decodeCompact<std::uint16_t>(bytes, count, bigEndian);
+        break;
+    case ScalarType::Int16:
+        volume.compact = decodeCompact<std::int16_t>(bytes, count, bigEndian);
+        break;
+    default: // keepsCompact holds only for the types above
+        break;
+    }
+}
+
 } // namespace vots::fit::detail

@@ -2,10 +2,12 @@
 #pragma once
 
 #include "vots/fit/Volume.h"
+#include "vots/fit/VolumeLoad.h"
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -46,5 +48,21 @@ template <typename U> U byteSwapped(U value) {
 /// many samples are NaN/Inf (or, for double, beyond float range).
 std::vector<float> decodeSamples(const std::string& path, const unsigned char* bytes, std::size_t count,
                                  ScalarType type, bool bigEndian);
+
+/// True when `storage` keeps samples of `type` in Volume::compact.
+bool keepsCompact(ScalarType type, SampleStorage storage);
+
+/// Fills volume.values or volume.compact (as keepsCompact says) from the file's bytes.
+void storeSamples(Volume& volume, const std::string& path, const unsigned char* bytes, std::size_t count,
+                  ScalarType type, bool bigEndian, SampleStorage storage);
+
+/// Writes exactly the payload (the file's bytes of all samples) at `destination`.
+using PayloadReader = std::function<void(unsigned char* destination)>;
+
+/// As storeSamples, but the payload is read straight into the samples' own memory and decoded there,
+/// so loading never holds the volume twice (float64 files, narrowed to float, are the exception).
+/// Only for payloads whose size the file has already proven: the memory is taken before reading.
+void readSamples(Volume& volume, const std::string& path, std::size_t count, ScalarType type, bool bigEndian,
+                 SampleStorage storage, const PayloadReader& read);
 
 } // namespace vots::fit::detail

@@ -5,6 +5,8 @@
 
 #include "vots/fit/Error.h"
 
+#include <absl/container/flat_hash_map.h>
+
 #include <algorithm>
 #include <cstdint>
 #include <mutex>
@@ -45,71 +47,48 @@ void splitZone(const Box& zone, const CellMask& mask, const BoxTester& tester, s
     }
 }
 
-// Which live box covers each cell of the boxes' bounding region. Each cell keeps the box it was
-// first given to; a merge only links the two old boxes to the new one (a union-find forest with path
-// halving), so it costs O(1) instead of rewriting every cell of the merged box. A flat array rather
-// than a hash map from faces to boxes: a lookup is one read near the last one, not a cache miss.
-class CellOwners {
+// The live boxes by their low and by their high corner. A box that shares b's whole high face on an
+// axis has b's low corner moved to b's high side on that axis as its own low corner; one that shares
+// b's low face has b's high corner moved to b's low side as its high corner; disjoint boxes have distinct
+// corners. So two hash maps find the one candidate per face in memory that follows the boxes, where a
+// table of the box covering each cell would cost 4 bytes a cell (as much as the float samples) for the
+// merge across zones.
+class BoxCorners {
 public:
     static constexpr std::uint32_t NONE = 0xffffffffu;
 
-    explicit CellOwners(const std::vector<FittedBox>& boxes) {
-        if (boxes.empty()) return;
-        mLo = boxes.front().box.lo;
-        mHi = boxes.front().box.hi;
-        for (const FittedBox& fb : boxes)
-            for (int a = 0; a < 3; ++a) {
-                mLo[a] = std::min(mLo[a], fb.box.lo[a]);
-                mHi[a] = std::max(mHi[a], fb.box.hi[a]);
-            }
-        std::size_t count = 1;
-        for (int a = 0; a < 3; ++a)
-            count *= static_cast<std::size_t>(mHi[a] - mLo[a]);
-        mOwner.assign(count, NONE);
-        for (std::size_t i = 0; i < boxes.size(); ++i) {
-            const Box& b = boxes[i].box;
-            for (int z = b.lo[2]; z < b.hi[2]; ++z)
-                for (int y = b.lo[1]; y < b.hi[1]; ++y) {
-                    const std::size_t row = index({b.lo[0], y, z});
-                    std::fill_n(mOwner.begin() + static_cast<std::ptrdiff_t>(row), b.hi[0] - b.lo[0],
-                                static_cast<std::uint32_t>(i));
-                }
-        }
-        mNext.resize(boxes.size());
-        for (std::size_t i = 0; i < mNext.size(); ++i)
-            mNext[i] = static_cast<std::uint32_t>(i);
+    explicit BoxCorners(const std::vector<FittedBox>& boxes) {
+        mByLow.reserve(boxes.size());
+        mByHigh.reserve(boxes.size());
+        for (std::size_t i = 0; i < boxes.size(); ++i)
+            add(boxes[i].box, static_cast<std::uint32_t>(i));
     }
 
-    /// The live box covering `cell`, or NONE (background, or outside the region).
-    std::uint32_t at(const std::array<int, 3>& cell) {
-        for (int a = 0; a < 3; ++a)
-            if (cell[a] < mLo[a] || cell[a] >= mHi[a]) return NONE;
-        std::uint32_t id = mOwner[index(cell)];
-        if (id == NONE) return NONE;
-        while (mNext[id] != id) {
-            mNext[id] = mNext[mNext[id]];
-            id = mNext[id];
-        }
-        return id;
-    }
+    /// The live box whose low corner is `corner`, or NONE.
+    std::uint32_t withLow(const std::array<int, 3>& corner) const { return find(mByLow, corner); }
+    /// The live box whose high corner is `corner`, or NONE.
+    std::uint32_t withHigh(const std::array<int, 3>& corner) const { return find(mByHigh, corner); }
 
-    /// Boxes i and j were replaced by box k, the next index.
-    void merged(std::size_t i, std::size_t j, std::size_t k) {
-        mNext.push_back(static_cast<std::uint32_t>(k));
-        mNext[i] = mNext[j] = static_cast<std::uint32_t>(k);
+    /// Boxes i and j were replaced by box k.
+    void merged(const Box& i, const Box& j, const Box& k, std::uint32_t kIndex) {
+        for (const Box* gone : {&i, &j}) {
+            mByLow.erase(gone->lo);
+            mByHigh.erase(gone->hi);
+        }
+        add(k, kIndex);
     }
 
 private:
-    std::size_t index(const std::array<int, 3>& c) const {
-        const auto nx = static_cast<std::size_t>(mHi[0] - mLo[0]);
-        const auto ny = static_cast<std::size_t>(mHi[1] - mLo[1]);
-        return (static_cast<std::size_t>(c[2] - mLo[2]) * ny + static_cast<std::size_t>(c[1] - mLo[1])) * nx +
-               static_cast<std::size_t>(c[0] - mLo[0]);
+    using Map = absl::flat_hash_map<std::array<int, 3>, std::uint32_t>;
+    static std::uint32_t find(const Map& map, const std::array<int, 3>& corner) {
+        const auto it = map.find(corner);
+        return it == map.end() ? NONE : it->second;
     }
-
-    std::array<int, 3> mLo{0, 0, 0}, mHi{0, 0, 0};
-    std::vector<std::uint32_t> mOwner;
-    std::vector<std::uint32_t> mNext;
+    void add(const Box& box, std::uint32_t index) {
+        mByLow[box.lo] = index;
+        mByHigh[box.hi] = index;
+    }
+    Map mByLow, mByHigh;
 };
 
 // b's face on `axis` (high or low side) and n's opposite face are the same rectangle.
@@ -173,9 +152,9 @@ std::vector<FittedBox> splitZones(const CellMask& mask, const BoxTester& tester,
 
 void mergeNeighbours(std::vector<FittedBox>& boxes, const BoxTester& tester, const FitControl& control,
                      int zoneCells) {
-    if (boxes.size() >= CellOwners::NONE) throw InputError("too many boxes to merge");
+    if (boxes.size() >= BoxCorners::NONE) throw InputError("too many boxes to merge");
     std::vector<bool> alive(boxes.size(), true);
-    CellOwners owners(boxes);
+    BoxCorners corners(boxes);
     auto onZonePlane = [zoneCells](const Box& b) {
         for (int a = 0; a < 3; ++a)
             if (b.lo[a] % zoneCells == 0 || b.hi[a] % zoneCells == 0) return true;
@@ -209,11 +188,11 @@ void mergeNeighbours(std::vector<FittedBox>& boxes, const BoxTester& tester, con
         for (int a = 0; a < 3; ++a)
             for (bool high : {true, false}) {
                 if (!faceIsNew(i, a, high)) continue;
-                // The only box that can share this whole face covers the cell just across its corner.
-                std::array<int, 3> across = box.lo;
-                across[a] = high ? box.hi[a] : box.lo[a] - 1;
-                const std::uint32_t j = owners.at(across);
-                if (j == CellOwners::NONE || j == i || !shareFace(box, boxes[j].box, a, high)) continue;
+                // The only box that can share this whole face has a corner on the face's plane.
+                std::array<int, 3> corner = high ? box.lo : box.hi;
+                corner[a] = high ? box.hi[a] : box.lo[a];
+                const std::uint32_t j = high ? corners.withLow(corner) : corners.withHigh(corner);
+                if (j == BoxCorners::NONE || j == i || !shareFace(box, boxes[j].box, a, high)) continue;
                 Box merged = box;
                 merged.lo[a] = std::min(box.lo[a], boxes[j].box.lo[a]);
                 merged.hi[a] = std::max(box.hi[a], boxes[j].box.hi[a]);
@@ -227,7 +206,7 @@ void mergeNeighbours(std::vector<FittedBox>& boxes, const BoxTester& tester, con
             alive[i] = alive[j] = false;
             boxes.push_back({merged, outcome});
             alive.push_back(true);
-            owners.merged(i, j, boxes.size() - 1);
+            corners.merged(boxes[i].box, boxes[j].box, merged, static_cast<std::uint32_t>(boxes.size() - 1));
             work.push_back(boxes.size() - 1);
             break;
         }

@@ -5,12 +5,12 @@
 
 namespace vots::fit {
 
-Volume loadVolume(const std::string& path, const std::optional<RawLayout>& raw) {
-    if (raw) return loadRaw(path, *raw);
+Volume loadVolume(const std::string& path, const std::optional<RawLayout>& raw, SampleStorage storage) {
+    if (raw) return loadRaw(path, *raw, storage);
     const std::string extension = detail::volumeExtension(path);
-    if (extension == ".nrrd" || extension == ".nhdr") return loadNrrd(path);
-    if (extension == ".nii" || extension == ".nii.gz") return loadNifti(path);
-    if (extension == ".mhd" || extension == ".mha") return loadMetaImage(path);
+    if (extension == ".nrrd" || extension == ".nhdr") return loadNrrd(path, storage);
+    if (extension == ".nii" || extension == ".nii.gz") return loadNifti(path, storage);
+    if (extension == ".mhd" || extension == ".mha") return loadMetaImage(path, storage);
     // Existence first: "no such file" is the more useful message for a mistyped path.
     detail::regularFileSize(path);
     detail::throwInputError(path,

@@ -5,14 +5,21 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
 namespace vots::fit {
 
-/// Sample type of the source file; values are always held as float (exact for all of these).
+/// Sample type of the source file.
 enum class ScalarType { UInt8, Int8, UInt16, Int16, UInt32, Int32, Float32, Float64 };
 
 std::string scalarTypeName(ScalarType type);
+
+/// Samples of an 8- or 16-bit integer file held in the file's own type: a half or a quarter of the
+/// memory of floats, with the same values (float holds all of them exactly). Empty: `values` holds them.
+using CompactSamples = std::variant<std::monostate, std::vector<std::uint8_t>, std::vector<std::int8_t>,
+                                    std::vector<std::uint16_t>, std::vector<std::int16_t>>;
 
 struct Volume {
     std::array<int, 3> dims{0, 0, 0};             // grid points along x, y, z
@@ -20,7 +27,8 @@ struct Volume {
     std::array<double, 3> origin{0.0, 0.0, 0.0};  // world position of grid point (0,0,0)
     ScalarType sourceType = ScalarType::Float32;  // what the file stored
     std::string name;                             // short label (file stem), for meta data and logs
-    std::vector<float> values;                    // x fastest, then y, then z
+    std::vector<float> values;                    // x fastest, then y, then z; empty when compact
+    CompactSamples compact;                       // the samples instead of `values` (same order)
 
     std::size_t sampleCount() const {
         return static_cast<std::size_t>(dims[0]) * static_cast<std::size_t>(dims[1]) *
@@ -32,12 +40,25 @@ struct Volume {
                    (static_cast<std::size_t>(y) +
                     static_cast<std::size_t>(dims[1]) * static_cast<std::size_t>(z));
     }
-    float at(int x, int y, int z) const { return values[indexOf(x, y, z)]; }
+    bool isCompact() const { return !std::holds_alternative<std::monostate>(compact); }
+    /// Samples held, in `values` or `compact`.
+    std::size_t heldSamples() const;
+    float at(int x, int y, int z) const {
+        if (!isCompact()) return values[indexOf(x, y, z)];
+        return std::visit(
+            [i = indexOf(x, y, z)](const auto& held) -> float {
+                if constexpr (std::is_same_v<std::decay_t<decltype(held)>, std::monostate>)
+                    return 0.0f;
+                else
+                    return static_cast<float>(held[i]);
+            },
+            compact);
+    }
 
     /// Smallest and largest sample value; {0,0} for an empty volume.
     std::array<float, 2> valueRange() const;
-    /// CRC-32 of the grid (dims, spacing, origin) and every sample: tells a changed file from the one a
-    /// cached fit was made of.
+    /// CRC-32 of the grid (dims, spacing, origin) and every sample as float, whichever way it is held:
+    /// tells a changed file from the one a cached fit was made of.
     std::uint32_t contentCrc() const;
 };
 

@@ -18,16 +18,25 @@ struct RawLayout {
     std::size_t headerBytes = 0; // bytes to skip before the samples
 };
 
+/// How a loaded volume holds its samples.
+enum class SampleStorage {
+    Float, // Volume::values, whatever the file's type
+    Source // Volume::compact for 8- and 16-bit integer files (a half or a quarter of the memory), else
+           // values; fitting either gives the same Vots
+};
+
 /// Parses "int16", "uint8", "float32", ... (also "short", "float", "uchar"); throws InputError.
 ScalarType parseScalarType(const std::string& text);
 
 /// Loads a volume. The format follows the extension: .nrrd/.nhdr, .nii/.nii.gz, .mhd/.mha;
 /// with a raw layout any file is read as raw samples. Throws InputError with a one-line message.
-Volume loadVolume(const std::string& path, const std::optional<RawLayout>& raw = std::nullopt);
+Volume loadVolume(const std::string& path, const std::optional<RawLayout>& raw = std::nullopt,
+                  SampleStorage storage = SampleStorage::Float);
 
-Volume loadNrrd(const std::string& path);
-Volume loadNifti(const std::string& path);
-Volume loadMetaImage(const std::string& path);
-Volume loadRaw(const std::string& path, const RawLayout& layout);
+Volume loadNrrd(const std::string& path, SampleStorage storage = SampleStorage::Float);
+Volume loadNifti(const std::string& path, SampleStorage storage = SampleStorage::Float);
+Volume loadMetaImage(const std::string& path, SampleStorage storage = SampleStorage::Float);
+Volume loadRaw(const std::string& path, const RawLayout& layout,
+               SampleStorage storage = SampleStorage::Float);
 
 } // namespace vots::fit
