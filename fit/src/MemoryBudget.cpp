@@ -64,12 +64,13 @@ std::optional<std::uint64_t> cgroupHeadroom() {
 } // namespace
 
 FitMemoryModel fitMemoryModel() {
-    // Fitted to the peak RSS of `vots fit --certify cells` on 512x512xN int16 volumes (docs/API.md,
-    // "Memory budget") and rounded up, so the estimate stays above what the kernel would see: per sample
-    // the float samples, the background mask with its prefix sums and the fitter's per-cell state; per
-    // stored byte the payload while it is decoded; a fixed part that dominates small volumes.
+    // Rounded up from the peak RSS of `vots fit --certify cells` on 512x512xN int16 volumes held as floats,
+    // as the server holds them (docs/API.md, "Memory budget"): per sample the float samples and the
+    // fitter's bit mask and box state (4.8 bytes measured); per stored byte the payload while it is
+    // decoded; a fixed part that dominates small volumes. `vots fit` keeps 8- and 16-bit samples in
+    // their own type and needs less, so the estimate stays above what the kernel sees for either.
     // Change these three numbers when the fitter's memory changes; nothing else encodes them.
-    return FitMemoryModel{12.0, 1.0, 128.0 * MEBIBYTE};
+    return FitMemoryModel{6.0, 1.0, 256.0 * MEBIBYTE};
 }
 
 std::uint64_t estimateLoadAndFitBytes(const VolumeHeaderInfo& header) {
