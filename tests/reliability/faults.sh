@@ -35,6 +35,16 @@ wait_job() { # wait_job ID -> final state
     echo "$state"
 }
 job_id() { sed -n 's/.*"id":\([0-9]*\).*/\1/p'; }
+log_line() { # log_line FILE PATTERN -> the first matching line, waiting up to 30 s for it: the cache
+    # write runs deferred, after the fit is answered and its frames drawn, so its warning comes later
+    local line=
+    for _ in $(seq 1 60); do
+        line=$(grep -m1 "$2" "$1" || true)
+        [[ -n $line ]] && break
+        sleep 0.5
+    done
+    echo "$line"
+}
 render_ok() { # render_ok -> HTTP status of a small /render
     curl -s -o /dev/null -w '%{http_code}' \
         "http://127.0.0.1:$SERVER_PORT/render?dataset=HeadMRVolume_48x62x42_uint8&size=64x64&eps=5%25"
@@ -95,7 +105,7 @@ fi
 id=$(fit HeadMRVolume_48x62x42_uint8 1% | job_id)
 state=$(wait_job "$id")
 status=$(render_ok)
-warning=$(grep -m1 'warning: cache folder' "$work/s3.log" || true)
+warning=$(log_line "$work/s3.log" 'warning: cache folder')
 alive=$(kill -0 "$SERVER_PID" 2>/dev/null && echo yes || echo no)
 if [[ $state == done && $status == 200 && $alive == yes && -n $warning && -z $(find "$full" -name '*.tmp-*') ]]; then
     report PASS "full disk ($how)" "fit done from memory, /render 200, log: $warning"
@@ -111,7 +121,7 @@ start_server "$work/s4.log" --data "$work/data" --cache-dir "$work/afile/cache"
 id=$(fit HeadMRVolume_48x62x42_uint8 1% | job_id)
 state=$(wait_job "$id")
 status=$(render_ok)
-warning=$(grep -m1 'warning: cache folder' "$work/s4.log" || true)
+warning=$(log_line "$work/s4.log" 'warning: cache folder')
 if [[ $state == done && $status == 200 && -n $warning ]]; then
     report PASS "unwritable cache folder" "fit done, /render 200, log: $warning"
 else
