@@ -191,18 +191,6 @@ bool keepsCompact(ScalarType type, SampleStorage storage) {
 
 namespace {
 
-template <typename T>
-std::vector<T> decodeCompact(const unsigned char* bytes, std::size_t count, bool bigEndian) {
-    using U = typename UnsignedOfSize<sizeof(T)>::Type;
-    const bool swap = bigEndian != (std::endian::native == std::endian::big);
-    std::vector<T> out(count);
-    std::memcpy(out.data(), bytes, count * sizeof(T));
-    if (swap && sizeof(T) > 1)
-        for (T& value : out)
-            value = std::bit_cast<T>(byteSwapped(std::bit_cast<U>(value)));
-    return out;
-}
-
 // Decodes samples whose file bytes sit at the start of `dst`'s own memory, from the last to the first:
 // a float is never narrower than the sample it replaces, so each write lands on bytes already read.
 template <typename T> std::size_t decodeInPlace(float* dst, std::size_t count, bool swap) {
@@ -227,15 +215,40 @@ template <typename T> std::size_t decodeInPlace(float* dst, std::size_t count, b
     return bad;
 }
 
-template <typename T>
-std::vector<T> readCompact(std::size_t count, bool bigEndian, const PayloadReader& read) {
+// The samples of an 8- or 16-bit file in their own type: fill(data, bytes) writes the file's bytes,
+// which are then put in host byte order.
+template <typename T, class Fill>
+std::vector<T> compactSamples(std::size_t count, bool bigEndian, Fill& fill) {
     using U = typename UnsignedOfSize<sizeof(T)>::Type;
     std::vector<T> out(count);
-    read(reinterpret_cast<unsigned char*>(out.data()));
+    fill(reinterpret_cast<unsigned char*>(out.data()), count * sizeof(T));
     if (sizeof(T) > 1 && bigEndian != (std::endian::native == std::endian::big))
         for (T& value : out)
             value = std::bit_cast<T>(byteSwapped(std::bit_cast<U>(value)));
     return out;
+}
+
+// Volume::compact from the file's bytes (see compactSamples); false for a type it does not hold.
+template <class Fill>
+bool storeCompact(Volume& volume, ScalarType type, std::size_t count, bool bigEndian, Fill&& fill) {
+    switch (type) {
+    case ScalarType::UInt8:
+        volume.compact = compactSamples<std::uint8_t>(count, bigEndian, fill);
+        break;
+    case ScalarType::Int8:
+        volume.compact = compactSamples<std::int8_t>(count, bigEndian, fill);
+        break;
+    case ScalarType::UInt16:
+        volume.compact = compactSamples<std::uint16_t>(count, bigEndian, fill);
+        break;
+    case ScalarType::Int16:
+        volume.compact = compactSamples<std::int16_t>(count, bigEndian, fill);
+        break;
+    default: // keepsCompact holds only for the types above
+        return false;
+    }
+    volume.values.clear();
+    return true;
 }
 
 } // namespace
@@ -248,25 +261,9 @@ void readSamples(Volume& volume, const std::string& path, std::size_t count, Sca
         storeSamples(volume, path, payload.data(), count, type, bigEndian, storage);
         return;
     }
-    if (keepsCompact(type, storage)) {
-        volume.values.clear();
-        switch (type) {
-        case ScalarType::UInt8:
-            volume.compact = readCompact<std::uint8_t>(count, bigEndian, read);
-            return;
-        case ScalarType::Int8:
-            volume.compact = readCompact<std::int8_t>(count, bigEndian, read);
-            return;
-        case ScalarType::UInt16:
-            volume.compact = readCompact<std::uint16_t>(count, bigEndian, read);
-            return;
-        case ScalarType::Int16:
-            volume.compact = readCompact<std::int16_t>(count, bigEndian, read);
-            return;
-        default: // keepsCompact holds only for the types above
-            break;
-        }
-    }
+    if (keepsCompact(type, storage) &&
+        storeCompact(volume, type, count, bigEndian, [&](unsigned char* dst, std::size_t) { read(dst); }))
+        return;
     std::vector<float> values(count);
     read(reinterpret_cast<unsigned char*>(values.data()));
     const bool swap = bigEndian != (std::endian::native == std::endian::big);
@@ -309,23 +306,8 @@ void storeSamples(Volume& volume, const std::string& path, const unsigned char* 
         volume.values = decodeSamples(path, bytes, count, type, bigEndian);
         return;
     }
-    volume.values.clear();
-    switch (type) {
-    case ScalarType::UInt8:
-        volume.compact = decodeCompact<std::uint8_t>(bytes, count, bigEndian);
-        break;
-    case ScalarType::Int8:
-        volume.compact = decodeCompact<std::int8_t>(bytes, count, bigEndian);
-        break;
-    case ScalarType::UInt16:
-        volume.compact = decodeCompact<std::uint16_t>(bytes, count, bigEndian);
-        break;
-    case ScalarType::Int16:
-        volume.compact = decodeCompact<std::int16_t>(bytes, count, bigEndian);
-        break;
-    default: // keepsCompact holds only for the types above
-        break;
-    }
+    storeCompact(volume, type, count, bigEndian,
+                 [&](unsigned char* dst, std::size_t size) { std::memcpy(dst, bytes, size); });
 }
 
 } // namespace vots::fit::detail
