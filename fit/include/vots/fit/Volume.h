@@ -25,10 +25,15 @@ struct Volume {
     std::array<int, 3> dims{0, 0, 0};             // grid points along x, y, z
     std::array<double, 3> spacing{1.0, 1.0, 1.0}; // world distance between grid points (mm for CT)
     std::array<double, 3> origin{0.0, 0.0, 0.0};  // world position of grid point (0,0,0)
-    ScalarType sourceType = ScalarType::Float32;  // what the file stored
-    std::string name;                             // short label (file stem), for meta data and logs
-    std::vector<float> values;                    // x fastest, then y, then z; empty when compact
-    CompactSamples compact;                       // the samples instead of `values` (same order)
+    /// Unit vector in patient coordinates (DICOM's LPS: +x the patient's left, +y posterior, +z superior)
+    /// along which each grid index grows: patientAxes[0] for x, [1] for y, [2] for z. Only meaningful when
+    /// `orientationKnown`; a file that says nothing (raw, NRRD without `space`) renders in index space.
+    std::array<std::array<double, 3>, 3> patientAxes{{{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}}};
+    bool orientationKnown = false;
+    ScalarType sourceType = ScalarType::Float32; // what the file stored
+    std::string name;                            // short label (file stem), for meta data and logs
+    std::vector<float> values;                   // x fastest, then y, then z; empty when compact
+    CompactSamples compact;                      // the samples instead of `values` (same order)
 
     std::size_t sampleCount() const {
         return static_cast<std::size_t>(dims[0]) * static_cast<std::size_t>(dims[1]) *
