@@ -123,8 +123,9 @@ int main(int argc, char** argv) {
                   << ", culling " << (noCull ? "off" : "on") << ", walk shader " << walkShaderName << "\n\n";
         std::cout
             << "| eps | view | Vots | strategy used | reference ms | raster ms | walk ms | ref / walk | "
-               "raster / walk | pixels walk != raster | readback ms | display+readback ms | PNG ms |\n"
-               "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+               "raster / walk | pixels walk != raster | readback ms | display+readback ms | PNG ms | bounds "
+               "ahead ms |\n"
+               "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
 
         std::vector<double> epsList;
         if (!votsPath.empty())
@@ -186,10 +187,11 @@ int main(int argc, char** argv) {
                 const double walkMs = timeWalk ? ms.back() : NAN;
 
                 VotRenderer& main = timeWalk ? walk : raster;
-                std::vector<double> readback;
+                std::vector<double> readback, ahead;
                 for (int i = 0; i < 5; ++i) {
                     (void)main.render(camera, size, size);
                     readback.push_back(main.lastFrameStats().readbackMs);
+                    ahead.push_back(main.lastFrameStats().boundsAheadMs);
                 }
                 const auto display = vots::render::windowForRange(range[0], range[1]);
                 vots::render::RgbaImage rgba;
@@ -213,12 +215,12 @@ int main(int argc, char** argv) {
                             vots::render::applyDisplay(grid.render(camera, size, size), display));
                     }
                 }
-                std::printf(
-                    "| %.4g | %s | %zu | %s | %.1f | %.1f | %.1f | %.2f | %.2f | %s | %.2f | %.2f | %.1f |\n",
-                    eps, name, space.vots.size(),
-                    timeWalk ? (walks ? "walk" : "raster (fallback)") : "raster", refMs, rasterMs, walkMs,
-                    refMs / walkMs, rasterMs / walkMs, differ.c_str(), median(readback), median(displayMs),
-                    median(pngMs));
+                std::printf("| %.4g | %s | %zu | %s | %.1f | %.1f | %.1f | %.2f | %.2f | %s | %.2f | %.2f | "
+                            "%.1f | %.2f |\n",
+                            eps, name, space.vots.size(),
+                            timeWalk ? (walks ? "walk" : "raster (fallback)") : "raster", refMs, rasterMs,
+                            walkMs, refMs / walkMs, rasterMs / walkMs, differ.c_str(), median(readback),
+                            median(displayMs), median(pngMs), median(ahead));
                 std::fflush(stdout);
             }
         }

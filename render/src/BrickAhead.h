@@ -26,8 +26,9 @@ struct BrickLayout {
 /// For every brick B (x fastest): an upper bound of brickMax over every brick that a ray of the family
 /// can reach after any point of B (B included), or +inf where the family spreads too wide for a
 /// useful bound (an eye inside or beside B). Once a pixel's max reaches it, nothing further along the
-/// ray can raise the max, and the walk may stop. The beam is taken slab by slab along its dominant
-/// axis and widened by half a cell, so float rounding in the walk cannot step outside it.
+/// ray can raise the max, and the walk may stop. Rays are taken in tubes about a brick wide, slab by
+/// slab from the far end, widened by half a cell so float rounding in the walk cannot step outside
+/// them: linear in the bricks, and at most a tube looser than the exact beam (docs/DESIGN.md §6).
 std::vector<float> brickMaximaAhead(const BrickLayout& layout, const std::vector<float>& brickMax,
                                     const RayFamily& rays);
 

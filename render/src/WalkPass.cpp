@@ -2,6 +2,7 @@
 #include "WalkPass.h"
 
 #include "BrickAhead.h"
+#include "FrameReadout.h"
 #include "ParallelChunks.h"
 #include "ShaderContract.h"
 #include "Shaders.h"
@@ -243,9 +244,11 @@ void WalkPass::draw(const CameraMatrices& m, int width, int height, FloatTarget&
     glProgramUniform3i(p, glGetUniformLocation(p, "uBricks"), mBricks[0], mBricks[1], mBricks[2]);
     glProgramUniform1i(p, glGetUniformLocation(p, "uBrickShift"), WALK_BRICK_SHIFT);
     glProgramUniform1i(p, glGetUniformLocation(p, "uCull"), culling ? 1 : 0);
-    // The bounds ahead depend on the view: a few thousand bricks, recomputed per frame.
+    // The bounds ahead depend on the view, so they are recomputed per frame (linear in the bricks).
+    const auto aheadStart = FrameClock::now();
     const std::vector<float> ahead =
         brickMaximaAhead({mCells, mBricks, WALK_BRICK_SHIFT}, mBrickMaxima, rayFamilyOf(m.clipToIndex));
+    stats.boundsAheadMs = msSince(aheadStart);
     // (bound, bound ahead, palette start, cell table) per brick
     std::vector<std::uint32_t> brickBounds(4 * ahead.size());
     for (std::size_t i = 0; i < ahead.size(); ++i) {

@@ -86,6 +86,26 @@ TEST(BrickAhead, PerspectiveRaysNeverMeetABrickAboveTheBound) {
     expectBeamsBounded({false, {}, {80.0, 70.0, -30.0}}, 5u);
 }
 
+// Tight enough to stop rays: with brickMax growing along x and rays along z, a brick's bound comes from
+// its own column and at most two beside it (the margin reaches the next column, the tubes one more), not
+// from the whole grid.
+TEST(BrickAhead, ABoundComesFromTheBeamNotTheWholeGrid) {
+    const BrickLayout layout = testLayout();
+    std::vector<float> brickMax;
+    for (int bz = 0; bz < layout.bricks[2]; ++bz)
+        for (int by = 0; by < layout.bricks[1]; ++by)
+            for (int bx = 0; bx < layout.bricks[0]; ++bx)
+                brickMax.push_back(static_cast<float>(bx));
+    for (double dz : {1.0, -1.0}) {
+        const std::vector<float> ahead = brickMaximaAhead(layout, brickMax, {true, {0.0, 0.0, dz}, {}});
+        for (std::size_t i = 0; i < ahead.size(); ++i) {
+            const float own = brickMax[i];
+            EXPECT_GE(ahead[i], own) << "brick " << i;
+            EXPECT_LE(ahead[i], std::min(own + 2.f, float(layout.bricks[0] - 1))) << "brick " << i;
+        }
+    }
+}
+
 TEST(BrickAhead, AnEyeInsideTheGridLeavesNearbyBricksUnbounded) {
     const BrickLayout layout = testLayout();
     const std::vector<float> brickMax(
