@@ -147,8 +147,10 @@ inline void writePhantomNrrd(const PhantomGrid& g, const std::string& path, bool
                     "\nspace: " + (rasSpace ? "right-anterior-superior" : "left-posterior-superior") +
                     "\nspace directions:";
     for (int a = 0; a < 3; ++a)
-        h += " " + vec(g.patientAxes[a], true, a);
-    h += "\nspace origin: " + vec(g.origin, false, 0) + "\nendian: little\nencoding: raw\n\n";
+        h.append(" ").append(vec(g.patientAxes[a], true, a));
+    h.append("\nspace origin: ")
+        .append(vec(g.origin, false, 0))
+        .append("\nendian: little\nencoding: raw\n\n");
     phantom_detail::writeFile(path, h, g.values);
 }
 
