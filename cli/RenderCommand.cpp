@@ -13,6 +13,7 @@
 #include "vots/render/GridRenderer.h"
 #include "vots/render/Png.h"
 #include "vots/render/VotRenderer.h"
+#include "vots/server/FitMeta.h"
 #include "vots/server/RenderPolicy.h"
 
 #include <CLI/CLI.hpp>
@@ -120,6 +121,7 @@ void runRender(const RenderArgs& a) {
     std::optional<fit::VotSpace> space;
     if (inputIsVots) {
         space = fit::readVotSpaceFile(a.input);
+        server::placeInPatientSpace(*space);
         if (!a.volume.empty()) {
             checkVolumeFitsBudget(a.volume, std::nullopt, a.memoryBudget);
             volume = fit::loadVolume(a.volume);

@@ -81,6 +81,8 @@ FitResult fitVotSpace(const Volume& volume, const FitOptions& options, FitCache*
     space.dims = volume.dims;
     space.origin = volume.origin;
     space.spacing = volume.spacing;
+    space.patientAxes = volume.patientAxes;
+    space.orientationKnown = volume.orientationKnown;
     space.eps = options.eps;
     space.background = options.background ? *options.background : std::numeric_limits<float>::lowest();
     space.epsVaries = eps.varies();

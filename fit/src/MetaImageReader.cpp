@@ -1,6 +1,8 @@
 // Reads MetaImage volumes (.mhd + data file, or .mha with LOCAL data), raw or zlib-compressed, 3D scalars.
 #include "vots/fit/VolumeLoad.h"
 
+#include "vots/fit/PatientAxes.h"
+
 #include "vots/fit/Error.h"
 
 #include "Gzip.h"
@@ -11,6 +13,7 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <optional>
 
 namespace vots::fit {
 
@@ -102,6 +105,49 @@ std::array<double, 3> originOf(const std::string& path, const MetaHeader& header
     return {0.0, 0.0, 0.0};
 }
 
+// AnatomicalOrientation in ITK's sense (ITK writes "RAI" for the identity in LPS): each letter names
+// the side where the axis starts, so the axis grows towards the opposite side.
+std::optional<PatientAxes> axesFromLetters(const std::string& path, const std::string& letters) {
+    const std::string text = toLower(trim(letters));
+    PatientAxes directions{};
+    if (text.size() != 3)
+        throwInputError(path, "AnatomicalOrientation must be three letters, got '" + quotable(letters) + "'");
+    for (std::size_t a = 0; a < 3; ++a) {
+        static const std::string FROM = "rlapis"; // from R grows to +L, from L to -L, ...
+        const std::size_t at = FROM.find(text[a]);
+        if (at == std::string::npos)
+            throwInputError(path, "AnatomicalOrientation letters are R, L, A, P, I, S; got '" +
+                                      quotable(letters) + "'");
+        directions[a][at / 2] = at % 2 == 0 ? 1.0 : -1.0;
+    }
+    const auto axes = normalizedPatientAxes(directions);
+    if (!axes)
+        throwInputError(path, "AnatomicalOrientation '" + quotable(letters) + "' names one direction twice");
+    return axes;
+}
+
+// TransformMatrix (or its other names Rotation, Orientation) wins over AnatomicalOrientation: it is what
+// ITK reads back, the letters are only a summary of it. Triplet a is grid axis a in LPS.
+std::optional<PatientAxes> axesOf(const std::string& path, const MetaHeader& header) {
+    for (const char* key : {"transformmatrix", "rotation", "orientation"}) {
+        if (const std::string* value = field(header, key)) {
+            const std::vector<double> numbers = parseReals(path, key, *value, 9);
+            PatientAxes directions{};
+            for (std::size_t a = 0; a < 3; ++a)
+                for (std::size_t c = 0; c < 3; ++c)
+                    directions[a][c] = numbers[3 * a + c];
+            const auto axes = normalizedPatientAxes(directions);
+            if (!axes)
+                throwInputError(path, "'" + std::string(key) + "' is not finite or does not span space");
+            return axes;
+        }
+    }
+    if (const std::string* letters = field(header, "anatomicalorientation"))
+        if (!trim(*letters).empty() && letters->find('?') == std::string::npos) // "???": unknown
+            return axesFromLetters(path, *letters);
+    return std::nullopt;
+}
+
 std::vector<unsigned char> readPayload(const std::string& path, const MetaHeader& header, std::size_t bytes) {
     const std::string& name = header.fields.at("elementdatafile");
     if (name.empty()) throwInputError(path, "ElementDataFile is empty");
@@ -182,6 +228,10 @@ Volume loadMetaImage(const std::string& path, SampleStorage storage) {
     volume.dims = shape.dims;
     volume.spacing = spacingOf(path, header);
     volume.origin = originOf(path, header);
+    if (const auto axes = axesOf(path, header)) {
+        volume.patientAxes = *axes;
+        volume.orientationKnown = true;
+    }
     volume.sourceType = type;
     volume.name = fileStem(path);
     const std::vector<unsigned char> payload = readPayload(path, header, shape.bytes);

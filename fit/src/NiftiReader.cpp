@@ -1,15 +1,19 @@
 // Reads single-file NIfTI-1 volumes (.nii, .nii.gz) of either byte order; no NIfTI-2, pairs or 4D series.
 #include "vots/fit/VolumeLoad.h"
 
+#include "vots/fit/PatientAxes.h"
+
 #include "Gzip.h"
 #include "InputFile.h"
 #include "SampleDecode.h"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <optional>
 
 namespace vots::fit {
 
@@ -53,6 +57,7 @@ struct NiftiInfo {
     double inter = 0.0;
     std::array<double, 3> spacing{1.0, 1.0, 1.0};
     std::array<double, 3> origin{0.0, 0.0, 0.0};
+    std::optional<PatientAxes> axes; // in LPS; nullopt: neither sform nor qform (NIfTI method 1)
 };
 
 ScalarType niftiType(const std::string& path, int datatype) {
@@ -78,6 +83,26 @@ ScalarType niftiType(const std::string& path, int datatype) {
     }
     throwInputError(path, "unsupported NIfTI datatype " + std::to_string(datatype) +
                               " (supported: 2, 4, 8, 16, 64, 256, 512, 768: scalar integers and floats)");
+}
+
+// Column a of the sform (srow_x, srow_y, srow_z at 280, 296, 312): grid axis a in RAS, spacing-scaled.
+PatientAxes sformDirections(const HeaderView& h) {
+    PatientAxes d{};
+    for (std::size_t a = 0; a < 3; ++a)
+        for (std::size_t row = 0; row < 3; ++row)
+            d[a][row] = h.float32(280 + 16 * row + 4 * a);
+    return d;
+}
+
+// Columns of the qform rotation (quatern_b, c, d at 256, 260, 264), the third times qfac (pixdim[0]).
+PatientAxes qformDirections(const HeaderView& h) {
+    const double b = h.float32(256), c = h.float32(260), d = h.float32(264);
+    const double a = std::sqrt(std::max(0.0, 1.0 - (b * b + c * c + d * d)));
+    const double qfac = h.float32(76) < 0.0f ? -1.0 : 1.0;
+    return {{{a * a + b * b - c * c - d * d, 2 * b * c + 2 * a * d, 2 * b * d - 2 * a * c},
+             {2 * b * c - 2 * a * d, a * a + c * c - b * b - d * d, 2 * c * d + 2 * a * b},
+             {qfac * (2 * b * d + 2 * a * c), qfac * (2 * c * d - 2 * a * b),
+              qfac * (a * a + d * d - c * c - b * b)}}};
 }
 
 NiftiInfo parseHeader(const std::string& path, const unsigned char* bytes) {
@@ -137,13 +162,29 @@ NiftiInfo parseHeader(const std::string& path, const unsigned char* bytes) {
         info.inter = inter;
     }
 
-    // Origin: sform translation when present, else the qform offset, else 0 (NIfTI method 1).
-    if (h.int16(254) > 0)
+    // Origin and axes: the sform when present and spanning space, else the qform, else none (NIfTI
+    // method 1). A degenerate sform (some writers set the code with a zero matrix) keeps its translation
+    // as the origin, as before orientation was read, but says nothing about the axes.
+    const bool sform = h.int16(254) > 0, qform = h.int16(252) > 0;
+    const std::optional<PatientAxes> sformAxes =
+        sform ? normalizedPatientAxes(sformDirections(h)) : std::nullopt;
+    if (sform && (sformAxes || !qform)) {
         info.origin = {h.float32(292), h.float32(308), h.float32(324)};
-    else if (h.int16(252) > 0)
+        info.axes = sformAxes;
+    } else if (qform) {
         info.origin = {h.float32(268), h.float32(272), h.float32(276)};
+        info.axes = normalizedPatientAxes(qformDirections(h));
+        if (!info.axes) throwInputError(path, "qform quaternion is not finite");
+    }
     for (const double o : info.origin)
         if (!std::isfinite(o)) throwInputError(path, "origin (qoffset/srow) is not finite");
+    if (info.axes) { // NIfTI's patient space is RAS, ours is LPS: the first two coordinates change sign
+        for (auto& axis : *info.axes)
+            for (int c = 0; c < 2; ++c)
+                axis[c] = axis[c] == 0.0 ? 0.0 : -axis[c];
+        for (int c = 0; c < 2; ++c)
+            info.origin[c] = info.origin[c] == 0.0 ? 0.0 : -info.origin[c];
+    }
     return info;
 }
 
@@ -183,6 +224,10 @@ Volume loadNifti(const std::string& path, SampleStorage storage) {
     volume.dims = info.shape.dims;
     volume.spacing = info.spacing;
     volume.origin = info.origin;
+    if (info.axes) {
+        volume.patientAxes = *info.axes;
+        volume.orientationKnown = true;
+    }
     volume.sourceType = info.type;
     volume.name = fileStem(path);
     // Scaled samples are not integers any more: only unscaled ones stay compact.

@@ -2,6 +2,7 @@
 #include "vots/fit/VolumeLoad.h"
 
 #include "vots/fit/Error.h"
+#include "vots/fit/PatientAxes.h"
 
 #include "Gzip.h"
 #include "HeaderText.h"
@@ -23,7 +24,7 @@ constexpr std::size_t MAX_HEADER_BYTES = std::size_t{1} << 20;
 constexpr long long MAX_DATA_FILES = 100000;
 
 struct NrrdHeader {
-    std::string type, sizes, spacings, directions, origin, endian, encoding, dataFile;
+    std::string type, sizes, spacings, space, directions, origin, endian, encoding, dataFile;
     long long dimension = 0;
     long long lineSkip = 0;
     long long byteSkip = 0;
@@ -77,6 +78,8 @@ NrrdHeader parseHeader(const std::string& path, const std::string& text, std::ui
             header.sizes = value;
         else if (key == "spacings")
             header.spacings = value;
+        else if (key == "space")
+            header.space = toLower(value);
         else if (key == "space directions")
             header.directions = value;
         else if (key == "space origin")
@@ -94,7 +97,7 @@ NrrdHeader parseHeader(const std::string& path, const std::string& text, std::ui
             const std::vector<std::string> words = splitWords(value);
             inList = !words.empty() && words[0] == "LIST";
         }
-        // Other fields (kinds, centers, space, units, content, ...) do not change the samples.
+        // Other fields (kinds, centers, units, content, ...) do not change the samples.
     }
     return header;
 }
@@ -158,6 +161,38 @@ std::array<double, 3> readOrigin(const std::string& path, const NrrdHeader& head
         origin[a] = vectors[0][a];
     }
     return origin;
+}
+
+// The sign that turns each coordinate of the header's patient space into LPS; nullopt for a space
+// without patient meaning (scanner-xyz, 3D-right-handed, 3D-left-handed) or none given.
+std::optional<std::array<double, 3>> lpsSigns(const std::string& path, const std::string& space) {
+    if (space == "left-posterior-superior" || space == "lps") return std::array<double, 3>{1.0, 1.0, 1.0};
+    if (space == "right-anterior-superior" || space == "ras") return std::array<double, 3>{-1.0, -1.0, 1.0};
+    if (space == "left-anterior-superior" || space == "las") return std::array<double, 3>{1.0, -1.0, 1.0};
+    if (space.find("time") != std::string::npos || space == "rast" || space == "last" || space == "lpst")
+        throwInputError(path,
+                        "space '" + quotable(space) + "' has a time axis; only 3D volumes are supported");
+    return std::nullopt;
+}
+
+// Patient axes from `space` and `space directions`, and the origin turned into LPS with them. A header
+// with spacings only, or a space without patient meaning, leaves the volume in index space.
+void readOrientation(const std::string& path, const NrrdHeader& header, Volume& volume) {
+    const auto signs = lpsSigns(path, header.space);
+    if (!signs || header.directions.empty()) return;
+    const auto vectors = parseVectors(path, "space directions", header.directions);
+    PatientAxes directions{};
+    for (std::size_t a = 0; a < 3; ++a) {
+        if (vectors[a].size() != 3) throwInputError(path, "'space directions' vectors must be (x,y,z)");
+        for (std::size_t c = 0; c < 3; ++c)
+            directions[a][c] = (*signs)[c] * vectors[a][c];
+    }
+    const auto axes = normalizedPatientAxes(directions);
+    if (!axes) throwInputError(path, "'space directions' do not span space");
+    volume.patientAxes = *axes;
+    volume.orientationKnown = true;
+    for (std::size_t c = 0; c < 3; ++c)
+        volume.origin[c] = volume.origin[c] == 0.0 ? 0.0 : (*signs)[c] * volume.origin[c];
 }
 
 // "slice%03d.raw 1 93 1 [subdim]" -> slice001.raw ... slice093.raw. Only %d with an optional
@@ -301,6 +336,7 @@ Volume loadNrrd(const std::string& path, SampleStorage storage) {
     volume.dims = shape.dims;
     volume.spacing = readSpacing(path, header);
     volume.origin = readOrigin(path, header);
+    readOrientation(path, header, volume);
     volume.sourceType = *type;
     volume.name = fileStem(path);
 

@@ -25,15 +25,23 @@ constexpr std::array<std::pair<ViewPreset, const char*>, 6> VIEWS{{{ViewPreset::
                                                                    {ViewPreset::Inferior, "inferior"}}};
 
 SceneBounds boundsFrom(const std::array<int, 3>& dims, const std::array<double, 3>& origin,
-                       const std::array<double, 3>& spacing) {
+                       const std::array<double, 3>& spacing,
+                       const std::array<std::array<double, 3>, 3>& axes) {
     SceneBounds b;
     b.dims = dims;
     b.origin = origin;
     b.spacing = spacing;
-    for (int a = 0; a < 3; ++a) {
-        const double end = origin[a] + spacing[a] * std::max(dims[a] - 1, 1);
-        b.lo[a] = std::min(origin[a], end);
-        b.hi[a] = std::max(origin[a], end);
+    b.axes = axes;
+    b.lo = origin;
+    b.hi = origin;
+    // Each axis moves every world coordinate by axes[a][c] * extent: the box of the corners is the origin
+    // widened by each axis's contribution on its own side (for the identity, exactly origin .. end).
+    for (int c = 0; c < 3; ++c) {
+        for (int a = 0; a < 3; ++a) {
+            const double step = axes[a][c] * (spacing[a] * std::max(dims[a] - 1, 1));
+            if (step < 0.0) b.lo[c] += step;
+            if (step > 0.0) b.hi[c] += step;
+        }
     }
     return b;
 }
@@ -83,10 +91,10 @@ std::optional<ViewPreset> findView(std::string_view name) {
 }
 
 SceneBounds sceneBounds(const fit::VotSpace& space) {
-    return boundsFrom(space.dims, space.origin, space.spacing);
+    return boundsFrom(space.dims, space.origin, space.spacing, space.patientAxes);
 }
 SceneBounds sceneBounds(const fit::Volume& volume) {
-    return boundsFrom(volume.dims, volume.origin, volume.spacing);
+    return boundsFrom(volume.dims, volume.origin, volume.spacing, volume.patientAxes);
 }
 
 void validateCamera(const Camera& c) {
@@ -135,9 +143,10 @@ CameraMatrices computeCameraMatrices(const Camera& camera, const SceneBounds& bo
     const glm::dvec3 eye = target + distance * toEye;
     const glm::dmat4 view = glm::lookAt(eye, target, up);
 
-    glm::dmat4 indexToWorld(1.0);
+    glm::dmat4 indexToWorld(1.0); // column a: grid axis a in world; column 3: the origin
     for (int a = 0; a < 3; ++a) {
-        indexToWorld[a][a] = bounds.spacing[a];
+        for (int c = 0; c < 3; ++c)
+            indexToWorld[a][c] = bounds.axes[a][c] * bounds.spacing[a];
         indexToWorld[3][a] = bounds.origin[a];
     }
     const glm::dmat4 indexToClip = projection * view * indexToWorld;

@@ -4,12 +4,24 @@
 #include "ServerImpl.h"
 
 #include "vots/fit/MemoryBudget.h"
+#include "vots/fit/PatientAxes.h"
 
 namespace vots::server {
 namespace {
 
 nlohmann::json windowJson(const render::DisplaySettings& w) {
     return {{"level", w.level}, {"width", w.width}};
+}
+
+// The grid's directions in patient space (docs/API.md): null when the file says nothing.
+nlohmann::json orientationJson(const fit::Volume& v) {
+    if (!v.orientationKnown) return nullptr;
+    nlohmann::json letters = nlohmann::json::array();
+    for (const auto& axis : v.patientAxes) {
+        const std::string name = fit::patientDirectionName(axis);
+        letters.push_back(name.empty() ? nlohmann::json(nullptr) : nlohmann::json(name));
+    }
+    return {{"axes", v.patientAxes}, {"directions", letters}};
 }
 
 nlohmann::json datasetJson(const Dataset& d) {
@@ -21,6 +33,7 @@ nlohmann::json datasetJson(const Dataset& d) {
     return {{"name", d.name},
             {"dims", v.dims},
             {"spacing", v.spacing},
+            {"orientation", orientationJson(v)},
             {"range", d.range},
             {"window", windowJson(window)},
             {"presets", presets},

@@ -1,6 +1,7 @@
 // Writes and reads the meta JSON block of .vots files; the key names live only here.
 #include "vots/server/FitMeta.h"
 
+#include "vots/fit/PatientAxes.h"
 #include "vots/fit/VotSpace.h"
 
 #include <nlohmann/json.hpp>
@@ -40,6 +41,23 @@ template <class T> std::optional<T> field(const json& j, const json::json_pointe
         if (v.is_number()) return v.get<T>();
     }
     return std::nullopt;
+}
+
+// Three rows of three finite numbers spanning space, else nullopt (a foreign or damaged block renders as
+// a file without orientation would).
+std::optional<fit::PatientAxes> patientAxesField(const json& j, const json::json_pointer& ptr) {
+    if (!j.contains(ptr)) return std::nullopt;
+    const json& rows = j.at(ptr);
+    if (!rows.is_array() || rows.size() != 3) return std::nullopt;
+    fit::PatientAxes axes{};
+    for (std::size_t a = 0; a < 3; ++a) {
+        if (!rows[a].is_array() || rows[a].size() != 3) return std::nullopt;
+        for (std::size_t c = 0; c < 3; ++c) {
+            if (!rows[a][c].is_number()) return std::nullopt;
+            axes[a][c] = rows[a][c].get<double>();
+        }
+    }
+    return fit::normalizedPatientAxes(axes);
 }
 
 } // namespace
@@ -84,6 +102,8 @@ std::string buildFitMeta(const FitProvenance& r) {
           {"max_error", finiteOrNull(s.maxError)}}},
         {"max_error", finiteOrNull(r.maxError)},
     };
+    // Only a volume whose file states its orientation gets the key: other files keep their bytes.
+    if (vol.orientationKnown) meta["source"]["patient_axes"] = vol.patientAxes;
     if (!r.cacheKey.empty()) meta["key"] = r.cacheKey;
     // File names need not be UTF-8; replace bad bytes rather than fail after a long fit.
     return meta.dump(-1, ' ', false, json::error_handler_t::replace);
@@ -102,6 +122,7 @@ FitMetaView readFitMeta(const std::string& metaJson) {
     view.sourcePath = field<std::string>(j, json::json_pointer("/source/path"));
     view.method = field<std::string>(j, json::json_pointer("/fit/method"));
     view.cacheKey = field<std::string>(j, json::json_pointer("/key"));
+    view.patientAxes = patientAxesField(j, json::json_pointer("/source/patient_axes"));
     const auto radius = field<double>(j, json::json_pointer("/fit/focus/radius"));
     const auto epsFocus = field<double>(j, json::json_pointer("/fit/focus/eps_focus"));
     const json::json_pointer centre("/fit/focus/center_index");
@@ -116,6 +137,12 @@ FitMetaView readFitMeta(const std::string& metaJson) {
         view.focus = f;
     }
     return view;
+}
+
+void placeInPatientSpace(fit::VotSpace& space) {
+    const auto axes = readFitMeta(space.metaJson).patientAxes;
+    space.orientationKnown = axes.has_value();
+    space.patientAxes = axes.value_or(fit::IDENTITY_PATIENT_AXES);
 }
 
 double maxStoredError(const fit::VotSpace& space) {

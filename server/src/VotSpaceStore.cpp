@@ -5,6 +5,7 @@
 #include "StaleTemporaries.h"
 
 #include "vots/fit/VotSpaceFile.h"
+#include "vots/server/FitMeta.h"
 
 #include <unistd.h>
 
@@ -50,9 +51,10 @@ std::shared_ptr<const fit::VotSpace> VotSpaceStore::read(const FitKey& key) cons
     std::error_code ec;
     if (!fs::is_regular_file(file, ec)) return nullptr;
     try {
-        auto space = std::make_shared<const fit::VotSpace>(fit::readVotSpaceFile(file.string()));
-        if (!carriesKey(*space, key.text())) return nullptr; // a stranger's file under our name: refit
-        return space;
+        fit::VotSpace space = fit::readVotSpaceFile(file.string());
+        if (!carriesKey(space, key.text())) return nullptr; // a stranger's file under our name: refit
+        placeInPatientSpace(space);
+        return std::make_shared<const fit::VotSpace>(std::move(space));
     } catch (const std::exception& e) { // truncated or corrupt file: refit and overwrite it
         std::cerr << "vots serve: warning: ignoring cache file '" << file.string() << "': " << e.what()
                   << "\n";

@@ -151,6 +151,9 @@ struct NiftiSpec {
     short sformCode = 0;
     std::array<float, 3> qoffset{0.0f, 0.0f, 0.0f};
     std::array<float, 3> srowOffset{0.0f, 0.0f, 0.0f};
+    std::array<std::array<float, 3>, 3> srow{};     // srow_x, srow_y, srow_z without their offsets (RAS)
+    std::array<float, 3> quatern{0.0f, 0.0f, 0.0f}; // quatern_b, c, d
+    float qfac = 1.0f;                              // pixdim[0]
     bool bigEndian = false;
     std::string magic{"n+1\0", 4};
 };
@@ -167,7 +170,7 @@ inline std::string niftiHeader(const NiftiSpec& spec) {
         put(40 + 2 * i, static_cast<std::int16_t>(spec.dim[i]));
     put(70, static_cast<std::int16_t>(spec.datatype));
     put(72, static_cast<std::int16_t>(spec.bitpix));
-    put(76, 1.0f);
+    put(76, spec.qfac);
     for (std::size_t i = 0; i < 3; ++i)
         put(80 + 4 * i, spec.pixdim[i]);
     put(108, spec.voxOffset);
@@ -179,6 +182,11 @@ inline std::string niftiHeader(const NiftiSpec& spec) {
         put(268 + 4 * i, spec.qoffset[i]);
     for (std::size_t i = 0; i < 3; ++i)
         put(292 + 16 * i, spec.srowOffset[i]);
+    for (std::size_t row = 0; row < 3; ++row)
+        for (std::size_t a = 0; a < 3; ++a)
+            put(280 + 16 * row + 4 * a, spec.srow[row][a]);
+    for (std::size_t i = 0; i < 3; ++i)
+        put(256 + 4 * i, spec.quatern[i]);
     h.replace(344, 4, spec.magic);
     return h;
 }

@@ -1,5 +1,6 @@
 // Volume input: the shared test volumes, the Cranium CT, and exact round trips of every format we read.
 #include "vots/fit/Error.h"
+#include "vots/fit/PatientAxes.h"
 #include "vots/fit/VolumeLoad.h"
 
 #include "TempDir.h"
@@ -252,12 +253,24 @@ TEST(NiftiRoundTrip, OriginFromSformElseQform) {
     spec.bigEndian = true;
     spec.qformCode = 1;
     spec.qoffset = {1.0f, 2.0f, 3.0f};
-    EXPECT_EQ(loadNifti(dir.write("q.nii", niftiHeader(spec) + data)).origin,
-              (std::array<double, 3>{1, 2, 3}));
+    // The identity quaternion: the grid runs along R, A, S; the origin in LPS has x and y negated.
+    const Volume q = loadNifti(dir.write("q.nii", niftiHeader(spec) + data));
+    EXPECT_EQ(q.origin, (std::array<double, 3>{-1, -2, 3}));
+    EXPECT_TRUE(q.orientationKnown);
+    EXPECT_EQ(q.patientAxes, (PatientAxes{{{-1, 0, 0}, {0, -1, 0}, {0, 0, 1}}}));
     spec.sformCode = 1;
     spec.srowOffset = {-90.0f, -126.0f, -72.0f};
+    spec.srow = {{{-0.5f, 0, 0}, {0, 1.25f, 0}, {0, 0, 3.0f}}}; // x along L, y along A, z along S
+    // The sform wins; its origin in LPS is (90, 126, -72).
     EXPECT_EQ(loadNifti(dir.write("s.nii", niftiHeader(spec) + data)).origin,
-              (std::array<double, 3>{-90, -126, -72}));
+              (std::array<double, 3>{90, 126, -72}));
+    spec.srow = {}; // a zero sform matrix says nothing: the qform is used instead
+    EXPECT_EQ(loadNifti(dir.write("z.nii", niftiHeader(spec) + data)).origin,
+              (std::array<double, 3>{-1, -2, 3}));
+    spec.qformCode = 0; // ... and with no qform its translation stays the origin, orientation unknown
+    const Volume z = loadNifti(dir.write("z0.nii", niftiHeader(spec) + data));
+    EXPECT_FALSE(z.orientationKnown);
+    EXPECT_EQ(z.origin, (std::array<double, 3>{-90, -126, -72}));
     spec.sformCode = 0;
     spec.qformCode = 0; // NIfTI method 1: no transform, origin 0
     EXPECT_EQ(loadNifti(dir.write("n.nii", niftiHeader(spec) + data)).origin,

@@ -17,6 +17,7 @@ const { formatHash, parseHash } = await load('hash.js');
 const { epsBounds, epsLabel, epsToSlider, sliderToEps, SLIDER_STEPS } = await load('eps.js');
 const { initialView } = await load('view.js');
 const access = await load('access.js');
+const { edgeLabels } = await load('orientation.js');
 fs.rmSync(copy, { recursive: true, force: true });
 
 const CT = {
@@ -128,4 +129,17 @@ test('the access token: taken from the hash, kept when a link lacks it, sent as 
   const { view: back, problems } = parseHash(formatHash(view) + access.tokenHashPart(), DATASETS, initialView());
   assert.deepEqual(problems, []);
   assert.deepEqual(back, view);
+});
+
+test('edge labels follow the six views of the contract, and none without orientation', () => {
+  const oriented = { axes: [[1, 0, 0], [0, 1, 0], [0, 0, 1]], directions: ['L', 'P', 'S'] };
+  const at = (az, el) => edgeLabels({ az, el }, oriented);
+  assert.deepEqual(at(0, 0), { left: 'R', right: 'L', top: 'S', bottom: 'I' }); // anterior
+  assert.deepEqual(at(180, 0), { left: 'L', right: 'R', top: 'S', bottom: 'I' }); // posterior
+  assert.deepEqual(at(90, 0), { left: 'A', right: 'P', top: 'S', bottom: 'I' }); // left
+  assert.deepEqual(at(-90, 0), { left: 'P', right: 'A', top: 'S', bottom: 'I' }); // right
+  assert.deepEqual(at(0, 90), { left: 'R', right: 'L', top: 'P', bottom: 'A' }); // superior
+  assert.deepEqual(at(0, -90), { left: 'R', right: 'L', top: 'A', bottom: 'P' }); // inferior
+  assert.equal(at(45, 0).right, 'LP'); // oblique: two letters
+  assert.equal(edgeLabels({ az: 0, el: 0 }, null), null);
 });

@@ -10,6 +10,7 @@ import { fmtCount, fmtSeconds } from './format.js';
 import { createFrames } from './frames.js';
 import { createHashWriter, formatHash, parseHash } from './hash.js';
 import { attachInput } from './input.js';
+import { edgeLabels } from './orientation.js';
 import { statusLine } from './status.js';
 import { homeCamera, initialView } from './view.js';
 
@@ -39,6 +40,7 @@ const el = {
   fitTime: $('fit-time'),
   projection: $('projection'),
   viewButtons: [...document.querySelectorAll('[data-view]')],
+  edgeLabels: [...document.querySelectorAll('[data-edge]')],
 };
 
 let datasets = [];
@@ -63,6 +65,7 @@ const input = attachInput({
   onDraft() {
     writeHash({ now: false });
     syncViewButtons(el.viewButtons, view.cam);
+    showEdgeLabels();
     frames.schedule({ draft: true });
   },
   onCommit: () => commit(),
@@ -98,6 +101,16 @@ function updateStatus() {
 function syncPanel() {
   const ds = currentDataset();
   if (ds) syncControls(el, ds, view);
+  showEdgeLabels();
+}
+
+// Patient directions at the image edges; none for a dataset without orientation.
+function showEdgeLabels() {
+  const labels = edgeLabels(view.cam, currentDataset()?.orientation ?? null);
+  for (const label of el.edgeLabels) {
+    label.hidden = !labels;
+    label.textContent = labels ? labels[label.dataset.edge] : '';
+  }
 }
 
 function ensureFitted() {

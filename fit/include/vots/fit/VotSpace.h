@@ -14,10 +14,14 @@ struct VotSpace {
     std::array<int, 3> dims{0, 0, 0};             // grid points along x, y, z of the source volume
     std::array<double, 3> origin{0.0, 0.0, 0.0};  // world position of grid point (0,0,0)
     std::array<double, 3> spacing{1.0, 1.0, 1.0}; // world distance between grid points
-    int degree = 3;                               // highest degree of any nonzero stored coefficient
-    float eps = 0.f;                              // nominal (context) error bound, data units
-    float background = 0.f;                       // cells with all corners below it are omitted
-    bool epsVaries = false;                       // flag bit 0: eps varies in space (focus region)
+    /// The source volume's grid directions in patient space (Volume::patientAxes). Not in the binary
+    /// header: a file keeps them in its meta block (server/FitMeta.h reads them back into these fields).
+    std::array<std::array<double, 3>, 3> patientAxes{{{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}}};
+    bool orientationKnown = false;
+    int degree = 3;         // highest degree of any nonzero stored coefficient
+    float eps = 0.f;        // nominal (context) error bound, data units
+    float background = 0.f; // cells with all corners below it are omitted
+    bool epsVaries = false; // flag bit 0: eps varies in space (focus region)
     std::vector<Vot> vots;
     std::string metaJson = "{}"; // UTF-8 JSON block (source, parameters, timings)
 

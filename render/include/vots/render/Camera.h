@@ -13,8 +13,10 @@ struct VotSpace;
 namespace vots::render {
 
 /// World convention (DICOM LPS): +x = patient left, +y = posterior, +z = superior. Index space
-/// maps to world by world = origin + spacing * index (per axis), so anisotropic grids keep their
-/// proportions.
+/// maps to world by world = origin + sum_a patientAxes[a] * spacing[a] * index[a], so anisotropic grids
+/// keep their proportions and a grid stored in any order (or obliquely) lands the same way round in the
+/// patient. A volume whose file says nothing about orientation has the identity axes: index space taken
+/// as LPS. Rays are traced in index space through this affine map, so no orientation resamples the grid.
 ///
 /// The camera orbits the centre of the volume's world box. With e the unit vector from the centre
 /// to the eye:  e = (sin(az) cos(el), -cos(az) cos(el), sin(el)).
@@ -53,12 +55,14 @@ std::string_view viewName(ViewPreset view);
 /// The preset with this name, or nullopt.
 std::optional<ViewPreset> findView(std::string_view name);
 
-/// Axis-aligned world-space box the camera frames: from origin to origin + spacing * (dims - 1).
+/// The world-space box the camera frames (the bounding box of the grid's corners in patient space) and
+/// the grid's index -> world map.
 struct SceneBounds {
     std::array<double, 3> lo{0.0, 0.0, 0.0};
     std::array<double, 3> hi{1.0, 1.0, 1.0};
-    std::array<double, 3> origin{0.0, 0.0, 0.0}; // index -> world: world = origin + spacing * index
+    std::array<double, 3> origin{0.0, 0.0, 0.0}; // world = origin + sum_a axes[a] * spacing[a] * index[a]
     std::array<double, 3> spacing{1.0, 1.0, 1.0};
+    std::array<std::array<double, 3>, 3> axes{{{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}}};
     std::array<int, 3> dims{2, 2, 2}; // grid points per axis
 };
 

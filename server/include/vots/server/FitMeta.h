@@ -3,6 +3,7 @@
 
 #include "vots/fit/EpsField.h"
 #include "vots/fit/Fitter.h"
+#include "vots/fit/PatientAxes.h"
 #include "vots/fit/Volume.h"
 
 #include <cstdint>
@@ -36,9 +37,14 @@ struct FitMetaView {
     std::optional<std::string> sourcePath;
     std::optional<std::string> method;
     std::optional<std::string> cacheKey;
+    std::optional<fit::PatientAxes> patientAxes; // source.patient_axes: the grid's directions in LPS
 };
 
 FitMetaView readFitMeta(const std::string& metaJson);
+
+/// Sets the space's patientAxes and orientationKnown from its meta block: the identity and false when the
+/// block has no valid source.patient_axes (files written before the key, or of unoriented volumes).
+void placeInPatientSpace(fit::VotSpace& space);
 
 /// The largest error bound stored in the Vots (0 for none).
 double maxStoredError(const fit::VotSpace& space);

@@ -1,0 +1,43 @@
+// Patient-direction letters (L/R/A/P/S/I) for the image edges, from the camera; no DOM, no network.
+
+// The world is patient LPS (+x left, +y posterior, +z superior), the same as the server's camera
+// (render/include/vots/render/Camera.h), whatever order the dataset stores its axes in.
+const LETTERS = [
+  ['L', 'R'],
+  ['P', 'A'],
+  ['S', 'I'],
+];
+
+// A component below sin(22.5 deg) of the edge direction does not get a letter: "L" up to 22.5 deg off,
+// then "LA" (the larger first) the way radiology viewers label oblique views.
+const MIN_COMPONENT = Math.sin(Math.PI / 8);
+
+function lettersOf(v) {
+  return [0, 1, 2]
+    .filter((c) => Math.abs(v[c]) >= MIN_COMPONENT)
+    .sort((a, b) => Math.abs(v[b]) - Math.abs(v[a]))
+    .slice(0, 2)
+    .map((c) => LETTERS[c][v[c] > 0 ? 0 : 1])
+    .join('');
+}
+
+const neg = (v) => v.map((x) => -x);
+
+// Image right and up in the world for a camera {az, el} in degrees (the server's formulas).
+export function imageAxes(cam) {
+  const az = (cam.az * Math.PI) / 180;
+  const el = (cam.el * Math.PI) / 180;
+  const toEye = [Math.sin(az) * Math.cos(el), -Math.cos(az) * Math.cos(el), Math.sin(el)];
+  const up = [-Math.sin(az) * Math.sin(el), Math.cos(az) * Math.sin(el), Math.cos(el)];
+  const f = neg(toEye); // forward
+  const right = [f[1] * up[2] - f[2] * up[1], f[2] * up[0] - f[0] * up[2], f[0] * up[1] - f[1] * up[0]];
+  return { right, up };
+}
+
+// {left, right, top, bottom} letters, or null for a dataset whose file gives no orientation (its
+// index axes are only taken as LPS, so letters would claim what nobody knows).
+export function edgeLabels(cam, orientation) {
+  if (!orientation) return null;
+  const { right, up } = imageAxes(cam);
+  return { left: lettersOf(neg(right)), right: lettersOf(right), top: lettersOf(up), bottom: lettersOf(neg(up)) };
+}
