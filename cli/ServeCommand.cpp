@@ -11,6 +11,7 @@
 
 #include <pthread.h>
 #include <signal.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <iostream>
@@ -49,7 +50,20 @@ std::string joined(const std::vector<fs::path>& dirs) {
     return out.empty() ? "(none)" : out;
 }
 
+/// Every open connection is a descriptor, and the default soft limit (1024) would refuse clients long
+/// before the gate has any trouble holding them: raise it to the hard limit, which needs no privilege.
+void raiseOpenFileLimit() {
+    rlimit limit{};
+    if (::getrlimit(RLIMIT_NOFILE, &limit) != 0 || limit.rlim_cur >= limit.rlim_max) return;
+    const rlim_t wanted = limit.rlim_max;
+    limit.rlim_cur = wanted;
+    if (::setrlimit(RLIMIT_NOFILE, &limit) != 0)
+        std::cerr << "vots serve: cannot raise the open-file limit to " << wanted
+                  << "; connections beyond the current limit will wait to be accepted\n";
+}
+
 void runServe(const ServeArgs& a) {
+    raiseOpenFileLimit();
     server::ServerOptions options;
     for (const auto& d : a.data)
         options.dataDirs.emplace_back(d);
