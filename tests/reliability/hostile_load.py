@@ -294,7 +294,7 @@ def goal():
     hostiles.start()
     time.sleep(1)
     stats = json.loads(request("GET", "/api/stats")[2])
-    print(f"server: {stats['connections']}, rss/fds/threads {server_sample()}", flush=True)
+    print(f"server: {stats.get('connections')}, rss/fds/threads {server_sample()}", flush=True)
     renders, probes = phase("with hostile connections", a.seconds, fits, hostiles)
     rss, fds, threads = server_sample()
     print(f"server after: rss {rss} KiB, fds {fds}, threads {threads}", flush=True)
