@@ -11,6 +11,7 @@
 
 #include <pthread.h>
 #include <signal.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <iostream>
@@ -34,6 +35,8 @@ struct ServeArgs {
     std::string tokenFile;
     std::vector<std::string> allowHosts;
     std::string memoryBudget; // empty: the default
+    int rendersPerClient = server::ServerOptions{}.maxRendersPerClient;
+    int fitsPerClient = server::ServerOptions{}.maxFitsPerClient;
 };
 
 /// "host:port" as a URL writes it: an IPv6 address in brackets.
@@ -49,7 +52,20 @@ std::string joined(const std::vector<fs::path>& dirs) {
     return out.empty() ? "(none)" : out;
 }
 
+/// Every open connection is a descriptor, and the default soft limit (1024) would refuse clients long
+/// before the gate has any trouble holding them: raise it to the hard limit, which needs no privilege.
+void raiseOpenFileLimit() {
+    rlimit limit{};
+    if (::getrlimit(RLIMIT_NOFILE, &limit) != 0 || limit.rlim_cur >= limit.rlim_max) return;
+    const rlim_t wanted = limit.rlim_max;
+    limit.rlim_cur = wanted;
+    if (::setrlimit(RLIMIT_NOFILE, &limit) != 0)
+        std::cerr << "vots serve: cannot raise the open-file limit to " << wanted
+                  << "; connections beyond the current limit will wait to be accepted\n";
+}
+
 void runServe(const ServeArgs& a) {
+    raiseOpenFileLimit();
     server::ServerOptions options;
     for (const auto& d : a.data)
         options.dataDirs.emplace_back(d);
@@ -60,6 +76,8 @@ void runServe(const ServeArgs& a) {
     options.warmUpFits = !a.noWarmUp;
     options.prepareDataset = a.prepare;
     options.allowedHosts = a.allowHosts;
+    options.maxRendersPerClient = a.rendersPerClient;
+    options.maxFitsPerClient = a.fitsPerClient;
     // Beyond loopback anyone on the network could read the images and start fits: a token is required,
     // the given one or else a fresh one, which only this process ever shows.
     const bool generatedToken = a.tokenFile.empty() && !server::isLoopbackHost(a.host);
@@ -147,6 +165,15 @@ void addServeCommand(CLI::App& app) {
                     "viewer's first image is quick (skipped when the data folders lack it; '' for none)")
         ->capture_default_str();
     addMemoryBudgetOption(*cmd, args->memoryBudget);
+    cmd->add_option("--renders-per-client", args->rendersPerClient,
+                    "Renders one client (remote address) may have in progress; more get 429 (0: no limit; "
+                    "behind a proxy every user is the proxy's one client)")
+        ->check(CLI::Range(0, 1 << 20))
+        ->capture_default_str();
+    cmd->add_option("--fits-per-client", args->fitsPerClient,
+                    "New fits one client may have queued or running; more get 429 (0: no limit)")
+        ->check(CLI::Range(0, 1 << 20))
+        ->capture_default_str();
     cmd->add_flag(
         "--no-warm-up", args->noWarmUp,
         "Do not fit at half the last eps in idle time (it makes later refits to a smaller eps faster)");

@@ -34,7 +34,7 @@ FitRecord recordFor(const JobSnapshot& job, const char* source) {
 FitJobs::FitJobs(VotSpaceCache& cache, ServerStats& stats, ForegroundActivity& foreground,
                  MemoryAdmission& memory, FitJobLimits limits)
     : mCache(cache), mStats(stats), mForeground(foreground), mMemory(memory), mLimits(limits),
-      mWarmUps(mBoxCaches, foreground, limits.warmUp) {
+      mPerClient(limits.perClient, "fits"), mWarmUps(mBoxCaches, foreground, limits.warmUp) {
     for (int i = 0; i < std::max(1, mLimits.maxRunning); ++i)
         mWorkers.emplace_back([this] { workerLoop(); });
 }
@@ -58,7 +58,8 @@ void FitJobs::shutdown() {
     mWake.notify_all();
 }
 
-std::shared_ptr<FitJob> FitJobs::submit(std::shared_ptr<const Dataset> dataset, const FitKey& key) {
+std::shared_ptr<FitJob> FitJobs::submit(std::shared_ptr<const Dataset> dataset, const FitKey& key,
+                                        const std::string& client) {
     const std::string text = key.text();
     {
         std::lock_guard lock(mMutex);
@@ -80,10 +81,11 @@ std::shared_ptr<FitJob> FitJobs::submit(std::shared_ptr<const Dataset> dataset, 
     }
     if (static_cast<int>(mQueue.size()) + mRunning >= mLimits.maxRunning + mLimits.maxQueued)
         throw HttpError(429, "too many fit jobs; try again when one has finished");
+    ClientQuota::Ticket clientPlace = client.empty() ? ClientQuota::Ticket() : mPerClient.enter(client);
     MemoryReservation memory = mMemory.admit(dataset->fitBytes, "a fit of dataset '" + key.dataset + "'");
     auto job = std::make_shared<FitJob>(mNextId++, key);
     mWarmUps.giveWay(); // somebody waits for this one
-    mQueue.push_back(Pending{job, std::move(dataset), std::move(memory)});
+    mQueue.push_back(Pending{job, std::move(dataset), std::move(memory), std::move(clientPlace)});
     mActiveByKey[text] = job;
     mById[job->id()] = job;
     mWake.notify_one();

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "BoxCaches.h"
+#include "ClientQuota.h"
 #include "DatasetRegistry.h"
 #include "FitJob.h"
 #include "FitKey.h"
@@ -28,6 +29,7 @@ class VotSpaceCache;
 struct FitJobLimits {
     int maxRunning = 2;    // fits at once
     int maxQueued = 8;     // waiting fits beyond those; more is refused with 429
+    int perClient = 3;     // queued or running fits one client (remote address) started; 0: no limit
     int keepFinished = 32; // finished jobs remembered for /api/jobs/{id}
     bool warmUp = true;    // fit eps / 2 into the box cache while idle (WarmUpFits)
 };
@@ -44,7 +46,10 @@ public:
     /// Returns the job for this key: an active one, a finished one from the memory cache, or a new
     /// queued one. Throws HttpError 429 when the queue is full, 507 when the memory budget does not leave
     /// room for the fit (Dataset::fitBytes; reserved until the job ends). Warm-ups start only with room.
-    std::shared_ptr<FitJob> submit(std::shared_ptr<const Dataset> dataset, const FitKey& key);
+    /// A new job counts against its client's FitJobLimits::perClient until it ends (429 beyond); joining
+    /// a job already active costs nothing. An empty client is not limited (the server's own fits).
+    std::shared_ptr<FitJob> submit(std::shared_ptr<const Dataset> dataset, const FitKey& key,
+                                   const std::string& client = {});
     /// Throws HttpError 404 for an unknown or forgotten id.
     std::shared_ptr<FitJob> find(std::uint64_t id) const;
     /// Queued plus running.
@@ -58,6 +63,7 @@ private:
         std::shared_ptr<FitJob> job;
         std::shared_ptr<const Dataset> dataset;
         MemoryReservation memory; // the fit's working memory, given back when the job ends
+        ClientQuota::Ticket clientPlace;
     };
     void workerLoop();
     void run(const Pending& pending);
@@ -68,6 +74,7 @@ private:
     ForegroundActivity& mForeground;
     MemoryAdmission& mMemory;
     const FitJobLimits mLimits;
+    ClientQuota mPerClient;
     std::atomic<bool> mCancel{false};
     BoxCaches mBoxCaches;
     WarmUpFits mWarmUps; // after mBoxCaches, which its thread uses until it is joined

@@ -44,7 +44,7 @@ void installJobRoutes(Server::Impl& s) {
         const auto dataset = s.registry.find(p.dataset);
         FitKey key = fitKeyFor(*dataset, p.eps, p.degree);
         key.focus = p.focus;
-        const auto job = s.fitJobs.submit(dataset, key);
+        const auto job = s.fitJobs.submit(dataset, key, req.remote_addr);
         nlohmann::json body = jobJson(job->snapshot());
         body["job"] = job->id();
         sendJson(res, 202, body);

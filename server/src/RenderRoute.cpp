@@ -53,9 +53,9 @@ const char* sourceName(FrameCache::Source source) {
 
 /// The Vot-Space for this request: from memory, else from the (possibly new) fit job.
 std::shared_ptr<const fit::VotSpace> spaceFor(Server::Impl& s, const std::shared_ptr<const Dataset>& dataset,
-                                              const FitKey& key) {
+                                              const FitKey& key, const std::string& client) {
     if (auto space = s.cache.findInMemory(key)) return space;
-    const auto job = s.fitJobs.submit(dataset, key);
+    const auto job = s.fitJobs.submit(dataset, key, client);
     const JobSnapshot done = job->waitFinished(FIT_WAIT);
     if (done.state == JobState::Failed) throw HttpError(500, "fit failed: " + done.error);
     if (done.state != JobState::Done)
@@ -67,6 +67,8 @@ std::shared_ptr<const fit::VotSpace> spaceFor(Server::Impl& s, const std::shared
 
 void installRenderRoute(Server::Impl& s) {
     s.http.Get("/render", [&s](const httplib::Request& req, httplib::Response& res) {
+        // Held until the answer is made: one client cannot fill the render queue for everyone.
+        const ClientQuota::Ticket place = s.renders.enter(req.remote_addr);
         RenderJob job;
         const auto question = req.target.find('?');
         const std::string_view query = question == std::string::npos
@@ -85,7 +87,7 @@ void installRenderRoute(Server::Impl& s) {
             drawnFrom = dataset->name + "_v" + std::to_string(dataset->contentCrc);
         } else {
             const FitKey key = fitKeyFor(*dataset, job.params.eps, job.params.degree);
-            job.space = spaceFor(s, dataset, key);
+            job.space = spaceFor(s, dataset, key, req.remote_addr);
             drawnFrom = key.text();
         }
 

@@ -32,6 +32,7 @@ FitJobLimits limitsFrom(const ServerOptions& o) {
     limits.maxRunning = o.maxRunningFits;
     limits.maxQueued = o.maxQueuedFits;
     limits.warmUp = o.warmUpFits;
+    limits.perClient = o.maxFitsPerClient;
     return limits;
 }
 
@@ -58,7 +59,7 @@ Server::Impl::Impl(ServerOptions opts)
       memory(options.memoryBudgetBytes ? options.memoryBudgetBytes : fit::defaultMemoryBudget()),
       registry(options.dataDirs, memory), cache(options.cacheDir, options.memoryCacheBytes),
       fitJobs(cache, stats, foreground, memory, limitsFrom(options)), frames(options.frameCacheBytes),
-      guard(options.allowedHosts, options.accessToken) {
+      renders(options.maxRendersPerClient, "renders"), guard(options.allowedHosts, options.accessToken) {
     if (options.withRenderer) renderQueue = std::make_unique<RenderQueue>(stats, foreground);
     cache.deferDiskWritesWhile([this] { return foreground.busyWithin(DISK_WRITE_QUIET); });
 }
@@ -82,13 +83,15 @@ fs::path defaultWebDir() {
 
 Server::Server(ServerOptions options) : mImpl(std::make_unique<Impl>(std::move(options))) {
     Impl& s = *mImpl;
-    httplib::Server& http = s.http;
-    const int threads = std::max(4, s.options.httpThreads);
-    http.new_task_queue = [threads] { return new httplib::ThreadPool(static_cast<std::size_t>(threads)); };
+    GatedHttpServer& http = s.http;
+    ConnectionLimits connections;
+    connections.workerThreads = std::max(4, s.options.httpThreads);
+    connections.maxStreams = static_cast<std::size_t>(std::max(1, s.options.maxEventStreams));
+    connections.gate.maxBodyBytes = MAX_BODY_BYTES;
+    http.startConnections(connections);
     http.set_payload_max_length(MAX_BODY_BYTES);
-    // One request per connection: a kept-alive connection holds a pool thread, so with more clients
-    // than threads the others starve into timeouts. Closing after each
-    // answer puts every client back in the pool's FIFO queue; reconnecting on loopback is cheap.
+    // One request per connection (GatedHttpServer answers each with Connection: close): a kept-alive
+    // connection would have to go back through the gate anyway, and reconnecting on loopback is cheap.
     http.set_keep_alive_max_count(1);
     http.set_socket_options([&s](socket_t sock) {
         httplib::default_socket_options(sock);
@@ -179,6 +182,7 @@ bool Server::isRunning() const {
 void Server::stop() {
     mImpl->fitJobs.shutdown(); // handlers waiting on fits are answered at once
     mImpl->http.stop();
+    mImpl->http.stopConnections(); // waiting connections closed, running handlers and streams joined
 }
 
 std::string Server::rendererSummary() const {

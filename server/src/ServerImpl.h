@@ -1,10 +1,12 @@
 // Server internals shared by the route files: the parts a request touches, in construction order.
 #pragma once
 
+#include "ClientQuota.h"
 #include "DatasetRegistry.h"
 #include "FitJobs.h"
 #include "ForegroundActivity.h"
 #include "FrameCache.h"
+#include "GatedHttpServer.h"
 #include "MemoryAdmission.h"
 #include "Params.h"
 #include "RenderQueue.h"
@@ -35,10 +37,11 @@ struct Server::Impl {
     FitJobs fitJobs;
     std::unique_ptr<RenderQueue> renderQueue; // null when options.withRenderer is false
     FrameCache frames;                        // encoded /render answers
+    ClientQuota renders;                      // /render requests in progress per client
     RequestGuard guard;                       // Host, token and cross-site checks before any route
     std::atomic<int> listenSocket{-1};        // the socket httplib binds, so its backlog can be raised
     std::thread preparing;                    // prepareDataset(options.prepareDataset); joined by ~Server
-    httplib::Server http;                     // destroyed first: no handler runs after the rest is gone
+    GatedHttpServer http;                     // destroyed first: no handler runs after the rest is gone
 };
 
 // Route installers, one file each.

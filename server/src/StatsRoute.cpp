@@ -1,4 +1,5 @@
-// GET /api/stats: frame times, recent fits with their Vot counts, fit jobs, and what the caches hold.
+// GET /api/stats: frame times, recent fits with their Vot counts, fit jobs, connections, and what the caches
+// hold.
 #include "HttpJson.h"
 #include "ServerImpl.h"
 
@@ -53,6 +54,8 @@ void installStatsRoute(Server::Impl& s) {
                   {"renderer", renderer},
                   {"fits", fits},
                   {"fitJobs", {{"active", s.fitJobs.activeCount()}}},
+                  {"connections",
+                   {{"waiting", s.http.waitingConnections()}, {"eventStreams", s.http.runningStreams()}}},
                   {"warmUps",
                    {{"started", warm.started},
                     {"finished", warm.finished},

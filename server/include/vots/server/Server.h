@@ -18,8 +18,13 @@ struct ServerOptions {
     std::size_t frameCacheBytes = std::size_t{64} << 20; // encoded /render answers kept in memory
     int maxRunningFits = 2;
     int maxQueuedFits = 8;
-    bool warmUpFits = true; // fit eps / 2 into the box cache while idle (WarmUpFits)
-    int httpThreads = 12;   // connections served at once (SSE holds one); few, so the accept thread keeps up
+    bool warmUpFits = true;     // fit eps / 2 into the box cache while idle (WarmUpFits)
+    int httpThreads = 12;       // requests handled at once; idle connections and event streams hold none
+    int maxEventStreams = 1000; // /api/jobs/{id}/events streams open at once (a thread each); more: 503
+    // Per client (remote address; behind a proxy every user is the proxy's one client): renders in
+    // progress and fits queued or running that it started; more are refused with 429.
+    int maxRendersPerClient = 4;
+    int maxFitsPerClient = 3;
     bool withRenderer = true; // false: never try EGL (tests of the 503 path)
     // Loaded, fitted at its default eps and uploaded as the server starts, when the data folders have
     // it: the viewer's first image then waits for none of that. Empty: none.

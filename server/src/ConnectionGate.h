@@ -1,0 +1,94 @@
+// ConnectionGate: holds accepted connections in one epoll loop until their request has arrived, so that
+// idle clients and slow senders wait without a worker thread (docs/RELIABILITY.md, "Hostile connections").
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <cstddef>
+#include <functional>
+#include <map>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace vots::server {
+
+/// A connection whose request head (and body, up to GateLimits::maxBodyBytes) has arrived. The fd is
+/// blocking again and belongs to whoever receives this.
+struct ArrivedRequest {
+    int fd = -1;
+    std::string bytes; // everything read so far: head and body
+    std::string method;
+    std::string target;
+    std::string peerAddress;
+    int peerPort = 0;
+    std::string localAddress;
+    int localPort = 0;
+};
+
+struct GateLimits {
+    // A connection that sends nothing for this long is closed, like httplib's keep-alive timeout.
+    std::chrono::milliseconds firstByte{5000};
+    // Head and body must have arrived this long after the accept: a client sending a byte every few
+    // seconds cannot keep a connection open for ever.
+    std::chrono::milliseconds wholeRequest{10000};
+    std::size_t maxRequestLine = 8192; // httplib's CPPHTTPLIB_REQUEST_URI_MAX_LENGTH: longer is 414
+    std::size_t maxHeadBytes = 64 * 1024;
+    std::size_t maxHeaderLines = 100;
+    std::size_t maxBodyBytes = 64 * 1024; // bodies up to this are read before dispatch; larger ones are
+                                          // handed on at once so the handler can answer 413
+    std::size_t maxConnections = 60000;   // waiting at once; beyond, the oldest waiting one is closed
+};
+
+/// Thread-safe. One thread; dispatch() runs on it and must only hand the request on.
+class ConnectionGate {
+public:
+    using Dispatch = std::function<void(ArrivedRequest)>;
+    ConnectionGate(GateLimits limits, Dispatch dispatch);
+    ~ConnectionGate(); // stop()
+    ConnectionGate(const ConnectionGate&) = delete;
+    ConnectionGate& operator=(const ConnectionGate&) = delete;
+
+    /// Takes ownership of an accepted socket (closed at once after stop()).
+    void add(int fd);
+    /// Closes every waiting connection and joins the thread; idempotent.
+    void stop();
+    /// Connections waiting for their request (or being drained after a refusal).
+    std::size_t waiting() const { return mWaitingCount.load(); }
+
+private:
+    struct Connection {
+        int fd = -1;
+        std::chrono::steady_clock::time_point accepted;
+        std::string bytes;
+        bool draining = false; // refused: the answer is sent, the rest of the request is read and dropped
+    };
+    enum class Verdict { Wait, Dispatch, TooLongTarget, TooLargeHead };
+
+    void threadMain();
+    void adopt(int fd);
+    void readFrom(Connection& c);
+    Verdict judge(const Connection& c) const;
+    void dispatch(Connection& c);
+    void refuse(Connection& c, int status, const char* message);
+    void refuse(Connection& c, int status, const std::string& message);
+    void sweep(std::chrono::steady_clock::time_point now);
+    void close(int fd);
+
+    const GateLimits mLimits;
+    const Dispatch mDispatch;
+    int mEpoll = -1;
+    int mWake = -1; // eventfd: new sockets or stop
+    std::mutex mMutex;
+    std::vector<int> mIncoming;
+    bool mStopped = false;
+    std::map<int, Connection> mConnections; // gate thread only
+    std::atomic<std::size_t> mWaitingCount{0};
+    std::thread mThread;
+};
+
+/// Writes a complete JSON error answer (Connection: close) to a blocking or non-blocking socket; best effort.
+void sendJsonErrorNow(int fd, int status, const std::string& message);
+
+} // namespace vots::server

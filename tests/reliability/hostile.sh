@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# Hostile connections: 8 clients rendering with and without 1,000 idle connections and 200 event-stream
+# watchers; their /render p99 must stay within 20 % and every /api/* request under 100 ms.
+#
+# Usage: tests/reliability/hostile.sh [--idle N] [--watchers N] [--renderers N] [--seconds S per phase]
+# Builds build/rel (Release) unless VOTS_BIN names a binary. Fails on any error answer that is not a JSON
+# 4xx/5xx, a missed goal, or a dead server.
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/../.."
+source tests/reliability/common.sh
+build_rel
+
+work=$(mktemp -d)
+trap 'stop_server; rm -rf "$work"' EXIT
+mkdir -p "$work/data"
+for name in HeadMRVolume_48x62x42_uint8 embryo_256x256x256_uint8; do
+    ln -s "$(realpath "$SHARED_DATA/$name.nrrd")" "$work/data/"
+done
+start_server "$work/server.log" --data "$work/data" --cache-dir "$work/cache" --no-warm-up
+echo "server pid $SERVER_PID, $(grep -m1 renderer "$work/server.log" | sed 's/^ *//')"
+status=0
+python3 tests/reliability/hostile_load.py goal --port "$SERVER_PORT" --pid "$SERVER_PID" "$@" || status=$?
+kill -0 "$SERVER_PID" 2>/dev/null || { echo "server died"; status=1; }
+exit $status
