@@ -95,6 +95,8 @@ int run(int argc, char** argv) {
             o.filePrefix = value();
         else if (flag == "--unsigned")
             o.storeSigned = false;
+        else if (flag == "--bits-stored")
+            o.bitsStored = std::stoi(value());
         else if (flag == "--slope")
             o.slope = std::stod(value());
         else if (flag == "--intercept")
