@@ -5,6 +5,7 @@
 
 #include "vots/fit/Error.h"
 
+#include <fcntl.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -108,6 +109,13 @@ void runIsolated(const std::function<void(ChildSender&)>& child,
     if (pid == 0) {
         ::close(fds[0]);
         ::signal(SIGPIPE, SIG_IGN);
+        // A GDCM abort must end the child quietly: its assertion text would be a second stderr line, and
+        // handlers inherited from the parent (a fuzzer's, a sanitizer's) would report it as their own crash.
+        for (const int sig : {SIGABRT, SIGSEGV, SIGBUS, SIGFPE, SIGILL})
+            ::signal(sig, SIG_DFL);
+        const int devNull = ::open("/dev/null", O_WRONLY);
+        if (devNull >= 0) ::dup2(devNull, STDERR_FILENO);
+        if (devNull > STDERR_FILENO) ::close(devNull);
         ChildSender sender(fds[1]);
         try {
             child(sender);

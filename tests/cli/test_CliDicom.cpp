@@ -100,10 +100,13 @@ TEST(CliDicom, BadSeriesExitTwoWithoutOutput) {
     cut.truncateSlice = 7;
     writeDicomSeries(ball(), series.file("cut"), cut);
     std::filesystem::create_directories(series.file("empty"));
+    writeDicomSeries(ball(), series.file("damaged"), {});
+    std::filesystem::resize_file(series.file("damaged/slice-0003.dcm"), 300); // GDCM aborts on it
     const std::vector<std::pair<std::string, std::string>> cases = {{"missing", "missing slice"},
                                                                     {"sizes", "mixed image sizes"},
                                                                     {"cut", "truncated"},
-                                                                    {"empty", "holds no DICOM images"}};
+                                                                    {"empty", "holds no DICOM images"},
+                                                                    {"damaged", "damaged DICOM file"}};
     for (const auto& [name, needle] : cases) {
         SCOPED_TRACE(name);
         expectBadInput(out, {"fit", series.file(name), "-o", out.file(name + ".vots"), "--eps", "20"},
