@@ -4,6 +4,7 @@
 #include "MemoryBudgetOption.h"
 #include "Progress.h"
 #include "RawOptions.h"
+#include "SeriesOption.h"
 
 #include "vots/fit/Error.h"
 #include "vots/fit/Fitter.h"
@@ -39,6 +40,7 @@ struct FitArgs {
     bool progress = false;
     std::string memoryBudget; // empty: the default
     RawArgs raw;
+    std::string series; // DICOM SeriesInstanceUID; empty: the folder's only series
 };
 
 /// What can be checked without the volume; the rest is in validateFitOptions.
@@ -96,10 +98,10 @@ std::optional<float> resolveBackground(const std::string& text, const fit::Volum
 void runFit(const FitArgs& a) {
     const CheckedArgs checked = checkArgs(a);
     checkOutput(a);
-    checkVolumeFitsBudget(a.input, checked.raw, a.memoryBudget);
+    checkVolumeFitsBudget(a.input, checked.raw, a.memoryBudget, a.series);
 
     // Source-typed samples: an int16 CT takes half the memory of floats, and fits to the same Vots.
-    const fit::Volume volume = fit::loadVolume(a.input, checked.raw, fit::SampleStorage::Source);
+    const fit::Volume volume = fit::loadVolume(a.input, checked.raw, fit::SampleStorage::Source, a.series);
     const auto range = volume.valueRange();
     fit::FitOptions options;
     const double eps = checked.eps.resolve(range[0], range[1]);
@@ -149,7 +151,8 @@ void addFitCommand(CLI::App& app) {
     auto args = std::make_shared<FitArgs>();
     CLI::App* cmd = app.add_subcommand("fit", "Fit a Vot-Space to a volume and write it to a .vots file");
     cmd->add_option("INPUT", args->input,
-                    "Volume file: .nrrd/.nhdr, .nii/.nii.gz, .mhd/.mha, or raw with --raw-*")
+                    "Volume file: .nrrd/.nhdr, .nii/.nii.gz, .mhd/.mha, a folder of DICOM files, or raw with "
+                    "--raw-*")
         ->required();
     cmd->add_option("-o,--output", args->output, "Vot-Space file to write (replaced atomically)")->required();
     cmd->add_option("--eps", args->eps,
@@ -176,6 +179,7 @@ void addFitCommand(CLI::App& app) {
     cmd->add_flag("--progress", args->progress, "Show progress on stderr");
     addMemoryBudgetOption(*cmd, args->memoryBudget);
     addRawOptions(*cmd, args->raw);
+    addSeriesOption(*cmd, args->series);
     cmd->callback([args] { runFit(*args); });
 }
 

@@ -22,9 +22,9 @@ std::uint64_t resolveMemoryBudget(const std::string& text) {
 }
 
 void checkVolumeFitsBudget(const std::string& path, const std::optional<fit::RawLayout>& raw,
-                           const std::string& budgetText) {
+                           const std::string& budgetText, const std::string& dicomSeries) {
     const std::uint64_t budget = resolveMemoryBudget(budgetText);
-    const fit::VolumeHeaderInfo header = fit::volumeHeaderInfo(path, raw);
+    const fit::VolumeHeaderInfo header = fit::volumeHeaderInfo(path, raw, dicomSeries);
     const std::uint64_t needed = fit::estimateLoadAndFitBytes(header);
     const std::uint64_t held = fit::residentBytes();
     const std::uint64_t left = budget > held ? budget - held : 0;

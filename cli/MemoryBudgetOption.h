@@ -24,6 +24,6 @@ std::uint64_t resolveMemoryBudget(const std::string& text);
 /// it would need more than the budget leaves after what this process holds: checked before any of
 /// the samples are read, so a header announcing a huge volume costs nothing.
 void checkVolumeFitsBudget(const std::string& path, const std::optional<fit::RawLayout>& raw,
-                           const std::string& budgetText);
+                           const std::string& budgetText, const std::string& dicomSeries = {});
 
 } // namespace vots::cli

@@ -2,7 +2,9 @@
 #include "Args.h"
 #include "Commands.h"
 #include "MemoryBudgetOption.h"
+#include "SeriesOption.h"
 
+#include "vots/fit/DicomSeries.h"
 #include "vots/fit/Error.h"
 #include "vots/fit/Fitter.h"
 #include "vots/fit/VolumeLoad.h"
@@ -50,6 +52,7 @@ struct RenderArgs {
     std::string certify = certifyName(render::RENDER_FIT_CERTIFY);
     std::string volume;
     std::string memoryBudget; // empty: the default
+    std::string series;       // DICOM SeriesInstanceUID; empty: the folder's only series
 };
 
 struct CheckedArgs {
@@ -88,6 +91,7 @@ CheckedArgs checkArgs(const RenderArgs& a) {
 }
 
 bool isVotsFile(const std::string& path) {
+    if (fit::isDicomFolder(path)) return false;
     std::ifstream in(path, std::ios::binary);
     if (!in) throw fit::InputError("cannot open '" + path + "'");
     char magic[4] = {};
@@ -123,8 +127,8 @@ void runRender(const RenderArgs& a) {
         space = fit::readVotSpaceFile(a.input);
         server::placeInPatientSpace(*space);
         if (!a.volume.empty()) {
-            checkVolumeFitsBudget(a.volume, std::nullopt, a.memoryBudget);
-            volume = fit::loadVolume(a.volume);
+            checkVolumeFitsBudget(a.volume, std::nullopt, a.memoryBudget, a.series);
+            volume = fit::loadVolume(a.volume, std::nullopt, fit::SampleStorage::Float, a.series);
         }
         if (c.frame.mode == render::RenderMode::Reference && !volume)
             throw fit::InputError("--mode reference on a .vots file needs the volume: add --volume PATH");
@@ -132,8 +136,8 @@ void runRender(const RenderArgs& a) {
         if (!a.volume.empty())
             throw fit::InputError("--volume is only for .vots input; INPUT is already a volume");
         // The fit's estimate also for --mode reference: it covers the samples, their texture and the read.
-        checkVolumeFitsBudget(a.input, std::nullopt, a.memoryBudget);
-        volume = fit::loadVolume(a.input);
+        checkVolumeFitsBudget(a.input, std::nullopt, a.memoryBudget, a.series);
+        volume = fit::loadVolume(a.input, std::nullopt, fit::SampleStorage::Float, a.series);
         if (c.frame.mode != render::RenderMode::Reference) space = fitForRender(*volume, a, c);
     }
 
@@ -159,7 +163,8 @@ void runRender(const RenderArgs& a) {
 void addRenderCommand(CLI::App& app) {
     auto args = std::make_shared<RenderArgs>();
     CLI::App* cmd = app.add_subcommand("render", "Render a Vot-Space or volume as MIP (or density) to a PNG");
-    cmd->add_option("INPUT", args->input, "A .vots file, or a volume (fitted first at --eps for mip/density)")
+    cmd->add_option("INPUT", args->input,
+                    "A .vots file, or a volume file or DICOM folder (fitted first at --eps for mip/density)")
         ->required();
     cmd->add_option("-o,--output", args->output, "PNG file to write (replaced atomically)")->required();
     cmd->add_option("--cam", args->cam,
@@ -181,6 +186,7 @@ void addRenderCommand(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("--volume", args->volume, "The volume of a .vots input (for --mode reference)");
     addMemoryBudgetOption(*cmd, args->memoryBudget);
+    addSeriesOption(*cmd, args->series);
     cmd->callback([args] { runRender(*args); });
 }
 

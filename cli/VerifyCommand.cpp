@@ -2,6 +2,7 @@
 #include "Args.h"
 #include "Commands.h"
 #include "RawOptions.h"
+#include "SeriesOption.h"
 
 #include "vots/fit/Verify.h"
 #include "vots/fit/VolumeLoad.h"
@@ -22,6 +23,7 @@ struct VerifyArgs {
     std::string file;
     std::string input;
     RawArgs raw;
+    std::string series; // DICOM SeriesInstanceUID; empty: the folder's only series
 };
 
 /// The bound the file was fitted against: with a focus region, rebuild the field from the meta block
@@ -34,7 +36,7 @@ std::optional<fit::EpsField> epsFieldOf(const fit::VotSpace& space, const server
 void runVerify(const VerifyArgs& a) {
     const auto raw = rawLayoutFrom(a.raw);
     const fit::VotSpace space = fit::readVotSpaceFile(a.file);
-    const fit::Volume volume = fit::loadVolume(a.input, raw);
+    const fit::Volume volume = fit::loadVolume(a.input, raw, fit::SampleStorage::Float, a.series);
     const server::FitMetaView meta = server::readFitMeta(space.metaJson);
     const fit::VerifyReport r = fit::verifyVotSpace(space, volume, epsFieldOf(space, meta));
 
@@ -68,8 +70,9 @@ void addVerifyCommand(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand(
         "verify", "Check a .vots file against its volume: coverage and error bound (exit 1 when it fails)");
     cmd->add_option("FILE", args->file, "Vot-Space file")->required();
-    cmd->add_option("INPUT", args->input, "The volume it was fitted to")->required();
+    cmd->add_option("INPUT", args->input, "The volume (file or DICOM folder) it was fitted to")->required();
     addRawOptions(*cmd, args->raw);
+    addSeriesOption(*cmd, args->series);
     cmd->callback([args] { runVerify(*args); });
 }
 

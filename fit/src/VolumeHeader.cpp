@@ -8,6 +8,8 @@
 #include "InputFile.h"
 #include "SampleDecode.h"
 
+#include "vots/fit/DicomSeries.h"
+
 #include <bit>
 #include <cstring>
 #include <limits>
@@ -157,15 +159,18 @@ std::string VolumeHeaderInfo::describe() const {
            scalarTypeName(sourceType);
 }
 
-VolumeHeaderInfo volumeHeaderInfo(const std::string& path, const std::optional<RawLayout>& raw) {
+VolumeHeaderInfo volumeHeaderInfo(const std::string& path, const std::optional<RawLayout>& raw,
+                                  const std::string& dicomSeries) {
     if (raw) return infoFrom(path, {raw->dims[0], raw->dims[1], raw->dims[2]}, raw->type);
+    if (isDicomFolder(path)) return dicomSeriesHeaderInfo(path, dicomSeries);
     const std::string extension = volumeExtension(path);
     if (extension == ".nrrd" || extension == ".nhdr") return nrrdInfo(path);
     if (extension == ".nii" || extension == ".nii.gz") return niftiInfo(path);
     if (extension == ".mhd" || extension == ".mha") return metaImageInfo(path);
     regularFileSize(path); // "no such file" first, as loadVolume
-    throwInputError(path, "unknown volume format '" + extension +
-                              "' (expected .nrrd, .nhdr, .nii, .nii.gz, .mhd, .mha, or a raw layout)");
+    throwInputError(
+        path, "unknown volume format '" + extension +
+                  "' (expected .nrrd, .nhdr, .nii, .nii.gz, .mhd, .mha, a DICOM folder, or a raw layout)");
 }
 
 } // namespace vots::fit

@@ -3,19 +3,23 @@
 
 #include "InputFile.h"
 
+#include "vots/fit/DicomSeries.h"
+
 namespace vots::fit {
 
-Volume loadVolume(const std::string& path, const std::optional<RawLayout>& raw, SampleStorage storage) {
+Volume loadVolume(const std::string& path, const std::optional<RawLayout>& raw, SampleStorage storage,
+                  const std::string& dicomSeries) {
     if (raw) return loadRaw(path, *raw, storage);
+    if (isDicomFolder(path)) return loadDicomSeries(path, dicomSeries, storage);
     const std::string extension = detail::volumeExtension(path);
     if (extension == ".nrrd" || extension == ".nhdr") return loadNrrd(path, storage);
     if (extension == ".nii" || extension == ".nii.gz") return loadNifti(path, storage);
     if (extension == ".mhd" || extension == ".mha") return loadMetaImage(path, storage);
     // Existence first: "no such file" is the more useful message for a mistyped path.
     detail::regularFileSize(path);
-    detail::throwInputError(path,
-                            "unknown volume format '" + extension +
-                                "' (expected .nrrd, .nhdr, .nii, .nii.gz, .mhd, .mha, or a raw layout)");
+    detail::throwInputError(
+        path, "unknown volume format '" + extension +
+                  "' (expected .nrrd, .nhdr, .nii, .nii.gz, .mhd, .mha, a DICOM folder, or a raw layout)");
 }
 
 } // namespace vots::fit

@@ -1,4 +1,5 @@
-// DatasetRegistry: finds volume files by stem, loads each once on demand, derives window presets.
+// DatasetRegistry: finds volume files by stem and DICOM series folders, loads each once on demand, derives
+// window presets.
 #include "DatasetRegistry.h"
 
 #include "HttpError.h"
@@ -9,7 +10,9 @@
 #include "vots/fit/VolumeLoad.h"
 
 #include <algorithm>
+#include <cctype>
 #include <iostream>
+#include <set>
 
 namespace vots::server {
 namespace fs = std::filesystem;
@@ -29,8 +32,10 @@ std::string volumeStem(const fs::path& file) {
 }
 
 std::shared_ptr<const Dataset> loadDataset(const std::string& name, const fs::path& path,
+                                           const std::string& dicomSeries,
                                            const fit::VolumeHeaderInfo& header) {
-    auto volume = std::make_shared<fit::Volume>(fit::loadVolume(path.string()));
+    auto volume = std::make_shared<fit::Volume>(
+        fit::loadVolume(path.string(), std::nullopt, fit::SampleStorage::Float, dicomSeries));
     auto dataset = std::make_shared<Dataset>();
     dataset->loadAndFitBytes = fit::estimateLoadAndFitBytes(header);
     const std::uint64_t held = fit::estimateLoadedVolumeBytes(header);
@@ -47,7 +52,49 @@ std::shared_ptr<const Dataset> loadDataset(const std::string& name, const fs::pa
     return dataset;
 }
 
+std::string plainName(const std::string& text) {
+    std::string out = text;
+    for (char& c : out)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '-') c = '_';
+    return out;
+}
+
+/// The DICOM series of each subfolder, named as dicomDatasetNames says; a folder that cannot be read is
+/// reported and left out, as an unreadable volume file would be when it is first used.
+void addDicomFolders(const std::vector<fs::path>& folders,
+                     std::map<std::string, std::pair<fs::path, std::string>>& found) {
+    for (const fs::path& folder : folders) {
+        std::vector<fit::DicomSeriesSummary> series;
+        try {
+            series = fit::listDicomSeries(folder.string());
+        } catch (const std::exception& e) {
+            std::cerr << "vots serve: warning: DICOM folder '" << folder.string() << "' skipped: " << e.what()
+                      << "\n";
+            continue;
+        }
+        for (const auto& [name, uid] : dicomDatasetNames(folder.filename().string(), series))
+            found.emplace(name, std::make_pair(folder, series.size() > 1 ? uid : std::string()));
+    }
+}
+
 } // namespace
+
+std::map<std::string, std::string> dicomDatasetNames(const std::string& folderName,
+                                                     const std::vector<fit::DicomSeriesSummary>& series) {
+    std::map<std::string, std::string> names;
+    if (series.size() == 1) names[plainName(folderName)] = series.front().uid;
+    if (series.size() <= 1) return names;
+    std::set<std::string> descriptions;
+    for (const fit::DicomSeriesSummary& s : series)
+        if (!s.description.empty()) descriptions.insert(plainName(s.description));
+    const bool byDescription = descriptions.size() == series.size();
+    for (const fit::DicomSeriesSummary& s : series) {
+        const std::string suffix =
+            byDescription ? s.description : s.uid.substr(s.uid.size() > 8 ? s.uid.size() - 8 : 0);
+        names[plainName(folderName + "-" + suffix)] = s.uid;
+    }
+    return names;
+}
 
 std::map<std::string, render::DisplaySettings> windowPresets(std::array<float, 2> range, bool isCt) {
     const float lo = range[0];
@@ -74,15 +121,27 @@ DatasetRegistry::DatasetRegistry(const std::vector<fs::path>& dataDirs, MemoryAd
                       << "': " << ec.message() << "\n";
             continue;
         }
-        std::vector<fs::path> files;
-        for (const auto& entry : it)
+        std::vector<fs::path> files, folders;
+        for (const auto& entry : it) {
             if (entry.is_regular_file(ec)) files.push_back(entry.path());
+            if (entry.is_directory(ec)) folders.push_back(entry.path());
+        }
         std::sort(files.begin(), files.end()); // deterministic choice when two files share a stem
+        std::sort(folders.begin(), folders.end());
         for (const fs::path& file : files) {
             const std::string name = volumeStem(file);
             if (!isDatasetName(name) || mEntries.count(name)) continue;
             auto entry = std::make_unique<Entry>();
             entry->path = file;
+            mEntries.emplace(name, std::move(entry));
+        }
+        std::map<std::string, std::pair<fs::path, std::string>> dicom;
+        addDicomFolders(folders, dicom);
+        for (auto& [name, where] : dicom) {
+            if (!isDatasetName(name) || mEntries.count(name)) continue; // a volume file of that name wins
+            auto entry = std::make_unique<Entry>();
+            entry->path = where.first;
+            entry->dicomSeries = where.second;
             mEntries.emplace(name, std::move(entry));
         }
     }
@@ -110,7 +169,7 @@ std::shared_ptr<const Dataset> DatasetRegistry::find(const std::string& name) {
     if (!entry->dataset && entry->loadError.empty()) {
         try {
             if (!entry->header) {
-                auto header = fit::volumeHeaderInfo(entry->path.string());
+                auto header = fit::volumeHeaderInfo(entry->path.string(), std::nullopt, entry->dicomSeries);
                 std::lock_guard lock(mMutex); // header() reads it under mMutex
                 entry->header = header;
             }
@@ -120,7 +179,7 @@ std::shared_ptr<const Dataset> DatasetRegistry::find(const std::string& name) {
             const MemoryReservation admitted =
                 mMemory.admit(fit::estimateLoadAndFitBytes(*entry->header),
                               "dataset '" + name + "' (" + entry->header->describe() + ")");
-            auto dataset = loadDataset(name, entry->path, *entry->header);
+            auto dataset = loadDataset(name, entry->path, entry->dicomSeries, *entry->header);
             std::lock_guard lock(mMutex); // loaded() reads dataset under mMutex
             entry->dataset = std::move(dataset);
         } catch (const HttpError&) {

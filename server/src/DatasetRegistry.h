@@ -3,6 +3,7 @@
 
 #include "MemoryAdmission.h"
 
+#include "vots/fit/DicomSeries.h"
 #include "vots/fit/Volume.h"
 #include "vots/fit/VolumeHeader.h"
 #include "vots/render/DisplaySettings.h"
@@ -36,9 +37,16 @@ struct Dataset {
 /// Window presets for a value range: HU presets when it looks like CT, else fractions of the range.
 std::map<std::string, render::DisplaySettings> windowPresets(std::array<float, 2> range, bool isCt);
 
-/// Thread-safe. Scans the folders once at construction for .nrrd/.nhdr/.nii/.nii.gz/.mhd/.mha files;
-/// the first folder that has a name wins. Loading happens on the first find() of a name, once `memory`
-/// admits the load and fit its header announces.
+/// Thread-safe. Scans the folders once at construction for .nrrd/.nhdr/.nii/.nii.gz/.mhd/.mha files
+/// and for subfolders holding DICOM series (dicomDatasetNames); the first folder that has a name wins.
+/// Loading happens on the first find() of a name, once `memory` admits the load and fit its header announces.
+/// The datasets of one DICOM folder, name -> SeriesInstanceUID: the folder's name for a single series;
+/// for several, "<folder>-<description>" when every series has a distinct description, else
+/// "<folder>-<last 8 characters of the UID>" (characters other than letters, digits, '_' and '-' become
+/// '_'). Reads headers only; empty when the folder holds no DICOM images.
+std::map<std::string, std::string> dicomDatasetNames(const std::string& folderName,
+                                                     const std::vector<fit::DicomSeriesSummary>& series);
+
 class DatasetRegistry {
 public:
     DatasetRegistry(const std::vector<std::filesystem::path>& dataDirs, MemoryAdmission& memory);
@@ -58,7 +66,8 @@ public:
 private:
     struct Entry {
         std::filesystem::path path;
-        std::mutex loadMutex; // held while this one file loads, so others load in parallel
+        std::string dicomSeries; // the SeriesInstanceUID when `path` is a folder holding several
+        std::mutex loadMutex;    // held while this one file loads, so others load in parallel
         std::shared_ptr<const Dataset> dataset;
         std::optional<fit::VolumeHeaderInfo> header; // read before loading; written under mMutex
         std::string loadError;

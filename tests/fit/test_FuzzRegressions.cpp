@@ -69,6 +69,24 @@ TEST(FuzzRegressions, Nifti) {
                             [](const std::string& p) { (void)vots::fit::loadNifti(p); });
 }
 
+TEST(FuzzRegressions, DicomFolder) {
+    // As fuzz_dicom: the input alone in a folder, read as a series; also every seed cut at several
+    // lengths, where GDCM itself aborts (caught by its child process, DicomChild.h).
+    const auto inputs = fuzzInputs("fuzz_dicom");
+    ASSERT_FALSE(inputs.empty());
+    for (const auto& [name, bytes] : inputs)
+        for (const std::size_t cut : {bytes.size(), std::size_t{140}, std::size_t{300}, bytes.size() / 2,
+                                      bytes.size() - 60, bytes.size() - 1}) {
+            SCOPED_TRACE(name + " cut at " + std::to_string(cut));
+            const vots::test::TempDir dir;
+            dir.write("input.dcm", bytes.substr(0, std::min(cut, bytes.size())));
+            try {
+                (void)vots::fit::loadVolume(dir.path().string());
+            } catch (const vots::fit::InputError&) {
+            }
+        }
+}
+
 TEST(FuzzRegressions, MetaImage) {
     expectLoadsOrInputError("fuzz_metaimage", ".mha",
                             [](const std::string& p) { (void)vots::fit::loadMetaImage(p); });

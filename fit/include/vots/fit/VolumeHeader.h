@@ -28,8 +28,9 @@ struct VolumeHeaderInfo {
 /// Reads only the header (a few KB; for .nii.gz the first 348 inflated bytes), never the samples, so it
 /// costs the same for any announced size. The format follows the extension as in loadVolume; with a raw
 /// layout the layout is the answer. Throws InputError for a header loadVolume would refuse as malformed
-/// (unknown format, missing or non-positive sizes, unsupported type or dimension).
-VolumeHeaderInfo volumeHeaderInfo(const std::string& path,
-                                  const std::optional<RawLayout>& raw = std::nullopt);
+/// (unknown format, missing or non-positive sizes, unsupported type or dimension). A folder is a DICOM
+/// series: the headers of its files (never their pixel data) give the grid and the type it loads into.
+VolumeHeaderInfo volumeHeaderInfo(const std::string& path, const std::optional<RawLayout>& raw = std::nullopt,
+                                  const std::string& dicomSeries = {});
 
 } // namespace vots::fit

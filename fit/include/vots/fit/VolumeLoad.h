@@ -1,4 +1,4 @@
-// Reading volumes from files: NRRD, NIfTI-1, MetaImage, raw; throws InputError on anything malformed.
+// Reading volumes from files: NRRD, NIfTI-1, MetaImage, raw, DICOM folders; throws InputError on bad input.
 #pragma once
 
 #include "vots/fit/Volume.h"
@@ -29,9 +29,11 @@ enum class SampleStorage {
 ScalarType parseScalarType(const std::string& text);
 
 /// Loads a volume. The format follows the extension: .nrrd/.nhdr, .nii/.nii.gz, .mhd/.mha;
-/// with a raw layout any file is read as raw samples. Throws InputError with a one-line message.
+/// with a raw layout any file is read as raw samples; a folder is read as a DICOM series
+/// (loadDicomSeries in DicomSeries.h), `dicomSeries` picking one by UID when it holds several.
+/// Throws InputError with a one-line message.
 Volume loadVolume(const std::string& path, const std::optional<RawLayout>& raw = std::nullopt,
-                  SampleStorage storage = SampleStorage::Float);
+                  SampleStorage storage = SampleStorage::Float, const std::string& dicomSeries = {});
 
 Volume loadNrrd(const std::string& path, SampleStorage storage = SampleStorage::Float);
 Volume loadNifti(const std::string& path, SampleStorage storage = SampleStorage::Float);

@@ -1,0 +1,39 @@
+// Reading a folder of DICOM files as one volume (a series), through GDCM; throws InputError on bad series.
+#pragma once
+
+#include "vots/fit/Volume.h"
+#include "vots/fit/VolumeHeader.h"
+#include "vots/fit/VolumeLoad.h"
+
+#include <string>
+#include <vector>
+
+namespace vots::fit {
+
+/// One series found in a folder, from the files' headers only.
+struct DicomSeriesSummary {
+    std::string uid;         // SeriesInstanceUID
+    std::string description; // SeriesDescription, may be empty
+    int sliceCount = 0;      // image files of the series
+};
+
+/// True for a path that is a folder: every volume entry point reads a folder as a DICOM series.
+bool isDicomFolder(const std::string& path);
+
+/// The series of the folder's DICOM images (files that are not DICOM images are skipped), sorted by UID.
+/// Reads headers only. Throws InputError for a folder that cannot be read or holds a damaged DICOM file.
+std::vector<DicomSeriesSummary> listDicomSeries(const std::string& folder);
+
+/// The grid and the sample type the series loads into, from the headers alone (rows x columns x slices,
+/// bits, rescale), so memory admission can size it before anything is allocated. `seriesUid` picks a
+/// series; empty: the folder must hold exactly one. Throws InputError with one line naming the problem
+/// (no images, several series, missing slice, mixed image sizes, ...).
+VolumeHeaderInfo dicomSeriesHeaderInfo(const std::string& folder, const std::string& seriesUid = {});
+
+/// Loads the series: values in real units (RescaleSlope/Intercept), slices ordered by
+/// ImagePositionPatient along the slice normal, spacing from PixelSpacing and the slice positions,
+/// orientation from ImageOrientationPatient. Compressed transfer syntaxes GDCM decodes are read.
+Volume loadDicomSeries(const std::string& folder, const std::string& seriesUid = {},
+                       SampleStorage storage = SampleStorage::Float);
+
+} // namespace vots::fit

@@ -1,0 +1,186 @@
+// Turns a folder's DICOM headers into one series' grid: selection, consistency checks, slice order, type.
+#include "DicomLayout.h"
+
+#include "InputFile.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace vots::fit::detail {
+namespace {
+
+using Vec3 = std::array<double, 3>;
+
+// Positions are written as decimal text with limited digits, and orientations are unit vectors rounded
+// the same way: equal within these, they are meant to be equal.
+constexpr double ORIENTATION_TOLERANCE = 1e-4;
+constexpr double RELATIVE_GAP_TOLERANCE = 0.01; // a gap 1 % off the typical one is a missing slice
+constexpr double MIN_GAP_MM = 1e-4;             // two slices closer than this sit at one position
+
+Vec3 cross(const Vec3& a, const Vec3& b) {
+    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+double dot(const Vec3& a, const Vec3& b) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+Vec3 normalized(const Vec3& v) {
+    const double length = std::sqrt(dot(v, v));
+    return {v[0] / length, v[1] / length, v[2] / length};
+}
+
+std::string fileName(const std::string& path) {
+    const auto slash = path.find_last_of('/');
+    return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+std::string seriesList(const std::map<std::string, std::vector<DicomSliceHeader>>& bySeries) {
+    std::string text;
+    for (const auto& [uid, slices] : bySeries) {
+        if (!text.empty()) text += "; ";
+        text += uid;
+        if (!slices.front().seriesDescription.empty())
+            text += " \"" + slices.front().seriesDescription + "\"";
+        text += " (" + std::to_string(slices.size()) + " slice" + (slices.size() == 1 ? "" : "s") + ")";
+    }
+    return text;
+}
+
+std::vector<DicomSliceHeader> pickSeries(const std::string& folder, const std::string& seriesUid) {
+    std::map<std::string, std::vector<DicomSliceHeader>> bySeries;
+    for (DicomSliceHeader& slice : scanDicomFolder(folder))
+        bySeries[slice.seriesUid].push_back(std::move(slice));
+    if (bySeries.empty()) throwInputError(folder, "holds no DICOM images");
+    if (!seriesUid.empty()) {
+        const auto it = bySeries.find(seriesUid);
+        if (it == bySeries.end())
+            throwInputError(folder, "has no series " + seriesUid + "; it holds " + seriesList(bySeries));
+        return std::move(it->second);
+    }
+    if (bySeries.size() > 1)
+        throwInputError(folder, "holds " + std::to_string(bySeries.size()) +
+                                    " DICOM series; pick one with --series UID: " + seriesList(bySeries));
+    return std::move(bySeries.begin()->second);
+}
+
+void checkAlike(const std::vector<DicomSliceHeader>& slices) {
+    const DicomSliceHeader& first = slices.front();
+    for (const DicomSliceHeader& s : slices) {
+        if (s.samplesPerPixel != 1)
+            throwInputError(s.path, "is a colour image (" + std::to_string(s.samplesPerPixel) +
+                                        " samples per pixel); only greyscale series are supported");
+        if (s.frames != 1)
+            throwInputError(s.path, "holds " + std::to_string(s.frames) +
+                                        " frames; only series of single-frame images are supported");
+        if (s.bitsAllocated != 8 && s.bitsAllocated != 16 && s.bitsAllocated != 32)
+            throwInputError(s.path, "has " + std::to_string(s.bitsAllocated) +
+                                        " bits allocated per pixel; 8, 16 or 32 are supported");
+        if (s.bitsStored < 1 || s.bitsStored > s.bitsAllocated)
+            throwInputError(s.path, "has " + std::to_string(s.bitsStored) + " bits stored of " +
+                                        std::to_string(s.bitsAllocated) + " allocated");
+        if (!s.hasPosition)
+            throwInputError(s.path, "has no ImagePositionPatient or ImageOrientationPatient, so its slice "
+                                    "cannot be placed");
+        if (s.rows != first.rows || s.columns != first.columns)
+            throwInputError(s.path, "mixed image sizes in the series: " + std::to_string(s.columns) + "x" +
+                                        std::to_string(s.rows) + " here, " + std::to_string(first.columns) +
+                                        "x" + std::to_string(first.rows) + " in " + fileName(first.path));
+        const std::uint64_t pixelBytes = static_cast<std::uint64_t>(s.rows) *
+                                         static_cast<std::uint64_t>(s.columns) *
+                                         static_cast<std::uint64_t>(s.bitsAllocated / 8);
+        // Uncompressed pixel data has a known size: a file too short for it was cut off.
+        if (!s.encapsulated && s.fileSize < s.pixelDataOffset + pixelBytes)
+            throwInputError(s.path, "is truncated: its pixel data needs " + std::to_string(pixelBytes) +
+                                        " bytes, the file ends " +
+                                        std::to_string(s.pixelDataOffset + pixelBytes - s.fileSize) +
+                                        " bytes short");
+        if (s.bitsAllocated != first.bitsAllocated || s.pixelsSigned != first.pixelsSigned)
+            throwInputError(s.path, "mixed pixel formats in the series (bits allocated or signedness "
+                                    "differ from " +
+                                        fileName(first.path) + ")");
+        for (int i = 0; i < 6; ++i)
+            if (std::abs(s.orientation[i] - first.orientation[i]) > ORIENTATION_TOLERANCE)
+                throwInputError(s.path, "mixed slice orientations in the series (ImageOrientationPatient "
+                                        "differs from " +
+                                            fileName(first.path) + ")");
+        for (int i = 0; i < 2; ++i)
+            if (std::abs(s.pixelSpacing[i] - first.pixelSpacing[i]) > 1e-6 * first.pixelSpacing[i] ||
+                !(s.pixelSpacing[i] > 0))
+                throwInputError(s.path,
+                                "PixelSpacing differs from " + fileName(first.path) + " or is not positive");
+    }
+}
+
+/// Integral rescales keep integer samples integral; the smallest integer type holding every value keeps
+/// the memory of `vots fit` low (a 12-bit CT with intercept -1024 stays int16).
+ScalarType valueTypeOf(const std::vector<DicomSliceHeader>& slices) {
+    double lo = INFINITY, hi = -INFINITY;
+    bool integral = true;
+    for (const DicomSliceHeader& s : slices) {
+        const double storedLo = s.pixelsSigned ? -std::ldexp(1.0, s.bitsStored - 1) : 0.0;
+        const double storedHi =
+            s.pixelsSigned ? std::ldexp(1.0, s.bitsStored - 1) - 1 : std::ldexp(1.0, s.bitsStored) - 1;
+        const double a = s.slope * storedLo + s.intercept, b = s.slope * storedHi + s.intercept;
+        lo = std::min({lo, a, b});
+        hi = std::max({hi, a, b});
+        integral = integral && s.slope == std::round(s.slope) && s.intercept == std::round(s.intercept);
+    }
+    if (!integral) return ScalarType::Float32;
+    if (lo >= 0 && hi <= 255) return ScalarType::UInt8;
+    if (lo >= -32768 && hi <= 32767) return ScalarType::Int16;
+    if (lo >= 0 && hi <= 65535) return ScalarType::UInt16;
+    return ScalarType::Float32;
+}
+
+} // namespace
+
+DicomSeriesLayout layoutDicomSeries(const std::string& folder, const std::string& seriesUid) {
+    DicomSeriesLayout layout;
+    layout.slices = pickSeries(folder, seriesUid);
+    std::vector<DicomSliceHeader>& slices = layout.slices;
+    checkAlike(slices);
+
+    const auto& o = slices.front().orientation;
+    const Vec3 row = normalized({o[0], o[1], o[2]});
+    const Vec3 column = normalized({o[3], o[4], o[5]});
+    const Vec3 normal = normalized(cross(row, column));
+    if (!std::isfinite(normal[0]) || std::abs(dot(row, column)) > 1e-3)
+        throwInputError(slices.front().path, "ImageOrientationPatient is not two orthogonal unit vectors");
+    // The position along the normal orders the slices: file names and InstanceNumber often disagree.
+    std::stable_sort(slices.begin(), slices.end(), [&](const DicomSliceHeader& a, const DicomSliceHeader& b) {
+        return dot(a.position, normal) < dot(b.position, normal);
+    });
+    const std::size_t n = slices.size();
+    double sliceSpacing = 1.0;
+    if (n > 1) {
+        std::vector<double> gaps;
+        for (std::size_t i = 1; i < n; ++i) {
+            const double gap = dot(slices[i].position, normal) - dot(slices[i - 1].position, normal);
+            if (gap < MIN_GAP_MM)
+                throwInputError(folder, "two slices at one position: " + fileName(slices[i - 1].path) +
+                                            " and " + fileName(slices[i].path));
+            gaps.push_back(gap);
+        }
+        std::vector<double> sorted = gaps;
+        std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(sorted.size() / 2), sorted.end());
+        const double typical = sorted[sorted.size() / 2];
+        for (std::size_t i = 0; i < gaps.size(); ++i)
+            if (std::abs(gaps[i] - typical) > RELATIVE_GAP_TOLERANCE * typical)
+                throwInputError(folder, "missing slice: positions are not evenly spaced (" +
+                                            std::to_string(gaps[i]) + " mm between " +
+                                            fileName(slices[i].path) + " and " +
+                                            fileName(slices[i + 1].path) + ", " + std::to_string(typical) +
+                                            " mm elsewhere)");
+        sliceSpacing = (dot(slices.back().position, normal) - dot(slices.front().position, normal)) /
+                       static_cast<double>(n - 1);
+    }
+    const DicomSliceHeader& first = slices.front();
+    layout.dims = {first.columns, first.rows, static_cast<int>(n)};
+    layout.spacing = {first.pixelSpacing[1], first.pixelSpacing[0], sliceSpacing};
+    layout.origin = first.position;
+    layout.patientAxes = {row, column, normal};
+    layout.valueType = valueTypeOf(slices);
+    return layout;
+}
+
+} // namespace vots::fit::detail

@@ -1,0 +1,28 @@
+// Private to the DICOM reader: one series of a folder checked and ordered into a grid, from headers only.
+#pragma once
+
+#include "DicomScan.h"
+
+#include "vots/fit/Volume.h"
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace vots::fit::detail {
+
+/// A series as a grid: its slices in the order of increasing position along the slice normal.
+struct DicomSeriesLayout {
+    std::vector<DicomSliceHeader> slices;
+    std::array<int, 3> dims{0, 0, 0};                   // columns, rows, slices
+    std::array<double, 3> spacing{1, 1, 1};             // between columns, rows, slice positions
+    std::array<double, 3> origin{0, 0, 0};              // ImagePositionPatient of the first slice
+    std::array<std::array<double, 3>, 3> patientAxes{}; // row direction, column direction, normal
+    ScalarType valueType = ScalarType::Float32;         // the smallest type that holds every rescaled value
+};
+
+/// Picks the series (`seriesUid`, or the only one) and checks that it forms a grid: one image size, one
+/// orientation, evenly spaced positions. Throws InputError with one line naming the problem.
+DicomSeriesLayout layoutDicomSeries(const std::string& folder, const std::string& seriesUid);
+
+} // namespace vots::fit::detail
