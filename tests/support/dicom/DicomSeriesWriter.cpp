@@ -77,7 +77,7 @@ void writeSlice(const fit::Volume& volume, int z, int fileIndex, const std::stri
                               r[0] * r[4] - r[1] * r[3]};
     double position[3];
     for (int a = 0; a < 3; ++a)
-        position[a] = o.origin[a] + z * volume.spacing[2] * normal[a];
+        position[a] = o.origin[a] + (o.slicesAlongNormal ? 1.0 : -1.0) * z * volume.spacing[2] * normal[a];
 
     // Heap-held: GDCM's writer and filters keep reference-counted pointers to the image they are given.
     gdcm::SmartPointer<gdcm::Image> held = new gdcm::Image;

@@ -28,6 +28,9 @@ struct DicomWriteOptions {
     double intercept = 0.0;
     std::array<double, 6> orientation{1, 0, 0, 0, 1, 0}; // ImageOrientationPatient (row, column)
     std::array<double, 3> origin{0, 0, 0};               // ImagePositionPatient of slice z = 0
+    // Slice z sits at origin + z * spacing[2] * normal, or against the normal (row x column) when false:
+    // a grid whose third axis runs against the right-handed normal (left-handed storage) needs it.
+    bool slicesAlongNormal = true;
     // Broken series for the error tests; -1: none.
     int dropSlice = -1;     // this slice is not written (a gap in the positions)
     int resizeSlice = -1;   // this slice is one column narrower
@@ -36,7 +39,7 @@ struct DicomWriteOptions {
 };
 
 /// Writes volume slice z (x fastest: columns, then rows) as one file per slice at position
-/// origin + z * spacing[2] * normal, PixelSpacing spacing[1]\spacing[0]. Throws std::runtime_error.
+/// origin + z * spacing[2] * (+-normal), PixelSpacing spacing[1]\spacing[0]. Throws std::runtime_error.
 void writeDicomSeries(const fit::Volume& volume, const std::string& folder, const DicomWriteOptions& options);
 
 } // namespace vots::test

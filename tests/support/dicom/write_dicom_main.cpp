@@ -22,6 +22,7 @@ const char* USAGE =
     "         [--syntax explicit|implicit|rle|jpeg-lossless|jpeg-ls|jpeg2000]\n"
     "         [--order ascending|descending|shuffled] [--prefix NAME] [--unsigned] [--bits-stored N]\n"
     "         [--slope S] [--intercept I] [--orientation R1,R2,R3,C1,C2,C3] [--origin X,Y,Z]\n"
+    "         [--slices-against-normal]\n"
     "         [--drop-slice K] [--resize-slice K] [--truncate-slice K] [--junk-file]\n";
 
 std::vector<double> numbers(const std::string& text, std::size_t count) {
@@ -109,6 +110,8 @@ int run(int argc, char** argv) {
             o.truncateSlice = std::stoi(value());
         else if (flag == "--junk-file")
             o.junkFile = true;
+        else if (flag == "--slices-against-normal")
+            o.slicesAlongNormal = false;
         else if (flag == "--orientation") {
             const auto v = numbers(value(), 6);
             std::copy(v.begin(), v.end(), o.orientation.begin());
