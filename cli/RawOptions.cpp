@@ -1,4 +1,4 @@
-// The --raw-* options shared by `fit` and `verify`; turns them into a RawLayout for loadVolume.
+// The --raw-* options shared by `fit`, `verify` and `render`; turns them into a RawLayout for loadVolume.
 #include "RawOptions.h"
 
 #include "Args.h"

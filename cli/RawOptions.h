@@ -1,4 +1,4 @@
-// The --raw-* options shared by `fit` and `verify` for headerless volumes; no loading here.
+// The --raw-* options shared by `fit`, `verify` and `render` for headerless volumes; no loading here.
 #pragma once
 
 #include "vots/fit/VolumeLoad.h"

@@ -2,6 +2,7 @@
 #include "Args.h"
 #include "Commands.h"
 #include "MemoryBudgetOption.h"
+#include "RawOptions.h"
 #include "SeriesOption.h"
 
 #include "vots/fit/DicomSeries.h"
@@ -53,11 +54,13 @@ struct RenderArgs {
     std::string volume;
     std::string memoryBudget; // empty: the default
     std::string series;       // DICOM SeriesInstanceUID; empty: the folder's only series
+    RawArgs raw;              // the layout of a headerless volume (INPUT, or --volume of a .vots input)
 };
 
 struct CheckedArgs {
     render::FrameRequest frame;
     fit::EpsSpec eps;
+    std::optional<fit::RawLayout> raw;
 };
 
 std::pair<int, int> parseSize(const std::string& text) {
@@ -87,6 +90,7 @@ CheckedArgs checkArgs(const RenderArgs& a) {
     if (!a.window.empty()) f.window = render::parseWindow(a.window, f.colormap);
     c.eps = parseEps(a.eps, "--eps");
     if (a.degree < 0 || a.degree > 3) throw fit::InputError("--degree must be 0..3");
+    c.raw = rawLayoutFrom(a.raw);
     return c;
 }
 
@@ -127,8 +131,10 @@ void runRender(const RenderArgs& a) {
         space = fit::readVotSpaceFile(a.input);
         server::placeInPatientSpace(*space);
         if (!a.volume.empty()) {
-            checkVolumeFitsBudget(a.volume, std::nullopt, a.memoryBudget, a.series);
-            volume = fit::loadVolume(a.volume, std::nullopt, fit::SampleStorage::Float, a.series);
+            checkVolumeFitsBudget(a.volume, c.raw, a.memoryBudget, a.series);
+            volume = fit::loadVolume(a.volume, c.raw, fit::SampleStorage::Float, a.series);
+        } else if (c.raw) {
+            throw fit::InputError("--raw-* describe a volume; a .vots input has one only with --volume");
         }
         if (c.frame.mode == render::RenderMode::Reference && !volume)
             throw fit::InputError("--mode reference on a .vots file needs the volume: add --volume PATH");
@@ -136,8 +142,8 @@ void runRender(const RenderArgs& a) {
         if (!a.volume.empty())
             throw fit::InputError("--volume is only for .vots input; INPUT is already a volume");
         // The fit's estimate also for --mode reference: it covers the samples, their texture and the read.
-        checkVolumeFitsBudget(a.input, std::nullopt, a.memoryBudget, a.series);
-        volume = fit::loadVolume(a.input, std::nullopt, fit::SampleStorage::Float, a.series);
+        checkVolumeFitsBudget(a.input, c.raw, a.memoryBudget, a.series);
+        volume = fit::loadVolume(a.input, c.raw, fit::SampleStorage::Float, a.series);
         if (c.frame.mode != render::RenderMode::Reference) space = fitForRender(*volume, a, c);
     }
 
@@ -164,7 +170,8 @@ void addRenderCommand(CLI::App& app) {
     auto args = std::make_shared<RenderArgs>();
     CLI::App* cmd = app.add_subcommand("render", "Render a Vot-Space or volume as MIP (or density) to a PNG");
     cmd->add_option("INPUT", args->input,
-                    "A .vots file, or a volume file or DICOM folder (fitted first at --eps for mip/density)")
+                    "A .vots file, or a volume file, DICOM folder or raw file with --raw-* (fitted first at "
+                    "--eps for mip/density)")
         ->required();
     cmd->add_option("-o,--output", args->output, "PNG file to write (replaced atomically)")->required();
     cmd->add_option("--cam", args->cam,
@@ -187,6 +194,7 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option("--volume", args->volume, "The volume of a .vots input (for --mode reference)");
     addMemoryBudgetOption(*cmd, args->memoryBudget);
     addSeriesOption(*cmd, args->series);
+    addRawOptions(*cmd, args->raw);
     cmd->callback([args] { runRender(*args); });
 }
 

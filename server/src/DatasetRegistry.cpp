@@ -1,6 +1,8 @@
-// DatasetRegistry: finds volume files by stem and DICOM series folders, loads each once on demand, derives
-// window presets.
+// DatasetRegistry: finds volume files by stem, DICOM series folders and .vots files, loads each once on
+// demand, derives window presets.
 #include "DatasetRegistry.h"
+
+#include "DatasetRegistryVots.h"
 
 #include "HttpError.h"
 #include "Params.h"
@@ -79,6 +81,10 @@ void addDicomFolders(const std::vector<fs::path>& folders,
 
 } // namespace
 
+const char* datasetKindName(DatasetKind kind) {
+    return kind == DatasetKind::Vots ? "vots" : "volume";
+}
+
 std::map<std::string, std::string> dicomDatasetNames(const std::string& folderName,
                                                      const std::vector<fit::DicomSeriesSummary>& series) {
     std::map<std::string, std::string> names;
@@ -144,6 +150,14 @@ DatasetRegistry::DatasetRegistry(const std::vector<fs::path>& dataDirs, MemoryAd
             entry->dicomSeries = where.second;
             mEntries.emplace(name, std::move(entry));
         }
+        for (const fs::path& file : files) {
+            const std::string name = votsStem(file);
+            if (!isDatasetName(name) || mEntries.count(name)) continue; // a volume of that name wins
+            auto entry = std::make_unique<Entry>();
+            entry->path = file;
+            entry->isVots = true;
+            mEntries.emplace(name, std::move(entry));
+        }
     }
 }
 
@@ -166,6 +180,23 @@ std::shared_ptr<const Dataset> DatasetRegistry::find(const std::string& name) {
         entry = it->second.get(); // entries are never removed, so the pointer stays valid
     }
     std::lock_guard loadLock(entry->loadMutex);
+    if (!entry->dataset && entry->loadError.empty() && entry->isVots) {
+        try {
+            // Sized from the file alone, refused before it is read, like a volume by its header.
+            const MemoryReservation admitted = mMemory.admit(
+                estimateVotsLoadBytes(fs::file_size(entry->path)),
+                "dataset '" + name + "' (Vot-Space file '" + entry->path.filename().string() + "')");
+            auto dataset = loadVotsDataset(name, entry->path);
+            std::lock_guard lock(mMutex); // loaded() reads dataset under mMutex
+            entry->dataset = std::move(dataset);
+        } catch (const HttpError&) {
+            throw; // over the memory budget now; not remembered as a load error
+        } catch (const std::exception& e) {
+            entry->loadError = e.what();
+            std::cerr << "vots serve: warning: dataset '" << name << "' cannot be loaded: " << e.what()
+                      << "\n";
+        }
+    }
     if (!entry->dataset && entry->loadError.empty()) {
         try {
             if (!entry->header) {
@@ -199,6 +230,12 @@ std::optional<fit::VolumeHeaderInfo> DatasetRegistry::header(const std::string& 
     const auto it = mEntries.find(name);
     if (it == mEntries.end()) return std::nullopt;
     return it->second->header;
+}
+
+DatasetKind DatasetRegistry::kind(const std::string& name) const {
+    std::lock_guard lock(mMutex);
+    const auto it = mEntries.find(name);
+    return it != mEntries.end() && it->second->isVots ? DatasetKind::Vots : DatasetKind::Volume;
 }
 
 std::vector<std::shared_ptr<const Dataset>> DatasetRegistry::loaded() const {

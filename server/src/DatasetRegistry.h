@@ -1,4 +1,5 @@
-// The volumes the server offers: found by name in the data folders, loaded lazily once, then kept.
+// The datasets the server offers (volumes and Vot-Space files): found by name in the data folders, loaded
+// lazily once, then kept.
 #pragma once
 
 #include "MemoryAdmission.h"
@@ -6,6 +7,7 @@
 #include "vots/fit/DicomSeries.h"
 #include "vots/fit/Volume.h"
 #include "vots/fit/VolumeHeader.h"
+#include "vots/fit/VotSpace.h"
 #include "vots/render/DisplaySettings.h"
 
 #include <array>
@@ -19,16 +21,27 @@
 
 namespace vots::server {
 
-/// A loaded volume plus what the API reports about it.
+/// What a dataset was loaded from: a volume (fitted on demand at any eps), or a .vots file (its one
+/// Vot-Space; no grid for reference frames, no refit).
+enum class DatasetKind { Volume, Vots };
+
+/// The API's name of a kind: "volume" or "vots".
+const char* datasetKindName(DatasetKind kind);
+
+/// A loaded volume or Vot-Space plus what the API reports about it.
 struct Dataset {
     std::string name;           // file stem, a plain identifier
     std::filesystem::path path; // the file it came from
-    std::shared_ptr<const fit::Volume> volume;
-    std::array<float, 2> range{0, 0};                       // min and max sample, data units
-    float background = 0.f;                                 // fit::defaultBackground(volume)
-    std::uint32_t contentCrc = 0;                           // volume->contentCrc()
-    float defaultEps = 0.f;                                 // fit::EpsSpec{} resolved, data units
-    bool isCt = false;                                      // range looks like Hounsfield units (min <= -900)
+    DatasetKind kind = DatasetKind::Volume;
+    std::shared_ptr<const fit::Volume> volume; // Volume kind only; null for Vots
+    std::shared_ptr<const fit::VotSpace>
+        space; // Vots kind only: the file's Vot-Space, placed in patient space
+    std::array<float, 2> range{0,
+                               0}; // min and max sample, data units (Vots: the source's, from the meta block)
+    float background = 0.f;        // fit::defaultBackground(volume)
+    std::uint32_t contentCrc = 0;  // volume->contentCrc()
+    float defaultEps = 0.f;        // fit::EpsSpec{} resolved, data units (Vots: the file's eps, the only one)
+    bool isCt = false;             // range looks like Hounsfield units (min <= -900)
     std::map<std::string, render::DisplaySettings> presets; // "bone", "soft", "full" (grey)
     std::uint64_t loadAndFitBytes = 0;                      // fit::estimateLoadAndFitBytes of its header
     std::uint64_t fitBytes = 0; // what one fit needs beyond the loaded volume (admitted per fit job)
@@ -37,8 +50,13 @@ struct Dataset {
 /// Window presets for a value range: HU presets when it looks like CT, else fractions of the range.
 std::map<std::string, render::DisplaySettings> windowPresets(std::array<float, 2> range, bool isCt);
 
-/// Thread-safe. Scans the folders once at construction for .nrrd/.nhdr/.nii/.nii.gz/.mhd/.mha files
-/// and for subfolders holding DICOM series (dicomDatasetNames); the first folder that has a name wins.
+/// Memory a .vots file of this size takes while it loads and stays resident: its bytes, read whole,
+/// plus the decoded Vots (one fit::Vot per 120-byte record).
+std::uint64_t estimateVotsLoadBytes(std::uint64_t fileBytes);
+
+/// Thread-safe. Scans the folders once at construction for .nrrd/.nhdr/.nii/.nii.gz/.mhd/.mha files,
+/// for subfolders holding DICOM series (dicomDatasetNames) and for .vots files; the first folder that has
+/// a name wins, and within a folder a volume file wins over a DICOM folder, which wins over a .vots file.
 /// Loading happens on the first find() of a name, once `memory` admits the load and fit its header announces.
 /// The datasets of one DICOM folder, name -> SeriesInstanceUID: the folder's name for a single series;
 /// for several, "<folder>-<description>" when every series has a distinct description, else
@@ -60,6 +78,8 @@ public:
     std::shared_ptr<const Dataset> find(const std::string& name);
     /// The header of a dataset find() has looked at, loaded or not (nullopt before, or when unreadable).
     std::optional<fit::VolumeHeaderInfo> header(const std::string& name) const;
+    /// Whether a name found is a volume or a .vots file, loaded or not (Volume for an unknown name).
+    DatasetKind kind(const std::string& name) const;
     /// Already loaded datasets only (never loads), for stats.
     std::vector<std::shared_ptr<const Dataset>> loaded() const;
 
@@ -67,6 +87,7 @@ private:
     struct Entry {
         std::filesystem::path path;
         std::string dicomSeries; // the SeriesInstanceUID when `path` is a folder holding several
+        bool isVots = false;     // `path` is a Vot-Space file
         std::mutex loadMutex;    // held while this one file loads, so others load in parallel
         std::shared_ptr<const Dataset> dataset;
         std::optional<fit::VolumeHeaderInfo> header; // read before loading; written under mMutex

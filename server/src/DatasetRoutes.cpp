@@ -1,10 +1,13 @@
-// GET /api/datasets: every volume in the data folders with its grid, value range, windows and defaults.
+// GET /api/datasets: every volume and .vots file in the data folders with its kind, grid, value range,
+// windows and defaults; what a .vots dataset cannot do.
 #include "HttpError.h"
 #include "HttpJson.h"
 #include "ServerImpl.h"
 
 #include "vots/fit/MemoryBudget.h"
 #include "vots/fit/PatientAxes.h"
+
+#include <cmath>
 
 namespace vots::server {
 namespace {
@@ -14,7 +17,7 @@ nlohmann::json windowJson(const render::DisplaySettings& w) {
 }
 
 // The grid's directions in patient space (docs/API.md): null when the file says nothing.
-nlohmann::json orientationJson(const fit::Volume& v) {
+template <class Grid> nlohmann::json orientationJson(const Grid& v) {
     if (!v.orientationKnown) return nullptr;
     nlohmann::json letters = nlohmann::json::array();
     for (const auto& axis : v.patientAxes) {
@@ -25,30 +28,37 @@ nlohmann::json orientationJson(const fit::Volume& v) {
 }
 
 nlohmann::json datasetJson(const Dataset& d) {
-    const fit::Volume& v = *d.volume;
     const auto window = render::windowForRange(d.range[0], d.range[1]);
     nlohmann::json presets = nlohmann::json::object();
     for (const auto& [name, preset] : d.presets)
         presets[name] = windowJson(preset);
-    return {{"name", d.name},
-            {"dims", v.dims},
-            {"spacing", v.spacing},
-            {"orientation", orientationJson(v)},
-            {"range", d.range},
-            {"window", windowJson(window)},
-            {"presets", presets},
-            {"defaultEps", d.defaultEps},
-            {"background", d.background},
-            {"modality", d.isCt ? "CT" : "other"},
-            {"fits", true},
-            {"memoryNeeded", d.loadAndFitBytes}};
+    const bool isVots = d.kind == DatasetKind::Vots;
+    nlohmann::json out = {{"name", d.name},
+                          {"kind", datasetKindName(d.kind)},
+                          {"dims", isVots ? d.space->dims : d.volume->dims},
+                          {"spacing", isVots ? d.space->spacing : d.volume->spacing},
+                          {"orientation", isVots ? orientationJson(*d.space) : orientationJson(*d.volume)},
+                          {"range", d.range},
+                          {"window", windowJson(window)},
+                          {"presets", presets},
+                          {"defaultEps", d.defaultEps},
+                          {"background", d.background},
+                          {"modality", d.isCt ? "CT" : "other"},
+                          {"fits", true},
+                          {"memoryNeeded", d.loadAndFitBytes}};
+    if (isVots) {
+        out["eps"] = d.space->eps; // the file's bound: the only one it can be drawn at
+        out["votCount"] = d.space->vots.size();
+    }
+    return out;
 }
 
 // A dataset the memory budget refuses: what its header announces and why it is not loaded, so the
 // viewer can show it greyed out with the reason instead of leaving it out.
-nlohmann::json refusedJson(const std::string& name, const std::optional<fit::VolumeHeaderInfo>& header,
-                           const std::string& reason) {
-    nlohmann::json out = {{"name", name}, {"fits", false}, {"error", reason}};
+nlohmann::json refusedJson(const std::string& name, DatasetKind kind,
+                           const std::optional<fit::VolumeHeaderInfo>& header, const std::string& reason) {
+    nlohmann::json out = {
+        {"name", name}, {"kind", datasetKindName(kind)}, {"fits", false}, {"error", reason}};
     if (header) {
         out["dims"] = header->dims;
         out["sourceType"] = fit::scalarTypeName(header->sourceType);
@@ -65,6 +75,30 @@ float resolveEps(const Dataset& dataset, const EpsSpec& eps) {
         throw HttpError(400, "eps resolves to " + std::to_string(value) + " for dataset '" + dataset.name +
                                  "' (its values are constant); give eps in data units");
     return value;
+}
+
+void refuseWhatVotsCannotDraw(const Dataset& dataset, const RenderParams& params) {
+    if (dataset.kind != DatasetKind::Vots) return;
+    if (params.mode == render::RenderMode::Reference)
+        throw HttpError(409, "dataset '" + dataset.name +
+                                 "' is a Vot-Space file: mode=reference needs the volume's grid, which it "
+                                 "does not have; use mip or density");
+    if (!params.epsGiven) return;
+    // The viewer sends the eps /api/datasets gave it; a float that went through JSON and back may differ
+    // in its last bit.
+    const float asked = resolveEps(dataset, params.eps);
+    const float own = dataset.space->eps;
+    if (std::abs(asked - own) > 1e-6f * std::abs(own))
+        throw HttpError(409, "dataset '" + dataset.name + "' is a Vot-Space file fitted at eps " +
+                                 std::to_string(own) + ": another eps (" + std::to_string(asked) +
+                                 ") needs a refit of the volume, which it does not have; omit eps");
+}
+
+void refuseFitOfVots(const Dataset& dataset) {
+    if (dataset.kind == DatasetKind::Vots)
+        throw HttpError(409, "dataset '" + dataset.name + "' is a Vot-Space file fitted at eps " +
+                                 std::to_string(dataset.space->eps) +
+                                 ": it cannot be refitted without its volume");
 }
 
 FitKey fitKeyFor(const Dataset& dataset, const EpsSpec& eps, int degree) {
@@ -86,7 +120,9 @@ void installDatasetRoutes(Server::Impl& s) {
             } catch (const HttpError& e) {
                 // Over the memory budget: listed as such. Any other file that does not load is left out
                 // (and was logged once by the registry).
-                if (e.status() == 507) list.push_back(refusedJson(name, s.registry.header(name), e.what()));
+                if (e.status() == 507)
+                    list.push_back(
+                        refusedJson(name, s.registry.kind(name), s.registry.header(name), e.what()));
             }
         }
         sendJson(res, 200,

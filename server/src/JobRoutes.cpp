@@ -42,6 +42,7 @@ void installJobRoutes(Server::Impl& s) {
     s.http.Post("/api/fit", [&s](const httplib::Request& req, httplib::Response& res) {
         const FitParams p = parseFitParams(req.body);
         const auto dataset = s.registry.find(p.dataset);
+        refuseFitOfVots(*dataset);
         FitKey key = fitKeyFor(*dataset, p.eps, p.degree);
         key.focus = p.focus;
         const auto job = s.fitJobs.submit(dataset, key, req.remote_addr);

@@ -147,7 +147,10 @@ RenderParams parseRenderParams(const QueryParams& query) {
     p.dataset = *dataset;
     if (const auto cam = get("cam")) p.camera = parseWith("cam", [&] { return render::parseCamera(*cam); });
     if (const auto size = get("size")) std::tie(p.width, p.height) = parseSize(*size);
-    if (const auto eps = get("eps")) p.eps = parseEpsSpec(*eps);
+    if (const auto eps = get("eps")) {
+        p.eps = parseEpsSpec(*eps);
+        p.epsGiven = true;
+    }
     if (const auto degree = get("degree")) p.degree = parseDegree(*degree);
     if (const auto mode = get("mode"))
         p.mode = parseWith("mode", [&] { return render::parseRenderMode(*mode); });

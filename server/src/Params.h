@@ -25,6 +25,7 @@ using fit::EpsSpec;
 struct RenderParams : render::FrameRequest {
     std::string dataset;
     EpsSpec eps;
+    bool epsGiven = false; // the query named eps (a .vots dataset refuses only an eps other than its own)
     int degree = DEFAULT_DEGREE;
     std::string client; // optional id; a newer request from the same client supersedes a waiting one
 };

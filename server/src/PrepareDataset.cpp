@@ -10,18 +10,22 @@ namespace vots::server {
 void prepareDataset(Server::Impl& s, const std::string& name) {
     try {
         const auto dataset = s.registry.find(name);
-        const FitKey key = fitKeyFor(*dataset, EpsSpec{}, DEFAULT_DEGREE); // the viewer's first fit
-        const auto fit = s.fitJobs.submit(dataset, key);
-        const JobSnapshot done = fit->waitFinished(std::chrono::minutes(10));
-        if (done.state != JobState::Done) return; // failed (the job says why) or the server is stopping
+        std::shared_ptr<const fit::VotSpace> space = dataset->space; // a .vots dataset has it loaded
+        if (dataset->kind == DatasetKind::Volume) {
+            const FitKey key = fitKeyFor(*dataset, EpsSpec{}, DEFAULT_DEGREE); // the viewer's first fit
+            const auto fit = s.fitJobs.submit(dataset, key);
+            const JobSnapshot done = fit->waitFinished(std::chrono::minutes(10));
+            if (done.state != JobState::Done) return; // failed (the job says why) or the server is stopping
+            space = fit->space();
+        }
         if (!s.renderQueue || !s.renderQueue->hasContext()) return;
         // A small frame is enough: drawing one uploads the Vot-Space, which is what a first frame waits on.
         RenderJob job;
         job.params.dataset = name;
         job.params.width = job.params.height = 16;
-        job.space = fit->space();
+        job.space = space;
         job.volume = dataset->volume;
-        job.valueRange = dataset->range;
+        if (dataset->kind == DatasetKind::Volume) job.valueRange = dataset->range;
         s.renderQueue->submit(job).get();
     } catch (const std::exception& e) {
         // Nothing is lost: the first request for the dataset will load and fit it, and say what fails.

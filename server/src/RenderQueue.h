@@ -13,6 +13,7 @@
 #include <future>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -28,8 +29,9 @@ struct RenderJob {
     RenderParams params;
     std::shared_ptr<const fit::VotSpace> space;
     std::shared_ptr<const fit::Volume> volume;
-    std::array<float, 2> valueRange{0.f, 0.f}; // the volume's min and max sample, as the registry keeps
-                                               // it, so that no frame scans the volume
+    // The volume's min and max sample, as the registry keeps it, so that no frame scans the volume;
+    // nullopt: the Vot-Space's own range (a .vots dataset, as `vots render FILE.vots` draws it).
+    std::optional<std::array<float, 2>> valueRange;
 };
 
 struct RenderResult {

@@ -76,14 +76,19 @@ void installRenderRoute(Server::Impl& s) {
                                            : std::string_view(req.target).substr(question + 1);
         job.params = parseRenderParams(parseQueryString(query));
         const auto dataset = s.registry.find(job.params.dataset);
+        refuseWhatVotsCannotDraw(*dataset, job.params); // 409 before any work
         job.volume = dataset->volume;
-        job.valueRange = dataset->range;
+        // A .vots dataset's window comes from the Vots' own range, as in `vots render FILE.vots`.
+        if (dataset->kind == DatasetKind::Volume) job.valueRange = dataset->range;
         // Checked before a possibly long fit: without a context the answer is 503 either way.
         if (!s.renderQueue || !s.renderQueue->hasContext())
             throw HttpError(503, s.renderQueue ? "rendering is unavailable: " + s.renderQueue->contextError()
                                                : "rendering is disabled");
         std::string drawnFrom; // the fit key, or for reference frames the volume
-        if (job.params.mode == render::RenderMode::Reference) {
+        if (dataset->kind == DatasetKind::Vots) {
+            job.space = dataset->space;
+            drawnFrom = dataset->name + "_vots"; // the file's one Vot-Space, loaded once
+        } else if (job.params.mode == render::RenderMode::Reference) {
             drawnFrom = dataset->name + "_v" + std::to_string(dataset->contentCrc);
         } else {
             const FitKey key = fitKeyFor(*dataset, job.params.eps, job.params.degree);

@@ -58,6 +58,11 @@ void prepareDataset(Server::Impl& s, const std::string& name);
 
 /// Resolved eps for a dataset, or HttpError 400 when it comes out 0 (a constant volume with "N%").
 float resolveEps(const Dataset& dataset, const EpsSpec& eps);
+/// HttpError 409 for a /render a .vots dataset cannot draw: reference mode (it has no grid) or an eps
+/// other than the file's (that would be a refit, and it has no volume).
+void refuseWhatVotsCannotDraw(const Dataset& dataset, const RenderParams& params);
+/// HttpError 409 for a fit (POST /api/fit) of a .vots dataset: it has no volume to fit.
+void refuseFitOfVots(const Dataset& dataset);
 /// The key of a uniform-eps fit of the dataset (no focus).
 FitKey fitKeyFor(const Dataset& dataset, const EpsSpec& eps, int degree);
 

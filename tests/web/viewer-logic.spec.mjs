@@ -18,6 +18,7 @@ const { epsBounds, epsLabel, epsToSlider, sliderToEps, SLIDER_STEPS } = await lo
 const { initialView } = await load('view.js');
 const access = await load('access.js');
 const { edgeLabels } = await load('orientation.js');
+const kind = await load('kind.js');
 fs.rmSync(copy, { recursive: true, force: true });
 
 const CT = {
@@ -142,4 +143,26 @@ test('edge labels follow the six views of the contract, and none without orienta
   assert.deepEqual(at(0, -90), { left: 'R', right: 'L', top: 'A', bottom: 'P' }); // inferior
   assert.equal(at(45, 0).right, 'LP'); // oblique: two letters
   assert.equal(edgeLabels({ az: 0, el: 0 }, null), null);
+});
+
+test('a .vots dataset keeps the view at its own eps and off reference mode, and says why in tooltips', () => {
+  const VOTS = { ...MR, name: 'fitted', kind: 'vots', eps: 7.65, defaultEps: 7.65 };
+  const view = { dataset: 'fitted', eps: 2, mode: 'reference' };
+  kind.fitViewToDataset(view, VOTS);
+  assert.deepEqual(view, { dataset: 'fitted', eps: 7.65, mode: 'mip' });
+  const volumeView = { dataset: 'head', eps: 2, mode: 'reference' };
+  kind.fitViewToDataset(volumeView, { ...MR, kind: 'volume' });
+  assert.deepEqual(volumeView, { dataset: 'head', eps: 2, mode: 'reference' });
+
+  const reference = { disabled: false, title: '' };
+  const el = { epsSlider: { disabled: false, title: '' }, mode: { title: '', querySelector: () => reference } };
+  kind.syncKindLimits(el, VOTS);
+  assert.equal(el.epsSlider.disabled, true);
+  assert.equal(reference.disabled, true);
+  assert.match(el.epsSlider.title, /refit/);
+  assert.match(reference.title, /grid/);
+  kind.syncKindLimits(el, { ...MR, kind: 'volume' });
+  assert.equal(el.epsSlider.disabled, false);
+  assert.equal(reference.disabled, false);
+  assert.equal(el.epsSlider.title, '');
 });

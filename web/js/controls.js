@@ -2,6 +2,7 @@
 import { viewName } from './camera.js';
 import { epsLabel, epsToSlider } from './eps.js';
 import { fmtExact, fmtValue } from './format.js';
+import { syncKindLimits } from './kind.js';
 
 const PRESET_LABELS = { bone: 'Bone', soft: 'Soft tissue', full: 'Full range' };
 
@@ -55,6 +56,7 @@ export function syncControls(el, ds, view) {
   el.width.value = fmtExact(view.window.width);
   el.epsSlider.value = String(epsToSlider(ds, view.eps));
   el.epsValue.textContent = epsLabel(ds, view.eps);
+  syncKindLimits(el, ds);
   el.projection.textContent = view.cam.proj === 'persp' ? 'Perspective' : 'Orthographic';
   el.projection.setAttribute('aria-pressed', String(view.cam.proj === 'persp'));
   el.projection.dataset.value = view.cam.proj;

@@ -10,6 +10,7 @@ import { fmtCount, fmtSeconds } from './format.js';
 import { createFrames } from './frames.js';
 import { createHashWriter, formatHash, parseHash } from './hash.js';
 import { attachInput } from './input.js';
+import { fitViewToDataset } from './kind.js';
 import { edgeLabels } from './orientation.js';
 import { statusLine } from './status.js';
 import { homeCamera, initialView } from './view.js';
@@ -121,6 +122,7 @@ function ensureFitted() {
 function applyHash() {
   const { view: linked, problems } = parseHash(location.hash, datasets, view);
   Object.assign(view, linked);
+  fitViewToDataset(view, currentDataset()); // a link cannot ask a .vots dataset for what it cannot draw
   if (problems.length) banner.show(problems.join(' '), 'link');
   else banner.clear('link');
 }
@@ -162,6 +164,7 @@ el.dataset.addEventListener('change', () => {
   view.cam = homeCamera(view.cam);
   view.window = { level: Number(ds.window.level), width: Number(ds.window.width) };
   view.eps = defaultEpsOf(ds);
+  fitViewToDataset(view, ds);
   fillPresets(el.preset, ds);
   banner.clear('link');
   frames.useEps(null);

@@ -1,0 +1,31 @@
+// What a dataset's kind allows: a .vots dataset ("kind": "vots") is drawn from its file alone. No DOM lookups.
+
+export function isVotsDataset(ds) {
+  return ds?.kind === 'vots';
+}
+
+export const VOTS_EPS_REASON =
+  'This dataset is a Vot-Space file fitted at one error bound; another ε needs a refit of its volume, which the server does not have.';
+export const VOTS_REFERENCE_REASON =
+  'This dataset is a Vot-Space file: the reference ray caster needs the volume\'s grid, which the server does not have.';
+
+// A view the dataset can draw: a .vots dataset at its own eps, never in reference mode (the server answers 409).
+export function fitViewToDataset(view, ds) {
+  if (!isVotsDataset(ds)) return;
+  const eps = Number(ds.eps);
+  if (eps > 0) view.eps = eps;
+  if (view.mode === 'reference') view.mode = 'mip';
+}
+
+// Disables the eps slider and the reference mode for a .vots dataset, saying why in their tooltips.
+export function syncKindLimits(el, ds) {
+  const vots = isVotsDataset(ds);
+  el.epsSlider.disabled = vots;
+  el.epsSlider.title = vots ? VOTS_EPS_REASON : '';
+  const reference = el.mode.querySelector('option[value="reference"]');
+  if (reference) {
+    reference.disabled = vots;
+    reference.title = vots ? VOTS_REFERENCE_REASON : '';
+  }
+  el.mode.title = vots ? VOTS_REFERENCE_REASON : '';
+}
