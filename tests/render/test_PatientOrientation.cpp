@@ -5,6 +5,7 @@
 
 #include "OrientationPhantom.h"
 #include "TempDir.h"
+#include "dicom/DicomSeriesWriter.h"
 
 #include "vots/fit/Fitter.h"
 #include "vots/fit/VolumeLoad.h"
@@ -30,8 +31,27 @@ struct Writer {
     const char* extension;
 };
 
+// A DICOM series (GDCM's writer): rows along patientAxes[0], columns along [1], slices along [2],
+// which is the IOP normal or its opposite.
+void writePhantomDicom(const test::PhantomGrid& grid, const std::string& folder) {
+    fit::Volume volume;
+    volume.dims = grid.dims;
+    volume.spacing = grid.spacing;
+    volume.values = grid.values;
+    const fit::PatientAxes& a = grid.patientAxes;
+    test::DicomWriteOptions options;
+    options.orientation = {a[0][0], a[0][1], a[0][2], a[1][0], a[1][1], a[1][2]};
+    options.origin = grid.origin;
+    const std::array<double, 3> normal{a[0][1] * a[1][2] - a[0][2] * a[1][1],
+                                       a[0][2] * a[1][0] - a[0][0] * a[1][2],
+                                       a[0][0] * a[1][1] - a[0][1] * a[1][0]};
+    options.slicesAlongNormal = normal[0] * a[2][0] + normal[1] * a[2][1] + normal[2] * a[2][2] > 0;
+    test::writeDicomSeries(volume, folder, options);
+}
+
 const std::vector<Writer>& writers() {
     static const std::vector<Writer> all{
+        {"dicom", writePhantomDicom, ""},
         {"nifti", test::writePhantomNifti, ".nii"},
         {"nrrd_lps", [](const auto& g, const auto& p) { test::writePhantomNrrd(g, p, false); }, ".nrrd"},
         {"nrrd_ras", [](const auto& g, const auto& p) { test::writePhantomNrrd(g, p, true); }, ".nrrd"}};
