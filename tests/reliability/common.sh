@@ -35,3 +35,15 @@ stop_server() {
 rss_kib() {
     sed -n 's/^VmRSS:[[:space:]]*\([0-9]*\) kB/\1/p' "/proc/$1/status"
 }
+
+# serve_hostile_load_volumes WORK: starts `vots serve` on HeadMR and the embryo from $SHARED_DATA (links in
+# WORK/data, cache in WORK/cache, no warm-up), as the hostile and soak runs load it.
+serve_hostile_load_volumes() {
+    local work=$1
+    mkdir -p "$work/data"
+    for name in HeadMRVolume_48x62x42_uint8 embryo_256x256x256_uint8; do
+        ln -s "$(realpath "$SHARED_DATA/$name.nrrd")" "$work/data/"
+    done
+    start_server "$work/server.log" --data "$work/data" --cache-dir "$work/cache" --no-warm-up
+    echo "server pid $SERVER_PID, $(grep -m1 renderer "$work/server.log" | sed 's/^ *//')"
+}

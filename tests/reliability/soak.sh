@@ -12,12 +12,7 @@ build_rel
 
 work=$(mktemp -d)
 trap 'stop_server; rm -rf "$work"' EXIT
-mkdir -p "$work/data"
-for name in HeadMRVolume_48x62x42_uint8 embryo_256x256x256_uint8; do
-    ln -s "$(realpath "$SHARED_DATA/$name.nrrd")" "$work/data/"
-done
-start_server "$work/server.log" --data "$work/data" --cache-dir "$work/cache" --no-warm-up
-echo "server pid $SERVER_PID, $(grep -m1 renderer "$work/server.log" | sed 's/^ *//')"
+serve_hostile_load_volumes "$work"
 status=0
 python3 tests/reliability/hostile_load.py soak --port "$SERVER_PORT" --pid "$SERVER_PID" --seconds 1800 \
     --idle 200 --watchers 50 --renderers 4 "$@" || status=$?
