@@ -1,4 +1,5 @@
 // DICOM folders through the real `vots` binary: fit, verify and render a series; --series; bad series.
+#include "CliExpect.h"
 #include "CliRunner.h"
 #include "SampleVolume.h"
 #include "TempDir.h"
@@ -20,19 +21,6 @@ fit::Volume ball() {
                             return r < 7 ? 900.0 - 20.0 * r : -1000.0;
                         },
                         {0.8, 0.8, 1.2});
-}
-
-/// As test_CliRejects: exit 2, one "vots: error:" line containing `needle`, no new file in `out`.
-void expectBadInput(const TempDir& out, const std::vector<std::string>& args, const std::string& needle) {
-    const auto before = std::distance(std::filesystem::directory_iterator(out.path()), {});
-    const CliResult r = runVots(args);
-    const std::string what = describe(args, r);
-    EXPECT_EQ(r.exitCode, 2) << what;
-    const auto lines = r.errLines();
-    ASSERT_EQ(lines.size(), 1u) << what;
-    EXPECT_EQ(lines[0].rfind("vots: error: ", 0), 0u) << what;
-    EXPECT_NE(lines[0].find(needle), std::string::npos) << "expected '" << needle << "' in: " << what;
-    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(out.path()), {}), before) << what;
 }
 
 TEST(CliDicom, FitVerifyAndRenderAFolder) {

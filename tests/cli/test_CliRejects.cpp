@@ -1,4 +1,5 @@
 // Bad input through the real `vots` binary: exit 2, one "vots: error:" line, and no output file.
+#include "CliExpect.h"
 #include "CliRunner.h"
 #include "TempDir.h"
 #include "VotSpaceBytes.h"
@@ -13,21 +14,6 @@ namespace vots::test {
 namespace {
 
 const std::string HEAD = std::string(VOTS_SHARED_DATA_DIR) + "/HeadMRVolume_48x62x42_uint8.nrrd";
-
-/// A bad command: exit code 2, exactly one stderr line that starts "vots: error:" and contains
-/// `needle`, nothing on stdout, and the folder unchanged (no output, no temp files).
-void expectBadInput(const TempDir& dir, const std::vector<std::string>& args, const std::string& needle) {
-    const auto before = std::distance(std::filesystem::directory_iterator(dir.path()), {});
-    const CliResult r = runVots(args);
-    const std::string what = describe(args, r);
-    EXPECT_EQ(r.exitCode, 2) << what;
-    const auto lines = r.errLines();
-    ASSERT_EQ(lines.size(), 1u) << what;
-    EXPECT_EQ(lines[0].rfind("vots: error: ", 0), 0u) << what;
-    EXPECT_NE(lines[0].find(needle), std::string::npos) << "expected '" << needle << "' in: " << what;
-    EXPECT_EQ(r.out, "") << what;
-    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), before) << what;
-}
 
 std::vector<std::string> fitWith(const std::string& out, std::vector<std::string> extra,
                                  const std::string& input = HEAD) {
