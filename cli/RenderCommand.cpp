@@ -45,6 +45,8 @@ struct RenderArgs {
     std::string view;
     std::string size = sizeText(render::DEFAULT_FRAME_SIDE, render::DEFAULT_FRAME_SIDE);
     std::string mode{render::renderModeName(render::FrameRequest{}.mode)};
+    std::string renderer; // empty: what the mode implies (vots; grid for reference)
+    std::string slab;     // empty: whole rays
     std::string window;
     std::string colormap{render::colormapName(render::FrameRequest{}.colormap)};
     std::string eps = formatNumber(fit::DEFAULT_EPS_PERCENT) + "%";
@@ -85,7 +87,9 @@ CheckedArgs checkArgs(const RenderArgs& a) {
         f.camera = render::parseCamera(a.cam);
     }
     std::tie(f.width, f.height) = parseSize(a.size);
-    f.mode = render::parseRenderMode(a.mode);
+    render::applyModeAndRenderer(
+        f, a.mode, a.renderer.empty() ? std::nullopt : std::optional<std::string_view>(a.renderer));
+    if (!a.slab.empty()) f.slab = render::parseSlab(a.slab);
     f.colormap = render::parseColormap(a.colormap);
     if (!a.window.empty()) f.window = render::parseWindow(a.window, f.colormap);
     c.eps = parseEps(a.eps, "--eps");
@@ -136,21 +140,23 @@ void runRender(const RenderArgs& a) {
         } else if (c.raw) {
             throw fit::InputError("--raw-* describe a volume; a .vots input has one only with --volume");
         }
-        if (c.frame.mode == render::RenderMode::Reference && !volume)
-            throw fit::InputError("--mode reference on a .vots file needs the volume: add --volume PATH");
+        if (c.frame.renderer == render::RendererKind::Grid && !volume)
+            throw fit::InputError(
+                "--renderer grid (or --mode reference) on a .vots file needs the volume: add "
+                "--volume PATH");
     } else {
         if (!a.volume.empty())
             throw fit::InputError("--volume is only for .vots input; INPUT is already a volume");
-        // The fit's estimate also for --mode reference: it covers the samples, their texture and the read.
+        // The fit's estimate also for the grid renderer: it covers the samples, their texture and the read.
         checkVolumeFitsBudget(a.input, c.raw, a.memoryBudget, a.series);
         volume = fit::loadVolume(a.input, c.raw, fit::SampleStorage::Float, a.series);
-        if (c.frame.mode != render::RenderMode::Reference) space = fitForRender(*volume, a, c);
+        if (c.frame.renderer != render::RendererKind::Grid) space = fitForRender(*volume, a, c);
     }
 
     const auto context = render::EglContext::createOrThrow();
     std::optional<render::GridRenderer> grid;
     std::optional<render::VotRenderer> vots;
-    if (c.frame.mode == render::RenderMode::Reference) {
+    if (c.frame.renderer == render::RendererKind::Grid) {
         grid.emplace().upload(*volume);
     } else {
         vots.emplace();
@@ -178,8 +184,13 @@ void addRenderCommand(CLI::App& app) {
                     "Camera, e.g. az=30,el=20,zoom=1,pan=0:0,proj=ortho,fov=30 or a view name");
     cmd->add_option("--view", args->view, "anterior|posterior|left|right|superior|inferior");
     cmd->add_option("--size", args->size, "Image size WxH, each 1..8192")->capture_default_str();
-    cmd->add_option("--mode", args->mode, "mip, density or reference (grid ray caster)")
+    cmd->add_option("--mode", args->mode,
+                    "mip, minip, aip (average), density (Vot sizes) or reference (= mip --renderer grid)")
         ->capture_default_str();
+    cmd->add_option("--renderer", args->renderer,
+                    "vots (analytic, default) or grid (the reference ray caster over the samples)");
+    cmd->add_option("--slab", args->slab,
+                    "OFFSET,THICKNESS in mm: only the slab that far from the volume centre along the view");
     cmd->add_option("--window", args->window, "level,width in data units (default: full value range)");
     cmd->add_option("--colormap", args->colormap, "grey, bone, hot or viridis")->capture_default_str();
     cmd->add_option("--eps", args->eps, "Fit error bound for volume input: data units or percent (2%)")
@@ -191,7 +202,7 @@ void addRenderCommand(CLI::App& app) {
                     "Fit certification for volume input: cells (also between samples) or samples")
         ->check(CLI::IsMember({"cells", "samples"}))
         ->capture_default_str();
-    cmd->add_option("--volume", args->volume, "The volume of a .vots input (for --mode reference)");
+    cmd->add_option("--volume", args->volume, "The volume of a .vots input (for --renderer grid)");
     addMemoryBudgetOption(*cmd, args->memoryBudget);
     addSeriesOption(*cmd, args->series);
     addRawOptions(*cmd, args->raw);

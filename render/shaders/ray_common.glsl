@@ -28,3 +28,20 @@ vec2 clipRayToBox(vec3 origin, vec3 dir, vec3 lo, vec3 hi) {
 }
 
 const float NEG_INF = uintBitsToFloat(0xff800000u);
+
+// The thick slab (Slab.h): a point x (index units) counts when uSlabRange.x <= dot(uSlabPlane.xyz, x) +
+// uSlabPlane.w <= uSlabRange.y; uSlabOn == 0: every point counts.
+uniform int uSlabOn;
+uniform vec4 uSlabPlane;
+uniform vec2 uSlabRange;
+
+// The part [tIn, tOut] of `span` along origin + t dir that lies in the slab (all of it without one);
+// empty (x > y) when the ray never enters it. The end points are the exact plane crossings.
+vec2 clipRayToSlab(vec3 origin, vec3 dir, vec2 span) {
+    if (uSlabOn == 0) return span;
+    float s0 = dot(uSlabPlane.xyz, origin) + uSlabPlane.w; // signed distance at t = 0
+    float ds = dot(uSlabPlane.xyz, dir);                   // its change per unit t
+    if (abs(ds) < 1e-30) return s0 >= uSlabRange.x && s0 <= uSlabRange.y ? span : vec2(1.0, 0.0);
+    float ta = (uSlabRange.x - s0) / ds, tb = (uSlabRange.y - s0) / ds;
+    return vec2(max(span.x, min(ta, tb)), min(span.y, max(ta, tb)));
+}

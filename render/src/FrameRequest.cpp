@@ -4,6 +4,8 @@
 #include "vots/render/GridRenderer.h"
 #include "vots/render/VotRenderer.h"
 
+#include "vots/fit/Error.h"
+
 #include <charconv>
 #include <stdexcept>
 
@@ -36,6 +38,20 @@ SizeParse parseFrameSize(std::string_view text, int maxSide) {
     return size;
 }
 
+void applyModeAndRenderer(FrameRequest& frame, std::optional<std::string_view> mode,
+                          std::optional<std::string_view> renderer) {
+    ModeName name;
+    if (mode) name = parseModeName(*mode);
+    frame.mode = name.mode;
+    frame.renderer =
+        renderer ? parseRendererName(*renderer) : name.impliedRenderer.value_or(RendererKind::Vots);
+    if (name.impliedRenderer && frame.renderer != *name.impliedRenderer)
+        throw fit::InputError("mode 'reference' is mip on the grid renderer; it cannot take renderer '" +
+                              std::string(*renderer) + "'");
+    if (frame.mode == RenderMode::Density && frame.renderer == RendererKind::Grid)
+        throw fit::InputError("mode 'density' shows Vot sizes: it needs renderer 'vots'");
+}
+
 DisplaySettings displayFor(const FrameRequest& frame, std::array<float, 2> fullRange) {
     if (frame.window) return *frame.window;
     return windowForRange(fullRange[0], fullRange[1], frame.colormap);
@@ -43,12 +59,12 @@ DisplaySettings displayFor(const FrameRequest& frame, std::array<float, 2> fullR
 
 RgbaImage renderFrame(const FrameRequest& frame, VotRenderer* vots, GridRenderer* grid,
                       std::optional<std::array<float, 2>> volumeRange) {
-    Renderer* const renderer = frame.mode == RenderMode::Reference ? static_cast<Renderer*>(grid) : vots;
-    if (!renderer) throw std::logic_error("renderFrame: no renderer for this frame's mode");
+    Renderer* const renderer = frame.renderer == RendererKind::Grid ? static_cast<Renderer*>(grid) : vots;
+    if (!renderer) throw std::logic_error("renderFrame: no renderer for this frame");
     std::array<float, 2> range = volumeRange ? *volumeRange : renderer->valueRange();
     if (frame.mode == RenderMode::Density) range = vots->densityRange();
     return renderer->renderRgba(frame.camera, frame.width, frame.height, displayFor(frame, range),
-                                frame.mode);
+                                RenderOptions{frame.mode, frame.slab});
 }
 
 } // namespace vots::render

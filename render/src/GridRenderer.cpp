@@ -23,24 +23,24 @@ namespace {
 
 // One 3D texture's share of the z range. Textures overlap by a plane beyond the range they sample on
 // either side, so every sample they take interpolates between planes they hold.
-struct Slab {
+struct Chunk {
     GlTexture texture;
     int firstPlane = 0; // the grid z of the texture's plane 0
     int planes = 0;
-    float zLo = -INFINITY, zHi = INFINITY; // the samples it takes; all when there is one slab
+    float zLo = -INFINITY, zHi = INFINITY; // the samples it takes; all when there is one chunk
 };
 
 // A texture of more bytes than this is split too: llvmpipe and drivers fail on huge textures well
-// before they run out of memory, and a frame's slabs are drawn one after another anyway.
-constexpr std::size_t MAX_SLAB_BYTES = std::size_t{1} << 30;
+// before they run out of memory, and a frame's chunks are drawn one after another anyway.
+constexpr std::size_t MAX_CHUNK_BYTES = std::size_t{1} << 30;
 
 } // namespace
 
 struct GridRenderer::Impl {
     GlProgram program = buildProgram(shaders::FULLSCREEN_VERT, shaders::GRID_MIP_FRAG, "grid_mip");
     GlVertexArray vertexArray = createVertexArray();
-    std::vector<Slab> slabs;
-    int slabPlaneLimit = 0; // 0: from the GL limit and MAX_SLAB_BYTES
+    std::vector<Chunk> chunks;
+    int chunkPlaneLimit = 0; // 0: from the GL limit and MAX_CHUNK_BYTES
     FloatTarget target;
     DisplayPass display;
     bool hasData = false;
@@ -68,21 +68,21 @@ struct GridRenderer::Impl {
         glProgramUniform1f(p, glGetUniformLocation(p, "uStep"), step);
         glProgramUniform1i(p, glGetUniformLocation(p, "uVolume"), 0);
         glBindVertexArray(vertexArray.get());
-        if (slabs.size() > 1) { // each slab's max of its samples; the frame is the max of those
+        if (chunks.size() > 1) { // each chunk's max of its samples; the frame is the max of those
             glEnable(GL_BLEND);
             glBlendEquation(GL_MAX);
         }
-        for (const Slab& slab : slabs) {
-            glProgramUniform3f(p, glGetUniformLocation(p, "uSlabOrigin"), 0.f, 0.f, float(slab.firstPlane));
-            glProgramUniform3f(p, glGetUniformLocation(p, "uSlabDims"), float(bounds.dims[0]),
-                               float(bounds.dims[1]), float(slab.planes));
-            glProgramUniform2f(p, glGetUniformLocation(p, "uSlabZ"), slabs.size() > 1 ? slab.zLo : -2e30f,
-                               slab.zHi);
-            glBindTextureUnit(0, slab.texture.get());
+        for (const Chunk& chunk : chunks) {
+            glProgramUniform3f(p, glGetUniformLocation(p, "uChunkOrigin"), 0.f, 0.f, float(chunk.firstPlane));
+            glProgramUniform3f(p, glGetUniformLocation(p, "uChunkDims"), float(bounds.dims[0]),
+                               float(bounds.dims[1]), float(chunk.planes));
+            glProgramUniform2f(p, glGetUniformLocation(p, "uChunkZ"), chunks.size() > 1 ? chunk.zLo : -2e30f,
+                               chunk.zHi);
+            glBindTextureUnit(0, chunk.texture.get());
             glDrawArrays(GL_TRIANGLES, 0, 3);
         }
         glDisable(GL_BLEND);
-        stats.batches = static_cast<int>(slabs.size());
+        stats.batches = static_cast<int>(chunks.size());
         glFinish();
         stats.gpuMs = msSince(t0);
         checkGl("GridRenderer draw");
@@ -105,54 +105,54 @@ void GridRenderer::upload(const fit::Volume& volume) {
     const std::size_t planeSamples =
         static_cast<std::size_t>(volume.dims[0]) * static_cast<std::size_t>(volume.dims[1]);
     int planeLimit =
-        d.slabPlaneLimit > 0
-            ? d.slabPlaneLimit
+        d.chunkPlaneLimit > 0
+            ? d.chunkPlaneLimit
             : static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(maxSide),
-                                                     MAX_SLAB_BYTES / (planeSamples * sizeof(float))));
+                                                     MAX_CHUNK_BYTES / (planeSamples * sizeof(float))));
     if (planeLimit < 4)
         throw fit::InputError("volume planes too large for the reference renderer's textures");
-    // Slab k samples z in [k P, (k + 1) P] and holds the planes one beyond on either side.
+    // Chunk k samples z in [k P, (k + 1) P] and holds the planes one beyond on either side.
     const int depth = volume.dims[2];
     const int owned = planeLimit - 3;
-    std::vector<Slab> slabs;
+    std::vector<Chunk> chunks;
     if (depth <= planeLimit) {
-        slabs.push_back(Slab{{}, 0, depth});
+        chunks.push_back(Chunk{{}, 0, depth});
     } else {
         for (int z = 0; z < depth - 1; z += owned) {
-            Slab slab;
-            slab.firstPlane = std::max(0, z - 1);
+            Chunk chunk;
+            chunk.firstPlane = std::max(0, z - 1);
             const int lastPlane = std::min(depth - 1, z + owned + 1);
-            slab.planes = lastPlane - slab.firstPlane + 1;
-            slab.zLo = float(z);
-            slab.zHi = float(std::min(depth - 1, z + owned));
-            slabs.push_back(std::move(slab));
+            chunk.planes = lastPlane - chunk.firstPlane + 1;
+            chunk.zLo = float(z);
+            chunk.zHi = float(std::min(depth - 1, z + owned));
+            chunks.push_back(std::move(chunk));
         }
     }
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    for (Slab& slab : slabs) {
-        slab.texture = createTexture(GL_TEXTURE_3D);
-        const GLuint t = slab.texture.get();
-        glTextureStorage3D(t, 1, GL_R32F, volume.dims[0], volume.dims[1], slab.planes);
-        glTextureSubImage3D(t, 0, 0, 0, 0, volume.dims[0], volume.dims[1], slab.planes, GL_RED, GL_FLOAT,
-                            volume.values.data() + static_cast<std::size_t>(slab.firstPlane) * planeSamples);
+    for (Chunk& chunk : chunks) {
+        chunk.texture = createTexture(GL_TEXTURE_3D);
+        const GLuint t = chunk.texture.get();
+        glTextureStorage3D(t, 1, GL_R32F, volume.dims[0], volume.dims[1], chunk.planes);
+        glTextureSubImage3D(t, 0, 0, 0, 0, volume.dims[0], volume.dims[1], chunk.planes, GL_RED, GL_FLOAT,
+                            volume.values.data() + static_cast<std::size_t>(chunk.firstPlane) * planeSamples);
         glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
         glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
         for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
             glTextureParameteri(t, wrap, GL_CLAMP_TO_EDGE);
         checkGl("GridRenderer upload");
     }
-    d.slabs = std::move(slabs);
+    d.chunks = std::move(chunks);
     d.bounds = sceneBounds(volume);
     d.valueRange = volume.valueRange();
     d.hasData = true;
 }
 
-void GridRenderer::setSlabPlaneLimit(int planes) {
-    if (planes != 0 && planes < 4) throw fit::InputError("slab plane limit must be 0 or at least 4");
-    mImpl->slabPlaneLimit = planes;
+void GridRenderer::setChunkPlaneLimit(int planes) {
+    if (planes != 0 && planes < 4) throw fit::InputError("chunk plane limit must be 0 or at least 4");
+    mImpl->chunkPlaneLimit = planes;
 }
-int GridRenderer::slabCount() const {
-    return static_cast<int>(mImpl->slabs.size());
+int GridRenderer::chunkCount() const {
+    return static_cast<int>(mImpl->chunks.size());
 }
 
 bool GridRenderer::hasData() const {
@@ -177,21 +177,25 @@ const FrameStats& GridRenderer::lastFrameStats() const {
 }
 
 namespace {
-void checkGridMode(RenderMode mode) {
-    if (mode == RenderMode::Density)
-        throw fit::InputError("GridRenderer draws the grid's MIP (reference); density needs a Vot-Space");
+void checkGridMode(const RenderOptions& options) {
+    if (options.mode == RenderMode::Density)
+        throw fit::InputError("the grid renderer draws mip, minip and aip; density needs a Vot-Space");
+    if (options.mode != RenderMode::Mip)
+        throw fit::InputError("the grid renderer does not draw " + std::string(renderModeName(options.mode)) +
+                              " yet");
+    if (options.slab) throw fit::InputError("the grid renderer does not clip to a slab yet");
 }
 } // namespace
 
-FloatImage GridRenderer::render(const Camera& camera, int width, int height, RenderMode mode) {
-    checkGridMode(mode);
+FloatImage GridRenderer::render(const Camera& camera, int width, int height, const RenderOptions& options) {
+    checkGridMode(options);
     mImpl->draw(camera, width, height);
     return readFloatFrame(mImpl->target, mImpl->stats);
 }
 
 RgbaImage GridRenderer::renderRgba(const Camera& camera, int width, int height,
-                                   const DisplaySettings& display, RenderMode mode) {
-    checkGridMode(mode);
+                                   const DisplaySettings& display, const RenderOptions& options) {
+    checkGridMode(options);
     mImpl->draw(camera, width, height);
     return readDisplayedFrame(mImpl->display, mImpl->target, display, mImpl->stats);
 }

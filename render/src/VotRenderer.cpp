@@ -44,10 +44,13 @@ struct VotRenderer::Impl {
         return strategy == Strategy::Walk && walk.walkable() ? Strategy::Walk : Strategy::Raster;
     }
 
-    void draw(const Camera& camera, int width, int height, RenderMode mode) {
-        if (mode == RenderMode::Reference)
-            throw fit::InputError(
-                "VotRenderer draws mip or density; reference needs the volume (GridRenderer)");
+    void draw(const Camera& camera, int width, int height, const RenderOptions& options) {
+        const RenderMode mode = options.mode;
+        if (mode == RenderMode::MinIp || mode == RenderMode::Aip)
+            throw fit::InputError("the Vot renderer does not draw " + std::string(renderModeName(mode)) +
+                                  " yet; use renderer=grid");
+        if (options.slab)
+            throw fit::InputError("the Vot renderer does not clip to a slab yet; use renderer=grid");
         if (!hasData) throw RenderError("VotRenderer: render() before upload()");
         const CameraMatrices m = computeCameraMatrices(camera, bounds, width, height);
         const auto t0 = FrameClock::now();
@@ -175,14 +178,14 @@ const FrameStats& VotRenderer::lastFrameStats() const {
     return mImpl->stats;
 }
 
-FloatImage VotRenderer::render(const Camera& camera, int width, int height, RenderMode mode) {
-    mImpl->draw(camera, width, height, mode);
+FloatImage VotRenderer::render(const Camera& camera, int width, int height, const RenderOptions& options) {
+    mImpl->draw(camera, width, height, options);
     return readFloatFrame(mImpl->target, mImpl->stats);
 }
 
 RgbaImage VotRenderer::renderRgba(const Camera& camera, int width, int height, const DisplaySettings& display,
-                                  RenderMode mode) {
-    mImpl->draw(camera, width, height, mode);
+                                  const RenderOptions& options) {
+    mImpl->draw(camera, width, height, options);
     return readDisplayedFrame(mImpl->display, mImpl->target, display, mImpl->stats);
 }
 

@@ -79,10 +79,10 @@ float resolveEps(const Dataset& dataset, const EpsSpec& eps) {
 
 void refuseWhatVotsCannotDraw(const Dataset& dataset, const RenderParams& params) {
     if (dataset.kind != DatasetKind::Vots) return;
-    if (params.mode == render::RenderMode::Reference)
+    if (params.renderer == render::RendererKind::Grid)
         throw HttpError(409, "dataset '" + dataset.name +
-                                 "' is a Vot-Space file: mode=reference needs the volume's grid, which it "
-                                 "does not have; use mip or density");
+                                 "' is a Vot-Space file: renderer=grid (and mode=reference) needs the "
+                                 "volume's grid, which it does not have; use renderer=vots");
     if (!params.epsGiven) return;
     // The viewer sends the eps /api/datasets gave it; a float that went through JSON and back may differ
     // in its last bit.

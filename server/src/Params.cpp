@@ -124,8 +124,8 @@ std::pair<int, int> parseSize(std::string_view text) {
 }
 
 RenderParams parseRenderParams(const QueryParams& query) {
-    static const std::set<std::string> KNOWN{"dataset", "cam",    "size",     "eps",   "degree",
-                                             "mode",    "window", "colormap", "client"};
+    static const std::set<std::string> KNOWN{"dataset",  "cam",  "size",   "eps",      "degree", "mode",
+                                             "renderer", "slab", "window", "colormap", "client"};
     std::set<std::string> seen;
     for (const auto& [key, value] : query) {
         if (!key.empty() && key[0] == '_') continue; // cache busters such as _=1699999999
@@ -152,8 +152,12 @@ RenderParams parseRenderParams(const QueryParams& query) {
         p.epsGiven = true;
     }
     if (const auto degree = get("degree")) p.degree = parseDegree(*degree);
-    if (const auto mode = get("mode"))
-        p.mode = parseWith("mode", [&] { return render::parseRenderMode(*mode); });
+    const auto mode = get("mode"), renderer = get("renderer");
+    parseWith(renderer ? "mode/renderer" : "mode", [&] {
+        render::applyModeAndRenderer(p, mode, renderer);
+        return 0;
+    });
+    if (const auto slab = get("slab")) p.slab = parseWith("slab", [&] { return render::parseSlab(*slab); });
     if (const auto map = get("colormap"))
         p.colormap = parseWith("colormap", [&] { return render::parseColormap(*map); });
     if (const auto window = get("window"))

@@ -130,7 +130,7 @@ RenderResult RenderQueue::draw(Renderers& r, const RenderJob& job) {
     RenderResult result;
     const ForegroundMark mark(mForeground, Foreground::Frame); // warm-ups and cache files wait meanwhile
     const auto start = std::chrono::steady_clock::now();
-    if (p.mode == render::RenderMode::Reference) {
+    if (p.renderer == render::RendererKind::Grid) {
         if (r.uploadedVolume != job.volume) {
             r.grid->upload(*job.volume);
             r.uploadedVolume = job.volume;

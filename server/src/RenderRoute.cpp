@@ -29,12 +29,13 @@ std::string exactText(float value) {
 }
 
 /// Everything the image depends on: what it is drawn from (the Vot-Space's fit key, or the volume),
-/// camera, size, mode, window and colour map; not the client id.
+/// camera, size, mode, renderer, slab, window and colour map; not the client id.
 std::string frameKeyFor(const std::string& drawnFrom, const RenderParams& p) {
     std::string key = drawnFrom;
     key += '|' + render::formatCamera(p.camera) + '|' + std::to_string(p.width) + 'x' +
            std::to_string(p.height) + '|' + std::string(render::renderModeName(p.mode)) + '|' +
-           std::string(render::colormapName(p.colormap)) + '|';
+           std::string(render::rendererName(p.renderer)) + '|' + (p.slab ? render::formatSlab(*p.slab) : "") +
+           '|' + std::string(render::colormapName(p.colormap)) + '|';
     key += p.window ? exactText(p.window->level) + ',' + exactText(p.window->width) : "auto";
     return key;
 }
@@ -88,7 +89,7 @@ void installRenderRoute(Server::Impl& s) {
         if (dataset->kind == DatasetKind::Vots) {
             job.space = dataset->space;
             drawnFrom = dataset->name + "_vots"; // the file's one Vot-Space, loaded once
-        } else if (job.params.mode == render::RenderMode::Reference) {
+        } else if (job.params.renderer == render::RendererKind::Grid) {
             drawnFrom = dataset->name + "_v" + std::to_string(dataset->contentCrc);
         } else {
             const FitKey key = fitKeyFor(*dataset, job.params.eps, job.params.degree);

@@ -173,5 +173,6 @@ TEST(Images, RejectsBadSizes) {
     EXPECT_THROW(r.render(Camera{}, 0, 10), fit::InputError);
     EXPECT_THROW(r.render(Camera{}, 10, 8193), fit::InputError);
     EXPECT_THROW(parseColormap("jet"), fit::InputError);
-    EXPECT_THROW(r.render(Camera{}, 10, 10, RenderMode::Reference), fit::InputError);
+    EXPECT_THROW(parseModeName("max"), fit::InputError);
+    EXPECT_THROW(parseRendererName("gpu"), fit::InputError);
 }

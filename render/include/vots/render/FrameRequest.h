@@ -7,6 +7,7 @@
 #include "vots/render/DisplaySettings.h"
 #include "vots/render/Image.h"
 #include "vots/render/RenderMode.h"
+#include "vots/render/Slab.h"
 
 #include <array>
 #include <optional>
@@ -31,9 +32,17 @@ struct FrameRequest {
     int width = DEFAULT_FRAME_SIDE;
     int height = DEFAULT_FRAME_SIDE;
     RenderMode mode = RenderMode::Mip;
+    RendererKind renderer = RendererKind::Vots;
+    std::optional<Slab> slab;              // nullopt: whole rays
     std::optional<DisplaySettings> window; // nullopt: the full range (see renderFrame)
     Colormap colormap = Colormap::Grey;
 };
+
+/// Sets mode and renderer from a --mode / mode= text and a --renderer / renderer= text (either may be
+/// absent: mip, vots). "reference" is mip on the grid; a contradicting renderer, or density on the grid,
+/// throws vots::fit::InputError.
+void applyModeAndRenderer(FrameRequest& frame, std::optional<std::string_view> mode,
+                          std::optional<std::string_view> renderer);
 
 /// Why a size text is refused; the callers word the message.
 enum class SizeProblem {
@@ -57,8 +66,8 @@ std::optional<int> parsePlainInt(std::string_view text);
 /// The display window the frame gets: the request's, or one over `fullRange` in its colour map.
 DisplaySettings displayFor(const FrameRequest& frame, std::array<float, 2> fullRange);
 
-/// Draws the frame as RGBA with the renderer its mode needs, which holds the data already: `grid` for
-/// reference, `vots` for mip and density. Without a window the frame shows the full range: of the
+/// Draws the frame as RGBA with the renderer it names, which holds the data already: `grid` for
+/// RendererKind::Grid, else `vots`. Without a window the frame shows the full range: of the
 /// volume's samples (`volumeRange`, where the caller has the volume; else the Vot-Space's values), for
 /// density the Vot renderer's density range.
 RgbaImage renderFrame(const FrameRequest& frame, VotRenderer* vots, GridRenderer* grid,

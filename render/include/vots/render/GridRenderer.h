@@ -26,13 +26,13 @@ public:
     GridRenderer();
     ~GridRenderer() override;
 
-    /// Uploads the samples as 3D textures: one, or slabs of the z range when the depth exceeds the GL
+    /// Uploads the samples as 3D textures: one, or chunks of the z range when the depth exceeds the GL
     /// limit or a texture would pass 1 GiB; throws fit::InputError if x or y exceeds the GL limit.
     void upload(const fit::Volume& volume);
     /// The most z planes one texture holds at the next upload (0: from the GL limit and 1 GiB); for
     /// tests, which split small volumes.
-    void setSlabPlaneLimit(int planes);
-    int slabCount() const;
+    void setChunkPlaneLimit(int planes);
+    int chunkCount() const;
     bool hasData() const override;
     const SceneBounds& bounds() const override;
     std::array<float, 2> valueRange() const override; // min and max sample
@@ -41,11 +41,11 @@ public:
     void setStepVoxels(float step);
     float stepVoxels() const;
 
-    /// RenderMode::Reference (or Mip, the same image: the grid's MIP); Density throws fit::InputError.
+    /// Mip (the grid's reference MIP); Density needs Vots and throws fit::InputError.
     FloatImage render(const Camera& camera, int width, int height,
-                      RenderMode mode = RenderMode::Reference) override;
+                      const RenderOptions& options = RenderMode::Mip) override;
     RgbaImage renderRgba(const Camera& camera, int width, int height, const DisplaySettings& display,
-                         RenderMode mode = RenderMode::Reference) override;
+                         const RenderOptions& options = RenderMode::Mip) override;
     const FrameStats& lastFrameStats() const override;
 
     struct Impl;

@@ -1,18 +1,35 @@
-// What an image shows: Vot MIP, Vot density, or the reference grid ray caster.
+// What an image shows (MIP, MinIP, average, Vot density) and which renderer draws it (Vots or the grid).
 #pragma once
 
+#include <optional>
 #include <string_view>
 
 namespace vots::render {
 
 enum class RenderMode {
-    Mip,      // analytic maximum of each Vot's polynomial along the ray (VotRenderer)
-    Density,  // log2 of the smallest Vot box along the ray, small = dark (VotRenderer)
-    Reference // ray-marched trilinear grid MIP, step <= 0.5 voxel (GridRenderer)
+    Mip,    // maximum along each ray
+    MinIp,  // minimum along each ray; uncovered (background) cells count as the background value
+    Aip,    // average along each ray: the integral over its path in the volume (or slab) / the path length
+    Density // log2 of the smallest Vot box along the ray, small = dark (Vots only)
 };
 
-std::string_view renderModeName(RenderMode mode); // "mip", "density", "reference"
+enum class RendererKind {
+    Vots, // analytic, from the Vot-Space (VotRenderer)
+    Grid  // the reference ray caster over the sampled grid (GridRenderer): the ground truth
+};
+
+std::string_view renderModeName(RenderMode mode); // "mip", "minip", "aip", "density"
+std::string_view rendererName(RendererKind kind); // "vots", "grid"
+
+/// A --mode / mode= text read: a projection, and for "reference" (kept from before the grid renderer
+/// drew every mode) also the renderer it implies, mip on the grid.
+struct ModeName {
+    RenderMode mode = RenderMode::Mip;
+    std::optional<RendererKind> impliedRenderer;
+};
 /// Throws vots::fit::InputError listing the valid names.
-RenderMode parseRenderMode(std::string_view name);
+ModeName parseModeName(std::string_view name);
+/// Throws vots::fit::InputError listing the valid names.
+RendererKind parseRendererName(std::string_view name);
 
 } // namespace vots::render

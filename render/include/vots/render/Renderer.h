@@ -6,6 +6,7 @@
 #include "vots/render/FrameStats.h"
 #include "vots/render/Image.h"
 #include "vots/render/RenderMode.h"
+#include "vots/render/Slab.h"
 
 #include <array>
 
@@ -22,10 +23,10 @@ public:
     /// The range of the values the renderer draws (its default display window).
     virtual std::array<float, 2> valueRange() const = 0;
 
-    virtual FloatImage render(const Camera& camera, int width, int height, RenderMode mode) = 0;
+    virtual FloatImage render(const Camera& camera, int width, int height, const RenderOptions& options) = 0;
     /// render() followed by the display pass on the GPU; only RGBA8 is read back.
     virtual RgbaImage renderRgba(const Camera& camera, int width, int height, const DisplaySettings& display,
-                                 RenderMode mode) = 0;
+                                 const RenderOptions& options) = 0;
     /// Times and counts of the last frame.
     virtual const FrameStats& lastFrameStats() const = 0;
 

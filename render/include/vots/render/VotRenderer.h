@@ -73,12 +73,12 @@ public:
     /// [0, log2 of the largest box's geometric-mean edge in cells] (default density window).
     std::array<float, 2> densityRange() const;
 
-    /// RenderMode::Mip or RenderMode::Density (Reference throws fit::InputError).
+    /// RenderMode::Mip or RenderMode::Density.
     FloatImage render(const Camera& camera, int width, int height,
-                      RenderMode mode = RenderMode::Mip) override;
+                      const RenderOptions& options = RenderMode::Mip) override;
     /// render() followed by the display pass on the GPU; only RGBA8 is read back.
     RgbaImage renderRgba(const Camera& camera, int width, int height, const DisplaySettings& display,
-                         RenderMode mode = RenderMode::Mip) override;
+                         const RenderOptions& options = RenderMode::Mip) override;
 
     /// Culling on (default) or off; off draws every Vot in one instanced draw (Raster) or evaluates
     /// every Vot along the ray (Walk); for tests and bench.

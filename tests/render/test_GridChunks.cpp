@@ -1,4 +1,4 @@
-// The reference ray caster split into z slabs (volumes deeper than one 3D texture) gives the unsplit image.
+// The reference ray caster split into z chunks (volumes deeper than one 3D texture) gives the unsplit image.
 #include "RenderTestSupport.h"
 
 #include "vots/fit/Error.h"
@@ -13,27 +13,27 @@
 using namespace vots;
 using namespace vots::render;
 
-TEST(GridSlabs, SlabsGiveTheImageOfOneTexture) {
+TEST(GridChunks, ChunksGiveTheImageOfOneTexture) {
     test::glContext();
-    // Sharp features across the slab faces: a bright ridge in z and ripples in every axis.
+    // Sharp features across the chunk faces: a bright ridge in z and ripples in every axis.
     const fit::Volume volume = test::sampleVolume({37, 30, 71}, [](int x, int y, int z) {
         return 100.0 * std::sin(0.37 * x) * std::cos(0.23 * y + 0.11 * z) +
                (z == 23 || z == 24 ? 150.0 : 0.0);
     });
-    GridRenderer whole, slabs;
+    GridRenderer whole, chunks;
     whole.upload(volume);
-    slabs.setSlabPlaneLimit(12); // slabs of 9 sampled planes: faces at z = 9, 18, 27, ...
-    slabs.upload(volume);
-    ASSERT_EQ(whole.slabCount(), 1);
-    ASSERT_EQ(slabs.slabCount(), 8);
+    chunks.setChunkPlaneLimit(12); // chunks of 9 sampled planes: faces at z = 9, 18, 27, ...
+    chunks.upload(volume);
+    ASSERT_EQ(whole.chunkCount(), 1);
+    ASSERT_EQ(chunks.chunkCount(), 8);
     const auto range = whole.valueRange();
     for (const char* text :
          {"anterior", "superior", "az=30,el=20", "az=-50,el=-30,zoom=1.4,proj=persp,fov=40",
           "az=20,el=10,zoom=6,proj=persp,fov=60", "az=0,el=89.5"}) {
         const Camera cam = parseCamera(text);
         const FloatImage a = whole.render(cam, 90, 80);
-        const FloatImage b = slabs.render(cam, 90, 80);
-        // The same samples along every ray; only the texture coordinates of a slab round differently.
+        const FloatImage b = chunks.render(cam, 90, 80);
+        // The same samples along every ray; only the texture coordinates of a chunk round differently.
         const test::ImageComparison c = test::compareImages(a, b, 1e-5 * (range[1] - range[0]));
         std::cout << text << ": " << c.bitIdentical << " of " << a.pixels.size() << " bit-identical, worst "
                   << c.worst << "\n";
@@ -42,12 +42,12 @@ TEST(GridSlabs, SlabsGiveTheImageOfOneTexture) {
     }
 }
 
-TEST(GridSlabs, UnsplitVolumesKeepOneTexture) {
+TEST(GridChunks, UnsplitVolumesKeepOneTexture) {
     test::glContext();
     const fit::Volume volume = test::sampleVolume({9, 8, 12}, [](int x, int y, int z) { return x + y + z; });
     GridRenderer grid;
-    grid.setSlabPlaneLimit(12);
+    grid.setChunkPlaneLimit(12);
     grid.upload(volume);
-    EXPECT_EQ(grid.slabCount(), 1);
-    EXPECT_THROW(grid.setSlabPlaneLimit(3), fit::InputError);
+    EXPECT_EQ(grid.chunkCount(), 1);
+    EXPECT_THROW(grid.setChunkPlaneLimit(3), fit::InputError);
 }
