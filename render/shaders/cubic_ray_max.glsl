@@ -11,8 +11,7 @@ vec4 linearProduct3(float a0, float b0, float a1, float b1, float a2, float b2) 
     return vec4(q.x * a2, q.x * b2 + q.y * a2, q.y * b2 + q.z * a2, q.z * b2);
 }
 #include "taylor.glsl"
-
-float cubicAt(vec4 g, float u) { return g.x + u * (g.y + u * (g.z + u * g.w)); }
+#include "cubic_along_ray.glsl"
 
 // Max of the polynomial sum_a c_a ((X - p) * invScale)^a along origin + t dir, t in [0, farT], over the
 // box [lo, hi] grown by CLIP_SLACK (invScale: 1 for index units, 1 / half sides for box units). Returns
@@ -29,20 +28,7 @@ bool cubicRayMax(float c[TAYLOR_TERMS], vec3 lo, vec3 hi, vec3 p, vec3 invScale,
     vec4 g = taylorAlongRay(c, s, dir * invScale); // g(u) = g0 + g1 u + g2 u^2 + g3 u^3, u in [0, len]
     float len = tOut - tIn;
 
-    float best = max(g.x, cubicAt(g, len));
-    // g'(u) = A u^2 + B u + C; roots via the cancellation-free form q = -(B + sign(B) sqrt(disc)) / 2,
-    // r1 = q / A, r2 = C / q. A == 0 gives r1 = inf (ignored) and r2 = -C / B, the linear root;
-    // A == B == 0 gives no finite root. Non-finite roots fail the range test below.
-    float A = 3.0 * g.w, B = 2.0 * g.z, C = g.y;
-    float disc = B * B - 4.0 * A * C;
-    if (disc >= 0.0) {
-        float q = -0.5 * (B + (B >= 0.0 ? 1.0 : -1.0) * sqrt(disc));
-        float r1 = q / A;
-        float r2 = C / q;
-        if (r1 > 0.0 && r1 < len) best = max(best, cubicAt(g, r1));
-        if (r2 > 0.0 && r2 < len) best = max(best, cubicAt(g, r2));
-    }
-    value = best;
+    value = cubicMaxOver(g, len);
     return true;
 }
 
