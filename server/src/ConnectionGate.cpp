@@ -30,6 +30,8 @@ constexpr int SWEEP_MS = 100;
 
 const char* reasonPhrase(int status) {
     switch (status) {
+    case 411:
+        return "Length Required";
     case 414:
         return "URI Too Long";
     case 431:
@@ -82,6 +84,26 @@ std::size_t headEnd(const std::string& bytes) {
     if (crlf == std::string::npos && lf == std::string::npos) return std::string::npos;
     if (lf == std::string::npos || (crlf != std::string::npos && crlf < lf)) return crlf + 4;
     return lf + 2;
+}
+
+// Removes "Expect: 100-continue" header lines from a request whose head ends at headEnd(bytes).
+void eraseExpectContinue(std::string& bytes) {
+    const std::size_t end = headEnd(bytes);
+    if (end == std::string::npos) return;
+    std::size_t pos = bytes.find('\n');
+    while (pos != std::string::npos && pos + 1 < end) {
+        const std::size_t start = pos + 1;
+        const std::size_t next = bytes.find('\n', start);
+        const std::size_t lineEnd = next == std::string::npos || next > end ? end : next + 1;
+        const std::string_view line(bytes.data() + start, (next == std::string::npos ? end : next) - start);
+        const std::size_t colon = line.find(':');
+        if (colon != std::string_view::npos && equalsIgnoringCase(trimmed(line.substr(0, colon)), "Expect") &&
+            equalsIgnoringCase(trimmed(line.substr(colon + 1)), "100-continue")) {
+            bytes.erase(start, lineEnd - start);
+            return; // one such line; a second one is the handler's to refuse
+        }
+        pos = next;
+    }
 }
 
 } // namespace
@@ -226,6 +248,17 @@ void ConnectionGate::readFrom(Connection& c) {
     switch (verdict) {
     case Verdict::Wait:
         return;
+    case Verdict::WaitAfterContinue:
+        if (!c.continued) {
+            static constexpr std::string_view CONTINUE = "HTTP/1.1 100 Continue\r\n\r\n";
+            [[maybe_unused]] const ssize_t sent =
+                ::send(c.fd, CONTINUE.data(), CONTINUE.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
+            c.continued = true;
+        }
+        return;
+    case Verdict::ChunkedBody:
+        refuse(c, 411, "a request body needs a Content-Length (chunked transfer is not accepted)");
+        return;
     case Verdict::Dispatch:
         dispatch(c);
         return;
@@ -251,9 +284,12 @@ ConnectionGate::Verdict ConnectionGate::judge(const Connection& c) const {
     if (headSize > mLimits.maxHeadBytes || lines > mLimits.maxHeaderLines + 2) return Verdict::TooLargeHead;
     if (end == std::string::npos) return Verdict::Wait;
 
-    // The body: wait for Content-Length bytes when they are few; anything else is the handler's to read
-    // or refuse (chunked bodies, "Expect: 100-continue", a body above the limit, a malformed length).
+    // The body: wait for Content-Length bytes when they are few, also behind "Expect: 100-continue" (the
+    // gate says 100 itself); chunked bodies are refused here, so no worker waits for their chunks;
+    // anything else is the handler's to refuse (a body above the limit, a malformed length, another
+    // expectation).
     std::size_t contentLength = 0;
+    bool expectContinue = false;
     std::string_view head(bytes.data(), end);
     for (std::size_t pos = lineEnd + 1; pos < end;) {
         const std::size_t next = head.find('\n', pos);
@@ -263,8 +299,11 @@ ConnectionGate::Verdict ConnectionGate::judge(const Connection& c) const {
         if (colon == std::string_view::npos) continue;
         const std::string_view name = trimmed(line.substr(0, colon));
         const std::string_view value = trimmed(line.substr(colon + 1));
-        if (equalsIgnoringCase(name, "Transfer-Encoding") || equalsIgnoringCase(name, "Expect"))
-            return Verdict::Dispatch;
+        if (equalsIgnoringCase(name, "Transfer-Encoding")) return Verdict::ChunkedBody;
+        if (equalsIgnoringCase(name, "Expect")) {
+            if (!equalsIgnoringCase(value, "100-continue")) return Verdict::Dispatch;
+            expectContinue = true;
+        }
         if (equalsIgnoringCase(name, "Content-Length")) {
             const auto [ptr, ec] = std::from_chars(value.data(), value.data() + value.size(), contentLength);
             if (ec != std::errc() || ptr != value.data() + value.size() ||
@@ -272,13 +311,16 @@ ConnectionGate::Verdict ConnectionGate::judge(const Connection& c) const {
                 return Verdict::Dispatch;
         }
     }
-    return bytes.size() >= end + contentLength ? Verdict::Dispatch : Verdict::Wait;
+    if (bytes.size() >= end + contentLength) return Verdict::Dispatch;
+    return expectContinue ? Verdict::WaitAfterContinue : Verdict::Wait;
 }
 
 void ConnectionGate::dispatch(Connection& c) {
     ArrivedRequest request;
     request.fd = c.fd;
     request.bytes = std::move(c.bytes);
+    // The body is here already: without its Expect line the handler does not say 100 a second time.
+    eraseExpectContinue(request.bytes);
     const std::size_t lineEnd = request.bytes.find('\n');
     const std::string_view line(request.bytes.data(), lineEnd);
     const std::size_t space = line.find(' ');

@@ -62,9 +62,17 @@ private:
         int fd = -1;
         std::chrono::steady_clock::time_point accepted;
         std::string bytes;
-        bool draining = false; // refused: the answer is sent, the rest of the request is read and dropped
+        bool draining = false;  // refused: the answer is sent, the rest of the request is read and dropped
+        bool continued = false; // "100 Continue" sent for an "Expect: 100-continue" request
     };
-    enum class Verdict { Wait, Dispatch, TooLongTarget, TooLargeHead };
+    enum class Verdict {
+        Wait,
+        WaitAfterContinue, // Expect: 100-continue and the body not there yet: say 100, then wait
+        Dispatch,
+        TooLongTarget,
+        TooLargeHead,
+        ChunkedBody // Transfer-Encoding: the API's bodies are small JSON with a Content-Length
+    };
 
     void threadMain();
     void adopt(int fd);

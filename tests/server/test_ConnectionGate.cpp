@@ -107,6 +107,31 @@ TEST_F(GateTest, ABodyAboveTheLimitIsHandedOnAfterTheHead) {
     EXPECT_EQ(arrivedWithin(2s, 1), 1u) << "the handler answers 413";
 }
 
+TEST_F(GateTest, AChunkedBodyIs411JsonAndNeverHandedOn) {
+    const int fd = connect();
+    // A client that would trickle chunks would hold a worker while it reads them.
+    send(fd, "POST /api/fit HTTP/1.1\r\nTransfer-Encoding: chunked\r\n\r\n5\r\n{\"a\":\r\n");
+    const std::string answer = readUntilClosed(fd, 4s);
+    EXPECT_EQ(answer.substr(0, 12), "HTTP/1.1 411");
+    EXPECT_NE(answer.find("{\"error\":"), std::string::npos);
+    EXPECT_EQ(arrivedWithin(0ms, 1), 0u);
+}
+
+TEST_F(GateTest, ExpectContinueIsAnsweredByTheGateWhichThenWaitsForTheBody) {
+    const int fd = connect();
+    send(fd, "POST /api/fit HTTP/1.1\r\nExpect: 100-continue\r\nContent-Length: 5\r\nHost: x\r\n\r\n");
+    char buffer[64] = {};
+    pollfd p{fd, POLLIN, 0};
+    ASSERT_EQ(::poll(&p, 1, 2000), 1);
+    const ssize_t n = ::recv(fd, buffer, sizeof buffer - 1, 0);
+    EXPECT_EQ(std::string(buffer, n > 0 ? static_cast<std::size_t>(n) : 0), "HTTP/1.1 100 Continue\r\n\r\n");
+    EXPECT_EQ(arrivedWithin(150ms, 1), 0u) << "no worker before the body";
+    send(fd, "12345");
+    ASSERT_EQ(arrivedWithin(2s, 1), 1u);
+    // Handed on without its Expect line, so the handler does not say 100 again.
+    EXPECT_EQ(mArrived[0].bytes, "POST /api/fit HTTP/1.1\r\nContent-Length: 5\r\nHost: x\r\n\r\n12345");
+}
+
 TEST_F(GateTest, AnIdleConnectionIsClosedUnhandled) {
     const int fd = connect();
     EXPECT_EQ(readUntilClosed(fd, 3s), "");
