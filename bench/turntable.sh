@@ -33,5 +33,6 @@ echo "volume $volume, 512x512, median of $runs, load $(cut -d' ' -f1 /proc/loada
 printf 'one frame            %6.2f s\n' "$m1"
 printf '36 PNG frames        %6.2f s  (%.2f x one frame)\n' "$mp" "$(echo "$mp / $m1" | bc -l)"
 printf '36-frame WebM        %6.2f s  (%.2f x one frame)\n' "$mw" "$(echo "$mw / $m1" | bc -l)"
+echo "runs (s): one ${one[*]}; PNG frames ${png[*]}; WebM ${webm[*]}"
 printf 'sizes: one PNG %d B, 36 PNGs %d B, WebM %d B\n' "$(stat -c %s "$out/one.png")" \
     "$(cat "$out"/0*.png | wc -c)" "$(stat -c %s "$out/turn.webm")"
