@@ -154,6 +154,12 @@ WebmWriter::WebmWriter(int width, int height, int fps) : mState(std::make_unique
     s.codec->width = width;
     s.codec->height = height;
     s.codec->pix_fmt = AV_PIX_FMT_YUV420P;
+    // What libswscale's RGB -> YUV conversion produces by default (BT.601, limited range), said in the
+    // file so that players do not guess another matrix for the colour maps.
+    s.codec->colorspace = AVCOL_SPC_SMPTE170M;
+    s.codec->color_primaries = AVCOL_PRI_SMPTE170M;
+    s.codec->color_trc = AVCOL_TRC_SMPTE170M;
+    s.codec->color_range = AVCOL_RANGE_MPEG;
     s.codec->time_base = AVRational{1, fps};
     s.codec->framerate = AVRational{fps, 1};
     s.codec->gop_size = fps;   // a key frame each second: seeking in the turn stays cheap
