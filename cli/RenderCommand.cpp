@@ -4,6 +4,7 @@
 #include "MemoryBudgetOption.h"
 #include "RawOptions.h"
 #include "SeriesOption.h"
+#include "TurntableOutput.h"
 
 #include "vots/fit/DicomSeries.h"
 #include "vots/fit/Error.h"
@@ -15,7 +16,9 @@
 #include "vots/render/FrameRequest.h"
 #include "vots/render/GridRenderer.h"
 #include "vots/render/Png.h"
+#include "vots/render/Turntable.h"
 #include "vots/render/VotRenderer.h"
+#include "vots/render/WebmWriter.h"
 #include "vots/server/FitMeta.h"
 #include "vots/server/RenderPolicy.h"
 
@@ -54,16 +57,46 @@ struct RenderArgs {
     std::string background = "auto";
     std::string certify = certifyName(render::RENDER_FIT_CERTIFY);
     std::string volume;
-    std::string memoryBudget; // empty: the default
-    std::string series;       // DICOM SeriesInstanceUID; empty: the folder's only series
-    RawArgs raw;              // the layout of a headerless volume (INPUT, or --volume of a .vots input)
+    std::string memoryBudget;     // empty: the default
+    std::string series;           // DICOM SeriesInstanceUID; empty: the folder's only series
+    RawArgs raw;                  // the layout of a headerless volume (INPUT, or --volume of a .vots input)
+    std::optional<int> turntable; // frames of a turn about the vertical axis; nullopt: one frame
+    std::optional<double> elevation; // the turn's elevation; nullopt: the camera's
 };
 
 struct CheckedArgs {
     render::FrameRequest frame;
     fit::EpsSpec eps;
     std::optional<fit::RawLayout> raw;
+    std::optional<TurntableOutput> turntable;
 };
+
+/// The turntable's options, checked with the output folders before any load or fit.
+std::optional<TurntableOutput> checkTurntableArgs(const RenderArgs& a, const render::FrameRequest& first) {
+    if (!a.turntable) {
+        if (a.elevation) throw fit::InputError("--elevation is for --turntable N");
+        if (isWebmPath(a.output))
+            throw fit::InputError("-o " + a.output + ": a WebM animation needs --turntable N");
+        checkOutputFolder(a.output);
+        return std::nullopt;
+    }
+    const int frames = *a.turntable;
+    if (frames < 1 || frames > render::MAX_TURNTABLE_FRAMES)
+        throw fit::InputError("--turntable " + std::to_string(frames) + " is outside 1.." +
+                              std::to_string(render::MAX_TURNTABLE_FRAMES) + " frames");
+    render::validateCamera(render::turntableCamera(first.camera, frames, 0, a.elevation));
+    const TurntableOutput output = parseTurntableOutput(a.output);
+    if (output.format == TurntableFormat::Webm) {
+        if (first.width < render::WEBM_MIN_SIDE || first.height < render::WEBM_MIN_SIDE)
+            throw fit::InputError("--size " + a.size + " is too small for a WebM animation (at least " +
+                                  std::to_string(render::WEBM_MIN_SIDE) + " per side)");
+        checkOutputFolder(output.path);
+    } else {
+        for (int k = 0; k < frames; ++k)
+            checkOutputFolder(framePath(output.path, k));
+    }
+    return output;
+}
 
 std::pair<int, int> parseSize(const std::string& text) {
     const render::SizeParse size = render::parseFrameSize(text, render::MAX_IMAGE_SIDE);
@@ -96,6 +129,7 @@ CheckedArgs checkArgs(const RenderArgs& a) {
     c.eps = parseEps(a.eps, "--eps");
     if (a.degree < 0 || a.degree > 3) throw fit::InputError("--degree must be 0..3");
     c.raw = rawLayoutFrom(a.raw);
+    c.turntable = checkTurntableArgs(a, f);
     return c;
 }
 
@@ -166,9 +200,13 @@ void runRender(const RenderArgs& a) {
     }
     std::optional<std::array<float, 2>> volumeRange;
     if (volume) volumeRange = volume->valueRange();
-    const render::RgbaImage image =
-        render::renderFrame(c.frame, vots ? &*vots : nullptr, grid ? &*grid : nullptr, volumeRange);
-    render::writePng(a.output, image);
+    const auto draw = [&](const render::FrameRequest& frame) {
+        return render::renderFrame(frame, vots ? &*vots : nullptr, grid ? &*grid : nullptr, volumeRange);
+    };
+    if (c.turntable)
+        writeTurntable(*c.turntable, c.frame, *a.turntable, a.elevation, draw);
+    else
+        render::writePng(a.output, draw(c.frame));
 }
 
 } // namespace
@@ -180,7 +218,9 @@ void addRenderCommand(CLI::App& app) {
                     "A .vots file, or a volume file, DICOM folder or raw file with --raw-* (fitted first at "
                     "--eps for mip/density)")
         ->required();
-    cmd->add_option("-o,--output", args->output, "PNG file to write (replaced atomically)")->required();
+    cmd->add_option("-o,--output", args->output,
+                    "PNG file to write (replaced atomically); with --turntable: frames/%03d.png or turn.webm")
+        ->required();
     cmd->add_option("--cam", args->cam,
                     "Camera, e.g. az=30,el=20,zoom=1,pan=0:0,proj=ortho,fov=30 or a view name");
     cmd->add_option("--view", args->view, "anterior|posterior|left|right|superior|inferior");
@@ -204,6 +244,12 @@ void addRenderCommand(CLI::App& app) {
         ->check(CLI::IsMember({"cells", "samples"}))
         ->capture_default_str();
     cmd->add_option("--volume", args->volume, "The volume of a .vots input (for --renderer grid)");
+    cmd->add_option("--turntable", args->turntable,
+                    "N views around the vertical axis from the camera's azimuth, 360/N degrees apart, in one "
+                    "load and fit: PNG frames (-o with %d) or a VP9 WebM video (-o *.webm, " +
+                        std::to_string(render::ANIMATION_FPS) + " frames/s)");
+    cmd->add_option("--elevation", args->elevation,
+                    "The turntable's elevation in degrees (default: the camera's)");
     addMemoryBudgetOption(*cmd, args->memoryBudget);
     addSeriesOption(*cmd, args->series);
     addRawOptions(*cmd, args->raw);

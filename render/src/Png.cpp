@@ -8,6 +8,7 @@
 #include "vots/render/Png.h"
 
 #include "vots/fit/Error.h"
+#include "vots/render/AtomicFile.h"
 
 #include <libdeflate.h>
 
@@ -42,10 +43,7 @@ unsigned char* deflateForStb(unsigned char* data, int length, int* outLength, in
 #define STBIW_ZLIB_COMPRESS deflateForStb
 #include <stb/stb_image_write.h>
 
-#include <cstdio>
-#include <filesystem>
 #include <mutex>
-#include <unistd.h>
 
 namespace vots::render {
 
@@ -93,21 +91,7 @@ std::vector<std::uint8_t> encodePng(const RgbaImage& image) {
 }
 
 void writePng(const std::string& path, const RgbaImage& image) {
-    const std::vector<std::uint8_t> bytes = encodePng(image);
-    const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
-    std::FILE* f = std::fopen(tmp.c_str(), "wb");
-    if (!f) throw fit::InputError("cannot write " + path);
-    const bool ok = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size();
-    if (std::fclose(f) != 0 || !ok) {
-        std::remove(tmp.c_str());
-        throw fit::InputError("cannot write " + path);
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-        std::remove(tmp.c_str());
-        throw fit::InputError("cannot write " + path + ": " + ec.message());
-    }
+    writeFileAtomically(path, encodePng(image));
 }
 
 } // namespace vots::render

@@ -37,7 +37,7 @@ FitJobLimits limitsFrom(const ServerOptions& o) {
 }
 
 bool isApiPath(const std::string& path) {
-    return path.rfind("/api/", 0) == 0 || path == "/api" || path == "/render";
+    return path.rfind("/api/", 0) == 0 || path == "/api" || path == "/render" || path == "/turntable";
 }
 
 httplib::Server::HandlerResponse refuse(httplib::Response& res, const Refusal& refusal) {
@@ -137,6 +137,7 @@ Server::Server(ServerOptions options) : mImpl(std::make_unique<Impl>(std::move(o
     installDatasetRoutes(s);
     installStatsRoute(s);
     installRenderRoute(s);
+    installTurntableRoute(s);
     installJobRoutes(s);
 
     const std::vector<std::string> names = s.registry.names();

@@ -37,7 +37,7 @@ struct Server::Impl {
     FitJobs fitJobs;
     std::unique_ptr<RenderQueue> renderQueue; // null when options.withRenderer is false
     FrameCache frames;                        // encoded /render answers
-    ClientQuota renders;                      // /render requests in progress per client
+    ClientQuota renders;                      // /render and /turntable requests in progress per client
     RequestGuard guard;                       // Host, token and cross-site checks before any route
     std::atomic<int> listenSocket{-1};        // the socket httplib binds, so its backlog can be raised
     std::thread preparing;                    // prepareDataset(options.prepareDataset); joined by ~Server
@@ -45,10 +45,11 @@ struct Server::Impl {
 };
 
 // Route installers, one file each.
-void installDatasetRoutes(Server::Impl& s); // GET /api/datasets
-void installStatsRoute(Server::Impl& s);    // GET /api/stats
-void installRenderRoute(Server::Impl& s);   // GET /render
-void installJobRoutes(Server::Impl& s);     // POST /api/fit, GET /api/jobs/{id}, GET /api/jobs/{id}/events
+void installDatasetRoutes(Server::Impl& s);  // GET /api/datasets
+void installStatsRoute(Server::Impl& s);     // GET /api/stats
+void installRenderRoute(Server::Impl& s);    // GET /render
+void installTurntableRoute(Server::Impl& s); // GET /turntable
+void installJobRoutes(Server::Impl& s);      // POST /api/fit, GET /api/jobs/{id}, GET /api/jobs/{id}/events
 /// Static files from the web folder, answered in the pre-routing step for non-API paths.
 bool serveStatic(const Server::Impl& s, const httplib::Request& req, httplib::Response& res);
 

@@ -1,0 +1,129 @@
+// Turntable output of `vots render`: the -o pattern, folder checks, and all-or-nothing writes.
+#include "TurntableOutput.h"
+
+#include "vots/fit/Error.h"
+#include "vots/render/AtomicFile.h"
+#include "vots/render/Png.h"
+#include "vots/render/Turntable.h"
+#include "vots/render/WebmWriter.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <filesystem>
+#include <unistd.h>
+#include <vector>
+
+namespace vots::cli {
+namespace {
+
+struct Conversion {
+    std::size_t begin = 0; // the '%'
+    std::size_t end = 0;   // one past the 'd'
+    int width = 0;         // 0: no padding
+};
+
+/// The one %d / %0Nd of a pattern, or nullopt when there is none, another '%', or a malformed one.
+std::optional<Conversion> findConversion(const std::string& pattern) {
+    if (std::count(pattern.begin(), pattern.end(), '%') != 1) return std::nullopt;
+    Conversion c;
+    c.begin = pattern.find('%');
+    std::size_t i = c.begin + 1;
+    if (i < pattern.size() && pattern[i] == '0') {
+        ++i;
+        if (i >= pattern.size() || pattern[i] < '1' || pattern[i] > '9') return std::nullopt;
+        c.width = pattern[i] - '0';
+        ++i;
+    }
+    if (i >= pattern.size() || pattern[i] != 'd') return std::nullopt;
+    c.end = i + 1;
+    return c;
+}
+
+} // namespace
+
+bool isWebmPath(const std::string& path) {
+    constexpr std::string_view EXTENSION = ".webm";
+    if (path.size() < EXTENSION.size()) return false;
+    return std::equal(EXTENSION.begin(), EXTENSION.end(), path.end() - EXTENSION.size(),
+                      [](char a, char b) { return a == std::tolower(static_cast<unsigned char>(b)); });
+}
+
+namespace {
+
+/// Frame files written to their temporary names; removed again unless committed.
+class PendingFrames {
+public:
+    ~PendingFrames() {
+        for (const std::string& path : mFinal)
+            std::remove(render::temporaryNameFor(path).c_str());
+    }
+    void add(const std::string& path, const render::RgbaImage& image) {
+        mFinal.push_back(path); // before the write: a half-written temporary is removed too
+        render::writeFileAtomically(render::temporaryNameFor(path), render::encodePng(image));
+    }
+    void commit() {
+        for (const std::string& path : mFinal) {
+            std::error_code ec;
+            std::filesystem::rename(render::temporaryNameFor(path), path, ec);
+            if (ec) throw fit::InputError("cannot write " + path + ": " + ec.message());
+        }
+        mFinal.clear();
+    }
+
+private:
+    std::vector<std::string> mFinal;
+};
+
+} // namespace
+
+TurntableOutput parseTurntableOutput(const std::string& output) {
+    if (isWebmPath(output)) return {TurntableFormat::Webm, output};
+    if (!findConversion(output))
+        throw fit::InputError("-o '" + output +
+                              "' with --turntable must end in .webm or name PNG frames with one %d or %0Nd "
+                              "(e.g. frames/%03d.png) and no other '%'");
+    return {TurntableFormat::PngFrames, output};
+}
+
+std::string framePath(const std::string& pattern, int index) {
+    const auto c = findConversion(pattern);
+    if (!c) throw std::invalid_argument("framePath: not a frame pattern");
+    std::string number = std::to_string(index);
+    if (number.size() < static_cast<std::size_t>(c->width))
+        number.insert(0, static_cast<std::size_t>(c->width) - number.size(), '0');
+    return pattern.substr(0, c->begin) + number + pattern.substr(c->end);
+}
+
+void checkOutputFolder(const std::string& path) {
+    std::filesystem::path folder = std::filesystem::path(path).parent_path();
+    if (folder.empty()) folder = ".";
+    std::error_code ec;
+    if (!std::filesystem::is_directory(folder, ec))
+        throw fit::InputError("cannot write " + path + ": folder '" + folder.string() + "' does not exist");
+    if (::access(folder.c_str(), W_OK) != 0)
+        throw fit::InputError("cannot write " + path + ": folder '" + folder.string() + "' is not writable");
+}
+
+void writeTurntable(const TurntableOutput& output, const render::FrameRequest& first, int frames,
+                    std::optional<double> elevationDeg,
+                    const std::function<render::RgbaImage(const render::FrameRequest&)>& draw) {
+    const auto frameAt = [&](int index) {
+        render::FrameRequest frame = first;
+        frame.camera = render::turntableCamera(first.camera, frames, index, elevationDeg);
+        return frame;
+    };
+    if (output.format == TurntableFormat::Webm) {
+        render::WebmWriter video(first.width, first.height);
+        for (int k = 0; k < frames; ++k)
+            video.addFrame(draw(frameAt(k)));
+        render::writeFileAtomically(output.path, video.finish());
+        return;
+    }
+    PendingFrames pending;
+    for (int k = 0; k < frames; ++k)
+        pending.add(framePath(output.path, k), draw(frameAt(k)));
+    pending.commit();
+}
+
+} // namespace vots::cli

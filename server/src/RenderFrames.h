@@ -1,0 +1,30 @@
+// What GET /render and GET /turntable share: a request's render job, and its frames through the cache and
+// queue.
+#pragma once
+
+#include "FrameCache.h"
+#include "RenderQueue.h"
+#include "ServerImpl.h"
+
+#include <memory>
+#include <string>
+
+namespace vots::server {
+
+/// A request made ready to draw: the dataset found, its Vot-Space fitted (or waited for), and the name
+/// of what its frames are drawn from (the fit key, or for grid frames the volume).
+struct PreparedRender {
+    RenderJob job;
+    std::string drawnFrom;
+};
+
+/// Throws HttpError: 404 for an unknown dataset, 409 for what Vots cannot draw, 503 without a renderer
+/// or while the fit still runs, 500 when it failed. `client` is the fit job's owner.
+PreparedRender prepareRender(Server::Impl& s, const RenderParams& params, const std::string& client);
+
+/// The PNG of the frame `params` names (the job's data with these parameters), from the frame cache,
+/// else drawn on the render queue and kept there. Throws HttpError from the queue (409, 503, ...).
+std::shared_ptr<const FrameCache::Frame> cachedFrame(Server::Impl& s, const PreparedRender& prepared,
+                                                     const RenderParams& params, FrameCache::Source* source);
+
+} // namespace vots::server
