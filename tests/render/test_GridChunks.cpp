@@ -22,10 +22,10 @@ TEST(GridChunks, ChunksGiveTheImageOfOneTexture) {
     });
     GridRenderer whole, chunks;
     whole.upload(volume);
-    chunks.setChunkPlaneLimit(12); // chunks of 9 sampled planes: faces at z = 9, 18, 27, ...
+    chunks.setChunkPlaneLimit(12); // chunks of 11 cells: faces at z = 11, 22, 33, ...
     chunks.upload(volume);
     ASSERT_EQ(whole.chunkCount(), 1);
-    ASSERT_EQ(chunks.chunkCount(), 8);
+    ASSERT_EQ(chunks.chunkCount(), 7);
     const auto range = whole.valueRange();
     for (const char* text :
          {"anterior", "superior", "az=30,el=20", "az=-50,el=-30,zoom=1.4,proj=persp,fov=40",
