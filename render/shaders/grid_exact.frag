@@ -69,7 +69,11 @@ void main() {
         float z = origin.z;
         if (z < zLo || (z >= zHi && !(lastChunk && z == zHi))) own = vec2(1.0, 0.0);
     } else {
-        float ta = (zLo - origin.z) / dir.z, tb = (zHi - origin.z) / dir.z;
+        // Only faces between chunks cut: the grid's own z faces are already in span, and cutting there
+        // again would round a short ray's length differently from wholeLength. Neighbours compute a shared
+        // face's t alike, so their parts tile the span.
+        float ta = uCellZ.x > 0 ? (zLo - origin.z) / dir.z : (dir.z > 0.0 ? -POS_INF : POS_INF);
+        float tb = !lastChunk ? (zHi - origin.z) / dir.z : (dir.z > 0.0 ? POS_INF : -POS_INF);
         own = vec2(max(span.x, min(ta, tb)), min(span.y, max(ta, tb)));
     }
     float result = uMode == 2 ? 0.0 : missValue();
@@ -91,17 +95,21 @@ void main() {
         float total = 0.0;
         for (int i = 0; i < budget; ++i) { // at least once: a ray may only touch the grid
             vec3 tFace = mix((vec3(cell) + vec3(forward) - origin) * inv, vec3(POS_INF), parallel);
-            float tExit = min(min(min(tFace.x, tFace.y), tFace.z), own.y);
-            float len = max(tExit - t, 0.0);
+            // Never backwards (a face behind t by rounding): the segments tile [own.x, own.y] once.
+            float tExit = clamp(min(min(tFace.x, tFace.y), tFace.z), t, own.y);
+            // Leave through the nearest face; ties (an edge or a corner) step every axis that meets it.
+            ivec3 next = cell + ivec3(lessThanEqual(tFace, vec3(tExit))) * stepDir;
+            // Where the cells end before own.y by rounding, the last cell takes the rest of the span, so a
+            // short ray's mean is not shortened by a rounding of its length.
+            bool last = tExit >= own.y || any(lessThan(next, cellLo)) || any(greaterThan(next, cellHi));
+            if (last) tExit = own.y;
+            float len = tExit - t;
             vec4 g = cellCubic(cell, origin + t * dir - vec3(cell), dir);
             if (uMode == 0) result = max(result, cubicMaxOver(g, len));
             else if (uMode == 1) result = min(result, cubicMinOver(g, len));
             else total += cubicIntegralOver(g, len);
             t = tExit;
-            if (t >= own.y) break;
-            // Leave through the nearest face; ties (an edge or a corner) step every axis that meets it.
-            ivec3 next = cell + ivec3(lessThanEqual(tFace, vec3(tExit))) * stepDir;
-            if (any(lessThan(next, cellLo)) || any(greaterThan(next, cellHi))) break;
+            if (last) break;
             cell = next;
         }
         if (uMode == 2) {
