@@ -20,11 +20,14 @@ float corner(ivec3 p) { return texelFetch(uVolume, p - ivec3(uChunkOrigin), 0).r
 
 // The trilinear interpolant of cell `cell` along p(u) = local + u dir (local: the segment's entry point
 // relative to the cell's corner) as g(u) = g.x + g.y u + g.z u^2 + g.w u^3.
-vec4 cellCubic(ivec3 cell, vec3 local, vec3 dir) {
+// cornerRange: the least and greatest corner, which bound the interpolant anywhere in the cell.
+vec4 cellCubic(ivec3 cell, vec3 local, vec3 dir, out vec2 cornerRange) {
     float c000 = corner(cell), c100 = corner(cell + ivec3(1, 0, 0));
     float c010 = corner(cell + ivec3(0, 1, 0)), c110 = corner(cell + ivec3(1, 1, 0));
     float c001 = corner(cell + ivec3(0, 0, 1)), c101 = corner(cell + ivec3(1, 0, 1));
     float c011 = corner(cell + ivec3(0, 1, 1)), c111 = corner(cell + ivec3(1, 1, 1));
+    cornerRange = vec2(min(min(min(c000, c100), min(c010, c110)), min(min(c001, c101), min(c011, c111))),
+                       max(max(max(c000, c100), max(c010, c110)), max(max(c001, c101), max(c011, c111))));
     // f(x, y, z) = a + bx x + by y + bz z + bxy x y + bxz x z + byz y z + bxyz x y z on the unit cube.
     float a = c000;
     float bx = c100 - c000, by = c010 - c000, bz = c001 - c000;
@@ -104,9 +107,11 @@ void main() {
             bool last = tExit >= own.y || any(lessThan(next, cellLo)) || any(greaterThan(next, cellHi));
             if (last) tExit = own.y;
             float len = tExit - t;
-            vec4 g = cellCubic(cell, origin + t * dir - vec3(cell), dir);
-            if (uMode == 0) result = max(result, cubicMaxOver(g, len));
-            else if (uMode == 1) result = min(result, cubicMinOver(g, len));
+            vec2 cornerRange;
+            vec4 g = cellCubic(cell, origin + t * dir - vec3(cell), dir, cornerRange);
+            // A cell whose corners cannot beat the value so far cannot change it: skip its roots.
+            if (uMode == 0) result = cornerRange.y > result ? max(result, cubicMaxOver(g, len)) : result;
+            else if (uMode == 1) result = cornerRange.x < result ? min(result, cubicMinOver(g, len)) : result;
             else total += cubicIntegralOver(g, len);
             t = tExit;
             if (last) break;
@@ -114,8 +119,9 @@ void main() {
         }
         if (uMode == 2) {
             // A ray that only touches the grid (zero length) has its one value as the mean.
+            vec2 unused;
             result = wholeLength > 0.0 ? total / wholeLength
-                                       : cellCubic(cell, origin + t * dir - vec3(cell), dir).x;
+                                       : cellCubic(cell, origin + t * dir - vec3(cell), dir, unused).x;
         }
     }
     outValue = result;
