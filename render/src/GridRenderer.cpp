@@ -1,4 +1,4 @@
-// Reference MIP: fullscreen ray march through R32F 3D textures of the volume (trilinear, fixed step).
+// Exact grid projection (mip, minip, aip): a fullscreen pass per z chunk walks each ray cell by cell.
 #include "vots/render/GridRenderer.h"
 
 #include "DisplayPass.h"
@@ -6,6 +6,7 @@
 #include "FrameReadout.h"
 #include "GlObjects.h"
 #include "Shaders.h"
+#include "SlabClip.h"
 
 #include "vots/fit/Error.h"
 #include "vots/fit/Volume.h"
@@ -21,14 +22,32 @@ namespace vots::render {
 
 namespace {
 
-// One 3D texture's share of the z range. Textures overlap by a plane beyond the range they sample on
-// either side, so every sample they take interpolates between planes they hold.
+// One 3D texture's share of the z range: it owns the cells with cellZ[0] <= z < cellZ[1] and holds the
+// planes cellZ[0] .. cellZ[1], the 8 corners of every cell it owns (read with texelFetch).
 struct Chunk {
     GlTexture texture;
     int firstPlane = 0; // the grid z of the texture's plane 0
     int planes = 0;
-    float zLo = -INFINITY, zHi = INFINITY; // the samples it takes; all when there is one chunk
+    std::array<int, 2> cellZ{0, 0};
 };
+
+// What each mode's pixels start at, and how the chunks' values combine (one chunk: they are written).
+struct ModeBlend {
+    int shaderMode; // grid_exact.frag's uMode
+    float clearValue;
+    GLenum equation;
+};
+ModeBlend modeBlend(RenderMode mode) {
+    switch (mode) {
+    case RenderMode::MinIp:
+        return {1, INFINITY, GL_MIN};
+    // Each chunk writes its part of the integral over the whole ray's length: the parts add to the mean.
+    case RenderMode::Aip:
+        return {2, 0.f, GL_FUNC_ADD};
+    default:
+        return {0, -INFINITY, GL_MAX};
+    }
+}
 
 // A texture of more bytes than this is split too: llvmpipe and drivers fail on huge textures well
 // before they run out of memory, and a frame's chunks are drawn one after another anyway.
@@ -37,7 +56,7 @@ constexpr std::size_t MAX_CHUNK_BYTES = std::size_t{1} << 30;
 } // namespace
 
 struct GridRenderer::Impl {
-    GlProgram program = buildProgram(shaders::FULLSCREEN_VERT, shaders::GRID_MIP_FRAG, "grid_mip");
+    GlProgram program = buildProgram(shaders::FULLSCREEN_VERT, shaders::GRID_EXACT_FRAG, "grid_exact");
     GlVertexArray vertexArray = createVertexArray();
     std::vector<Chunk> chunks;
     int chunkPlaneLimit = 0; // 0: from the GL limit and MAX_CHUNK_BYTES
@@ -46,16 +65,18 @@ struct GridRenderer::Impl {
     bool hasData = false;
     SceneBounds bounds;
     std::array<float, 2> valueRange{0.f, 0.f};
-    float step = 0.5f;
     FrameStats stats;
 
-    void draw(const Camera& camera, int width, int height) {
+    void draw(const Camera& camera, int width, int height, const RenderOptions& options) {
         if (!hasData) throw RenderError("GridRenderer: render() before upload()");
         const CameraMatrices m = computeCameraMatrices(camera, bounds, width, height);
         const auto t0 = FrameClock::now();
         stats = FrameStats{};
         target.bind(width, height);
-        target.clear(-INFINITY);
+        const ModeBlend blend = modeBlend(options.mode);
+        // A ray that misses the grid (or slab) writes the background in every chunk: -inf for mip and
+        // aip (0 + -inf + -inf stays -inf), +inf for minip.
+        target.clear(blend.clearValue);
         glDisable(GL_BLEND);
         glDisable(GL_CULL_FACE);
         glDisable(GL_DEPTH_TEST);
@@ -65,19 +86,18 @@ struct GridRenderer::Impl {
         glProgramUniform2f(p, glGetUniformLocation(p, "uViewport"), float(width), float(height));
         glProgramUniform3f(p, glGetUniformLocation(p, "uDims"), float(bounds.dims[0]), float(bounds.dims[1]),
                            float(bounds.dims[2]));
-        glProgramUniform1f(p, glGetUniformLocation(p, "uStep"), step);
+        glProgramUniform1i(p, glGetUniformLocation(p, "uMode"), blend.shaderMode);
+        setSlabUniforms(p, options.slab, camera, bounds);
         glProgramUniform1i(p, glGetUniformLocation(p, "uVolume"), 0);
         glBindVertexArray(vertexArray.get());
-        if (chunks.size() > 1) { // each chunk's max of its samples; the frame is the max of those
+        if (chunks.size() > 1) {
             glEnable(GL_BLEND);
-            glBlendEquation(GL_MAX);
+            glBlendEquation(blend.equation);
+            glBlendFunc(GL_ONE, GL_ONE); // only GL_FUNC_ADD uses it
         }
         for (const Chunk& chunk : chunks) {
             glProgramUniform3f(p, glGetUniformLocation(p, "uChunkOrigin"), 0.f, 0.f, float(chunk.firstPlane));
-            glProgramUniform3f(p, glGetUniformLocation(p, "uChunkDims"), float(bounds.dims[0]),
-                               float(bounds.dims[1]), float(chunk.planes));
-            glProgramUniform2f(p, glGetUniformLocation(p, "uChunkZ"), chunks.size() > 1 ? chunk.zLo : -2e30f,
-                               chunk.zHi);
+            glProgramUniform2i(p, glGetUniformLocation(p, "uCellZ"), chunk.cellZ[0], chunk.cellZ[1]);
             glBindTextureUnit(0, chunk.texture.get());
             glDrawArrays(GL_TRIANGLES, 0, 3);
         }
@@ -111,22 +131,16 @@ void GridRenderer::upload(const fit::Volume& volume) {
                                                      MAX_CHUNK_BYTES / (planeSamples * sizeof(float))));
     if (planeLimit < 4)
         throw fit::InputError("volume planes too large for the reference renderer's textures");
-    // Chunk k samples z in [k P, (k + 1) P] and holds the planes one beyond on either side.
+    // Chunk k owns the cells z in [k (P - 1), (k + 1) (P - 1)): P planes, the last shared with the next.
     const int depth = volume.dims[2];
-    const int owned = planeLimit - 3;
+    const int ownedCells = planeLimit - 1;
     std::vector<Chunk> chunks;
-    if (depth <= planeLimit) {
-        chunks.push_back(Chunk{{}, 0, depth});
-    } else {
-        for (int z = 0; z < depth - 1; z += owned) {
-            Chunk chunk;
-            chunk.firstPlane = std::max(0, z - 1);
-            const int lastPlane = std::min(depth - 1, z + owned + 1);
-            chunk.planes = lastPlane - chunk.firstPlane + 1;
-            chunk.zLo = float(z);
-            chunk.zHi = float(std::min(depth - 1, z + owned));
-            chunks.push_back(std::move(chunk));
-        }
+    for (int z = 0; z < depth - 1; z += ownedCells) {
+        Chunk chunk;
+        chunk.firstPlane = z;
+        chunk.cellZ = {z, std::min(depth - 1, z + ownedCells)};
+        chunk.planes = chunk.cellZ[1] - z + 1;
+        chunks.push_back(std::move(chunk));
     }
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     for (Chunk& chunk : chunks) {
@@ -135,10 +149,9 @@ void GridRenderer::upload(const fit::Volume& volume) {
         glTextureStorage3D(t, 1, GL_R32F, volume.dims[0], volume.dims[1], chunk.planes);
         glTextureSubImage3D(t, 0, 0, 0, 0, volume.dims[0], volume.dims[1], chunk.planes, GL_RED, GL_FLOAT,
                             volume.values.data() + static_cast<std::size_t>(chunk.firstPlane) * planeSamples);
-        glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-        glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-        for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
-            glTextureParameteri(t, wrap, GL_CLAMP_TO_EDGE);
+        // texelFetch of the corners only; no filtering.
+        glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
         checkGl("GridRenderer upload");
     }
     d.chunks = std::move(chunks);
@@ -165,13 +178,6 @@ std::array<float, 2> GridRenderer::valueRange() const {
     return mImpl->valueRange;
 }
 
-void GridRenderer::setStepVoxels(float step) {
-    if (!(step > 0.f && step <= 0.5f)) throw fit::InputError("reference step must be in (0, 0.5] voxels");
-    mImpl->step = step;
-}
-float GridRenderer::stepVoxels() const {
-    return mImpl->step;
-}
 const FrameStats& GridRenderer::lastFrameStats() const {
     return mImpl->stats;
 }
@@ -180,23 +186,19 @@ namespace {
 void checkGridMode(const RenderOptions& options) {
     if (options.mode == RenderMode::Density)
         throw fit::InputError("the grid renderer draws mip, minip and aip; density needs a Vot-Space");
-    if (options.mode != RenderMode::Mip)
-        throw fit::InputError("the grid renderer does not draw " + std::string(renderModeName(options.mode)) +
-                              " yet");
-    if (options.slab) throw fit::InputError("the grid renderer does not clip to a slab yet");
 }
 } // namespace
 
 FloatImage GridRenderer::render(const Camera& camera, int width, int height, const RenderOptions& options) {
     checkGridMode(options);
-    mImpl->draw(camera, width, height);
+    mImpl->draw(camera, width, height, options);
     return readFloatFrame(mImpl->target, mImpl->stats);
 }
 
 RgbaImage GridRenderer::renderRgba(const Camera& camera, int width, int height,
                                    const DisplaySettings& display, const RenderOptions& options) {
     checkGridMode(options);
-    mImpl->draw(camera, width, height);
+    mImpl->draw(camera, width, height, options);
     return readDisplayedFrame(mImpl->display, mImpl->target, display, mImpl->stats);
 }
 

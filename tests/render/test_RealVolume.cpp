@@ -57,10 +57,11 @@ TEST(RealVolume, VotMipMatchesReferenceWithinEps) {
         const Camera cam = parseCamera(text);
         const FloatImage a = vots.render(cam, 256, 256);
         const FloatImage b = grid.render(cam, 256, 256);
-        // Allowance beyond eps: the reference reconstructs trilinearly and samples every 0.5 voxel, the
-        // Vots are certified at grid samples only (docs/DESIGN.md §3 overshoot). Pixels whose reference max
-        // is below the fitter's background threshold have no Vot by design: compare them as background.
-        const double allowance = 0.05 * (f.volume.valueRange()[1] - f.volume.valueRange()[0]);
+        // Allowance beyond eps: the reference is the exact max of the trilinear interpolant, the Vots are
+        // certified at samples and cell centres only, so between those the two reconstructions differ
+        // (docs/DESIGN.md §3 overshoot). Pixels whose reference max is below the fitter's background
+        // threshold have no Vot by design: compare them as background.
+        const double allowance = 0.01 * (f.volume.valueRange()[1] - f.volume.valueRange()[0]);
         std::size_t compared = 0, within = 0, above = 0, below = 0;
         double worst = 0;
         for (std::size_t i = 0; i < a.pixels.size(); ++i) {

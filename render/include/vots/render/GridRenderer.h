@@ -1,5 +1,5 @@
-// Reference MIP: ray-marches the volume as an R32F 3D texture with trilinear sampling (ground truth,
-// baseline).
+// Exact projections of the trilinear grid (mip, minip, aip): the ground truth the Vot renderer is checked
+// against.
 #pragma once
 
 #include "vots/render/Camera.h"
@@ -17,10 +17,11 @@ struct Volume;
 
 namespace vots::render {
 
-/// One fullscreen pass per frame: each pixel's ray (same camera maths as VotRenderer) is clipped to
-/// the grid box [0, dims-1] in index space and sampled every stepVoxels (default 0.5) index units,
-/// plus the exit point; the pixel keeps the maximum. Pixels whose ray misses the grid are -infinity.
-/// Needs a current EglContext for its whole life.
+/// One fullscreen pass per z chunk: each pixel's ray (same camera maths as VotRenderer) is clipped to
+/// the grid box [0, dims-1] in index space, the near/far planes and the slab, and walked cell by cell;
+/// in a cell the trilinear interpolant along the ray is a cubic, whose max, min or integral is exact.
+/// aip is the integral over the clipped ray / its length. Pixels whose ray misses the grid (or slab) are
+/// -infinity (+infinity for minip). Needs a current EglContext for its whole life.
 class GridRenderer final : public Renderer {
 public:
     GridRenderer();
@@ -37,11 +38,7 @@ public:
     const SceneBounds& bounds() const override;
     std::array<float, 2> valueRange() const override; // min and max sample
 
-    /// Step along the ray in index units, (0, 0.5]; throws fit::InputError outside.
-    void setStepVoxels(float step);
-    float stepVoxels() const;
-
-    /// Mip (the grid's reference MIP); Density needs Vots and throws fit::InputError.
+    /// Mip, MinIp or Aip, with or without a slab; Density needs Vots and throws fit::InputError.
     FloatImage render(const Camera& camera, int width, int height,
                       const RenderOptions& options = RenderMode::Mip) override;
     RgbaImage renderRgba(const Camera& camera, int width, int height, const DisplaySettings& display,
