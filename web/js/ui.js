@@ -92,9 +92,9 @@ const input = attachInput({
 
 // A change while a gesture goes on: the hash throttled, the overlays now, a draft frame.
 function draft() {
+  slabControl.sync(); // first: it keeps the slab inside the volume, which the hash then says
   writeHash({ now: false });
   syncViewButtons(el.viewButtons, view.cam);
-  slabControl.sync();
   showViewOverlays();
   frames.schedule({ draft: true });
 }
@@ -136,9 +136,9 @@ const cine = createCine({
   view,
   frames,
   onStep() {
+    slabControl.sync();
     writeHash({ now: false });
     syncViewButtons(el.viewButtons, view.cam);
-    slabControl.sync();
     showViewOverlays();
     frames.schedule();
   },
@@ -196,8 +196,8 @@ function commit({ refit = false } = {}) {
     cancelSliderSettle();
     refit = readSliderEps() || refit;
   }
+  syncPanel(); // before the hash: the slab may have been moved back inside the volume
   writeHash();
-  syncPanel();
   if (refit) ensureFitted();
   else frames.schedule();
 }
@@ -307,8 +307,9 @@ window.addEventListener('hashchange', () => {
   const before = view.dataset;
   applyHash();
   if (view.dataset !== before) fillPresets(el.preset, currentDataset());
-  writeHash();
+  cine.stop(); // the link says where the camera is
   syncPanel();
+  writeHash();
   ensureFitted();
 });
 
@@ -334,8 +335,8 @@ async function start() {
   fillDatasetPicker(el.dataset, listed);
   applyHash();
   fillPresets(el.preset, currentDataset());
-  writeHash();
   syncPanel();
+  writeHash();
   ensureFitted();
 }
 
