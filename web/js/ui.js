@@ -143,6 +143,7 @@ const cine = createCine({
     frames.schedule();
   },
   onChange(running) {
+    if (!running) writeHash(); // the throttled write of the last step may still wait: the link is now
     el.cine.setAttribute('aria-pressed', String(running));
     el.cine.textContent = running ? 'Stop cine' : 'Cine';
   },
