@@ -9,6 +9,8 @@
 // rounds after --warmup rounds, each frame glFinish-synchronised, and the ratios of those medians.
 // Readback (R32F), display pass + RGBA readback and PNG encoding are timed separately for the default
 // strategy. Prints LP_NUM_THREADS and the GL renderer. --png-dir writes each view's images there.
+#include "BenchTiming.h"
+
 #include "vots/fit/Error.h"
 #include "vots/fit/Fitter.h"
 #include "vots/fit/VolumeLoad.h"
@@ -35,34 +37,11 @@
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
+using vots::bench::Clock;
+using vots::bench::interleavedMedians;
+using vots::bench::median;
+using vots::bench::msOf;
 using vots::render::VotRenderer;
-
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v.empty() ? 0.0 : v[v.size() / 2];
-}
-
-double msOf(const std::function<void()>& fn) {
-    const auto t0 = Clock::now();
-    fn();
-    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-
-// Runs the functions round-robin (warm-up rounds first) and returns each one's median wall time, ms.
-std::vector<double> interleavedMedians(int warmup, int frames,
-                                       const std::vector<std::function<void()>>& fns) {
-    std::vector<std::vector<double>> ms(fns.size());
-    for (int round = 0; round < warmup + frames; ++round)
-        for (std::size_t i = 0; i < fns.size(); ++i) {
-            const double t = msOf(fns[i]);
-            if (round >= warmup) ms[i].push_back(t);
-        }
-    std::vector<double> out;
-    for (const auto& m : ms)
-        out.push_back(median(m));
-    return out;
-}
 
 // Pixels where two MIP images differ by more than tol (finite vs non-finite counts as different).
 std::size_t countDifferent(const vots::render::FloatImage& a, const vots::render::FloatImage& b, float tol) {

@@ -87,9 +87,10 @@ CheckedArgs checkArgs(const RenderArgs& a) {
         f.camera = render::parseCamera(a.cam);
     }
     std::tie(f.width, f.height) = parseSize(a.size);
-    render::applyModeAndRenderer(
-        f, a.mode, a.renderer.empty() ? std::nullopt : std::optional<std::string_view>(a.renderer));
-    if (!a.slab.empty()) f.slab = render::parseSlab(a.slab);
+    const auto given = [](const std::string& text) {
+        return text.empty() ? std::nullopt : std::optional<std::string_view>(text);
+    };
+    render::applyProjection(f, a.mode, given(a.renderer), given(a.slab));
     f.colormap = render::parseColormap(a.colormap);
     if (!a.window.empty()) f.window = render::parseWindow(a.window, f.colormap);
     c.eps = parseEps(a.eps, "--eps");

@@ -20,7 +20,8 @@ void main() {
     vec3 origin, dir;
     float farT;
     pixelRay(gl_FragCoord.xy, origin, dir, farT);
+    vec2 range = clipRayToSlab(origin, dir, vec2(0.0, farT));
     float value;
-    if (!votRayMax(vVot, origin, dir, farT, value)) discard;
+    if (range.x > range.y || !votRayMax(vVot, origin, dir, range, value)) discard;
     outValue = value;
 }

@@ -6,9 +6,9 @@
 // fetches gather all pixels' records at once, where llvmpipe loads SSBO data pixel by pixel.
 layout(binding = VOT_TEXTURE_UNIT) uniform samplerBuffer uVotData;
 
-// Max of Vot `vot` along origin + t dir, t in [0, farT], over its box grown by CLIP_SLACK. Returns false
+// Max of Vot `vot` along origin + t dir, t in `range`, over its box grown by CLIP_SLACK. Returns false
 // (value untouched) when the ray misses the box.
-bool votRayMax(uint vot, vec3 origin, vec3 dir, float farT, out float value) {
+bool votRayMax(uint vot, vec3 origin, vec3 dir, vec2 range, out float value) {
     int base = int(vot) * VOT_TEXELS;
     float c[TAYLOR_TERMS];
     for (int k = 0; k < TAYLOR_TERMS / 4; ++k) {
@@ -20,5 +20,5 @@ bool votRayMax(uint vot, vec3 origin, vec3 dir, float farT, out float value) {
     }
     vec3 lo = texelFetch(uVotData, base).xyz, hi = texelFetch(uVotData, base + 1).xyz;
     vec3 p = texelFetch(uVotData, base + 2).xyz;
-    return cubicRayMax(c, lo, hi, p, vec3(1.0), origin, dir, farT, value);
+    return cubicRayMax(c, lo, hi, p, vec3(1.0), origin, dir, range, value);
 }

@@ -25,11 +25,20 @@ uniform ivec3 uCells;    // cells per axis (grid points - 1)
 uniform ivec3 uBricks;   // bricks per axis
 uniform int uBrickShift; // a brick is (1 << uBrickShift)^3 cells
 uniform int uCull;       // 1: step over bricks and Vots whose bound cannot beat the pixel's max
+// WALK_MODE_MAX, WALK_MODE_MIN (the max of the negated polynomials, with bounds to match: -lowerBound per
+// block, and per brick over its blocks) or WALK_MODE_MEAN (the integral, every Vot, no culling).
+uniform int uMode;
+// What a background cell (no Vot: the fit left it out) contributes, in the walked quantity: -inf for
+// the max (nothing), -background for the min, background for the mean (per unit length).
+uniform float uEmptyValue;
 
-// The ray of this pixel, set once by main() for walkStep().
+// The ray of this pixel, set once by main() for walkStep(): [gTIn, gTOut] is its part inside the grid,
+// the near and far planes and the slab; gRange is what a Vot's max may use (the planes and the slab;
+// the Vot's own box clips it further); gTBlock is where the ray entered the block it is in.
 vec3 gOrigin, gDir, gInvDir;
 bvec3 gUp;
-float gFarT, gTOut;
+float gTIn, gTOut, gTBlock;
+vec2 gRange;
 
 // The box [lo, hi) in cells packed in a texel's first three words (packBoxCorners, VotWalkGrid.h).
 void unpackBox(uvec4 texel, out ivec3 lo, out ivec3 hi) {
@@ -37,9 +46,10 @@ void unpackBox(uvec4 texel, out ivec3 lo, out ivec3 hi) {
     hi = ivec3(texel.y >> 16, texel.z & 0xffffu, texel.z >> 16);
 }
 
-// The max along this pixel's ray of the Vot that palette entry `entry` names (-inf when the ray misses
-// its box), and its box [lo, hi) in cells. The whole box is evaluated, as the raster strategy does.
-float walkRecordRayMax(int entry, out ivec3 lo, out ivec3 hi) {
+// What this pixel's ray takes from the Vot that palette entry `entry` names: its max (of the negated
+// polynomial for WALK_MODE_MIN; -inf when the ray misses its box) or its integral, and its box [lo, hi)
+// in cells. The whole box is evaluated, as the raster strategy does.
+float walkRecordAlongRay(int entry, out ivec3 lo, out ivec3 hi) {
     int base = entry * WALK_RECORD_TEXELS;
     uvec4 r0 = texelFetch(uWalkRecord, base), r1 = texelFetch(uWalkRecord, base + 1);
     uvec4 r2 = texelFetch(uWalkRecord, base + 2), r3 = texelFetch(uWalkRecord, base + 3);
@@ -50,19 +60,27 @@ float walkRecordRayMax(int entry, out ivec3 lo, out ivec3 hi) {
     c[2] = uintBitsToFloat(r1.y);
     c[3] = uintBitsToFloat(r1.z);
     float quantum = uintBitsToFloat(r1.w);
+    if (uMode == WALK_MODE_MIN) {
+        c[0] = -c[0], c[1] = -c[1], c[2] = -c[2], c[3] = -c[3];
+        quantum = -quantum;
+    }
     uint steps[8] = uint[8](r2.x, r2.y, r2.z, r2.w, r3.x, r3.y, r3.z, r3.w);
     for (int k = 0; k < 8; ++k) {
         c[4 + 2 * k] = float(bitfieldExtract(int(steps[k]), 0, 16)) * quantum;
         c[5 + 2 * k] = float(int(steps[k]) >> 16) * quantum;
     }
     vec3 boxLo = vec3(lo), boxHi = vec3(hi);
+    vec3 centre = 0.5 * (boxLo + boxHi), invScale = 2.0 / (boxHi - boxLo);
+    if (uMode == WALK_MODE_MEAN)
+        return cubicRayIntegral(c, boxLo, boxHi, centre, invScale, gOrigin, gDir, vec2(gTIn, gTOut));
     float value = NEG_INF;
-    cubicRayMax(c, boxLo, boxHi, 0.5 * (boxLo + boxHi), 2.0 / (boxHi - boxLo), gOrigin, gDir, gFarT, value);
+    cubicRayMax(c, boxLo, boxHi, centre, invScale, gOrigin, gDir, gRange, value);
     return value;
 }
 
 // One step of the walk: leaves the block at `cell` (evaluating it first when it is a Vot that can raise
-// the max) or ends the walk. With mayEvaluate false, a Vot to evaluate is left as it is, for the next
+// the max, or for the mean any Vot; a background block adds uEmptyValue) or ends the walk. `best` is the
+// max so far, or for the mean the integral so far. With mayEvaluate false, a Vot to evaluate is left as it is, for the next
 // call that may.
 void walkStep(const bool mayEvaluate, inout ivec3 cell, inout float best, inout bool walking, inout int budget) {
     ivec3 lo, hi; // the block of cells [lo, hi) the ray leaves next; it contains `cell`
@@ -89,7 +107,8 @@ void walkStep(const bool mayEvaluate, inout ivec3 cell, inout float best, inout 
     int entry = skipBrick ? 0 : int(brickRecord.z + paletteIndex);
     uvec4 box = texelFetch(uVotBox, entry);
     float bound = uintBitsToFloat(box.w);
-    bool stepOver = bound == NEG_INF || (uCull != 0 && bound <= best); // -inf: an empty block
+    bool empty = bound == NEG_INF; // an empty block: background cells
+    bool stepOver = empty || (uCull != 0 && bound <= best);
     if (!mayEvaluate && !skipBrick && !stepOver) return; // left for the next iteration's first step
     if (skipBrick) {
         lo = brick << uBrickShift;
@@ -97,7 +116,8 @@ void walkStep(const bool mayEvaluate, inout ivec3 cell, inout float best, inout 
     } else if (stepOver) {
         unpackBox(box, lo, hi);
     } else if (mayEvaluate) {
-        best = max(best, walkRecordRayMax(skipBrick || stepOver ? 0 : entry, lo, hi));
+        float value = walkRecordAlongRay(skipBrick || stepOver ? 0 : entry, lo, hi);
+        best = uMode == WALK_MODE_MEAN ? best + value : max(best, value);
     }
     // Leave the block: the first face crossed sets the axis that moves past it; the other axes
     // follow the ray, clamped into the block and never backwards (rounding cannot skip cells).
@@ -105,6 +125,13 @@ void walkStep(const bool mayEvaluate, inout ivec3 cell, inout float best, inout 
     float tExit = min(min(tFace.x, tFace.y), tFace.z);
     bvec3 first = bvec3(tFace.x == tExit, tFace.y == tExit && tFace.x != tExit,
                         tFace.z == tExit && tFace.x != tExit && tFace.y != tExit);
+    // Background: a brick without Vots stepped over whole, or an empty block. A brick skipped by its
+    // bound holds nothing that could change the max (for the min, its bound includes its background).
+    if (skipBrick ? brickMax == NEG_INF : empty) {
+        float len = min(tExit, gTOut) - max(gTBlock, gTIn);
+        if (len > 0.0) best = uMode == WALK_MODE_MEAN ? best + uEmptyValue * len : max(best, uEmptyValue);
+    }
+    gTBlock = tExit;
     ivec3 at = ivec3(floor(gOrigin + tExit * gDir));
     cell = mix(clamp(at, lo, cell), clamp(at, cell, hi - 1), gUp);
     cell = mix(cell, mix(lo - 1, hi, gUp), first);
@@ -113,16 +140,17 @@ void walkStep(const bool mayEvaluate, inout ivec3 cell, inout float best, inout 
         walking = false;
 }
 
-// The max along the ray through the pixel centre `fragCoord` (window coordinates); -inf when it meets
-// no Vot.
+// The max, min or mean along the ray through the pixel centre `fragCoord` (window coordinates); -inf
+// when it meets nothing to take (no Vot, nor for the min and mean any background cell).
 float walkPixel(vec2 fragCoord) {
     vec3 origin, dir;
     float farT;
     pixelRay(fragCoord, origin, dir, farT);
+    gRange = clipRayToSlab(origin, dir, vec2(0.0, farT));
     vec2 span = clipRayToBox(origin, dir, vec3(0.0), vec3(uCells));
-    float tIn = max(span.x, 0.0);
-    float tOut = min(span.y, farT);
-    float best = NEG_INF;
+    float tIn = max(span.x, gRange.x);
+    float tOut = min(span.y, gRange.y);
+    float best = uMode == WALK_MODE_MEAN ? 0.0 : NEG_INF;
     bool walking = tIn <= tOut;
     vec3 safeDir = mix(dir, vec3(1e-30), lessThan(abs(dir), vec3(1e-30)));
     vec3 invDir = 1.0 / safeDir;
@@ -136,10 +164,12 @@ float walkPixel(vec2 fragCoord) {
     // llvmpipe runs an evaluation's code for all 8 lanes whenever one of them evaluates, so each round
     // adds a second step that cannot evaluate: a lane crossing empty or culled blocks moves on twice as
     // fast. A third such step costs more than it saves (bench/RESULTS.md compares them).
-    gOrigin = origin, gDir = dir, gInvDir = invDir, gUp = up, gFarT = farT, gTOut = tOut;
+    gOrigin = origin, gDir = dir, gInvDir = invDir, gUp = up, gTIn = tIn, gTOut = tOut, gTBlock = tIn;
     while (walking) {
         walkStep(true, cell, best, walking, budget);
         if (walking) walkStep(false, cell, best, walking, budget);
     }
+    if (uMode == WALK_MODE_MEAN) return tOut > tIn ? best / (tOut - tIn) : NEG_INF;
+    if (uMode == WALK_MODE_MIN) return best == NEG_INF ? NEG_INF : -best;
     return best;
 }

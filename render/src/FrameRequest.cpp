@@ -38,8 +38,8 @@ SizeParse parseFrameSize(std::string_view text, int maxSide) {
     return size;
 }
 
-void applyModeAndRenderer(FrameRequest& frame, std::optional<std::string_view> mode,
-                          std::optional<std::string_view> renderer) {
+void applyProjection(FrameRequest& frame, std::optional<std::string_view> mode,
+                     std::optional<std::string_view> renderer, std::optional<std::string_view> slab) {
     ModeName name;
     if (mode) name = parseModeName(*mode);
     frame.mode = name.mode;
@@ -50,6 +50,10 @@ void applyModeAndRenderer(FrameRequest& frame, std::optional<std::string_view> m
                               std::string(*renderer) + "'");
     if (frame.mode == RenderMode::Density && frame.renderer == RendererKind::Grid)
         throw fit::InputError("mode 'density' shows Vot sizes: it needs renderer 'vots'");
+    frame.slab.reset();
+    if (slab) frame.slab = parseSlab(*slab);
+    if (frame.slab && frame.mode == RenderMode::Density)
+        throw fit::InputError("mode 'density' shows the smallest Vot along each whole ray; it takes no slab");
 }
 
 DisplaySettings displayFor(const FrameRequest& frame, std::array<float, 2> fullRange) {

@@ -4,6 +4,7 @@
 #include "MaxPyramid.h"
 #include "ShaderContract.h"
 #include "Shaders.h"
+#include "SlabClip.h"
 
 #include "vots/render/Error.h"
 
@@ -195,12 +196,14 @@ void RasterPass::drawCulled(const CameraMatrices& m, int width, int height, Floa
     }
 }
 
-void RasterPass::draw(RenderMode mode, const CameraMatrices& m, int width, int height, FloatTarget& target,
-                      const std::vector<GpuVot>& vots, bool culling, FrameStats& stats) {
+void RasterPass::draw(RenderMode mode, const CameraMatrices& m, const std::optional<SlabPlanes>& slab,
+                      int width, int height, FloatTarget& target, const std::vector<GpuVot>& vots,
+                      bool culling, FrameStats& stats) {
     const GLuint program = mode == RenderMode::Mip ? mMipProgram.get() : mDensityProgram.get();
     ensureVotBuffer(vots);
     setCommonState(program, m, width, height);
     if (mode == RenderMode::Mip) {
+        setSlabUniforms(program, slab);
         target.clear(-INFINITY);
         glBlendEquation(GL_MAX); // exact for R32F and order-independent: no sorting needed
         if (culling && vots.size() > FIRST_BATCH) {

@@ -9,8 +9,10 @@
 #include "vots/render/FrameStats.h"
 #include "vots/render/GpuLayout.h"
 #include "vots/render/RenderMode.h"
+#include "vots/render/Slab.h"
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace vots::render {
@@ -29,9 +31,11 @@ public:
     /// texture-buffer limit) and drops the last Vot-Space's records; throws RenderError when not one
     /// record fits a chunk.
     void upload(std::size_t votCount);
-    /// MIP (culled unless `culling` is off or the space is small) or density into the bound target.
-    void draw(RenderMode mode, const CameraMatrices& m, int width, int height, FloatTarget& target,
-              const std::vector<GpuVot>& vots, bool culling, FrameStats& stats);
+    /// MIP (culled unless `culling` is off or the space is small; clipped to the slab if there is one)
+    /// or density into the bound target.
+    void draw(RenderMode mode, const CameraMatrices& m, const std::optional<SlabPlanes>& slab, int width,
+              int height, FloatTarget& target, const std::vector<GpuVot>& vots, bool culling,
+              FrameStats& stats);
 
 private:
     void ensureVotBuffer(const std::vector<GpuVot>& vots);

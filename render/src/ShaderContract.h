@@ -29,6 +29,11 @@ inline constexpr int WALK_RECORD_UNIT = 3;
 inline constexpr int WALK_TARGET_IMAGE_UNIT = 0;
 /// The compute walk's work group: WALK_GROUP_SIDE^2 pixels.
 inline constexpr int WALK_GROUP_SIDE = 8;
+/// What the walk takes along each ray (uMode of vot_walk.glsl): the max; the max of the negated
+/// polynomials (the min, negated, so that the max's culling serves it unchanged); the integral.
+inline constexpr int WALK_MODE_MAX = 0;
+inline constexpr int WALK_MODE_MIN = 1;
+inline constexpr int WALK_MODE_MEAN = 2;
 /// Texture unit of the raster MIP's copy of the max image after the last batch.
 inline constexpr int PREV_MAX_UNIT = 0;
 
@@ -42,7 +47,7 @@ struct ContractFloat {
     float value;
 };
 
-inline constexpr std::array<ContractInt, 14> CONTRACT_INTS{{
+inline constexpr std::array<ContractInt, 17> CONTRACT_INTS{{
     {"TAYLOR_TERMS", static_cast<long long>(fit::MONOMIAL_COUNT)},
     {"VOT_BUFFER_BINDING", VOT_BUFFER_BINDING},
     {"INDEX_BUFFER_BINDING", INDEX_BUFFER_BINDING},
@@ -57,6 +62,9 @@ inline constexpr std::array<ContractInt, 14> CONTRACT_INTS{{
     {"WALK_TARGET_IMAGE_UNIT", WALK_TARGET_IMAGE_UNIT},
     {"WALK_GROUP_SIDE", WALK_GROUP_SIDE},
     {"PREV_MAX_UNIT", PREV_MAX_UNIT},
+    {"WALK_MODE_MAX", WALK_MODE_MAX},
+    {"WALK_MODE_MIN", WALK_MODE_MIN},
+    {"WALK_MODE_MEAN", WALK_MODE_MEAN},
 }};
 inline constexpr std::array<ContractFloat, 2> CONTRACT_FLOATS{{
     {"BOX_SLACK", BOX_SLACK},

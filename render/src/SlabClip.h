@@ -12,5 +12,7 @@ namespace vots::render {
 
 void setSlabUniforms(GLuint program, const std::optional<Slab>& slab, const Camera& camera,
                      const SceneBounds& bounds);
+/// The same from planes computed once for a frame (nullopt: no slab).
+void setSlabUniforms(GLuint program, const std::optional<SlabPlanes>& planes);
 
 } // namespace vots::render

@@ -46,22 +46,29 @@ struct VotRenderer::Impl {
 
     void draw(const Camera& camera, int width, int height, const RenderOptions& options) {
         const RenderMode mode = options.mode;
-        if (mode == RenderMode::MinIp || mode == RenderMode::Aip)
-            throw fit::InputError("the Vot renderer does not draw " + std::string(renderModeName(mode)) +
-                                  " yet; use renderer=grid");
-        if (options.slab)
-            throw fit::InputError("the Vot renderer does not clip to a slab yet; use renderer=grid");
+        if (mode == RenderMode::Density && options.slab)
+            throw fit::InputError("density shows the smallest Vot along each whole ray; it takes no slab");
         if (!hasData) throw RenderError("VotRenderer: render() before upload()");
         const CameraMatrices m = computeCameraMatrices(camera, bounds, width, height);
         const auto t0 = FrameClock::now();
         stats = FrameStats{};
         stats.votsTotal = vots.size();
         target.bind(width, height);
-        const bool walked = mode == RenderMode::Mip && mipStrategy() == Strategy::Walk;
+        const bool alongRays = mode == RenderMode::MinIp || mode == RenderMode::Aip;
+        // The walk's per-cell view is what gives the min and the mean their background cells and the
+        // mean its non-overlapping segments; the raster strategy sees only boxes.
+        if (alongRays && !walk.walkable())
+            throw fit::InputError(
+                std::string(renderModeName(mode)) +
+                " needs a Vot-Space with disjoint boxes (fit --method fast) within the walk's "
+                "GL limits; this one can only be drawn as mip or density");
+        const bool walked = alongRays || (mode == RenderMode::Mip && mipStrategy() == Strategy::Walk);
+        std::optional<SlabPlanes> slab;
+        if (options.slab) slab = slabPlanesInIndexSpace(*options.slab, camera, bounds);
         if (walked)
-            walk.draw(m, width, height, target, culling, stats);
+            walk.draw(mode, m, slab, width, height, target, culling, stats);
         else
-            raster.draw(mode, m, width, height, target, vots, culling, stats);
+            raster.draw(mode, m, slab, width, height, target, vots, culling, stats);
         glDisable(GL_CULL_FACE);
         glFinish();
         stats.gpuMs = msSince(t0);
@@ -121,7 +128,7 @@ void VotRenderer::upload(const fit::VotSpace& space) {
     d.valueRange = {lo, hi};
     d.densityRange = {0.f, std::max(maxLogSize, 1.f)};
 
-    d.walk.upload(std::move(grid), d.vots, walkRecords.get());
+    d.walk.upload(std::move(grid), d.vots, walkRecords.get(), space.background);
     d.bounds = sceneBounds(space);
     d.hasData = true;
 }

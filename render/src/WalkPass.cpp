@@ -6,6 +6,7 @@
 #include "ParallelChunks.h"
 #include "ShaderContract.h"
 #include "Shaders.h"
+#include "SlabClip.h"
 #include "WalkRecord.h"
 
 #include "vots/render/EglContext.h"
@@ -44,6 +45,14 @@ std::vector<std::uint32_t> boxTable(const std::vector<std::uint32_t>& palette,
         packBox(&texels[4 * i], box.lo, box.hi, block < votBounds.size() ? votBounds[block] : -INFINITY);
     }
     return texels;
+}
+
+// A buffer texture over a new buffer holding `bytes` of `data` (nullptr: written later).
+void bufferTexture(GlBuffer& buffer, GlTexture& texture, GLenum format, const void* data, std::size_t bytes) {
+    buffer = createBuffer();
+    glNamedBufferStorage(buffer.get(), static_cast<GLsizeiptr>(bytes), data, GL_DYNAMIC_STORAGE_BIT);
+    texture = createTexture(GL_TEXTURE_BUFFER);
+    glTextureBuffer(texture.get(), format, buffer.get());
 }
 
 // The compute walk spreads over all of a GPU's multiprocessors; a CPU rasteriser runs the fragment walk
@@ -150,12 +159,15 @@ std::optional<WalkPass::Grid> WalkPass::gridFor(const std::vector<GpuVot>& vots,
 }
 
 void WalkPass::upload(std::optional<Grid>&& walk, const std::vector<GpuVot>& vots,
-                      const std::uint32_t* votRecords) {
+                      const std::uint32_t* votRecords, float background) {
     mWalkable = false;
-    for (GlTexture* t : {&mCellTable, &mBrickMax, &mVotBox, &mWalkRecord})
+    for (GlTexture* t : {&mCellTable, &mBrickMax, &mVotBox, &mOwnBox, &mWalkRecord})
         t->reset();
-    for (GlBuffer* b : {&mCellTableBuffer, &mBrickMaxBuffer, &mVotBoxBuffer, &mWalkRecordBuffer})
+    for (GlBuffer* b :
+         {&mCellTableBuffer, &mBrickMaxBuffer, &mVotBoxBuffer, &mOwnBoxBuffer, &mWalkRecordBuffer})
         b->reset();
+    mBrickLowNegated.clear();
+    mBackground = background;
     if (!walk) return;
     VotWalkGrid* grid = &*walk;
     const PalettedCells& cells = grid->index;
@@ -179,13 +191,6 @@ void WalkPass::upload(std::optional<Grid>&& walk, const std::vector<GpuVot>& vot
             return block < vots.size() ? in.votBoxes[block] : grid->emptyBlocks[block - vots.size()];
         });
 
-    auto bufferTexture = [](GlBuffer& buffer, GlTexture& texture, GLenum format, const void* data,
-                            std::size_t bytes) {
-        buffer = createBuffer();
-        glNamedBufferStorage(buffer.get(), static_cast<GLsizeiptr>(bytes), data, GL_DYNAMIC_STORAGE_BIT);
-        texture = createTexture(GL_TEXTURE_BUFFER);
-        glTextureBuffer(texture.get(), format, buffer.get());
-    };
     bufferTexture(mCellTableBuffer, mCellTable, GL_RGBA32UI, cells.cellWords.data(),
                   cells.cellWords.size() * sizeof(std::uint32_t));
     mBrickMaxima = grid->brickMax;
@@ -196,6 +201,7 @@ void WalkPass::upload(std::optional<Grid>&& walk, const std::vector<GpuVot>& vot
     bufferTexture(mBrickMaxBuffer, mBrickMax, GL_RGBA32UI, nullptr,
                   4 * mBrickMaxima.size() * sizeof(std::uint32_t));
     bufferTexture(mVotBoxBuffer, mVotBox, GL_RGBA32UI, boxes.data(), boxes.size() * sizeof(std::uint32_t));
+    uploadMinAndMeanTables(vots, *grid, in.votBoxes);
     // Walk records by palette entry, like the box table: a step that evaluates reads the record straight
     // after the box, with no lookup of the Vot's index between them; a Vot in two bricks has two copies,
     // entries of empty blocks stay zero. Written straight into the mapped buffer, since a copy of our
@@ -228,9 +234,43 @@ void WalkPass::upload(std::optional<Grid>&& walk, const std::vector<GpuVot>& vot
     mWalkable = true;
 }
 
-void WalkPass::draw(const CameraMatrices& m, int width, int height, FloatTarget& target, bool culling,
-                    FrameStats& stats) {
+void WalkPass::uploadMinAndMeanTables(const std::vector<GpuVot>& vots, const VotWalkGrid& grid,
+                                      const std::vector<CellBlock>& votBoxes) {
+    const PalettedCells& cells = grid.index;
+    std::vector<float> lowNegated(vots.size());
+    for (std::size_t i = 0; i < vots.size(); ++i)
+        lowNegated[i] = -vots[i].lowerBound;
+    const std::vector<std::uint32_t> own =
+        boxTable(cells.palette, lowNegated, vots.size() + grid.emptyBlocks.size(),
+                 [&](std::uint32_t block) -> const CellBlock& {
+                     return block < vots.size() ? votBoxes[block] : grid.emptyBlocks[block - vots.size()];
+                 });
+    bufferTexture(mOwnBoxBuffer, mOwnBox, GL_RGBA32UI, own.data(), own.size() * sizeof(std::uint32_t));
+    // A brick's bound for the min covers its background cells too: they count as the background value.
+    const float emptyNegated = std::isfinite(mBackground) ? -mBackground : -INFINITY;
+    const std::size_t brickCount = cells.paletteStart.size();
+    mBrickLowNegated.assign(brickCount, -INFINITY);
+    for (std::size_t b = 0; b < brickCount; ++b) {
+        const std::size_t end = b + 1 < brickCount ? cells.paletteStart[b + 1] : cells.palette.size();
+        for (std::size_t i = cells.paletteStart[b]; i < end; ++i) {
+            const std::uint32_t block = cells.palette[i];
+            mBrickLowNegated[b] =
+                std::max(mBrickLowNegated[b], block < vots.size() ? lowNegated[block] : emptyNegated);
+        }
+    }
+}
+
+void WalkPass::draw(RenderMode mode, const CameraMatrices& m, const std::optional<SlabPlanes>& slab,
+                    int width, int height, FloatTarget& target, bool culling, FrameStats& stats) {
     applySkipBoxes(false);
+    const int walkMode = mode == RenderMode::MinIp ? WALK_MODE_MIN
+                         : mode == RenderMode::Aip ? WALK_MODE_MEAN
+                                                   : WALK_MODE_MAX;
+    const bool background = std::isfinite(mBackground);
+    float emptyValue = -INFINITY; // the max ignores background cells
+    if (walkMode == WALK_MODE_MIN) emptyValue = background ? -mBackground : -INFINITY;
+    if (walkMode == WALK_MODE_MEAN) emptyValue = background ? mBackground : 0.f;
+    const std::vector<float>& brickBound = walkMode == WALK_MODE_MIN ? mBrickLowNegated : mBrickMaxima;
     const bool compute = mShader == Shader::Compute;
     const GLuint p = program(compute);
     glUseProgram(p);
@@ -243,16 +283,22 @@ void WalkPass::draw(const CameraMatrices& m, int width, int height, FloatTarget&
     glProgramUniform3i(p, glGetUniformLocation(p, "uCells"), mCells[0], mCells[1], mCells[2]);
     glProgramUniform3i(p, glGetUniformLocation(p, "uBricks"), mBricks[0], mBricks[1], mBricks[2]);
     glProgramUniform1i(p, glGetUniformLocation(p, "uBrickShift"), WALK_BRICK_SHIFT);
-    glProgramUniform1i(p, glGetUniformLocation(p, "uCull"), culling ? 1 : 0);
+    // The mean takes every Vot on the ray: nothing can be culled.
+    const bool cull = culling && walkMode != WALK_MODE_MEAN;
+    glProgramUniform1i(p, glGetUniformLocation(p, "uCull"), cull ? 1 : 0);
+    glProgramUniform1i(p, glGetUniformLocation(p, "uMode"), walkMode);
+    glProgramUniform1f(p, glGetUniformLocation(p, "uEmptyValue"), emptyValue);
+    setSlabUniforms(p, slab);
     // The bounds ahead depend on the view, so they are recomputed per frame (linear in the bricks).
     const auto aheadStart = FrameClock::now();
     const std::vector<float> ahead =
-        brickMaximaAhead({mCells, mBricks, WALK_BRICK_SHIFT}, mBrickMaxima, rayFamilyOf(m.clipToIndex));
+        cull ? brickMaximaAhead({mCells, mBricks, WALK_BRICK_SHIFT}, brickBound, rayFamilyOf(m.clipToIndex))
+             : std::vector<float>(brickBound.size(), INFINITY);
     stats.boundsAheadMs = msSince(aheadStart);
     // (bound, bound ahead, palette start, cell table) per brick
     std::vector<std::uint32_t> brickBounds(4 * ahead.size());
     for (std::size_t i = 0; i < ahead.size(); ++i) {
-        brickBounds[4 * i] = std::bit_cast<std::uint32_t>(mBrickMaxima[i]);
+        brickBounds[4 * i] = std::bit_cast<std::uint32_t>(brickBound[i]);
         brickBounds[4 * i + 1] = std::bit_cast<std::uint32_t>(ahead[i]);
         brickBounds[4 * i + 2] = mPaletteStart[i];
         brickBounds[4 * i + 3] = mCellTableOf[i];
@@ -262,7 +308,7 @@ void WalkPass::draw(const CameraMatrices& m, int width, int height, FloatTarget&
                          brickBounds.data());
     glBindTextureUnit(WALK_CELL_TABLE_UNIT, mCellTable.get());
     glBindTextureUnit(WALK_BRICK_MAX_UNIT, mBrickMax.get());
-    glBindTextureUnit(WALK_VOT_BOX_UNIT, mVotBox.get());
+    glBindTextureUnit(WALK_VOT_BOX_UNIT, walkMode == WALK_MODE_MAX ? mVotBox.get() : mOwnBox.get());
     glBindTextureUnit(WALK_RECORD_UNIT, mWalkRecord.get());
     stats.batches = 1;
     stats.votsDrawn = 0;

@@ -9,10 +9,13 @@
 #include "vots/render/Camera.h"
 #include "vots/render/FrameStats.h"
 #include "vots/render/GpuLayout.h"
+#include "vots/render/RenderMode.h"
+#include "vots/render/Slab.h"
 #include "vots/render/VotRenderer.h"
 
 #include <array>
 #include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <future>
@@ -53,14 +56,17 @@ public:
     /// Stops the running skip-box growth (it ends by itself) before a new upload.
     void cancelSkipGrowth();
     /// Uploads the grid (walkable() true), or drops the last one when there is none. votRecords holds
-    /// WALK_RECORD_WORDS words per Vot, in the order of `vots`.
-    void upload(std::optional<Grid>&& walk, const std::vector<GpuVot>& vots, const std::uint32_t* votRecords);
+    /// WALK_RECORD_WORDS words per Vot, in the order of `vots`; `background` is the value the fit left
+    /// out (VotSpace::background), what background cells count as in the min and the mean.
+    void upload(std::optional<Grid>&& walk, const std::vector<GpuVot>& vots, const std::uint32_t* votRecords,
+                float background);
     bool walkable() const { return mWalkable; }
 
-    /// Draws the MIP into the bound target (every pixel is written); culling off evaluates every Vot on
-    /// the ray. Counts into `stats`.
-    void draw(const CameraMatrices& m, int width, int height, FloatTarget& target, bool culling,
-              FrameStats& stats);
+    /// Draws the max, min or mean along each ray (Mip, MinIp, Aip), within the slab if there is one, into
+    /// the bound target (every pixel is written); culling off evaluates every Vot on the ray (the mean
+    /// always does). Counts into `stats`.
+    void draw(RenderMode mode, const CameraMatrices& m, const std::optional<SlabPlanes>& slab, int width,
+              int height, FloatTarget& target, bool culling, FrameStats& stats);
     /// Starts growing the skip boxes of this Vot-Space on another thread, unless it runs or ran.
     void startSkipGrowth();
     /// Puts finished skip boxes into the box table; with `wait`, waits for them first.
@@ -74,6 +80,8 @@ private:
     };
 
     GLuint program(bool compute);
+    void uploadMinAndMeanTables(const std::vector<GpuVot>& vots, const VotWalkGrid& grid,
+                                const std::vector<CellBlock>& votBoxes);
 
     Shader mShader = Shader::Fragment;
     std::array<GlProgram, 2> mPrograms; // fragment and compute, built when first needed
@@ -88,6 +96,12 @@ private:
                            // the Vot it names, zeros for an empty block
     GlTexture mVotBox;     // RGBA32UI per palette entry: the packed box to step over and the bound of the
                            // block the entry names (each brick has its own copies of its blocks' boxes)
+    // The same for the min and the mean: each block's own box (skip boxes are grown for the max's
+    // bounds, and would step over background the min and the mean must count) and -lowerBound.
+    GlBuffer mOwnBoxBuffer;
+    GlTexture mOwnBox;
+    std::vector<float> mBrickLowNegated; // per brick: max over its blocks of -lowerBound, -background
+    float mBackground = -INFINITY;
     std::vector<float> mBrickMaxima;          // per brick: max upperBound of the Vots touching it
     std::vector<std::uint32_t> mPaletteStart; // per brick: its first palette index
     std::vector<std::uint32_t> mCellTableOf;  // per brick: PalettedCells::cellTable

@@ -152,12 +152,11 @@ RenderParams parseRenderParams(const QueryParams& query) {
         p.epsGiven = true;
     }
     if (const auto degree = get("degree")) p.degree = parseDegree(*degree);
-    const auto mode = get("mode"), renderer = get("renderer");
-    parseWith(renderer ? "mode/renderer" : "mode", [&] {
-        render::applyModeAndRenderer(p, mode, renderer);
+    const auto mode = get("mode"), renderer = get("renderer"), slab = get("slab");
+    parseWith("mode/renderer/slab", [&] {
+        render::applyProjection(p, mode, renderer, slab);
         return 0;
     });
-    if (const auto slab = get("slab")) p.slab = parseWith("slab", [&] { return render::parseSlab(*slab); });
     if (const auto map = get("colormap"))
         p.colormap = parseWith("colormap", [&] { return render::parseColormap(*map); });
     if (const auto window = get("window"))

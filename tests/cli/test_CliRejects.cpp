@@ -60,6 +60,22 @@ TEST(CliRejects, ArgumentsAreCheckedBeforeTheInputIsRead) {
                    "degree 4");
 }
 
+TEST(CliRejects, BadProjectionArguments) {
+    TempDir dir;
+    const auto render = [&](std::vector<std::string> extra) {
+        std::vector<std::string> args{"render", HEAD, "-o", dir.file("out.png")};
+        args.insert(args.end(), extra.begin(), extra.end());
+        return args;
+    };
+    expectBadInput(dir, render({"--mode", "xray"}), "unknown mode 'xray'");
+    expectBadInput(dir, render({"--renderer", "gpu"}), "unknown renderer 'gpu'");
+    expectBadInput(dir, render({"--mode", "reference", "--renderer", "vots"}), "reference");
+    expectBadInput(dir, render({"--mode", "density", "--renderer", "grid"}), "density");
+    for (const char* slab : {"5", "0,0", "1,-3", "nan,4", "1,2,3"})
+        expectBadInput(dir, render({"--slab", slab}), "slab");
+    expectBadInput(dir, render({"--mode", "density", "--slab", "0,10"}), "no slab");
+}
+
 TEST(CliRejects, BrokenVotsFiles) {
     TempDir dir;
     const Bytes good = fit::encodeVotSpace(makeSampleSpace(3));

@@ -124,8 +124,9 @@ fit::VotSpace polynomialVotSpace(const Polynomial& p, const std::array<int, 3>& 
     return space;
 }
 
-double cpuRayMax(const render::CameraMatrices& m, const std::array<int, 3>& dims, int width, int height,
-                 int px, int py, const std::function<double(double, double, double)>& f, int samples) {
+RayProfile cpuRayProfile(const render::CameraMatrices& m, const std::array<int, 3>& dims, int width,
+                         int height, int px, int py, const std::function<double(double, double, double)>& f,
+                         int samples, const std::optional<render::SlabPlanes>& slab) {
     // Pixel (px, py) with py counted from the top, as in FloatImage.
     const double ndc[2] = {(px + 0.5) / width * 2 - 1, 1 - (py + 0.5) / height * 2};
     auto unproject = [&](double z, double out[3]) {
@@ -139,25 +140,48 @@ double cpuRayMax(const render::CameraMatrices& m, const std::array<int, 3>& dims
     double a[3], b[3];
     unproject(-1, a);
     unproject(1, b);
+    RayProfile none;
     double t0 = 0, t1 = 1;
     for (int k = 0; k < 3; ++k) {
         const double d = b[k] - a[k];
         if (std::abs(d) < 1e-300) {
-            if (a[k] < 0 || a[k] > dims[k] - 1) return -INFINITY;
+            if (a[k] < 0 || a[k] > dims[k] - 1) return none;
             continue;
         }
         double u0 = (0 - a[k]) / d, u1 = (dims[k] - 1 - a[k]) / d;
         if (u0 > u1) std::swap(u0, u1);
         t0 = std::max(t0, u0), t1 = std::min(t1, u1);
     }
-    if (t0 > t1) return -INFINITY;
-    double best = -INFINITY;
-    for (int i = 0; i <= samples; ++i) {
-        const double t = t0 + (t1 - t0) * i / samples;
-        best =
-            std::max(best, f(a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])));
+    if (slab) { // the signed distance is linear in t: s(t) = s0 + t ds
+        double s0 = slab->offset, ds = 0;
+        for (int k = 0; k < 3; ++k)
+            s0 += slab->normal[k] * a[k], ds += slab->normal[k] * (b[k] - a[k]);
+        if (std::abs(ds) < 1e-300) {
+            if (s0 < slab->lo || s0 > slab->hi) return none;
+        } else {
+            double u0 = (slab->lo - s0) / ds, u1 = (slab->hi - s0) / ds;
+            if (u0 > u1) std::swap(u0, u1);
+            t0 = std::max(t0, u0), t1 = std::min(t1, u1);
+        }
     }
-    return best;
+    if (t0 > t1) return none;
+    RayProfile profile{INFINITY, 0.0, -INFINITY};
+    const int n = samples + samples % 2; // composite Simpson: exact for the cubics of one polynomial
+    double sum = 0;
+    for (int i = 0; i <= n; ++i) {
+        const double t = t0 + (t1 - t0) * i / n;
+        const double v = f(a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2]));
+        profile.min = std::min(profile.min, v);
+        profile.max = std::max(profile.max, v);
+        sum += v * (i == 0 || i == n ? 1 : i % 2 ? 4 : 2);
+    }
+    profile.mean = sum / (3.0 * n);
+    return profile;
+}
+
+double cpuRayMax(const render::CameraMatrices& m, const std::array<int, 3>& dims, int width, int height,
+                 int px, int py, const std::function<double(double, double, double)>& f, int samples) {
+    return cpuRayProfile(m, dims, width, height, px, py, f, samples).max;
 }
 
 void saveForInspection(const render::FloatImage& image, const std::string& name) {

@@ -6,12 +6,15 @@
 #include "vots/render/Camera.h"
 #include "vots/render/EglContext.h"
 #include "vots/render/Image.h"
+#include "vots/render/Slab.h"
 
 #include "SampleVolume.h" // sampleVolume(), shared with the other modules' tests
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <random>
 #include <string>
 
@@ -40,6 +43,17 @@ fit::VotSpace cellVotSpace(const fit::Volume& volume);
 fit::VotSpace polynomialVotSpace(const Polynomial& p, const std::array<int, 3>& dims, int side,
                                  float offCentre = 0.f);
 
+/// Min, mean and max of f along a pixel's ray within the index box [0, dims-1] (and the slab, if given), by
+/// dense sampling on the CPU (double; the mean by Simpson's rule, exact for a cubic). All -inf when the
+/// ray misses.
+struct RayProfile {
+    double min = -INFINITY;
+    double mean = -INFINITY;
+    double max = -INFINITY;
+};
+RayProfile cpuRayProfile(const render::CameraMatrices& m, const std::array<int, 3>& dims, int width,
+                         int height, int px, int py, const std::function<double(double, double, double)>& f,
+                         int samples, const std::optional<render::SlabPlanes>& slab = std::nullopt);
 /// Max of f along a pixel's ray within the index box [0, dims-1], by dense sampling on the CPU (double).
 double cpuRayMax(const render::CameraMatrices& m, const std::array<int, 3>& dims, int width, int height,
                  int px, int py, const std::function<double(double, double, double)>& f, int samples);

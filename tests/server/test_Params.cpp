@@ -36,6 +36,8 @@ TEST(Params, DefaultsMatchTheContract) {
     EXPECT_EQ(p.eps.value, 2.0);
     EXPECT_EQ(p.degree, 3);
     EXPECT_EQ(p.mode, render::RenderMode::Mip);
+    EXPECT_EQ(p.renderer, render::RendererKind::Vots);
+    EXPECT_FALSE(p.slab);
     EXPECT_FALSE(p.window);
     EXPECT_EQ(p.colormap, render::Colormap::Grey);
 }
@@ -64,6 +66,20 @@ TEST(Params, ParsesEveryField) {
     EXPECT_EQ(p.client, "tab-1");
 }
 
+TEST(Params, ModeRendererAndSlab) {
+    const RenderParams p = parseRenderParams(
+        {{"dataset", "cranium"}, {"mode", "aip"}, {"renderer", "grid"}, {"slab", "-20.5,10"}});
+    EXPECT_EQ(p.mode, render::RenderMode::Aip);
+    EXPECT_EQ(p.renderer, render::RendererKind::Grid);
+    ASSERT_TRUE(p.slab);
+    EXPECT_EQ(*p.slab, (render::Slab{-20.5, 10}));
+    // "reference" is mip on the grid, as before the grid drew every mode.
+    const RenderParams reference = parseRenderParams({{"dataset", "cranium"}, {"mode", "reference"}});
+    EXPECT_EQ(reference.mode, render::RenderMode::Mip);
+    EXPECT_EQ(reference.renderer, render::RendererKind::Grid);
+    EXPECT_EQ(parseRenderParams({{"dataset", "c"}, {"mode", "minip"}}).mode, render::RenderMode::MinIp);
+}
+
 TEST(Params, MalformedValuesAre400) {
     const std::vector<QueryParams> bad{
         {},
@@ -77,6 +93,14 @@ TEST(Params, MalformedValuesAre400) {
         {{"dataset", "a"}, {"eps", "0x10"}},
         {{"dataset", "a"}, {"cam", "az=nan"}},
         {{"dataset", "a"}, {"mode", "xray"}},
+        {{"dataset", "a"}, {"renderer", "gpu"}},
+        {{"dataset", "a"}, {"mode", "reference"}, {"renderer", "vots"}},
+        {{"dataset", "a"}, {"mode", "density"}, {"renderer", "grid"}},
+        {{"dataset", "a"}, {"slab", "10"}},
+        {{"dataset", "a"}, {"slab", "0,0"}},
+        {{"dataset", "a"}, {"slab", "0,-5"}},
+        {{"dataset", "a"}, {"slab", "nan,5"}},
+        {{"dataset", "a"}, {"slab", "0,1e999"}},
         {{"dataset", "a"}, {"colormap", "jet"}},
         {{"dataset", "a"}, {"window", "1"}},
         {{"dataset", "a"}, {"degree", "4"}},

@@ -52,6 +52,19 @@ TEST_F(ServerRender, WindowColormapAndDegreeMatchCliBytes) {
                         "--cam view=left --size 96x96 --eps 8 --degree 2 --window 100,150 --colormap hot"));
 }
 
+TEST_F(ServerRender, ProjectionsAndSlabsMatchCliBytesAndAreCachedApart) {
+    const std::string base = "dataset=neghip_64x64x64_uint8&cam=az=30,el=20&size=80x80&eps=2%25";
+    const std::string minip = serverRender(base + "&mode=minip");
+    const std::string aip = serverRender(base + "&mode=aip");
+    const std::string slab = serverRender(base + "&mode=aip&slab=5,12");
+    EXPECT_EQ(minip, cliRender(NEGHIP, "--cam az=30,el=20 --size 80x80 --eps 2% --mode minip"));
+    EXPECT_EQ(aip, cliRender(NEGHIP, "--cam az=30,el=20 --size 80x80 --eps 2% --mode aip"));
+    EXPECT_EQ(slab, cliRender(NEGHIP, "--cam az=30,el=20 --size 80x80 --eps 2% --mode aip --slab 5,12"));
+    EXPECT_NE(minip, aip);
+    EXPECT_NE(aip, slab);
+    EXPECT_NE(serverRender(base), minip); // mip, not a cached minip
+}
+
 TEST_F(ServerRender, DensityAndReferenceMatchCliBytes) {
     EXPECT_EQ(serverRender("dataset=neghip_64x64x64_uint8&size=80x80&eps=3%25&mode=density"),
               cliRender(NEGHIP, "--size 80x80 --eps 3% --mode density"));

@@ -38,11 +38,11 @@ struct FrameRequest {
     Colormap colormap = Colormap::Grey;
 };
 
-/// Sets mode and renderer from a --mode / mode= text and a --renderer / renderer= text (either may be
-/// absent: mip, vots). "reference" is mip on the grid; a contradicting renderer, or density on the grid,
-/// throws vots::fit::InputError.
-void applyModeAndRenderer(FrameRequest& frame, std::optional<std::string_view> mode,
-                          std::optional<std::string_view> renderer);
+/// Sets mode, renderer and slab from the --mode / mode=, --renderer / renderer= and --slab / slab= texts
+/// (each may be absent: mip, vots, whole rays). "reference" is mip on the grid; a contradicting renderer,
+/// density on the grid or density with a slab throws vots::fit::InputError.
+void applyProjection(FrameRequest& frame, std::optional<std::string_view> mode,
+                     std::optional<std::string_view> renderer, std::optional<std::string_view> slab);
 
 /// Why a size text is refused; the callers word the message.
 enum class SizeProblem {
