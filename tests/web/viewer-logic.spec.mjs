@@ -1,25 +1,15 @@
 // Unit checks of the viewer's DOM-free modules under node: the URL hash both ways, and the eps slider scale.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import fs from 'node:fs';
-import os from 'node:os';
-import path from 'node:path';
-import { fileURLToPath, pathToFileURL } from 'node:url';
+import { loadWebModules } from './support/web-modules.mjs';
 
-// web/ is served as it is and has no package.json, so node would read its .js files as CommonJS:
-// load a copy that sits next to one saying they are ES modules.
-const WEB_JS = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..', 'web', 'js');
-const copy = fs.mkdtempSync(path.join(os.tmpdir(), 'vots-web-js-'));
-fs.cpSync(WEB_JS, copy, { recursive: true });
-fs.writeFileSync(path.join(copy, 'package.json'), '{"type": "module"}\n');
-const load = (name) => import(pathToFileURL(path.join(copy, name)).href);
-const { formatHash, parseHash } = await load('hash.js');
-const { epsBounds, epsLabel, epsToSlider, sliderToEps, SLIDER_STEPS } = await load('eps.js');
-const { initialView } = await load('view.js');
-const access = await load('access.js');
-const { edgeLabels } = await load('orientation.js');
-const kind = await load('kind.js');
-fs.rmSync(copy, { recursive: true, force: true });
+const m = await loadWebModules(['hash.js', 'eps.js', 'view.js', 'access.js', 'orientation.js', 'kind.js']);
+const { formatHash, parseHash } = m['hash.js'];
+const { epsBounds, epsLabel, epsToSlider, sliderToEps, SLIDER_STEPS } = m['eps.js'];
+const { initialView } = m['view.js'];
+const access = m['access.js'];
+const { edgeLabels } = m['orientation.js'];
+const kind = m['kind.js'];
 
 const CT = {
   name: 'cranium', modality: 'CT', range: [-1000, 3000], defaultEps: 80,
@@ -32,7 +22,8 @@ const DATASETS = [MR, CT, NO_DEFAULT];
 test('a hash the viewer writes reads back as the same view', () => {
   const view = {
     dataset: 'head', cam: { az: 30, el: -20, zoom: 1.25, panX: 0.5, panY: -0.25, proj: 'persp', fov: 40 },
-    eps: 7.5, degree: 2, mode: 'density', window: { level: 12.5, width: 80 }, colormap: 'bone',
+    eps: 7.5, degree: 2, mode: 'density', renderer: 'vots', slab: null, window: { level: 12.5, width: 80 },
+    colormap: 'bone',
   };
   const text = formatHash(view);
   assert.equal(text, '#dataset=head&cam=az%3D30,el%3D-20,zoom%3D1.25,pan%3D0.5:-0.25,proj%3Dpersp,fov%3D40&eps=7.5' +
@@ -132,9 +123,13 @@ test('the access token: taken from the hash, kept when a link lacks it, sent as 
   assert.deepEqual(back, view);
 });
 
-test('edge labels follow the six views of the contract, and none without orientation', () => {
+test('edge labels follow the six views of the contract, and grid axes without orientation', () => {
   const oriented = { axes: [[1, 0, 0], [0, 1, 0], [0, 0, 1]], directions: ['L', 'P', 'S'] };
-  const at = (az, el) => edgeLabels({ az, el }, oriented);
+  const at = (az, el) => {
+    const { kind: labelKind, ...edges } = edgeLabels({ az, el }, oriented);
+    assert.equal(labelKind, 'patient');
+    return edges;
+  };
   assert.deepEqual(at(0, 0), { left: 'R', right: 'L', top: 'S', bottom: 'I' }); // anterior
   assert.deepEqual(at(180, 0), { left: 'L', right: 'R', top: 'S', bottom: 'I' }); // posterior
   assert.deepEqual(at(90, 0), { left: 'A', right: 'P', top: 'S', bottom: 'I' }); // left
@@ -142,20 +137,22 @@ test('edge labels follow the six views of the contract, and none without orienta
   assert.deepEqual(at(0, 90), { left: 'R', right: 'L', top: 'P', bottom: 'A' }); // superior
   assert.deepEqual(at(0, -90), { left: 'R', right: 'L', top: 'A', bottom: 'P' }); // inferior
   assert.equal(at(45, 0).right, 'LP'); // oblique: two letters
-  assert.equal(edgeLabels({ az: 0, el: 0 }, null), null);
+  const grid = edgeLabels({ az: 0, el: 0 }, null);
+  assert.deepEqual(grid, { kind: 'grid', left: '\u2212x', right: '+x', top: '+z', bottom: '\u2212z' });
+  assert.equal(edgeLabels({ az: 45, el: 0 }, null).right, '+x+y');
 });
 
-test('a .vots dataset keeps the view at its own eps and off reference mode, and says why in tooltips', () => {
+test('a .vots dataset keeps the view at its own eps and off the grid renderer, and says why in tooltips', () => {
   const VOTS = { ...MR, name: 'fitted', kind: 'vots', eps: 7.65, defaultEps: 7.65 };
-  const view = { dataset: 'fitted', eps: 2, mode: 'reference' };
+  const view = { dataset: 'fitted', eps: 2, mode: 'minip', renderer: 'grid' };
   kind.fitViewToDataset(view, VOTS);
-  assert.deepEqual(view, { dataset: 'fitted', eps: 7.65, mode: 'mip' });
-  const volumeView = { dataset: 'head', eps: 2, mode: 'reference' };
+  assert.deepEqual(view, { dataset: 'fitted', eps: 7.65, mode: 'minip', renderer: 'vots' });
+  const volumeView = { dataset: 'head', eps: 2, mode: 'mip', renderer: 'grid' };
   kind.fitViewToDataset(volumeView, { ...MR, kind: 'volume' });
-  assert.deepEqual(volumeView, { dataset: 'head', eps: 2, mode: 'reference' });
+  assert.deepEqual(volumeView, { dataset: 'head', eps: 2, mode: 'mip', renderer: 'grid' });
 
   const reference = { disabled: false, title: '' };
-  const el = { epsSlider: { disabled: false, title: '' }, mode: { title: '', querySelector: () => reference } };
+  const el = { epsSlider: { disabled: false, title: '' }, renderer: { title: '', querySelector: () => reference } };
   kind.syncKindLimits(el, VOTS);
   assert.equal(el.epsSlider.disabled, true);
   assert.equal(reference.disabled, true);

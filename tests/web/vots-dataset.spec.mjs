@@ -1,4 +1,4 @@
-// A .vots dataset ("kind": "vots" in /api/datasets) opens with the eps slider and the reference mode
+// A .vots dataset ("kind": "vots" in /api/datasets) opens with the eps slider and the grid renderer
 // disabled, each saying why in its tooltip, and the viewer asks for no fit and no other eps.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
@@ -15,7 +15,7 @@ async function presentAsVots(page, name) {
   });
 }
 
-test('a .vots dataset disables the eps slider and reference mode, with the reason', async (t) => {
+test('a .vots dataset disables the eps slider and the grid renderer, with the reason', async (t) => {
   const ds = await pickDataset();
   await withPage(t, async (page) => {
     const fits = [];
@@ -27,13 +27,15 @@ test('a .vots dataset disables the eps slider and reference mode, with the reaso
     await viewer.waitForIdle();
     assert.ok(await viewer.epsSlider.isDisabled(), 'the eps slider is disabled');
     assert.match(await viewer.epsSlider.getAttribute('title'), /Vot-Space file/);
-    const reference = viewer.mode.locator('option[value="reference"]');
-    assert.ok(await reference.isDisabled(), 'reference mode cannot be chosen');
-    assert.match(await reference.getAttribute('title'), /grid/);
+    const grid = viewer.byId('renderer').locator('option[value="grid"]');
+    assert.ok(await grid.isDisabled(), 'the grid renderer cannot be chosen');
+    assert.match(await grid.getAttribute('title'), /grid/);
     assert.equal(await viewer.mode.inputValue(), 'mip');
+    assert.equal(await viewer.byId('renderer').inputValue(), 'vots');
     const hash = await viewer.hashParams();
     assert.equal(Number(hash.eps), ds.defaultEps);
     assert.equal(hash.mode ?? 'mip', 'mip');
+    assert.equal(hash.renderer, undefined, 'the link must not keep asking for the grid');
     assert.deepEqual(fits, [], 'a .vots dataset is never refitted');
   });
 });

@@ -48,8 +48,7 @@ export async function fetchDatasets() {
   return body.datasets;
 }
 
-// Builds the /render URL; parameter order is fixed so equal states give byte-equal URLs.
-export function renderUrl(p) {
+function viewQuery(p) {
   const q = new URLSearchParams();
   q.set('dataset', p.dataset);
   q.set('cam', p.cam);
@@ -57,10 +56,25 @@ export function renderUrl(p) {
   q.set('eps', String(p.eps));
   if (p.degree !== undefined) q.set('degree', String(p.degree));
   q.set('mode', p.mode);
+  // Only when not the default, so a view without them asks for exactly what it asked before.
+  if (p.renderer && p.renderer !== 'vots') q.set('renderer', p.renderer);
+  if (p.slab) q.set('slab', p.slab);
   q.set('window', `${p.window.level},${p.window.width}`);
   q.set('colormap', p.colormap);
-  q.set('client', p.client);
-  return `render?${q}`;
+  if (p.client) q.set('client', p.client);
+  return q;
+}
+
+// Builds the /render URL; parameter order is fixed so equal states give byte-equal URLs.
+export function renderUrl(p) {
+  return `render?${viewQuery(p)}`;
+}
+
+// GET /turntable: the /render parameters of the view plus the number of frames of one turn (WebM).
+export function turntableUrl(p, frames) {
+  const q = viewQuery(p);
+  q.set('frames', String(frames));
+  return `turntable?${q}`;
 }
 
 // Fetches one frame. Resolves to {blob, votCount, frameMs, fitSeconds}; rejects with ApiError.

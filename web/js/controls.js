@@ -50,6 +50,7 @@ export function syncControls(el, ds, view) {
   el.dataset.value = ds.name;
   el.datasetMeta.textContent = `${ds.dims.join('×')} · ${ds.modality || 'other'} · range ${fmtValue(ds.range[0])}..${fmtValue(ds.range[1])}`;
   el.mode.value = view.mode;
+  el.renderer.value = view.renderer;
   el.colormap.value = view.colormap;
   el.preset.value = matchingPreset(el.preset, ds, view.window);
   el.level.value = fmtExact(view.window.level);

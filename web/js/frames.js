@@ -1,6 +1,7 @@
 // Frames: the /render request for the view, one in flight at a time, drafts while moving, the shown image.
 import { ApiError, fetchFrame, renderUrl } from './api.js';
 import { formatCamera } from './camera.js';
+import { formatSlab } from './slab.js';
 import { fmtExact } from './format.js';
 
 const MAX_FRAME_PX = 2048; // longest side of a requested frame, in device pixels
@@ -38,18 +39,25 @@ export function createFrames({ viewEl, image, view, banner, showFacts, isMoving,
     return { w, h };
   }
 
-  function frameUrl(draft) {
-    return renderUrl({
+  // The /render parameters of the view at the size a frame of this kind gets (client: the page's id or none).
+  function frameParams(draft, client) {
+    return {
       dataset: view.dataset,
       cam: formatCamera(view.cam),
       size: frameSize(draft),
       eps: renderEps,
       degree: view.degree,
       mode: view.mode,
+      renderer: view.renderer,
+      slab: view.slab ? formatSlab(view.slab) : undefined,
       window: { level: fmtExact(view.window.level), width: fmtExact(view.window.width) },
       colormap: view.colormap,
-      client: clientId,
-    });
+      client,
+    };
+  }
+
+  function frameUrl(draft) {
+    return renderUrl(frameParams(draft, clientId));
   }
 
   // Asks for a frame on the next animation frame; several changes in one frame cost one request.
@@ -145,6 +153,8 @@ export function createFrames({ viewEl, image, view, banner, showFacts, isMoving,
       renderEps = eps;
     },
     busy: () => Boolean(inflight || rafId || resizeTimer || draftPending),
+    // The full-quality frame's parameters without the page's id (for download links), null before a fit.
+    viewParams: () => (view.dataset && renderEps !== null ? frameParams(false, undefined) : null),
     hasShownFrame: () => shownUrl !== null,
     lastFrame: () => lastFrame,
   };

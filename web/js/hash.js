@@ -2,7 +2,8 @@
 import { DEFAULT_CAMERA, formatCamera, parseCamera } from './camera.js';
 import { defaultEpsOf, rangeSpan } from './eps.js';
 import { fmtExact } from './format.js';
-import { COLORMAPS, MODES } from './view.js';
+import { formatSlab, parseSlab } from './slab.js';
+import { COLORMAPS, MODES, reconcileRenderer, RENDERERS } from './view.js';
 
 const HASH_WRITE_MS = 250; // Chrome throttles replaceState floods, so drags write the hash at most this often
 
@@ -15,8 +16,11 @@ export function formatHash(view) {
   const parts = [['dataset', view.dataset], ['cam', formatCamera(view.cam)]];
   // With no eps (the server sent no default and the user chose none) the link carries none either.
   if (view.eps !== null) parts.push(['eps', view.eps]);
+  parts.push(['mode', view.mode]);
+  // The defaults (the Vot renderer, the whole ray) stay out of the link, so older links read the same.
+  if (view.renderer === 'grid') parts.push(['renderer', view.renderer]);
+  if (view.slab) parts.push(['slab', formatSlab(view.slab)]);
   parts.push(
-    ['mode', view.mode],
     ['window', `${fmtExact(view.window.level)},${fmtExact(view.window.width)}`],
     ['colormap', view.colormap],
   );
@@ -64,8 +68,19 @@ export function parseHash(hash, datasets, current) {
   }
 
   const degree = q.get('degree');
-  const mode = q.get('mode');
+  // `reference` is what links said before the renderer choice: MIP on the grid.
+  const reference = q.get('mode') === 'reference';
+  const mode = reference ? 'mip' : q.get('mode');
   if (mode !== null && !MODES.includes(mode)) problems.push(`Unknown mode '${mode}'; using MIP.`);
+  const rendererText = q.get('renderer');
+  if (rendererText !== null && !RENDERERS.includes(rendererText)) {
+    problems.push(`Unknown renderer '${rendererText}'; using the Vots.`);
+  }
+  const renderer = reference ? 'grid' : RENDERERS.includes(rendererText) ? rendererText : 'vots';
+  const slab = q.has('slab') ? parseSlab(q.get('slab')) : null;
+  if (q.has('slab') && !slab) {
+    problems.push(`slab '${q.get('slab')}' is not offset,thickness in mm with thickness > 0; showing the whole volume.`);
+  }
   const cmap = q.get('colormap');
   if (cmap !== null && !COLORMAPS.includes(cmap)) problems.push(`Unknown colour map '${cmap}'; using grey.`);
 
@@ -81,9 +96,12 @@ export function parseHash(hash, datasets, current) {
     eps: eps > 0 ? eps : keptEps,
     degree: degree !== null && /^[0-3]$/.test(degree) ? Number(degree) : undefined,
     mode: MODES.includes(mode) ? mode : 'mip',
+    renderer,
+    slab,
     window: winOk ? { level: win[0], width: win[1] } : { level: Number(ds.window.level), width: Number(ds.window.width) },
     colormap: COLORMAPS.includes(cmap) ? cmap : 'grey',
   };
+  reconcileRenderer(view, 'mode'); // a link asking for density on the grid gets the Vots
   return { view, problems };
 }
 

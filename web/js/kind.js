@@ -9,23 +9,23 @@ export const VOTS_EPS_REASON =
 export const VOTS_REFERENCE_REASON =
   'This dataset is a Vot-Space file: the reference ray caster needs the volume\'s grid, which the server does not have.';
 
-// A view the dataset can draw: a .vots dataset at its own eps, never in reference mode (the server answers 409).
+// A view the dataset can draw: a .vots dataset at its own eps, never on the grid renderer (the server answers 409).
 export function fitViewToDataset(view, ds) {
   if (!isVotsDataset(ds)) return;
   const eps = Number(ds.eps);
   if (eps > 0) view.eps = eps;
-  if (view.mode === 'reference') view.mode = 'mip';
+  view.renderer = 'vots';
 }
 
-// Disables the eps slider and the reference mode for a .vots dataset, saying why in their tooltips.
+// Disables the eps slider and the grid renderer for a .vots dataset, saying why in their tooltips.
 export function syncKindLimits(el, ds) {
   const vots = isVotsDataset(ds);
   el.epsSlider.disabled = vots;
   el.epsSlider.title = vots ? VOTS_EPS_REASON : '';
-  const reference = el.mode.querySelector('option[value="reference"]');
-  if (reference) {
-    reference.disabled = vots;
-    reference.title = vots ? VOTS_REFERENCE_REASON : '';
+  const grid = el.renderer.querySelector('option[value="grid"]');
+  if (grid) {
+    grid.disabled = vots;
+    grid.title = vots ? VOTS_REFERENCE_REASON : '';
   }
-  el.mode.title = vots ? VOTS_REFERENCE_REASON : '';
+  el.renderer.title = vots ? VOTS_REFERENCE_REASON : '';
 }

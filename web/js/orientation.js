@@ -1,4 +1,5 @@
-// Patient-direction letters (L/R/A/P/S/I) for the image edges, from the camera; no DOM, no network.
+// Patient-direction letters (L/R/A/P/S/I) for the image edges, from the camera, or grid axes (+x, -y, ...)
+// for a volume whose file gives no orientation; no DOM, no network.
 
 // The world is patient LPS (+x left, +y posterior, +z superior), the same as the server's camera
 // (render/include/vots/render/Camera.h), whatever order the dataset stores its axes in.
@@ -12,12 +13,19 @@ const LETTERS = [
 // then "LA" (the larger first) the way radiology viewers label oblique views.
 const MIN_COMPONENT = Math.sin(Math.PI / 8);
 
-function lettersOf(v) {
+// Grid index axes, signed: without an orientation the server takes index space as the world.
+const GRID_AXES = [
+  ['+x', '−x'],
+  ['+y', '−y'],
+  ['+z', '−z'],
+];
+
+function namesOf(v, names) {
   return [0, 1, 2]
     .filter((c) => Math.abs(v[c]) >= MIN_COMPONENT)
     .sort((a, b) => Math.abs(v[b]) - Math.abs(v[a]))
     .slice(0, 2)
-    .map((c) => LETTERS[c][v[c] > 0 ? 0 : 1])
+    .map((c) => names[c][v[c] > 0 ? 0 : 1])
     .join('');
 }
 
@@ -34,10 +42,17 @@ export function imageAxes(cam) {
   return { right, up };
 }
 
-// {left, right, top, bottom} letters, or null for a dataset whose file gives no orientation (its
-// index axes are only taken as LPS, so letters would claim what nobody knows).
+// {kind, left, right, top, bottom}: kind 'patient' with letters, or 'grid' with signed index axes for a
+// dataset whose file gives no orientation (its index axes are only taken as LPS, so patient letters
+// would claim what nobody knows, while the axes are what the file does say).
 export function edgeLabels(cam, orientation) {
-  if (!orientation) return null;
+  const names = orientation ? LETTERS : GRID_AXES;
   const { right, up } = imageAxes(cam);
-  return { left: lettersOf(neg(right)), right: lettersOf(right), top: lettersOf(up), bottom: lettersOf(neg(up)) };
+  return {
+    kind: orientation ? 'patient' : 'grid',
+    left: namesOf(neg(right), names),
+    right: namesOf(right, names),
+    top: namesOf(up, names),
+    bottom: namesOf(neg(up), names),
+  };
 }

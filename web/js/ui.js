@@ -3,7 +3,9 @@ import { adoptToken, tokenHashPart } from './access.js';
 import { fetchDatasets } from './api.js';
 import { toView } from './camera.js';
 import { createBanner } from './banner.js';
+import { createCine } from './cine.js';
 import { fillDatasetPicker, fillPresets, presetWindow, syncControls, syncViewButtons } from './controls.js';
+import { syncDownloads } from './downloads.js';
 import { defaultEpsOf, epsLabel, sliderToEps } from './eps.js';
 import { createFits } from './fits.js';
 import { fmtCount, fmtSeconds } from './format.js';
@@ -11,9 +13,10 @@ import { createFrames } from './frames.js';
 import { createHashWriter, formatHash, parseHash } from './hash.js';
 import { attachInput } from './input.js';
 import { fitViewToDataset } from './kind.js';
-import { edgeLabels } from './orientation.js';
+import { showOverlays } from './overlays.js';
+import { attachSlabControl } from './slab-control.js';
 import { statusLine } from './status.js';
-import { homeCamera, initialView } from './view.js';
+import { homeCamera, initialView, reconcileRenderer } from './view.js';
 
 const EPS_KEY_SETTLE_MS = 300; // keyboard steps of the eps slider fit once it has rested this long
 
@@ -28,6 +31,20 @@ const el = {
   dataset: $('dataset'),
   datasetMeta: $('dataset-meta'),
   mode: $('mode'),
+  renderer: $('renderer'),
+  slabOn: $('slab-on'),
+  slabThickness: $('slab-thickness'),
+  slabOffset: $('slab-offset'),
+  slabOffsetValue: $('slab-offset-value'),
+  cine: $('cine'),
+  downloads: { png: $('download-png'), turn: $('download-turn') },
+  colorbar: $('colorbar'),
+  colorbarRamp: $('colorbar-ramp'),
+  colorbarHigh: $('colorbar-high'),
+  colorbarLow: $('colorbar-low'),
+  scalebar: $('scalebar'),
+  scalebarLine: $('scalebar-line'),
+  scalebarLabel: $('scalebar-label'),
   colormap: $('colormap'),
   preset: $('window-preset'),
   level: $('level'),
@@ -64,13 +81,23 @@ const input = attachInput({
   keyTarget: document,
   view,
   onDraft() {
-    writeHash({ now: false });
-    syncViewButtons(el.viewButtons, view.cam);
-    showEdgeLabels();
-    frames.schedule({ draft: true });
+    cine.stop(); // any orbit of the user's own ends the turn
+    draft();
   },
-  onCommit: () => commit(),
+  onCommit() {
+    cine.stop();
+    commit();
+  },
 });
+
+// A change while a gesture goes on: the hash throttled, the overlays now, a draft frame.
+function draft() {
+  slabControl.sync(); // first: it keeps the slab inside the volume, which the hash then says
+  writeHash({ now: false });
+  syncViewButtons(el.viewButtons, view.cam);
+  showViewOverlays();
+  frames.schedule({ draft: true });
+}
 const frames = createFrames({
   viewEl: el.view, image: el.image, view, banner, showFacts, isMoving: input.isMoving, onChange: updateStatus,
 });
@@ -80,6 +107,7 @@ const fits = createFits({
   showFacts,
   onReady(eps) {
     frames.useEps(eps);
+    syncDownloads(el.downloads, frames.viewParams());
     frames.schedule();
   },
   onChange: updateStatus,
@@ -99,19 +127,38 @@ function updateStatus() {
   el.status.textContent = text;
 }
 
+const slabControl = attachSlabControl({
+  el, view, dataset: currentDataset, banner, onDraft: draft, onCommit: () => commit(),
+});
+
+// Cine frames are full frames (the server caches them for the next turn), with the hash throttled.
+const cine = createCine({
+  view,
+  frames,
+  onStep() {
+    slabControl.sync();
+    writeHash({ now: false });
+    syncViewButtons(el.viewButtons, view.cam);
+    showViewOverlays();
+    frames.schedule();
+  },
+  onChange(running) {
+    if (!running) writeHash(); // the throttled write of the last step may still wait: the link is now
+    el.cine.setAttribute('aria-pressed', String(running));
+    el.cine.textContent = running ? 'Stop cine' : 'Cine';
+  },
+});
+
+function showViewOverlays() {
+  showOverlays(el, view, currentDataset());
+  syncDownloads(el.downloads, frames.viewParams());
+}
+
 function syncPanel() {
   const ds = currentDataset();
   if (ds) syncControls(el, ds, view);
-  showEdgeLabels();
-}
-
-// Patient directions at the image edges; none for a dataset without orientation.
-function showEdgeLabels() {
-  const labels = edgeLabels(view.cam, currentDataset()?.orientation ?? null);
-  for (const label of el.edgeLabels) {
-    label.hidden = !labels;
-    label.textContent = labels ? labels[label.dataset.edge] : '';
-  }
+  slabControl.sync();
+  showViewOverlays();
 }
 
 function ensureFitted() {
@@ -150,8 +197,8 @@ function commit({ refit = false } = {}) {
     cancelSliderSettle();
     refit = readSliderEps() || refit;
   }
+  syncPanel(); // before the hash: the slab may have been moved back inside the volume
   writeHash();
-  syncPanel();
   if (refit) ensureFitted();
   else frames.schedule();
 }
@@ -173,8 +220,19 @@ el.dataset.addEventListener('change', () => {
 
 el.mode.addEventListener('change', () => {
   view.mode = el.mode.value;
+  reconcileRenderer(view, 'mode');
   commit();
 });
+
+el.renderer.addEventListener('change', () => {
+  view.renderer = el.renderer.value;
+  reconcileRenderer(view, 'renderer');
+  commit();
+});
+
+el.cine.addEventListener('click', () => cine.toggle());
+
+window.addEventListener('resize', showViewOverlays); // the scale bar's mm per pixel follows the view's size
 
 el.colormap.addEventListener('change', () => {
   view.colormap = el.colormap.value;
@@ -230,12 +288,14 @@ el.epsSlider.addEventListener('change', () => {
 
 for (const b of el.viewButtons) {
   b.addEventListener('click', () => {
+    cine.stop();
     view.cam = toView(view.cam, b.dataset.view);
     commit();
   });
 }
 
 el.projection.addEventListener('click', () => {
+  cine.stop();
   view.cam = { ...view.cam, proj: view.cam.proj === 'persp' ? 'ortho' : 'persp' };
   commit();
 });
@@ -248,8 +308,9 @@ window.addEventListener('hashchange', () => {
   const before = view.dataset;
   applyHash();
   if (view.dataset !== before) fillPresets(el.preset, currentDataset());
-  writeHash();
+  cine.stop(); // the link says where the camera is
   syncPanel();
+  writeHash();
   ensureFitted();
 });
 
@@ -275,8 +336,8 @@ async function start() {
   fillDatasetPicker(el.dataset, listed);
   applyHash();
   fillPresets(el.preset, currentDataset());
-  writeHash();
   syncPanel();
+  writeHash();
   ensureFitted();
 }
 
