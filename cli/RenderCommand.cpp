@@ -229,7 +229,7 @@ void addRenderCommand(CLI::App& app) {
                     "mip, minip, aip (average), density (Vot sizes) or reference (= mip --renderer grid)")
         ->capture_default_str();
     cmd->add_option("--renderer", args->renderer,
-                    "vots (analytic, default) or grid (the reference ray caster over the samples)");
+                    "vots (analytic, default) or grid (exact over the trilinear samples: the ground truth)");
     cmd->add_option("--slab", args->slab,
                     "OFFSET,THICKNESS in mm: only the slab that far from the volume centre along the view");
     cmd->add_option("--window", args->window, "level,width in data units (default: full value range)");

@@ -15,7 +15,7 @@ enum class RenderMode {
 
 enum class RendererKind {
     Vots, // analytic, from the Vot-Space (VotRenderer)
-    Grid  // the reference ray caster over the sampled grid (GridRenderer): the ground truth
+    Grid  // exact over the trilinear interpolant of the samples (GridRenderer): the ground truth
 };
 
 std::string_view renderModeName(RenderMode mode); // "mip", "minip", "aip", "density"
