@@ -18,57 +18,6 @@
 using namespace vots;
 using namespace vots::render;
 
-namespace {
-
-struct RayStats {
-    bool hit = false;
-    double max = -INFINITY, min = INFINITY, mean = 0;
-};
-
-// Max, min and mean of f along pixel (px, py)'s ray inside the index box [0, dims-1], in double by dense
-// sampling (trapezoid mean): for the smooth fields below the sampling error is far below the tolerance.
-RayStats cpuRayStats(const CameraMatrices& m, const std::array<int, 3>& dims, int width, int height, int px,
-                     int py, const std::function<double(double, double, double)>& f) {
-    const double ndc[2] = {(px + 0.5) / width * 2 - 1, 1 - (py + 0.5) / height * 2};
-    auto unproject = [&](double z, double out[3]) {
-        double r[4];
-        for (int row = 0; row < 4; ++row)
-            r[row] = m.clipToIndex[row] * ndc[0] + m.clipToIndex[4 + row] * ndc[1] +
-                     m.clipToIndex[8 + row] * z + m.clipToIndex[12 + row];
-        for (int a = 0; a < 3; ++a)
-            out[a] = r[a] / r[3];
-    };
-    double a[3], b[3];
-    unproject(-1, a);
-    unproject(1, b);
-    double t0 = 0, t1 = 1;
-    for (int k = 0; k < 3; ++k) {
-        const double d = b[k] - a[k];
-        if (std::abs(d) < 1e-300) {
-            if (a[k] < 0 || a[k] > dims[k] - 1) return {};
-            continue;
-        }
-        double u0 = (0 - a[k]) / d, u1 = (dims[k] - 1 - a[k]) / d;
-        if (u0 > u1) std::swap(u0, u1);
-        t0 = std::max(t0, u0), t1 = std::min(t1, u1);
-    }
-    RayStats s;
-    if (t0 > t1) return s;
-    s.hit = true;
-    constexpr int SAMPLES = 4000;
-    double sum = 0;
-    for (int i = 0; i <= SAMPLES; ++i) {
-        const double t = t0 + (t1 - t0) * i / SAMPLES;
-        const double v = f(a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2]));
-        s.max = std::max(s.max, v), s.min = std::min(s.min, v);
-        sum += (i == 0 || i == SAMPLES) ? 0.5 * v : v;
-    }
-    s.mean = sum / SAMPLES;
-    return s;
-}
-
-} // namespace
-
 // Fields equal to their own trilinear interpolant: a linear one, and a product of one linear function per
 // axis whose cubic along a diagonal ray peaks strictly between samples.
 TEST(GridExact, ModesAreTheExactMaxMinAndMeanAlongRays) {
@@ -95,13 +44,14 @@ TEST(GridExact, ModesAreTheExactMaxMinAndMeanAlongRays) {
             double worst = 0;
             for (int py = 0; py < h; ++py)
                 for (int px = 0; px < w; ++px) {
-                    const RayStats s = cpuRayStats(m, dims, w, h, px, py, f);
+                    const test::RayProfile s = test::cpuRayProfile(m, dims, w, h, px, py, f, 4000);
+                    const bool hit = std::isfinite(s.max);
                     const float gpu = mip.at(px, py);
-                    if (s.hit != std::isfinite(gpu)) { // a ray grazing the box: float vs double
+                    if (hit != std::isfinite(gpu)) { // a ray grazing the box: float vs double
                         ++edge;
                         continue;
                     }
-                    if (!s.hit) {
+                    if (!hit) {
                         EXPECT_EQ(minip.at(px, py), INFINITY);
                         EXPECT_EQ(aip.at(px, py), -INFINITY);
                         continue;
