@@ -1,7 +1,9 @@
 // `vots render`: a .vots file or a volume -> MIP / density / reference PNG, headless; argument checks first.
 #include "Args.h"
 #include "Commands.h"
+#include "DistributedRender.h"
 #include "MemoryBudgetOption.h"
+#include "MpiWorld.h"
 #include "RawOptions.h"
 #include "SeriesOption.h"
 #include "TurntableOutput.h"
@@ -12,6 +14,7 @@
 #include "vots/fit/VolumeLoad.h"
 #include "vots/fit/VotSpaceFile.h"
 #include "vots/render/CameraText.h"
+#include "vots/render/DisplayPass.h"
 #include "vots/render/EglContext.h"
 #include "vots/render/FrameRequest.h"
 #include "vots/render/GridRenderer.h"
@@ -148,21 +151,64 @@ std::optional<float> resolveBackground(const std::string& text, const fit::Volum
     return static_cast<float>(parseNumber(text, "--background"));
 }
 
-fit::VotSpace fitForRender(const fit::Volume& volume, const RenderArgs& a, const CheckedArgs& c) {
-    const auto range = volume.valueRange();
+// Fits `volume` with the options the arguments give for `whole` (eps in percent of its range, its
+// background): the same volume, or under mpirun one rank's slab of it.
+fit::VotSpace fitForRender(const fit::Volume& volume, const fit::Volume& whole, const RenderArgs& a,
+                           const CheckedArgs& c) {
+    const auto range = whole.valueRange();
     fit::FitOptions options;
     options.eps = static_cast<float>(c.eps.resolve(range[0], range[1]));
     if (!(options.eps > 0))
         throw fit::InputError("--eps " + a.eps + " is 0 for this volume; give it in data units");
     options.degree = a.degree;
-    options.background = resolveBackground(a.background, volume);
+    options.background = resolveBackground(a.background, whole);
     options.certify = a.certify == "samples" ? fit::Certify::Samples : fit::Certify::Cells;
     fit::validateFitOptions(volume, options);
     return fit::fitVotSpace(volume, options).space;
 }
 
+// Under mpirun: what the ranks composite (one frame of the Vots, mip, minip or density), refused before
+// anything is read otherwise.
+void checkDistributable(const CheckedArgs& c) {
+    // MinIP and the average count the cells a rank does not hold as background: not composited yet.
+    const bool composited =
+        c.frame.mode == render::RenderMode::Mip || c.frame.mode == render::RenderMode::Density;
+    if (c.turntable || c.frame.renderer == render::RendererKind::Grid || !composited)
+        throw fit::InputError("under mpirun, vots render draws one mip or density frame of the Vots "
+                              "(not yet: minip, aip, --renderer grid, --turntable)");
+}
+
+// Rank r's share of the Vot-Space: the Vots of its z slab, read from the file or fitted from its planes.
+fit::VotSpace slabOfThisRank(const MpiWorld& world, const fit::VotSpace* fromFile, const fit::Volume* volume,
+                             const RenderArgs& a, const CheckedArgs& c) {
+    const int cellsZ = (fromFile ? fromFile->dims[2] : volume->dims[2]) - 1;
+    const ZSlab slab = zSlabOfRank(cellsZ, world.rank(), world.size());
+    if (fromFile) return votsOfSlab(*fromFile, slab);
+    fit::VotSpace space; // more ranks than cells: this one holds nothing
+    if (!slab.empty()) space = fitForRender(planesOfSlab(*volume, slab), *volume, a, c);
+    placeSlabFitInGrid(space, slab, *volume);
+    return space;
+}
+
+// The frame of the whole Vot-Space from every rank's slab, written by rank 0: the same bytes as one
+// process draws from the same Vots.
+void renderDistributed(const MpiWorld& world, const CheckedArgs& c, render::VotRenderer& vots,
+                       std::optional<std::array<float, 2>> volumeRange, const std::string& output) {
+    const render::FrameRequest& f = c.frame;
+    render::FloatImage frame =
+        vots.render(f.camera, f.width, f.height, render::RenderOptions{f.mode, f.slab});
+    compositeOnRoot(world, f.mode, frame);
+    std::array<float, 2> range = volumeRange ? *volumeRange : vots.valueRange();
+    if (f.mode == render::RenderMode::Density) range = vots.densityRange();
+    range = world.unionOfRanges(range);
+    if (world.rank() == 0)
+        render::writePng(output, render::applyDisplay(frame, render::displayFor(f, range)));
+}
+
 void runRender(const RenderArgs& a) {
     const CheckedArgs c = checkArgs(a);
+    const MpiWorld& world = MpiWorld::get();
+    if (world.distributed()) checkDistributable(c);
     const bool inputIsVots = isVotsFile(a.input);
     std::optional<fit::Volume> volume;
     std::optional<fit::VotSpace> space;
@@ -185,8 +231,11 @@ void runRender(const RenderArgs& a) {
         // The fit's estimate also for the grid renderer: it covers the samples, their texture and the read.
         checkVolumeFitsBudget(a.input, c.raw, a.memoryBudget, a.series);
         volume = fit::loadVolume(a.input, c.raw, fit::SampleStorage::Float, a.series);
-        if (c.frame.renderer != render::RendererKind::Grid) space = fitForRender(*volume, a, c);
+        if (c.frame.renderer != render::RendererKind::Grid && !world.distributed())
+            space = fitForRender(*volume, *volume, a, c);
     }
+    if (world.distributed())
+        space = slabOfThisRank(world, space ? &*space : nullptr, volume ? &*volume : nullptr, a, c);
 
     const auto context = render::EglContext::createOrThrow();
     std::optional<render::GridRenderer> grid;
@@ -200,6 +249,7 @@ void runRender(const RenderArgs& a) {
     }
     std::optional<std::array<float, 2>> volumeRange;
     if (volume) volumeRange = volume->valueRange();
+    if (world.distributed()) return renderDistributed(world, c, *vots, volumeRange, a.output);
     const auto draw = [&](const render::FrameRequest& frame) {
         return render::renderFrame(frame, vots ? &*vots : nullptr, grid ? &*grid : nullptr, volumeRange);
     };

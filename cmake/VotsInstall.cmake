@@ -28,7 +28,7 @@ if(VOTS_DPKG_SHLIBDEPS)
 else()
   # Debian 12's packages of what `ldd vots` lists (a build without dpkg-dev).
   string(PREPEND VOTS_DEB_DEPENDS "libc6, libstdc++6, libgcc-s1, libdeflate0, zlib1g, libabsl20220623, "
-                                  "libepoxy0, libegl1, libcpp-httplib0.11, libavcodec59, libavformat59, libswscale6, libavutil57, ")
+                                  "libepoxy0, libegl1, libcpp-httplib0.11, libavcodec59, libavformat59, libswscale6, libavutil57, libopenmpi3, ")
 endif()
 set(CPACK_DEBIAN_PACKAGE_DEPENDS "${VOTS_DEB_DEPENDS}")
 include(CPack)
