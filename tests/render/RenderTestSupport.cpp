@@ -124,6 +124,15 @@ fit::VotSpace polynomialVotSpace(const Polynomial& p, const std::array<int, 3>& 
     return space;
 }
 
+render::Camera obliqueCamera(render::Projection projection) {
+    render::Camera c;
+    c.azimuthDeg = 31;
+    c.elevationDeg = 23;
+    c.zoom = 1.3;
+    c.projection = projection;
+    return c;
+}
+
 RayProfile cpuRayProfile(const render::CameraMatrices& m, const std::array<int, 3>& dims, int width,
                          int height, int px, int py, const std::function<double(double, double, double)>& f,
                          int samples, const std::optional<render::SlabPlanes>& slab) {

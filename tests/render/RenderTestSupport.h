@@ -43,6 +43,9 @@ fit::VotSpace cellVotSpace(const fit::Volume& volume);
 fit::VotSpace polynomialVotSpace(const Polynomial& p, const std::array<int, 3>& dims, int side,
                                  float offCentre = 0.f);
 
+/// The oblique view of the polynomial tests: az 31, el 23, zoom 1.3, in the given projection.
+render::Camera obliqueCamera(render::Projection projection);
+
 /// Min, mean and max of f along a pixel's ray within the index box [0, dims-1] (and the slab, if given), by
 /// dense sampling on the CPU (double; the mean by Simpson's rule, exact for a cubic). All -inf when the
 /// ray misses.

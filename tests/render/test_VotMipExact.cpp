@@ -19,15 +19,6 @@ constexpr int N = 24;
 constexpr double AMPLITUDE = 100.0;
 constexpr int W = 64, H = 48;
 
-Camera oblique(Projection proj) {
-    Camera c;
-    c.azimuthDeg = 31;
-    c.elevationDeg = 23;
-    c.zoom = 1.3;
-    c.projection = proj;
-    return c;
-}
-
 struct Case {
     int degree;
     Projection projection;
@@ -46,7 +37,7 @@ TEST_P(PolynomialMip, AnalyticMaxMatchesDenseCpuSampling) {
     const fit::VotSpace space = test::polynomialVotSpace(p, {N, N, N}, k.side);
     VotRenderer renderer;
     renderer.upload(space);
-    const Camera cam = oblique(k.projection);
+    const Camera cam = test::obliqueCamera(k.projection);
     const FloatImage img = renderer.render(cam, W, H);
     const CameraMatrices m = computeCameraMatrices(cam, renderer.bounds(), W, H);
     double worst = 0;
@@ -83,7 +74,7 @@ TEST_P(PolynomialMip, MatchesReferenceRayCaster) {
     vots.upload(space);
     GridRenderer grid;
     grid.upload(volume);
-    const Camera cam = oblique(k.projection);
+    const Camera cam = test::obliqueCamera(k.projection);
     const FloatImage a = vots.render(cam, W, H);
     const FloatImage b = grid.render(cam, W, H);
     double worst = 0;
@@ -116,7 +107,7 @@ TEST(PolynomialMipFitted, FitterOutputMatchesDenseCpuSampling) {
     const fit::VotSpace space = fit::fitVotSpace(volume, options).space;
     VotRenderer renderer;
     renderer.upload(space);
-    const Camera cam = oblique(Projection::Perspective);
+    const Camera cam = test::obliqueCamera(Projection::Perspective);
     const FloatImage img = renderer.render(cam, W, H);
     const CameraMatrices m = computeCameraMatrices(cam, renderer.bounds(), W, H);
     double worst = 0;

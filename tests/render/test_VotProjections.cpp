@@ -10,6 +10,8 @@
 
 #include <cmath>
 #include <iostream>
+#include <optional>
+#include <vector>
 
 using namespace vots;
 using namespace vots::render;
@@ -20,15 +22,6 @@ constexpr int N = 24;
 constexpr double AMPLITUDE = 100.0;
 constexpr int W = 64, H = 48;
 constexpr int SAMPLES = 4000;
-
-Camera oblique(Projection projection) {
-    Camera c;
-    c.azimuthDeg = 31;
-    c.elevationDeg = 23;
-    c.zoom = 1.3;
-    c.projection = projection;
-    return c;
-}
 
 // The worst |image - oracle| over pixels the oracle sees; a pixel whose ray misses must be non-finite.
 template <class Expect> double worstDifference(const FloatImage& image, Expect expect, int* hits) {
@@ -48,6 +41,16 @@ template <class Expect> double worstDifference(const FloatImage& image, Expect e
     return worst;
 }
 
+// The CPU oracle's profile of every pixel's ray (slab: only the part of the ray inside it).
+std::vector<test::RayProfile> oracleProfiles(const CameraMatrices& m, const test::Polynomial& p,
+                                             const std::optional<SlabPlanes>& slab = std::nullopt) {
+    std::vector<test::RayProfile> oracle(W * H);
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x)
+            oracle[y * W + x] = test::cpuRayProfile(m, {N, N, N}, W, H, x, y, p, SAMPLES, slab);
+    return oracle;
+}
+
 struct Case {
     int degree;
     Projection projection;
@@ -64,15 +67,12 @@ TEST_P(PolynomialProjections, MinAndMeanMatchDenseCpuProfile) {
         test::randomPolynomial(k.degree, N, AMPLITUDE, 777u + static_cast<unsigned>(k.degree));
     VotRenderer renderer;
     renderer.upload(test::polynomialVotSpace(p, {N, N, N}, 4));
-    const Camera cam = oblique(k.projection);
+    const Camera cam = test::obliqueCamera(k.projection);
     const CameraMatrices m = computeCameraMatrices(cam, renderer.bounds(), W, H);
     const FloatImage minImage = renderer.render(cam, W, H, RenderMode::MinIp);
     const FloatImage meanImage = renderer.render(cam, W, H, RenderMode::Aip);
     const FloatImage maxImage = renderer.render(cam, W, H, RenderMode::Mip);
-    std::vector<test::RayProfile> oracle(W * H);
-    for (int y = 0; y < H; ++y)
-        for (int x = 0; x < W; ++x)
-            oracle[y * W + x] = test::cpuRayProfile(m, {N, N, N}, W, H, x, y, p, SAMPLES);
+    const std::vector<test::RayProfile> oracle = oracleProfiles(m, p);
     int hits = 0;
     const double minWorst = worstDifference(
         minImage, [&](int x, int y) { return oracle[y * W + x].min; }, &hits);
@@ -100,14 +100,11 @@ TEST_P(PolynomialProjections, EveryModeHonoursTheSlabPlanes) {
         test::randomPolynomial(k.degree, N, AMPLITUDE, 991u + static_cast<unsigned>(k.degree));
     VotRenderer renderer;
     renderer.upload(test::polynomialVotSpace(p, {N, N, N}, 4));
-    const Camera cam = oblique(k.projection);
+    const Camera cam = test::obliqueCamera(k.projection);
     const Slab slab{2.5, 6.0}; // mm; the spacing is 1, so index units
     const SlabPlanes planes = slabPlanesInIndexSpace(slab, cam, renderer.bounds());
     const CameraMatrices m = computeCameraMatrices(cam, renderer.bounds(), W, H);
-    std::vector<test::RayProfile> oracle(W * H);
-    for (int y = 0; y < H; ++y)
-        for (int x = 0; x < W; ++x)
-            oracle[y * W + x] = test::cpuRayProfile(m, {N, N, N}, W, H, x, y, p, SAMPLES, planes);
+    const std::vector<test::RayProfile> oracle = oracleProfiles(m, p, planes);
     int hits = 0;
     const auto check = [&](RenderMode mode, auto pick, double tolerance) {
         const FloatImage image = renderer.render(cam, W, H, RenderOptions{mode, slab});
@@ -139,7 +136,7 @@ TEST(VotProjections, ASlabThickerThanTheVolumeChangesNoPixel) {
     const test::Polynomial p = test::randomPolynomial(3, N, AMPLITUDE, 5u);
     VotRenderer renderer;
     renderer.upload(test::polynomialVotSpace(p, {N, N, N}, 4));
-    const Camera cam = oblique(Projection::Orthographic);
+    const Camera cam = test::obliqueCamera(Projection::Orthographic);
     for (RenderMode mode : {RenderMode::Mip, RenderMode::MinIp, RenderMode::Aip}) {
         const FloatImage whole = renderer.render(cam, W, H, mode);
         const FloatImage slabbed = renderer.render(cam, W, H, RenderOptions{mode, Slab{0.0, 1000.0}});
@@ -168,7 +165,7 @@ TEST(VotProjections, BackgroundCellsCountAsTheBackgroundValue) {
     };
     VotRenderer renderer;
     renderer.upload(space);
-    const Camera cam = oblique(Projection::Orthographic);
+    const Camera cam = test::obliqueCamera(Projection::Orthographic);
     const CameraMatrices m = computeCameraMatrices(cam, renderer.bounds(), W, H);
     const FloatImage minImage = renderer.render(cam, W, H, RenderMode::MinIp);
     const FloatImage meanImage = renderer.render(cam, W, H, RenderMode::Aip);
@@ -199,7 +196,7 @@ TEST(VotProjections, CullingNeverChangesTheMinIp) {
     VotRenderer renderer;
     renderer.upload(space);
     for (Projection projection : {Projection::Orthographic, Projection::Perspective}) {
-        const Camera cam = oblique(projection);
+        const Camera cam = test::obliqueCamera(projection);
         renderer.setCulling(true);
         const FloatImage culled = renderer.render(cam, W, H, RenderMode::MinIp);
         renderer.finishPendingWork(); // skip boxes grown for the max must not reach the min
