@@ -47,6 +47,15 @@ std::vector<std::uint32_t> boxTable(const std::vector<std::uint32_t>& palette,
     return texels;
 }
 
+// What a background cell contributes in a walk mode (uEmptyValue of vot_walk.glsl): nothing to the max;
+// the background value to the min (negated, as the min is walked) and to the mean. A space fitted with
+// no background threshold has no background cells.
+float emptyValueFor(int walkMode, float background) {
+    if (walkMode == WALK_MODE_MIN) return std::isfinite(background) ? -background : -INFINITY;
+    if (walkMode == WALK_MODE_MEAN) return std::isfinite(background) ? background : 0.f;
+    return -INFINITY;
+}
+
 // A buffer texture over a new buffer holding `bytes` of `data` (nullptr: written later).
 void bufferTexture(GlBuffer& buffer, GlTexture& texture, GLenum format, const void* data, std::size_t bytes) {
     buffer = createBuffer();
@@ -247,7 +256,7 @@ void WalkPass::uploadMinAndMeanTables(const std::vector<GpuVot>& vots, const Vot
                  });
     bufferTexture(mOwnBoxBuffer, mOwnBox, GL_RGBA32UI, own.data(), own.size() * sizeof(std::uint32_t));
     // A brick's bound for the min covers its background cells too: they count as the background value.
-    const float emptyNegated = std::isfinite(mBackground) ? -mBackground : -INFINITY;
+    const float emptyNegated = emptyValueFor(WALK_MODE_MIN, mBackground);
     const std::size_t brickCount = cells.paletteStart.size();
     mBrickLowNegated.assign(brickCount, -INFINITY);
     for (std::size_t b = 0; b < brickCount; ++b) {
@@ -266,10 +275,7 @@ void WalkPass::draw(RenderMode mode, const CameraMatrices& m, const std::optiona
     const int walkMode = mode == RenderMode::MinIp ? WALK_MODE_MIN
                          : mode == RenderMode::Aip ? WALK_MODE_MEAN
                                                    : WALK_MODE_MAX;
-    const bool background = std::isfinite(mBackground);
-    float emptyValue = -INFINITY; // the max ignores background cells
-    if (walkMode == WALK_MODE_MIN) emptyValue = background ? -mBackground : -INFINITY;
-    if (walkMode == WALK_MODE_MEAN) emptyValue = background ? mBackground : 0.f;
+    const float emptyValue = emptyValueFor(walkMode, mBackground);
     const std::vector<float>& brickBound = walkMode == WALK_MODE_MIN ? mBrickLowNegated : mBrickMaxima;
     const bool compute = mShader == Shader::Compute;
     const GLuint p = program(compute);
