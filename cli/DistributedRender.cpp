@@ -1,61 +1,81 @@
-// `vots render` under mpirun: slabs of the grid's z cells per rank, and the composite on rank 0.
+// `vots render` under mpirun: which Vots and cells each rank draws, and the composite on rank 0.
 #include "DistributedRender.h"
 
-#include "vots/fit/Error.h"
-
-#include <algorithm>
 #include <cmath>
-#include <string>
+#include <iomanip>
+#include <iostream>
+#include <stdexcept>
+#include <vector>
 
 namespace vots::cli {
 
-ZSlab zSlabOfRank(int cellsZ, int rank, int ranks) {
-    const auto at = [&](int r) { return static_cast<int>(static_cast<long long>(cellsZ) * r / ranks); };
-    return {at(rank), at(rank + 1)};
+bool compositesCutRays(render::RenderMode mode) {
+    return mode == render::RenderMode::MinIp || mode == render::RenderMode::Aip;
 }
 
-fit::VotSpace votsOfSlab(fit::VotSpace space, ZSlab slab) {
-    std::erase_if(space.vots,
-                  [&](const fit::Vot& v) { return v.box.lo[2] < slab.first || v.box.lo[2] >= slab.end; });
+fit::VotSpace votsOfSlab(fit::VotSpace space, ZSlab slab, bool cutRays) {
+    std::erase_if(space.vots, [&](const fit::Vot& v) {
+        if (cutRays) return v.box.lo[2] >= slab.end || v.box.hi[2] <= slab.first;
+        return v.box.lo[2] < slab.first || v.box.lo[2] >= slab.end;
+    });
     return space;
 }
 
-fit::Volume planesOfSlab(const fit::Volume& volume, ZSlab slab) {
-    if (volume.isCompact()) throw fit::InputError("planesOfSlab needs float samples");
-    fit::Volume part = volume;
-    part.values.clear();
-    const std::size_t plane =
-        static_cast<std::size_t>(volume.dims[0]) * static_cast<std::size_t>(volume.dims[1]);
-    part.dims[2] = slab.end - slab.first + 1;
-    part.values.assign(volume.values.begin() + static_cast<std::ptrdiff_t>(plane * slab.first),
-                       volume.values.begin() + static_cast<std::ptrdiff_t>(plane * (slab.end + 1)));
-    for (int w = 0; w < 3; ++w)
-        part.origin[w] += volume.patientAxes[2][w] * volume.spacing[2] * slab.first;
-    return part;
-}
-
-void placeSlabFitInGrid(fit::VotSpace& space, ZSlab slab, const fit::Volume& whole) {
-    for (fit::Vot& v : space.vots) {
-        v.box.lo[2] += slab.first;
-        v.box.hi[2] += slab.first;
-        v.p[2] += static_cast<float>(slab.first);
-    }
-    space.dims = whole.dims;
-    space.origin = whole.origin;
-    space.spacing = whole.spacing;
-    space.patientAxes = whole.patientAxes;
-    space.orientationKnown = whole.orientationKnown;
+render::CellDomain cellDomainOfSlab(ZSlab slab, const std::array<int, 3>& dims) {
+    return {{0, 0, slab.first}, {dims[0] - 1, dims[1] - 1, slab.end}};
 }
 
 void compositeOnRoot(const MpiWorld& world, render::RenderMode mode, render::FloatImage& frame) {
-    if (mode == render::RenderMode::Mip) {
+    switch (mode) {
+    case render::RenderMode::Mip:
         world.reduceMaxToRoot(frame.pixels);
         return;
+    case render::RenderMode::Density:
+        world.reduceMinToRoot(frame.pixels); // the smallest Vot along the ray; no Vot is +inf on every rank
+        return;
+    case render::RenderMode::MinIp:
+        // A rank whose cut ray takes nothing has -inf, which must not win the min: +inf while reducing.
+        for (float& v : frame.pixels)
+            if (v == -INFINITY) v = INFINITY;
+        world.reduceMinToRoot(frame.pixels);
+        for (float& v : frame.pixels)
+            if (v == INFINITY) v = -INFINITY;
+        return;
+    case render::RenderMode::Aip:
+        break;
     }
-    if (mode != render::RenderMode::Density)
-        throw fit::InputError(std::string(render::renderModeName(mode)) +
-                              " is not composited across ranks yet");
-    world.reduceMinToRoot(frame.pixels); // the smallest Vot along the ray; no Vot is +inf on every rank
+    throw std::logic_error("compositeOnRoot: the aip composites with its lengths (compositeMeansOnRoot)");
+}
+
+void compositeMeansOnRoot(const MpiWorld& world, render::FloatImage& means,
+                          const render::FloatImage& lengths) {
+    const std::size_t count = means.pixels.size();
+    if (lengths.pixels.size() != count) throw std::logic_error("compositeMeansOnRoot: sizes differ");
+    // Integrals, then lengths, in double: a float's product with a float is exact in it, so the sum over
+    // the ranks rounds only where it adds.
+    std::vector<double> sums(2 * count, 0.0);
+    for (std::size_t i = 0; i < count; ++i) {
+        const float mean = means.pixels[i], length = lengths.pixels[i];
+        if (!std::isfinite(mean) || !(length > 0.f)) continue; // this rank's ray misses its cells
+        sums[i] = double(mean) * double(length);
+        sums[count + i] = double(length);
+    }
+    world.reduceSumToRoot(sums);
+    if (world.rank() != 0) return;
+    for (std::size_t i = 0; i < count; ++i)
+        means.pixels[i] = sums[count + i] > 0.0 ? static_cast<float>(sums[i] / sums[count + i]) : -INFINITY;
+}
+
+double slowestRankMillisSince(const MpiWorld& world, std::chrono::steady_clock::time_point start) {
+    const std::chrono::duration<double, std::milli> took = std::chrono::steady_clock::now() - start;
+    return world.maxOverRanks(took.count());
+}
+
+void reportFrameTimes(const MpiWorld& world, double renderMs, double compositeMs) {
+    if (world.rank() != 0) return;
+    std::cerr << "vots render: " << world.size() << (world.size() == 1 ? " rank" : " ranks") << ", render "
+              << std::fixed << std::setprecision(1) << renderMs << " ms, composite " << compositeMs
+              << " ms\n";
 }
 
 } // namespace vots::cli

@@ -1,34 +1,48 @@
-// `vots render` under mpirun: each rank holds the Vots of its slab of the grid's z cells; the ranks'
-// float frames are composited on rank 0 (docs/DESIGN.md, "Across hosts").
+// `vots render` under mpirun: each rank holds the Vots of its slab of the grid's z cells; the ranks' float
+// frames are composited on rank 0 (docs/DESIGN.md, "Across hosts").
 #pragma once
 
 #include "MpiWorld.h"
+#include "ZSlab.h"
 
-#include "vots/fit/Volume.h"
 #include "vots/fit/VotSpace.h"
+#include "vots/render/CellDomain.h"
 #include "vots/render/Image.h"
 #include "vots/render/RenderMode.h"
 
+#include <array>
+#include <chrono>
+
 namespace vots::cli {
 
-/// Cells [first, end) along z: rank r of n takes cells [r C / n, (r + 1) C / n) of the C = dims z - 1.
-struct ZSlab {
-    int first = 0;
-    int end = 0;
-    bool empty() const { return end <= first; }
-};
-ZSlab zSlabOfRank(int cellsZ, int rank, int ranks);
+/// True for the projections whose ranks cut their rays to their own slab of cells (minip, aip): they
+/// take background and lengths along the ray, which another rank's cells must not add to. The max and
+/// the density take whole rays, and need no cut.
+bool compositesCutRays(render::RenderMode mode);
 
-/// The Vots whose box starts in the slab: in a Vot-Space of disjoint boxes each Vot lies on one rank, so
-/// the max (or min) over the ranks' frames is the frame of the whole Vot-Space, bit for bit.
-fit::VotSpace votsOfSlab(fit::VotSpace space, ZSlab slab);
-/// Planes [first, end] of the volume: the slab's cells, with the plane they share with the next slab.
-fit::Volume planesOfSlab(const fit::Volume& volume, ZSlab slab);
-/// Moves a Vot-Space fitted on planesOfSlab(whole, slab) into the whole grid's index space.
-void placeSlabFitInGrid(fit::VotSpace& space, ZSlab slab, const fit::Volume& whole);
+/// The Vots a rank draws: for whole rays, those whose box starts in the slab (in a Vot-Space of disjoint
+/// boxes each Vot lies on one rank, so the max, or min, over the ranks' frames is the frame of the whole
+/// Vot-Space, bit for bit); for rays cut to the slab, every Vot whose box meets it, so that each of the
+/// slab's cells is covered on its rank as it is in the whole.
+fit::VotSpace votsOfSlab(fit::VotSpace space, ZSlab slab, bool cutRays);
 
-/// Composites the ranks' float frames of one projection onto rank 0: max for mip, min for density.
-/// MinIP and the average would count the cells other ranks hold as background: refused for now.
+/// The slab's cells as the walk's domain, on a grid of `dims` points.
+render::CellDomain cellDomainOfSlab(ZSlab slab, const std::array<int, 3>& dims);
+
+/// Composites the ranks' float frames of one projection onto rank 0: max for mip, min for density and
+/// minip (whose ranks' rays are cut to their slabs). The aip goes through compositeMeansOnRoot.
 void compositeOnRoot(const MpiWorld& world, render::RenderMode mode, render::FloatImage& frame);
+
+/// The aip composited onto rank 0: per pixel sum(mean_r x length_r) / sum(length_r) over the ranks, each
+/// rank's mean and length taken inside its slab of cells (VotRenderer::rayLengths); -inf where no rank's
+/// ray has any length, as one process gives where the ray misses.
+void compositeMeansOnRoot(const MpiWorld& world, render::FloatImage& means,
+                          const render::FloatImage& lengths);
+
+/// `vots render --times`: milliseconds since `start`, the slowest rank's (every rank must call it: it
+/// waits for them all, so the next step's time is its own).
+double slowestRankMillisSince(const MpiWorld& world, std::chrono::steady_clock::time_point start);
+/// Rank 0 prints the frame's split on stderr: "vots render: N rank(s), render R ms, composite C ms".
+void reportFrameTimes(const MpiWorld& world, double renderMs, double compositeMs);
 
 } // namespace vots::cli

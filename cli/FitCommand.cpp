@@ -1,13 +1,16 @@
-// `vots fit`: volume file -> Vot-Space file; checks every argument before loading, writes only on success.
+// `vots fit`: volume -> Vot-Space file, arguments checked before loading; under mpirun, one slab per rank.
 #include "Args.h"
 #include "Commands.h"
+#include "DistributedFit.h"
 #include "MemoryBudgetOption.h"
+#include "MpiWorld.h"
 #include "Progress.h"
 #include "RawOptions.h"
 #include "SeriesOption.h"
 
 #include "vots/fit/Error.h"
 #include "vots/fit/Fitter.h"
+#include "vots/fit/VolumeHeader.h"
 #include "vots/fit/VolumeLoad.h"
 #include "vots/fit/VotSpaceFile.h"
 #include "vots/server/FitMeta.h"
@@ -89,20 +92,14 @@ void checkOutput(const FitArgs& a) {
         throw fit::InputError("the output '" + a.output + "' is the input file");
 }
 
-std::optional<float> resolveBackground(const std::string& text, const fit::Volume& volume) {
+std::optional<float> resolveBackground(const std::string& text, std::array<float, 2> range) {
     if (text == "none") return std::nullopt;
-    if (text == "auto") return fit::defaultBackground(volume);
+    if (text == "auto") return fit::defaultBackground(range);
     return static_cast<float>(parseNumber(text, "--background"));
 }
 
-void runFit(const FitArgs& a) {
-    const CheckedArgs checked = checkArgs(a);
-    checkOutput(a);
-    checkVolumeFitsBudget(a.input, checked.raw, a.memoryBudget, a.series);
-
-    // Source-typed samples: an int16 CT takes half the memory of floats, and fits to the same Vots.
-    const fit::Volume volume = fit::loadVolume(a.input, checked.raw, fit::SampleStorage::Source, a.series);
-    const auto range = volume.valueRange();
+/// The fit's options for a volume whose values span `range` (the whole volume's, also on every rank).
+fit::FitOptions fitOptionsFor(const FitArgs& a, const CheckedArgs& checked, std::array<float, 2> range) {
     fit::FitOptions options;
     const double eps = checked.eps.resolve(range[0], range[1]);
     if (!(eps > 0))
@@ -110,19 +107,18 @@ void runFit(const FitArgs& a) {
                               formatNumber(range[0]) + "); give eps in data units");
     options.eps = static_cast<float>(eps);
     options.degree = a.degree;
-    options.background = resolveBackground(a.background, volume);
+    options.background = resolveBackground(a.background, range);
     options.method = a.method == "paper" ? fit::FitMethod::Paper : fit::FitMethod::Fast;
     options.certify = a.certify == "cells" ? fit::Certify::Cells : fit::Certify::Samples;
     options.focus = checked.focus;
     options.threads = a.threads;
-    fit::validateFitOptions(volume, options);
+    return options;
+}
 
-    Progress progress(a.progress);
-    if (a.progress)
-        options.progress = [&progress](double f, const char* stage) { progress.update(f, stage); };
-    fit::FitResult result = fit::fitVotSpace(volume, options);
-    progress.finish();
-
+/// Writes the fit of `volume` (whose grid is enough) with its meta block and says so on stdout.
+/// `ranks`: under mpirun, the meta block records them and the whole volume's value range `range`.
+void writeFit(const FitArgs& a, const fit::Volume& volume, const fit::FitOptions& options,
+              fit::FitResult& result, std::optional<int> ranks, std::array<float, 2> range) {
     const double maxError = server::maxStoredError(result.space);
     server::FitProvenance record;
     std::error_code ec;
@@ -134,7 +130,9 @@ void runFit(const FitArgs& a) {
     record.options.progress = nullptr;
     record.stats = result.stats;
     record.maxError = maxError;
+    record.backgroundFill = result.space.backgroundFill;
     result.space.metaJson = server::buildFitMeta(record);
+    if (ranks) result.space.metaJson = metaOfRanks(result.space.metaJson, range, *ranks);
     fit::writeVotSpaceFile(a.output, result.space);
 
     const std::size_t count = result.space.vots.size();
@@ -142,7 +140,73 @@ void runFit(const FitArgs& a) {
               << formatNumber(static_cast<double>(count) / static_cast<double>(volume.sampleCount()), 4)
               << " per sample), degree " << result.space.degree << ", max error " << formatNumber(maxError)
               << " (eps " << formatNumber(options.eps) << "), fit in "
-              << formatNumber(result.stats.seconds, 3) << " s\n";
+              << formatNumber(result.stats.seconds, 3) << " s"
+              << (ranks ? " on " + std::to_string(*ranks) + (*ranks == 1 ? " rank" : " ranks") : "") << "\n";
+}
+
+void runFit(const FitArgs& a) {
+    const CheckedArgs checked = checkArgs(a);
+    checkOutput(a);
+    checkVolumeFitsBudget(a.input, checked.raw, a.memoryBudget, a.series, fit::SampleStorage::Source);
+
+    // Source-typed samples: an int16 CT takes half the memory of floats, and fits to the same Vots.
+    const fit::Volume volume = fit::loadVolume(a.input, checked.raw, fit::SampleStorage::Source, a.series);
+    const auto range = volume.valueRange();
+    fit::FitOptions options = fitOptionsFor(a, checked, range);
+    fit::validateFitOptions(volume, options);
+
+    Progress progress(a.progress);
+    if (a.progress)
+        options.progress = [&progress](double f, const char* stage) { progress.update(f, stage); };
+    fit::FitResult result = fit::fitVotSpace(volume, options);
+    progress.finish();
+    writeFit(a, volume, options, result, std::nullopt, range);
+}
+
+// Under mpirun: each rank reads and fits the planes of its slab with the whole volume's eps and
+// background; rank 0 gathers the Vots and writes the one file. A failure on any rank ends every rank.
+void runFitOnRanks(const MpiWorld& world, const FitArgs& a) {
+    CheckedArgs checked;
+    ZSlab slab;
+    fit::VolumeSlab read;
+    world.allOrNone([&] {
+        checked = checkArgs(a);
+        // The focus centre is checked against the grid each rank fits: not yet moved into the slabs.
+        if (checked.focus) throw fit::InputError("--focus is not supported under mpirun yet");
+        if (world.rank() == 0) checkOutput(a);
+        slab = fitSlabOfRank(world, fit::volumeHeaderInfo(a.input, checked.raw, a.series).dims[2]);
+        const auto planes = static_cast<std::uint64_t>(slab.end - slab.first + 1);
+        checkPlanesFitBudget(a.input, checked.raw, a.memoryBudget, a.series, planes,
+                             fit::SampleStorage::Source);
+        read = loadSlab(a.input, slab, checked.raw, fit::SampleStorage::Source, a.series);
+    });
+    // The whole volume's range: the union of the slabs', which cover every plane.
+    const std::array<float, 2> range = world.unionOfRanges(read.planes.valueRange());
+    fit::FitOptions options;
+    fit::FitResult result;
+    world.allOrNone([&] {
+        options = fitOptionsFor(a, checked, range);
+        fit::validateFitOptions(read.planes, options);
+        Progress progress(a.progress && world.rank() == 0); // rank 0's slab stands for the others
+        if (a.progress && world.rank() == 0)
+            options.progress = [&progress](double f, const char* stage) { progress.update(f, stage); };
+        result = fit::fitVotSpace(read.planes, options);
+        progress.finish();
+        options.progress = nullptr;
+    });
+    read.planes = fit::Volume{}; // the samples are fitted: free them before the gather
+    gatherFitOnRoot(world, result, slab, read.whole);
+    world.allOrNone([&] {
+        if (world.rank() == 0) writeFit(a, read.whole, options, result, world.size(), range);
+    });
+}
+
+void runFitCommand(const FitArgs& a) {
+    const MpiWorld& world = MpiWorld::get();
+    if (world.launched())
+        runFitOnRanks(world, a);
+    else
+        runFit(a);
 }
 
 } // namespace
@@ -180,7 +244,7 @@ void addFitCommand(CLI::App& app) {
     addMemoryBudgetOption(*cmd, args->memoryBudget);
     addRawOptions(*cmd, args->raw);
     addSeriesOption(*cmd, args->series);
-    cmd->callback([args] { runFit(*args); });
+    cmd->callback([args] { runFitCommand(*args); });
 }
 
 } // namespace vots::cli

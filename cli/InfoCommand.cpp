@@ -14,6 +14,7 @@
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 namespace vots::cli {
@@ -78,6 +79,7 @@ json toJson(const std::string& path, const fit::VotSpace& s, const server::FitMe
         {"eps", s.eps},
         {"eps_varies", s.epsVaries},
         {"background", std::isfinite(s.background) ? json(s.background) : json(nullptr)},
+        {"background_fill", orNull(meta.backgroundFill)},
         {"vot_count", s.vots.size()},
         {"vots_per_sample", sum.perSample},
         {"vots_per_nonbackground_cell", orNull(sum.perNonBackgroundCell)},
@@ -86,6 +88,13 @@ json toJson(const std::string& path, const fit::VotSpace& s, const server::FitMe
         {"fit_seconds", orNull(meta.fitSeconds)},
         {"meta", meta.isJson ? json::parse(s.metaJson) : json(nullptr)},
     };
+}
+
+// "ranks" of a file `vots fit` wrote under mpirun (DistributedFit.h); nullopt for any other file.
+std::optional<long long> ranksOf(const std::string& metaJson) {
+    const json j = json::parse(metaJson, nullptr, /*allow_exceptions=*/false);
+    if (!j.is_object() || !j.contains("ranks") || !j["ranks"].is_number_integer()) return std::nullopt;
+    return j["ranks"].get<long long>();
 }
 
 void printText(const std::string& path, const fit::VotSpace& s, const server::FitMetaView& meta,
@@ -103,14 +112,17 @@ void printText(const std::string& path, const fit::VotSpace& s, const server::Fi
     if (meta.requestedDegree) o << ", " << *meta.requestedDegree << " requested";
     o << "\n";
     row("eps") << formatNumber(s.eps) << (s.epsVaries ? " (context; varies in space)" : "") << "\n";
-    row("background") << (std::isfinite(s.background) ? formatNumber(s.background) : std::string("none"))
-                      << "\n";
+    row("background") << (std::isfinite(s.background) ? formatNumber(s.background) : std::string("none"));
+    if (meta.backgroundFill)
+        o << " (omitted cells count as " << formatNumber(*meta.backgroundFill) << " in minip and aip)";
+    o << "\n";
     row("Vots") << formatCount(s.vots.size()) << " (" << formatNumber(sum.perSample, 4) << " per sample";
     if (sum.perNonBackgroundCell)
         o << ", " << formatNumber(*sum.perNonBackgroundCell, 4) << " per non-background cell";
     o << ")\n";
     row("max error") << formatNumber(sum.maxError) << "\n";
     if (meta.fitSeconds) row("fit time") << formatNumber(*meta.fitSeconds, 3) << " s\n";
+    if (const auto ranks = ranksOf(s.metaJson)) row("ranks") << *ranks << " (fitted under mpirun)\n";
     o << "box sizes (largest side in cells):\n";
     for (std::size_t k = 0; k < SIZE_LABELS.size(); ++k) {
         const double share = s.vots.empty() ? 0.0 : 100.0 * double(sum.histogram[k]) / double(s.vots.size());

@@ -4,8 +4,11 @@
 #include "vots/fit/Error.h"
 #include "vots/fit/MemoryBudget.h"
 #include "vots/fit/VolumeHeader.h"
+#include "vots/fit/VolumePlanes.h"
 
 #include <CLI/CLI.hpp>
+
+#include <algorithm>
 
 namespace vots::cli {
 
@@ -21,11 +24,13 @@ std::uint64_t resolveMemoryBudget(const std::string& text) {
     return text.empty() ? fit::defaultMemoryBudget() : fit::parseMemorySize(text, "--memory-budget");
 }
 
-void checkVolumeFitsBudget(const std::string& path, const std::optional<fit::RawLayout>& raw,
-                           const std::string& budgetText, const std::string& dicomSeries) {
+namespace {
+
+// `header`: what will be held (the whole volume, or one rank's planes).
+void checkFitsBudget(const std::string& path, const fit::VolumeHeaderInfo& header,
+                     const std::string& budgetText, fit::SampleStorage storage) {
     const std::uint64_t budget = resolveMemoryBudget(budgetText);
-    const fit::VolumeHeaderInfo header = fit::volumeHeaderInfo(path, raw, dicomSeries);
-    const std::uint64_t needed = fit::estimateLoadAndFitBytes(header);
+    const std::uint64_t needed = fit::estimateLoadAndFitBytes(header, storage);
     const std::uint64_t held = fit::residentBytes();
     const std::uint64_t left = budget > held ? budget - held : 0;
     if (needed <= left) return;
@@ -34,6 +39,23 @@ void checkVolumeFitsBudget(const std::string& path, const std::optional<fit::Raw
                           fit::formatBytes(budget) + (budgetText.empty() ? " (the default)" : "") +
                           " leaves (" + fit::formatBytes(left) +
                           "); give a larger --memory-budget or use a smaller volume");
+}
+
+} // namespace
+
+void checkVolumeFitsBudget(const std::string& path, const std::optional<fit::RawLayout>& raw,
+                           const std::string& budgetText, const std::string& dicomSeries,
+                           fit::SampleStorage storage) {
+    checkFitsBudget(path, fit::volumeHeaderInfo(path, raw, dicomSeries), budgetText, storage);
+}
+
+void checkPlanesFitBudget(const std::string& path, const std::optional<fit::RawLayout>& raw,
+                          const std::string& budgetText, const std::string& dicomSeries, std::uint64_t planes,
+                          fit::SampleStorage storage) {
+    fit::VolumeHeaderInfo header = fit::volumeHeaderInfo(path, raw, dicomSeries);
+    // Otherwise the whole is loaded before its planes are cut: its estimate stays, an upper bound.
+    if (fit::readsPlanesByOffset(path, raw)) header.dims[2] = std::min(header.dims[2], planes);
+    checkFitsBudget(path, header, budgetText, storage);
 }
 
 } // namespace vots::cli

@@ -20,10 +20,17 @@ void addMemoryBudgetOption(CLI::App& command, std::string& text);
 /// Throws InputError for a malformed size.
 std::uint64_t resolveMemoryBudget(const std::string& text);
 
-/// Reads only the volume's header and throws one-line InputError (exit 2) when loading and fitting
-/// it would need more than the budget leaves after what this process holds: checked before any of
-/// the samples are read, so a header announcing a huge volume costs nothing.
+/// Reads only the volume's header and throws one-line InputError (exit 2) when loading it with
+/// `storage` and fitting it would need more than the budget leaves after what this process holds:
+/// checked before any of the samples are read, so a header announcing a huge volume costs nothing.
 void checkVolumeFitsBudget(const std::string& path, const std::optional<fit::RawLayout>& raw,
-                           const std::string& budgetText, const std::string& dicomSeries = {});
+                           const std::string& budgetText, const std::string& dicomSeries = {},
+                           fit::SampleStorage storage = fit::SampleStorage::Float);
+
+/// The same for one rank under mpirun that loads and fits `planes` z planes: read by offset where the
+/// format allows (fit::readsPlanesByOffset), else the whole volume is read before its planes are cut.
+void checkPlanesFitBudget(const std::string& path, const std::optional<fit::RawLayout>& raw,
+                          const std::string& budgetText, const std::string& dicomSeries, std::uint64_t planes,
+                          fit::SampleStorage storage = fit::SampleStorage::Float);
 
 } // namespace vots::cli

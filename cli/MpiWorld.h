@@ -2,6 +2,10 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <type_traits>
 #include <vector>
 
 namespace vots::cli {
@@ -19,16 +23,47 @@ public:
     int rank() const { return mRank; }
     int size() const { return mSize; }
     bool distributed() const { return mSize > 1; }
+    /// True when mpirun started this process, even as the only rank.
+    bool launched() const { return mInitialised; }
 
     /// Element-wise maximum (or minimum) of every rank's values onto rank 0's `values` (same length on
     /// every rank); the other ranks' vectors are left as they were.
     void reduceMaxToRoot(std::vector<float>& values) const;
     void reduceMinToRoot(std::vector<float>& values) const;
+    /// Element-wise sum of every rank's values onto rank 0's `values`, likewise. Open MPI sums in the same
+    /// order for the same count and ranks, so the same inputs give the same bits.
+    void reduceSumToRoot(std::vector<double>& values) const;
     /// [min over ranks of range[0], max over ranks of range[1]], on every rank.
     std::array<float, 2> unionOfRanges(std::array<float, 2> range) const;
+    /// Element-wise sum (or the maximum) over the ranks, on every rank.
+    std::vector<std::uint64_t> sumOverRanks(std::vector<std::uint64_t> values) const;
+    double sumOverRanks(double value) const;
+    double maxOverRanks(double value) const;
+
+    /// Runs `step` on every rank, then agrees on how it went, so that no rank waits in a later
+    /// collective for one that has left: when it threw on any rank, rank 0 throws the first failing
+    /// rank's error (prefixed "rank R: " when R is not 0) and every other rank throws CLI::RuntimeError
+    /// with its exit code (2 for InputError, else 1), which main() turns into a silent exit. Steps must
+    /// not call collectives themselves. Without mpirun: just `step()`.
+    void allOrNone(const std::function<void()>& step) const;
+
+    /// Every rank's records, concatenated in rank order, on rank 0; empty on the other ranks.
+    template <typename Record> std::vector<Record> gatherOnRoot(const std::vector<Record>& mine) const {
+        static_assert(std::is_trivially_copyable_v<Record>, "records travel as their bytes");
+        if (!launched()) return mine;
+        std::vector<Record> all;
+        gatherRecords(mine.data(), mine.size(), sizeof(Record), [&](std::size_t count) {
+            all.resize(count);
+            return static_cast<void*>(all.data());
+        });
+        return all;
+    }
 
 private:
     MpiWorld();
+    /// gatherOnRoot's bytes: `allocate(total records)` gives rank 0 the destination.
+    void gatherRecords(const void* mine, std::size_t count, std::size_t recordBytes,
+                       const std::function<void*(std::size_t)>& allocate) const;
     int mRank = 0;
     int mSize = 1;
     bool mInitialised = false;

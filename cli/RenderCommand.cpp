@@ -11,6 +11,7 @@
 #include "vots/fit/DicomSeries.h"
 #include "vots/fit/Error.h"
 #include "vots/fit/Fitter.h"
+#include "vots/fit/VolumeHeader.h"
 #include "vots/fit/VolumeLoad.h"
 #include "vots/fit/VotSpaceFile.h"
 #include "vots/render/CameraText.h"
@@ -65,6 +66,7 @@ struct RenderArgs {
     RawArgs raw;                  // the layout of a headerless volume (INPUT, or --volume of a .vots input)
     std::optional<int> turntable; // frames of a turn about the vertical axis; nullopt: one frame
     std::optional<double> elevation; // the turn's elevation; nullopt: the camera's
+    bool times = false;              // print the frame's render and composite milliseconds on stderr
 };
 
 struct CheckedArgs {
@@ -145,76 +147,141 @@ bool isVotsFile(const std::string& path) {
     return in.gcount() == 4 && std::string(magic, 4) == "VOTS";
 }
 
-std::optional<float> resolveBackground(const std::string& text, const fit::Volume& volume) {
+std::optional<float> resolveBackground(const std::string& text, std::array<float, 2> range) {
     if (text == "none") return std::nullopt;
-    if (text == "auto") return fit::defaultBackground(volume);
+    if (text == "auto") return fit::defaultBackground(range);
     return static_cast<float>(parseNumber(text, "--background"));
 }
 
-// Fits `volume` with the options the arguments give for `whole` (eps in percent of its range, its
-// background): the same volume, or under mpirun one rank's slab of it.
-fit::VotSpace fitForRender(const fit::Volume& volume, const fit::Volume& whole, const RenderArgs& a,
-                           const CheckedArgs& c) {
-    const auto range = whole.valueRange();
+// Fits `volume` with the options the arguments give for a whole volume whose values span `range` (eps in
+// percent of it, its background): the volume itself, or under mpirun one rank's slab of it.
+fit::FitResult fitForRender(const fit::Volume& volume, std::array<float, 2> range, const RenderArgs& a,
+                            const CheckedArgs& c) {
     fit::FitOptions options;
     options.eps = static_cast<float>(c.eps.resolve(range[0], range[1]));
     if (!(options.eps > 0))
         throw fit::InputError("--eps " + a.eps + " is 0 for this volume; give it in data units");
     options.degree = a.degree;
-    options.background = resolveBackground(a.background, whole);
+    options.background = resolveBackground(a.background, range);
     options.certify = a.certify == "samples" ? fit::Certify::Samples : fit::Certify::Cells;
     fit::validateFitOptions(volume, options);
-    return fit::fitVotSpace(volume, options).space;
+    return fit::fitVotSpace(volume, options);
 }
 
-// Under mpirun: what the ranks composite (one frame of the Vots, mip, minip or density), refused before
-// anything is read otherwise.
+// Under mpirun: what the ranks composite (one frame of the Vots, any projection), refused before anything
+// is read otherwise.
 void checkDistributable(const CheckedArgs& c) {
-    // MinIP and the average count the cells a rank does not hold as background: not composited yet.
-    const bool composited =
-        c.frame.mode == render::RenderMode::Mip || c.frame.mode == render::RenderMode::Density;
-    if (c.turntable || c.frame.renderer == render::RendererKind::Grid || !composited)
-        throw fit::InputError("under mpirun, vots render draws one mip or density frame of the Vots "
-                              "(not yet: minip, aip, --renderer grid, --turntable)");
+    if (c.turntable || c.frame.renderer == render::RendererKind::Grid)
+        throw fit::InputError("under mpirun, vots render draws one frame of the Vots "
+                              "(not yet: --renderer grid, --turntable)");
 }
 
-// Rank r's share of the Vot-Space: the Vots of its z slab, read from the file or fitted from its planes.
-fit::VotSpace slabOfThisRank(const MpiWorld& world, const fit::VotSpace* fromFile, const fit::Volume* volume,
-                             const RenderArgs& a, const CheckedArgs& c) {
-    const int cellsZ = (fromFile ? fromFile->dims[2] : volume->dims[2]) - 1;
-    const ZSlab slab = zSlabOfRank(cellsZ, world.rank(), world.size());
-    if (fromFile) return votsOfSlab(*fromFile, slab);
-    fit::VotSpace space; // more ranks than cells: this one holds nothing
-    if (!slab.empty()) space = fitForRender(planesOfSlab(*volume, slab), *volume, a, c);
-    placeSlabFitInGrid(space, slab, *volume);
-    return space;
-}
-
-// The frame of the whole Vot-Space from every rank's slab, written by rank 0: the same bytes as one
-// process draws from the same Vots.
+// The frame of the whole Vot-Space from every rank's slab, written by rank 0: for mip and density the
+// same bytes as one process draws from the same Vots; minip and aip cut each rank's rays to its slab of
+// cells (`domain`) and composite the min and the length-weighted mean.
 void renderDistributed(const MpiWorld& world, const CheckedArgs& c, render::VotRenderer& vots,
-                       std::optional<std::array<float, 2>> volumeRange, const std::string& output) {
+                       const std::optional<render::CellDomain>& domain,
+                       std::optional<std::array<float, 2>> volumeRange, const RenderArgs& a) {
     const render::FrameRequest& f = c.frame;
-    render::FloatImage frame =
-        vots.render(f.camera, f.width, f.height, render::RenderOptions{f.mode, f.slab});
-    compositeOnRoot(world, f.mode, frame);
+    render::FloatImage frame;
+    std::optional<render::FloatImage> lengths;
+    auto start = std::chrono::steady_clock::now();
+    // A rank that fails to draw (a Vot-Space the walk cannot draw, say) ends every rank.
+    world.allOrNone([&] {
+        vots.setRayDomain(domain);
+        frame = vots.render(f.camera, f.width, f.height, render::RenderOptions{f.mode, f.slab});
+        if (f.mode == render::RenderMode::Aip) lengths = vots.rayLengths(f.camera, f.width, f.height, f.slab);
+    });
+    const double renderMs = a.times ? slowestRankMillisSince(world, start) : 0.0;
+    start = std::chrono::steady_clock::now();
+    if (lengths)
+        compositeMeansOnRoot(world, frame, *lengths);
+    else
+        compositeOnRoot(world, f.mode, frame);
+    if (a.times) reportFrameTimes(world, renderMs, slowestRankMillisSince(world, start));
     std::array<float, 2> range = volumeRange ? *volumeRange : vots.valueRange();
     if (f.mode == render::RenderMode::Density) range = vots.densityRange();
     range = world.unionOfRanges(range);
     if (world.rank() == 0)
-        render::writePng(output, render::applyDisplay(frame, render::displayFor(f, range)));
+        render::writePng(a.output, render::applyDisplay(frame, render::displayFor(f, range)));
+}
+
+// Under mpirun: each rank holds the Vots of its z slab, read from the .vots file or fitted from the planes
+// it alone reads of the volume, and the frames are composited on rank 0. A failure on any rank ends all.
+void runRenderOnRanks(const MpiWorld& world, const RenderArgs& a) {
+    CheckedArgs c;
+    ZSlab slab;
+    fit::VotSpace space;
+    std::optional<fit::VolumeSlab> read; // the volume's planes of this slab, when there is a volume
+    bool fitHere = false;
+    world.allOrNone([&] {
+        c = checkArgs(a);
+        checkDistributable(c);
+        std::string volumePath = a.volume;
+        if (isVotsFile(a.input)) {
+            if (c.raw && a.volume.empty())
+                throw fit::InputError("--raw-* describe a volume; a .vots input has one only with --volume");
+            space = fit::readVotSpaceFile(a.input);
+            server::restoreMetaFields(space);
+            slab = zSlabOfRank(space.dims[2] - 1, world.rank(), world.size());
+            space = votsOfSlab(std::move(space), slab, compositesCutRays(c.frame.mode));
+        } else {
+            if (!a.volume.empty())
+                throw fit::InputError("--volume is only for .vots input; INPUT is already a volume");
+            volumePath = a.input;
+            const auto planesZ = fit::volumeHeaderInfo(a.input, c.raw, a.series).dims[2];
+            if (planesZ < 2)
+                throw fit::InputError("volume needs at least 2 grid points along every axis to form a cell");
+            slab = zSlabOfRank(static_cast<int>(planesZ) - 1, world.rank(), world.size());
+            fitHere = true;
+        }
+        if (volumePath.empty()) return;
+        // An empty slab (more ranks than cells) still reads its one plane: its range counts alike.
+        checkPlanesFitBudget(volumePath, c.raw, a.memoryBudget, a.series,
+                             static_cast<std::uint64_t>(slab.end - slab.first + 1));
+        read = loadSlab(volumePath, slab, c.raw, fit::SampleStorage::Float, a.series);
+    });
+    std::optional<std::array<float, 2>> volumeRange;
+    if (read) volumeRange = world.unionOfRanges(read->planes.valueRange());
+    fit::FitStats slabStats; // of this rank's fit: its background cells count towards the whole's fill
+    if (fitHere) {
+        world.allOrNone([&] {
+            if (!slab.empty()) {
+                fit::FitResult fitted = fitForRender(read->planes, *volumeRange, a, c);
+                slabStats = fitted.stats;
+                space = std::move(fitted.space);
+            }
+            placeSlabFitInGrid(space, slab, read->whole);
+            read.reset(); // the samples are fitted; only the range is needed from here on
+        });
+        // Each rank's fit knows only its slab's omitted cells: the fill of the whole volume, as
+        // `vots fit` under mpirun gives it, from the sums over the ranks (the slabs split the cells).
+        slabStats.backgroundCells =
+            world.sumOverRanks(std::vector<std::uint64_t>{slabStats.backgroundCells})[0];
+        slabStats.backgroundValueSum = world.sumOverRanks(slabStats.backgroundValueSum);
+        space.backgroundFill = fit::backgroundFillOf(slabStats);
+    }
+    std::unique_ptr<render::EglContext> context;
+    std::optional<render::VotRenderer> vots;
+    world.allOrNone([&] {
+        context = render::EglContext::createOrThrow();
+        vots.emplace();
+        server::applyRenderPolicy(*vots);
+        vots->upload(space);
+    });
+    std::optional<render::CellDomain> domain;
+    if (compositesCutRays(c.frame.mode)) domain = cellDomainOfSlab(slab, space.dims);
+    renderDistributed(world, c, *vots, domain, volumeRange, a);
 }
 
 void runRender(const RenderArgs& a) {
     const CheckedArgs c = checkArgs(a);
-    const MpiWorld& world = MpiWorld::get();
-    if (world.distributed()) checkDistributable(c);
     const bool inputIsVots = isVotsFile(a.input);
     std::optional<fit::Volume> volume;
     std::optional<fit::VotSpace> space;
     if (inputIsVots) {
         space = fit::readVotSpaceFile(a.input);
-        server::placeInPatientSpace(*space);
+        server::restoreMetaFields(*space);
         if (!a.volume.empty()) {
             checkVolumeFitsBudget(a.volume, c.raw, a.memoryBudget, a.series);
             volume = fit::loadVolume(a.volume, c.raw, fit::SampleStorage::Float, a.series);
@@ -231,11 +298,9 @@ void runRender(const RenderArgs& a) {
         // The fit's estimate also for the grid renderer: it covers the samples, their texture and the read.
         checkVolumeFitsBudget(a.input, c.raw, a.memoryBudget, a.series);
         volume = fit::loadVolume(a.input, c.raw, fit::SampleStorage::Float, a.series);
-        if (c.frame.renderer != render::RendererKind::Grid && !world.distributed())
-            space = fitForRender(*volume, *volume, a, c);
+        if (c.frame.renderer != render::RendererKind::Grid)
+            space = fitForRender(*volume, volume->valueRange(), a, c).space;
     }
-    if (world.distributed())
-        space = slabOfThisRank(world, space ? &*space : nullptr, volume ? &*volume : nullptr, a, c);
 
     const auto context = render::EglContext::createOrThrow();
     std::optional<render::GridRenderer> grid;
@@ -249,14 +314,25 @@ void runRender(const RenderArgs& a) {
     }
     std::optional<std::array<float, 2>> volumeRange;
     if (volume) volumeRange = volume->valueRange();
-    if (world.distributed()) return renderDistributed(world, c, *vots, volumeRange, a.output);
     const auto draw = [&](const render::FrameRequest& frame) {
         return render::renderFrame(frame, vots ? &*vots : nullptr, grid ? &*grid : nullptr, volumeRange);
     };
-    if (c.turntable)
+    if (c.turntable) {
         writeTurntable(*c.turntable, c.frame, *a.turntable, a.elevation, draw);
+        return;
+    }
+    const auto start = std::chrono::steady_clock::now();
+    const render::RgbaImage image = draw(c.frame); // with the display pass: one process composites nothing
+    if (a.times) reportFrameTimes(MpiWorld::get(), slowestRankMillisSince(MpiWorld::get(), start), 0.0);
+    render::writePng(a.output, image);
+}
+
+void runRenderCommand(const RenderArgs& a) {
+    const MpiWorld& world = MpiWorld::get();
+    if (world.distributed())
+        runRenderOnRanks(world, a);
     else
-        render::writePng(a.output, draw(c.frame));
+        runRender(a);
 }
 
 } // namespace
@@ -300,10 +376,12 @@ void addRenderCommand(CLI::App& app) {
                         std::to_string(render::ANIMATION_FPS) + " frames/s)");
     cmd->add_option("--elevation", args->elevation,
                     "The turntable's elevation in degrees (default: the camera's)");
+    cmd->add_flag("--times", args->times,
+                  "Print the frame's render and composite milliseconds on stderr (the slowest rank's)");
     addMemoryBudgetOption(*cmd, args->memoryBudget);
     addSeriesOption(*cmd, args->series);
     addRawOptions(*cmd, args->raw);
-    cmd->callback([args] { runRender(*args); });
+    cmd->callback([args] { runRenderCommand(*args); });
 }
 
 } // namespace vots::cli

@@ -1,6 +1,8 @@
 // `vots serve`: options -> vots::server::Server, then serve until SIGINT/SIGTERM; no HTTP logic here.
 #include "Commands.h"
 #include "MemoryBudgetOption.h"
+#include "MpiServe.h"
+#include "MpiWorld.h"
 
 #include "vots/fit/Error.h"
 #include "vots/fit/MemoryBudget.h"
@@ -30,6 +32,7 @@ struct ServeArgs {
     std::string web;
     std::string cacheDir = "data/cache";
     int frameCacheMb = 64;
+    int cacheDirGb = 16;
     bool noWarmUp = false;
     std::string prepare = "cranium"; // the viewer's first dataset when the data folders have it
     std::string tokenFile;
@@ -65,6 +68,19 @@ void raiseOpenFileLimit() {
 }
 
 void runServe(const ServeArgs& a) {
+    const MpiWorld& world = MpiWorld::get();
+    std::shared_ptr<MpiFrameCompositor> compositor;
+    if (world.distributed()) compositor = std::make_shared<MpiFrameCompositor>(world, a.prepare);
+    // However rank 0 leaves, the other ranks are let go, after the server (its render thread) is gone.
+    struct ReleaseRanks {
+        MpiFrameCompositor* compositor;
+        ~ReleaseRanks() {
+            if (compositor) compositor->releaseRanks();
+        }
+    } releaseRanks{compositor.get()};
+    if (compositor && a.prepare.empty())
+        throw fit::InputError("under mpirun, vots serve draws one dataset across the ranks: name it with "
+                              "--prepare DATASET");
     raiseOpenFileLimit();
     server::ServerOptions options;
     for (const auto& d : a.data)
@@ -73,6 +89,7 @@ void runServe(const ServeArgs& a) {
     options.webDir = a.web.empty() ? server::defaultWebDir() : fs::path(a.web);
     options.cacheDir = a.cacheDir;
     options.frameCacheBytes = static_cast<std::size_t>(a.frameCacheMb) << 20;
+    options.diskCacheBytes = static_cast<std::uint64_t>(a.cacheDirGb) << 30;
     options.warmUpFits = !a.noWarmUp;
     options.prepareDataset = a.prepare;
     options.allowedHosts = a.allowHosts;
@@ -84,6 +101,12 @@ void runServe(const ServeArgs& a) {
     if (!a.tokenFile.empty()) options.accessToken = server::readAccessTokenFile(a.tokenFile);
     if (generatedToken) options.accessToken = server::generateAccessToken();
     options.memoryBudgetBytes = resolveMemoryBudget(a.memoryBudget);
+    if (compositor) {
+        options.compositor = compositor;
+        // Each rank fits its own slab with the first frame: rank 0 fits nothing whole.
+        options.prepareDataset.clear();
+        options.warmUpFits = false;
+    }
 
     // Signals are taken by sigwait below, so every thread the server starts must have them blocked.
     sigset_t stopSignals;
@@ -113,7 +136,11 @@ void runServe(const ServeArgs& a) {
               << "\n"
               << "  memory budget: " << fit::formatBytes(srv.memoryBudget())
               << (a.memoryBudget.empty() ? " (default: 80 % of the memory available)" : "") << "\n"
-              << "  " << srv.rendererSummary() << std::endl;
+              << "  " << srv.rendererSummary() << "\n";
+    if (compositor)
+        std::cout << "  ranks: " << world.size() << ", each frame of '" << a.prepare
+                  << "' drawn from every rank's z slab and composited here\n";
+    std::cout << std::flush;
     if (generatedToken)
         std::cerr << "vots serve: access token: " << options.accessToken << "\n"
                   << "  send 'Authorization: Bearer TOKEN', or open the viewer at " << url
@@ -156,6 +183,11 @@ void addServeCommand(CLI::App& app) {
     cmd->add_option("--web", args->web,
                     "Folder with the web viewer; default ./web, else the binary's ../share/vots/web");
     cmd->add_option("--cache-dir", args->cacheDir, "Folder for fitted Vot-Spaces")->capture_default_str();
+    cmd->add_option("--cache-dir-gb", args->cacheDirGb,
+                    "GiB of .vots files kept in the cache folder; the least recently used are removed beyond "
+                    "(the newest always stays)")
+        ->check(CLI::Range(0, 1 << 20))
+        ->capture_default_str();
     cmd->add_option("--frame-cache-mb", args->frameCacheMb,
                     "Memory for rendered images answered again to identical /render requests (0: none)")
         ->check(CLI::Range(0, 65536))
@@ -177,7 +209,13 @@ void addServeCommand(CLI::App& app) {
     cmd->add_flag(
         "--no-warm-up", args->noWarmUp,
         "Do not fit at half the last eps in idle time (it makes later refits to a smaller eps faster)");
-    cmd->callback([args] { runServe(*args); });
+    cmd->callback([args] {
+        const MpiWorld& world = MpiWorld::get();
+        if (world.distributed() && world.rank() != 0)
+            serveOtherRank(world); // rank 0 alone serves HTTP
+        else
+            runServe(*args);
+    });
 }
 
 } // namespace vots::cli

@@ -1,5 +1,10 @@
-# Install rules (bin/vots, share/vots/web), the build tree's matching web link, and CPack's Debian package.
+# Install rules (bin/vots, lib/vots, share/vots/web), the build tree's matching web link, and CPack's Debian
+# package.
 install(TARGETS vots RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+if(TARGET vots_webm)
+  # FFmpeg's encoder, which vots loads from bin/../lib/vots when it writes a WebM (render/CMakeLists.txt).
+  install(TARGETS vots_webm LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/vots)
+endif()
 if(TARGET vots_server)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/web/ DESTINATION ${CMAKE_INSTALL_DATADIR}/vots/web)
   # A build-tree `vots serve` looks where an installed one does (server/src/Server.cpp, defaultWebDir);

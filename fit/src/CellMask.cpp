@@ -32,12 +32,33 @@ struct AxisMasks {
 };
 const AxisMasks AXIS_MASKS;
 
+// The sum of the 8 corner samples of every background cell (isBackground[i] != 0) in the row of cells
+// (j, k), in double: a volume's background can hold billions of samples.
+template <typename T>
+double backgroundCornerSum(const T* values, std::size_t nx, std::size_t nxy, int j, int k,
+                           const std::vector<std::uint8_t>& isBackground) {
+    const T* p00 = values + static_cast<std::size_t>(k) * nxy + static_cast<std::size_t>(j) * nx;
+    const T* p10 = p00 + nx;
+    const T* p01 = p00 + nxy;
+    const T* p11 = p01 + nx;
+    double sum = 0.0;
+    for (std::size_t i = 0; i < isBackground.size(); ++i) {
+        if (!isBackground[i]) continue;
+        double corners = 0.0;
+        for (const T* p : {p00, p10, p01, p11})
+            corners += double{sampleAsFloat(p[i])} + double{sampleAsFloat(p[i + 1])};
+        sum += corners;
+    }
+    return sum;
+}
+
 // Sets the foreground bits from the samples: a cell is background when all 8 corners are below tau.
 // Slice by slice over contiguous bytes, which the compiler vectorises; two slices of "low" flags are
-// all the scratch it needs (a flag per sample would be as large as the samples).
+// all the scratch it needs (a flag per sample would be as large as the samples). Returns the sum over
+// background cells of the mean of each one's 8 corners (CellMask::backgroundValueSum).
 template <typename T>
-void markForeground(const T* values, const std::array<int, 3>& dims, std::optional<float> background,
-                    const std::array<int, 3>& cells, const auto& setRow) {
+double markForeground(const T* values, const std::array<int, 3>& dims, std::optional<float> background,
+                      const std::array<int, 3>& cells, const auto& setRow) {
     const std::size_t nx = static_cast<std::size_t>(dims[0]);
     const std::size_t nxy = nx * static_cast<std::size_t>(dims[1]);
     std::vector<std::uint8_t> row(static_cast<std::size_t>(cells[0]), 0);
@@ -45,7 +66,7 @@ void markForeground(const T* values, const std::array<int, 3>& dims, std::option
         for (int k = 0; k < cells[2]; ++k)
             for (int j = 0; j < cells[1]; ++j)
                 setRow(j, k, row.data()); // all zero: no cell is background
-        return;
+        return 0.0;
     }
     const float tau = *background;
     std::vector<std::uint8_t> lowBelow(nxy), lowAbove(nxy);
@@ -54,6 +75,7 @@ void markForeground(const T* values, const std::array<int, 3>& dims, std::option
         for (std::size_t n = 0; n < nxy; ++n)
             low[n] = sampleAsFloat(slice[n]) < tau ? 1 : 0;
     };
+    double cornerSum = 0.0; // over background cells, of their 8 corners
     markLow(0, lowBelow);
     for (int k = 0; k < cells[2]; ++k) {
         markLow(k + 1, lowAbove);
@@ -62,13 +84,20 @@ void markForeground(const T* values, const std::array<int, 3>& dims, std::option
             const std::uint8_t* r10 = r00 + nx;
             const std::uint8_t* r01 = lowAbove.data() + static_cast<std::size_t>(j) * nx;
             const std::uint8_t* r11 = r01 + nx;
-            for (int i = 0; i < cells[0]; ++i)
-                row[static_cast<std::size_t>(i)] =
+            bool anyBackground = false;
+            for (int i = 0; i < cells[0]; ++i) {
+                const std::uint8_t low =
                     r00[i] & r00[i + 1] & r10[i] & r10[i + 1] & r01[i] & r01[i + 1] & r11[i] & r11[i + 1];
+                row[static_cast<std::size_t>(i)] = low;
+                anyBackground |= low != 0;
+            }
             setRow(j, k, row.data());
+            // Most rows of a volume cut through an object hold no background; those cost nothing more.
+            if (anyBackground) cornerSum += backgroundCornerSum(values, nx, nxy, j, k, row);
         }
         lowBelow.swap(lowAbove);
     }
+    return cornerSum / 8.0;
 }
 
 } // namespace
@@ -87,7 +116,7 @@ CellMask::CellMask(const Volume& volume, std::optional<float> background) {
                 words[i >> 2] |= std::uint64_t{isBackgroundRow[i] ? 0u : 1u} << (rowBits | (i & 3));
         };
         visitSamples(volume, [&](const auto* values) {
-            markForeground(values, volume.dims, background, mCells, setRow);
+            mBackgroundValueSum = markForeground(values, volume.dims, background, mCells, setRow);
         });
     }
     // The 3D prefix sum over bricks as three 1D passes (x, then y, then z), each over whole rows.

@@ -26,6 +26,10 @@ public:
     std::int64_t countForeground(const Box& box) const;
     std::int64_t totalForeground() const { return countForeground(Box{{0, 0, 0}, mCells}); }
     std::int64_t totalCells() const { return std::int64_t{mCells[0]} * mCells[1] * mCells[2]; }
+    std::int64_t totalBackground() const { return totalCells() - totalForeground(); }
+    /// Over the background cells, the sum of each one's mean corner value: the integral of the trilinear
+    /// field over them, in cells (VotSpace::backgroundFill is it divided by totalBackground()).
+    double backgroundValueSum() const { return mBackgroundValueSum; }
     /// Smallest box (in points) inside `box` that contains all its non-background cells.
     std::optional<Box> tightBox(const Box& box) const;
 
@@ -48,6 +52,7 @@ private:
     std::array<int, 3> mBrickDims{0, 0, 0};
     std::vector<std::uint64_t> mBricks;      // bit (i&3) + 4 (j&3) + 16 (k&3) set: foreground cell
     std::vector<std::uint32_t> mBrickPrefix; // (bx+1)(by+1)(bz+1)
+    double mBackgroundValueSum = 0.0;
 };
 
 } // namespace vots::fit

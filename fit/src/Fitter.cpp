@@ -18,8 +18,16 @@
 namespace vots::fit {
 
 float defaultBackground(const Volume& volume) {
-    const auto range = volume.valueRange();
+    return defaultBackground(volume.valueRange());
+}
+
+float defaultBackground(std::array<float, 2> range) {
     return range[0] + 0.01f * (range[1] - range[0]);
+}
+
+std::optional<float> backgroundFillOf(const FitStats& stats) {
+    if (stats.backgroundCells == 0) return std::nullopt;
+    return static_cast<float>(stats.backgroundValueSum / static_cast<double>(stats.backgroundCells));
 }
 
 void validateFitOptions(const Volume& volume, const FitOptions& options) {
@@ -103,7 +111,9 @@ FitResult fitVotSpace(const Volume& volume, const FitOptions& options, FitCache*
     result.stats.boxScans = counters.scans();
     result.stats.cacheHits = counters.cacheHits();
     result.stats.coveredCells = static_cast<std::size_t>(mask.totalForeground());
-    result.stats.backgroundCells = static_cast<std::size_t>(mask.totalCells() - mask.totalForeground());
+    result.stats.backgroundCells = static_cast<std::size_t>(mask.totalBackground());
+    result.stats.backgroundValueSum = mask.backgroundValueSum();
+    space.backgroundFill = backgroundFillOf(result.stats);
     return result;
 }
 

@@ -42,8 +42,6 @@ std::ifstream openAt(const std::string& path, std::uint64_t offset) {
 
 } // namespace
 
-namespace {
-
 void checkFileHolds(const std::string& path, std::uint64_t offset, std::size_t count) {
     const std::uint64_t size = regularFileSize(path);
     if (offset > size || size - offset < count) {
@@ -52,8 +50,6 @@ void checkFileHolds(const std::string& path, std::uint64_t offset, std::size_t c
                                   std::to_string(offset) + ", file has only " + std::to_string(have));
     }
 }
-
-} // namespace
 
 void readFileBytesInto(const std::string& path, std::uint64_t offset, std::size_t count,
                        unsigned char* destination) {
@@ -120,6 +116,14 @@ std::string volumeExtension(const std::string& path) {
     if (name.ends_with(".nii.gz")) return ".nii.gz";
     const std::size_t dot = name.rfind('.');
     return dot == std::string::npos ? std::string() : name.substr(dot);
+}
+
+void throwUnknownVolumeFormat(const std::string& path) {
+    // Existence first: "no such file" is the more useful message for a mistyped path.
+    regularFileSize(path);
+    throwInputError(path, "unknown volume format '" + volumeExtension(path) +
+                              "' (expected .nrrd, .nhdr, .nii, .nii.gz, .mhd, .mha, a DICOM folder, or a raw "
+                              "layout)");
 }
 
 } // namespace vots::fit::detail

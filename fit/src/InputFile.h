@@ -14,6 +14,9 @@ namespace vots::fit::detail {
 /// Size of a regular file; throws for a missing path, a folder or any other non-file.
 std::uint64_t regularFileSize(const std::string& path);
 
+/// Throws (naming the shortfall) unless the file holds `count` bytes from `offset`.
+void checkFileHolds(const std::string& path, std::uint64_t offset, std::size_t count);
+
 /// Exactly `count` bytes starting at `offset`; throws when the file is shorter.
 std::vector<unsigned char> readFileBytes(const std::string& path, std::uint64_t offset, std::size_t count);
 
@@ -35,5 +38,8 @@ std::string pathBesideHeader(const std::string& headerPath, const std::string& n
 
 /// Lower-case extension including the dot; ".nii.gz" counts as one extension.
 std::string volumeExtension(const std::string& path);
+
+/// Throws loadVolume's error for a path that is neither a known format nor a DICOM folder.
+[[noreturn]] void throwUnknownVolumeFormat(const std::string& path);
 
 } // namespace vots::fit::detail

@@ -4,6 +4,7 @@
 #include "vots/fit/Error.h"
 
 #include "HeaderText.h"
+#include "SampleDecode.h"
 
 #include <unistd.h>
 
@@ -64,24 +65,30 @@ std::optional<std::uint64_t> cgroupHeadroom() {
 } // namespace
 
 FitMemoryModel fitMemoryModel() {
-    // Rounded up from the peak RSS of `vots fit --certify cells` on 512x512xN int16 volumes held as floats,
-    // as the server holds them (docs/API.md, "Memory budget"): per sample the float samples and the
-    // fitter's bit mask and box state (4.8 bytes measured); per stored byte the payload while it is
-    // decoded; a fixed part that dominates small volumes. `vots fit` keeps 8- and 16-bit samples in
-    // their own type and needs less, so the estimate stays above what the kernel sees for either.
+    // Rounded up from the peak RSS of `vots fit --certify cells` on 512x512xN int16 volumes held as floats
+    // (docs/API.md, "Memory budget"): per sample, beyond the held samples, the fitter's bit mask and box
+    // state (0.8 bytes measured, with 4 for the floats); per stored byte the payload while it is decoded;
+    // a fixed part that dominates small volumes. Samples held in their 8- or 16-bit type take their
+    // own size instead of 4 (heldBytesPerSample), which the same runs held compact stay below.
     // Change these three numbers when the fitter's memory changes; nothing else encodes them.
-    return FitMemoryModel{6.0, 1.0, 256.0 * MEBIBYTE};
+    return FitMemoryModel{2.0, 1.0, 256.0 * MEBIBYTE};
 }
 
-std::uint64_t estimateLoadAndFitBytes(const VolumeHeaderInfo& header) {
+unsigned heldBytesPerSample(const VolumeHeaderInfo& header, SampleStorage storage) {
+    // As the loaders decide (detail::keepsCompact; scaled NIfTI samples are floats).
+    const bool compact = !header.scaled && detail::keepsCompact(header.sourceType, storage);
+    return compact ? static_cast<unsigned>(detail::scalarTypeSize(header.sourceType)) : sizeof(float);
+}
+
+std::uint64_t estimateLoadAndFitBytes(const VolumeHeaderInfo& header, SampleStorage storage) {
     const FitMemoryModel model = fitMemoryModel();
-    return clampedBytes(static_cast<double>(header.sampleCount()) * model.perSample +
+    const double perSample = heldBytesPerSample(header, storage) + model.perSample;
+    return clampedBytes(static_cast<double>(header.sampleCount()) * perSample +
                         static_cast<double>(header.storedBytes()) * model.perStoredByte + model.fixedBytes);
 }
 
-std::uint64_t estimateLoadedVolumeBytes(const VolumeHeaderInfo& header) {
-    // Volume holds every sample as float (Volume.h).
-    return clampedBytes(static_cast<double>(header.sampleCount()) * sizeof(float));
+std::uint64_t estimateLoadedVolumeBytes(const VolumeHeaderInfo& header, SampleStorage storage) {
+    return clampedBytes(static_cast<double>(header.sampleCount()) * heldBytesPerSample(header, storage));
 }
 
 std::uint64_t parseMemorySize(const std::string& text, const std::string& what) {

@@ -9,6 +9,7 @@
 #include "HeaderText.h"
 #include "InputFile.h"
 #include "SampleDecode.h"
+#include "StoredSamples.h"
 
 #include <cmath>
 #include <cstdint>
@@ -148,13 +149,23 @@ std::optional<PatientAxes> axesOf(const std::string& path, const MetaHeader& hea
     return std::nullopt;
 }
 
-std::vector<unsigned char> readPayload(const std::string& path, const MetaHeader& header, std::size_t bytes) {
+// Where the payload lies: its file, and whether (and how) it is compressed.
+struct MetaPayload {
+    std::string file;
+    std::uint64_t start = 0; // raw: the first sample byte; compressed: the first packed byte
+    bool compressed = false;
+    std::uint64_t packedSize = 0; // compressed only
+};
+
+MetaPayload locatePayload(const std::string& path, const MetaHeader& header, std::size_t bytes) {
     const std::string& name = header.fields.at("elementdatafile");
     if (name.empty()) throwInputError(path, "ElementDataFile is empty");
     if (name == "LIST" || (name.find('%') != std::string::npos && splitWords(name).size() > 1))
         throwInputError(path, "multi-file ElementDataFile '" + quotable(name) + "' is not supported");
     const bool local = toLower(name) == "local";
-    const std::string file = local ? path : pathBesideHeader(path, name);
+    MetaPayload payload;
+    payload.file = local ? path : pathBesideHeader(path, name);
+    const std::string& file = payload.file;
     std::uint64_t size = 0;
     try {
         size = regularFileSize(file);
@@ -180,9 +191,10 @@ std::vector<unsigned char> readPayload(const std::string& path, const MetaHeader
                                           " but only " + std::to_string(packedSize) + " bytes follow");
             packedSize = static_cast<std::uint64_t>(claimed);
         }
-        const std::vector<unsigned char> packed =
-            readFileBytes(file, start, static_cast<std::size_t>(packedSize));
-        return inflateExact(file, packed.data(), packed.size(), bytes);
+        payload.start = start;
+        payload.compressed = true;
+        payload.packedSize = packedSize;
+        return payload;
     }
     // HeaderSize -1: the samples are the last bytes of the file.
     start =
@@ -191,12 +203,20 @@ std::vector<unsigned char> readPayload(const std::string& path, const MetaHeader
     if (have > bytes)
         throwInputError(file, "holds " + std::to_string(have) + " data bytes but the header describes " +
                                   std::to_string(bytes) + " (wrong DimSize or ElementType?)");
-    return readFileBytes(file, start, bytes);
+    payload.start = start;
+    return payload;
 }
 
-} // namespace
+// A MetaImage file whose header passed every check.
+struct MetaFile {
+    Volume grid; // no samples yet
+    CheckedShape shape;
+    ScalarType type = ScalarType::UInt8;
+    bool bigEndian = false;
+    MetaPayload payload;
+};
 
-Volume loadMetaImage(const std::string& path, SampleStorage storage) {
+MetaFile openMetaImage(const std::string& path) {
     const std::uint64_t fileSize = regularFileSize(path);
     const MetaHeader header = parseHeader(path, readFilePrefix(path, MAX_HEADER_BYTES), fileSize);
 
@@ -224,7 +244,11 @@ Volume loadMetaImage(const std::string& path, SampleStorage storage) {
                            booleanField(path, header, "binarydatabyteordermsb") ||
                            booleanField(path, header, "byteordermsb");
 
-    Volume volume;
+    MetaFile file;
+    file.shape = shape;
+    file.type = type;
+    file.bigEndian = bigEndian;
+    Volume& volume = file.grid;
     volume.dims = shape.dims;
     volume.spacing = spacingOf(path, header);
     volume.origin = originOf(path, header);
@@ -234,9 +258,37 @@ Volume loadMetaImage(const std::string& path, SampleStorage storage) {
     }
     volume.sourceType = type;
     volume.name = fileStem(path);
-    const std::vector<unsigned char> payload = readPayload(path, header, shape.bytes);
-    storeSamples(volume, path, payload.data(), shape.samples, type, bigEndian, storage);
-    return volume;
+    file.payload = locatePayload(path, header, shape.bytes);
+    return file;
+}
+
+StoredSamples storedSamplesOf(MetaFile file) {
+    StoredSamples stored;
+    stored.grid = std::move(file.grid);
+    stored.type = file.type;
+    stored.bigEndian = file.bigEndian;
+    stored.pieces.push_back({file.payload.file, file.payload.start, file.shape.bytes});
+    return stored;
+}
+
+} // namespace
+
+std::optional<StoredSamples> detail::storedMetaImageSamples(const std::string& path) {
+    MetaFile file = openMetaImage(path);
+    if (file.payload.compressed) return std::nullopt;
+    return storedSamplesOf(std::move(file));
+}
+
+Volume loadMetaImage(const std::string& path, SampleStorage storage) {
+    MetaFile file = openMetaImage(path);
+    if (!file.payload.compressed) return readStoredVolume(path, storedSamplesOf(std::move(file)), storage);
+    const MetaPayload& where = file.payload;
+    const std::vector<unsigned char> packed =
+        readFileBytes(where.file, where.start, static_cast<std::size_t>(where.packedSize));
+    const std::vector<unsigned char> payload =
+        inflateExact(where.file, packed.data(), packed.size(), file.shape.bytes);
+    storeSamples(file.grid, path, payload.data(), file.shape.samples, file.type, file.bigEndian, storage);
+    return std::move(file.grid);
 }
 
 } // namespace vots::fit

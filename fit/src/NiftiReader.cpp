@@ -6,6 +6,7 @@
 #include "Gzip.h"
 #include "InputFile.h"
 #include "SampleDecode.h"
+#include "StoredSamples.h"
 
 #include <algorithm>
 #include <bit>
@@ -188,16 +189,43 @@ NiftiInfo parseHeader(const std::string& path, const unsigned char* bytes) {
     return info;
 }
 
-std::vector<unsigned char> readPlain(const std::string& path, std::uint64_t fileSize, NiftiInfo& info) {
+// Everything but the samples, from the header.
+Volume gridOf(const std::string& path, const NiftiInfo& info) {
+    Volume volume;
+    volume.dims = info.shape.dims;
+    volume.spacing = info.spacing;
+    volume.origin = info.origin;
+    if (info.axes) {
+        volume.patientAxes = *info.axes;
+        volume.orientationKnown = true;
+    }
+    volume.sourceType = info.type;
+    volume.name = fileStem(path);
+    return volume;
+}
+
+bool isGzipped(const std::string& path, std::uint64_t fileSize) {
+    const std::vector<unsigned char> magic = readFileBytes(path, 0, fileSize < 2 ? 0 : 2);
+    return hasGzipMagic(magic.data(), magic.size());
+}
+
+StoredSamples storedPlain(const std::string& path, std::uint64_t fileSize) {
     if (fileSize < HEADER_BYTES)
         throwInputError(path, "too short for a NIfTI-1 header (" + std::to_string(fileSize) + " bytes)");
     const std::vector<unsigned char> header = readFileBytes(path, 0, HEADER_BYTES);
-    info = parseHeader(path, header.data());
+    const NiftiInfo info = parseHeader(path, header.data());
     const std::uint64_t expected = info.voxOffset + static_cast<std::uint64_t>(info.shape.bytes);
     if (fileSize > expected)
         throwInputError(path, "holds " + std::to_string(fileSize) + " bytes but the header describes " +
                                   std::to_string(expected) + " (wrong dims or datatype?)");
-    return readFileBytes(path, info.voxOffset, info.shape.bytes);
+    StoredSamples stored;
+    stored.grid = gridOf(path, info);
+    stored.type = info.type;
+    stored.bigEndian = info.bigEndian;
+    stored.pieces.push_back({path, info.voxOffset, info.shape.bytes});
+    stored.slope = info.slope;
+    stored.inter = info.inter;
+    return stored;
 }
 
 std::vector<unsigned char> readGzipped(const std::string& path, std::uint64_t fileSize, NiftiInfo& info) {
@@ -213,38 +241,34 @@ std::vector<unsigned char> readGzipped(const std::string& path, std::uint64_t fi
 
 } // namespace
 
+std::optional<StoredSamples> detail::storedNiftiSamples(const std::string& path) {
+    const std::uint64_t fileSize = regularFileSize(path);
+    if (isGzipped(path, fileSize)) return std::nullopt;
+    return storedPlain(path, fileSize);
+}
+
+void detail::applyScaling(const std::string& path, std::vector<float>& values, double slope, double inter) {
+    std::size_t bad = 0;
+    for (float& v : values) {
+        const double scaled = v * slope + inter;
+        const bool ok = std::fabs(scaled) <= std::numeric_limits<float>::max();
+        bad += ok ? 0 : 1;
+        v = ok ? static_cast<float>(scaled) : 0.0f;
+    }
+    if (bad > 0)
+        throwInputError(path, std::to_string(bad) + " samples leave float range after scl_slope/scl_inter");
+}
+
 Volume loadNifti(const std::string& path, SampleStorage storage) {
     const std::uint64_t fileSize = regularFileSize(path);
-    const std::vector<unsigned char> magic = readFileBytes(path, 0, fileSize < 2 ? 0 : 2);
+    if (!isGzipped(path, fileSize)) return readStoredVolume(path, storedPlain(path, fileSize), storage);
     NiftiInfo info;
-    const std::vector<unsigned char> payload = hasGzipMagic(magic.data(), magic.size())
-                                                   ? readGzipped(path, fileSize, info)
-                                                   : readPlain(path, fileSize, info);
-    Volume volume;
-    volume.dims = info.shape.dims;
-    volume.spacing = info.spacing;
-    volume.origin = info.origin;
-    if (info.axes) {
-        volume.patientAxes = *info.axes;
-        volume.orientationKnown = true;
-    }
-    volume.sourceType = info.type;
-    volume.name = fileStem(path);
+    const std::vector<unsigned char> payload = readGzipped(path, fileSize, info);
+    Volume volume = gridOf(path, info);
     // Scaled samples are not integers any more: only unscaled ones stay compact.
     storeSamples(volume, path, payload.data(), info.shape.samples, info.type, info.bigEndian,
                  info.slope != 0.0 ? SampleStorage::Float : storage);
-    if (info.slope != 0.0) {
-        std::size_t bad = 0;
-        for (float& v : volume.values) {
-            const double scaled = v * info.slope + info.inter;
-            const bool ok = std::fabs(scaled) <= std::numeric_limits<float>::max();
-            bad += ok ? 0 : 1;
-            v = ok ? static_cast<float>(scaled) : 0.0f;
-        }
-        if (bad > 0)
-            throwInputError(path,
-                            std::to_string(bad) + " samples leave float range after scl_slope/scl_inter");
-    }
+    if (info.slope != 0.0) applyScaling(path, volume.values, info.slope, info.inter);
     return volume;
 }
 

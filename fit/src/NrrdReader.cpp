@@ -8,6 +8,7 @@
 #include "HeaderText.h"
 #include "InputFile.h"
 #include "SampleDecode.h"
+#include "StoredSamples.h"
 
 #include <cmath>
 #include <cstdint>
@@ -302,12 +303,24 @@ void appendGzipData(const NrrdHeader& header, const std::string& file, std::uint
         payload.insert(payload.end(), part.begin(), part.end());
 }
 
-} // namespace
+// A NRRD file whose header passed every check: its grid, sample layout and data files.
+struct NrrdFile {
+    NrrdHeader header;
+    Volume grid; // no samples yet
+    CheckedShape shape;
+    ScalarType type = ScalarType::UInt8;
+    bool bigEndian = false;
+    bool gzip = false;
+    std::vector<std::pair<std::string, std::uint64_t>> sources; // each data file and where its data starts
+    std::size_t perFile = 0;                                    // payload bytes in each data file
+};
 
-Volume loadNrrd(const std::string& path, SampleStorage storage) {
+NrrdFile openNrrd(const std::string& path) {
     const std::uint64_t fileSize = regularFileSize(path);
     const std::string text = readFilePrefix(path, MAX_HEADER_BYTES);
-    const NrrdHeader header = parseHeader(path, text, fileSize);
+    NrrdFile file;
+    file.header = parseHeader(path, text, fileSize);
+    const NrrdHeader& header = file.header;
 
     if (header.dimension != 3)
         throwInputError(path, "dimension is " + std::to_string(header.dimension) +
@@ -319,10 +332,10 @@ Volume loadNrrd(const std::string& path, SampleStorage storage) {
                                   "' (supported: int8, uint8, int16, uint16, int32, uint32, float, double)");
     if (header.sizes.empty()) throwInputError(path, "missing 'sizes' field");
     const std::vector<long long> sizes = parseIntegers(path, "sizes", header.sizes, 3);
-    const CheckedShape shape = checkShape(path, {sizes[0], sizes[1], sizes[2]}, *type);
+    file.shape = checkShape(path, {sizes[0], sizes[1], sizes[2]}, *type);
 
-    const bool gzip = header.encoding == "gzip" || header.encoding == "gz";
-    if (!gzip && header.encoding != "raw")
+    file.gzip = header.encoding == "gzip" || header.encoding == "gz";
+    if (!file.gzip && header.encoding != "raw")
         throwInputError(path, header.encoding.empty() ? "missing 'encoding' field"
                                                       : "unsupported encoding '" + quotable(header.encoding) +
                                                             "' (supported: raw, gzip)");
@@ -332,36 +345,52 @@ Volume loadNrrd(const std::string& path, SampleStorage storage) {
     if (header.lineSkip < 0) throwInputError(path, "'line skip' is negative");
     if (header.byteSkip < -1) throwInputError(path, "'byte skip' must be -1 or at least 0");
 
-    Volume volume;
-    volume.dims = shape.dims;
+    Volume& volume = file.grid;
+    volume.dims = file.shape.dims;
     volume.spacing = readSpacing(path, header);
     volume.origin = readOrigin(path, header);
     readOrientation(path, header, volume);
     volume.sourceType = *type;
     volume.name = fileStem(path);
+    file.type = *type;
+    file.bigEndian = header.endian == "big";
 
-    const auto sources = dataSources(path, header);
-    if (shape.bytes % sources.size() != 0)
-        throwInputError(path, std::to_string(sources.size()) + " data files cannot split " +
-                                  std::to_string(shape.bytes) + " bytes evenly");
-    const std::size_t perFile = shape.bytes / sources.size();
-    const bool bigEndian = header.endian == "big";
-    if (gzip) {
-        std::vector<unsigned char> payload;
-        for (const auto& [file, offset] : sources)
-            appendGzipData(header, file, offset, perFile, payload);
-        storeSamples(volume, path, payload.data(), shape.samples, *type, bigEndian, storage);
-        return volume;
-    }
+    file.sources = dataSources(path, header);
+    if (file.shape.bytes % file.sources.size() != 0)
+        throwInputError(path, std::to_string(file.sources.size()) + " data files cannot split " +
+                                  std::to_string(file.shape.bytes) + " bytes evenly");
+    file.perFile = file.shape.bytes / file.sources.size();
+    return file;
+}
+
+// The raw payload's place in the data files.
+StoredSamples storedSamplesOf(NrrdFile file) {
+    StoredSamples stored;
+    stored.grid = std::move(file.grid);
+    stored.type = file.type;
+    stored.bigEndian = file.bigEndian;
     // Every file's size is checked before the samples' memory is taken.
-    std::vector<std::uint64_t> starts;
-    for (const auto& [file, offset] : sources)
-        starts.push_back(rawDataStart(header, file, offset, perFile));
-    readSamples(volume, path, shape.samples, *type, bigEndian, storage, [&](unsigned char* destination) {
-        for (std::size_t n = 0; n < sources.size(); ++n)
-            readFileBytesInto(sources[n].first, starts[n], perFile, destination + n * perFile);
-    });
-    return volume;
+    for (const auto& [name, offset] : file.sources)
+        stored.pieces.push_back({name, rawDataStart(file.header, name, offset, file.perFile), file.perFile});
+    return stored;
+}
+
+} // namespace
+
+std::optional<StoredSamples> detail::storedNrrdSamples(const std::string& path) {
+    NrrdFile file = openNrrd(path);
+    if (file.gzip) return std::nullopt;
+    return storedSamplesOf(std::move(file));
+}
+
+Volume loadNrrd(const std::string& path, SampleStorage storage) {
+    NrrdFile file = openNrrd(path);
+    if (!file.gzip) return readStoredVolume(path, storedSamplesOf(std::move(file)), storage);
+    std::vector<unsigned char> payload;
+    for (const auto& [name, offset] : file.sources)
+        appendGzipData(file.header, name, offset, file.perFile, payload);
+    storeSamples(file.grid, path, payload.data(), file.shape.samples, file.type, file.bigEndian, storage);
+    return std::move(file.grid);
 }
 
 } // namespace vots::fit

@@ -4,12 +4,13 @@
 #include "HeaderText.h"
 #include "InputFile.h"
 #include "SampleDecode.h"
+#include "StoredSamples.h"
 
 namespace vots::fit {
 
 using namespace detail;
 
-Volume loadRaw(const std::string& path, const RawLayout& layout, SampleStorage storage) {
+StoredSamples detail::storedRawSamples(const std::string& path, const RawLayout& layout) {
     const std::uint64_t fileSize = regularFileSize(path);
     const CheckedShape shape =
         checkShape(path, {layout.dims[0], layout.dims[1], layout.dims[2]}, layout.type);
@@ -28,11 +29,16 @@ Volume loadRaw(const std::string& path, const RawLayout& layout, SampleStorage s
                                   std::to_string(shape.dims[2]) + " " + scalarTypeName(layout.type) +
                                   " with " + std::to_string(layout.headerBytes) + " header bytes needs " +
                                   std::to_string(expected));
-    readSamples(volume, path, shape.samples, layout.type, layout.bigEndian, storage,
-                [&](unsigned char* destination) {
-                    readFileBytesInto(path, layout.headerBytes, shape.bytes, destination);
-                });
-    return volume;
+    StoredSamples stored;
+    stored.grid = std::move(volume);
+    stored.type = layout.type;
+    stored.bigEndian = layout.bigEndian;
+    stored.pieces.push_back({path, layout.headerBytes, shape.bytes});
+    return stored;
+}
+
+Volume loadRaw(const std::string& path, const RawLayout& layout, SampleStorage storage) {
+    return readStoredVolume(path, storedRawSamples(path, layout), storage);
 }
 
 } // namespace vots::fit

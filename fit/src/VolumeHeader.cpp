@@ -11,6 +11,7 @@
 #include "vots/fit/DicomSeries.h"
 
 #include <bit>
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <map>
@@ -141,7 +142,16 @@ VolumeHeaderInfo niftiInfo(const std::string& path) {
     const auto type = TYPES.find(int16At(70));
     if (type == TYPES.end())
         throwInputError(path, "unsupported NIfTI datatype " + std::to_string(int16At(70)));
-    return infoFrom(path, {int16At(42), int16At(44), int16At(46)}, type->second);
+    const auto float32At = [&](std::size_t offset) {
+        std::uint32_t bits = 0;
+        std::memcpy(&bits, header.data() + offset, sizeof bits);
+        return static_cast<double>(std::bit_cast<float>(swap ? byteSwapped(bits) : bits));
+    };
+    VolumeHeaderInfo info = infoFrom(path, {int16At(42), int16At(44), int16At(46)}, type->second);
+    // As the reader decides: a finite non-zero scl_slope other than the identity (1, 0) scales to floats.
+    const double slope = float32At(112), inter = float32At(116);
+    info.scaled = std::isfinite(slope) && slope != 0.0 && !(slope == 1.0 && inter == 0.0);
+    return info;
 }
 
 } // namespace

@@ -15,11 +15,7 @@ Volume loadVolume(const std::string& path, const std::optional<RawLayout>& raw, 
     if (extension == ".nrrd" || extension == ".nhdr") return loadNrrd(path, storage);
     if (extension == ".nii" || extension == ".nii.gz") return loadNifti(path, storage);
     if (extension == ".mhd" || extension == ".mha") return loadMetaImage(path, storage);
-    // Existence first: "no such file" is the more useful message for a mistyped path.
-    detail::regularFileSize(path);
-    detail::throwInputError(
-        path, "unknown volume format '" + extension +
-                  "' (expected .nrrd, .nhdr, .nii, .nii.gz, .mhd, .mha, a DICOM folder, or a raw layout)");
+    detail::throwUnknownVolumeFormat(path);
 }
 
 } // namespace vots::fit

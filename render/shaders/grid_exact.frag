@@ -6,7 +6,12 @@
 
 // One chunk of the grid's z range (all of it unless the volume exceeds one 3D texture): texel i holds
 // grid point uChunkOrigin + i. The chunk owns the cells with uCellZ.x <= z < uCellZ.y.
-uniform sampler3D uVolume;
+// GridRenderer defines VOLUME_SAMPLER as isampler3D or usampler3D for samples uploaded in their
+// 8- or 16-bit source type: texelFetch then gives the integer, whose float is the float-held sample.
+#ifndef VOLUME_SAMPLER
+#define VOLUME_SAMPLER sampler3D
+#endif
+uniform VOLUME_SAMPLER uVolume;
 uniform vec3 uDims;        // grid points per axis, of the whole volume
 uniform vec3 uChunkOrigin; // the grid point of the chunk's texel 0
 uniform ivec2 uCellZ;      // the cells' z range this chunk owns: [x, y)
@@ -16,7 +21,7 @@ layout(location = 0) out float outValue;
 
 const float POS_INF = uintBitsToFloat(0x7f800000u);
 
-float corner(ivec3 p) { return texelFetch(uVolume, p - ivec3(uChunkOrigin), 0).r; }
+float corner(ivec3 p) { return float(texelFetch(uVolume, p - ivec3(uChunkOrigin), 0).r); }
 
 // The trilinear interpolant of cell `cell` along p(u) = local + u dir (local: the segment's entry point
 // relative to the cell's corner) as g(u) = g.x + g.y u + g.z u^2 + g.w u^3.

@@ -26,8 +26,14 @@ uniform ivec3 uBricks;   // bricks per axis
 uniform int uBrickShift; // a brick is (1 << uBrickShift)^3 cells
 uniform int uCull;       // 1: step over bricks and Vots whose bound cannot beat the pixel's max
 // WALK_MODE_MAX, WALK_MODE_MIN (the max of the negated polynomials, with bounds to match: -lowerBound per
-// block, and per brick over its blocks) or WALK_MODE_MEAN (the integral, every Vot, no culling).
+// block, and per brick over its blocks), WALK_MODE_MEAN (the integral, every Vot, no culling) or
+// WALK_MODE_LENGTH (no walk: the length the mean divides by, 0 for a ray that misses).
 uniform int uMode;
+// The cells [uDomainLo, uDomainHi) every ray is cut to (the whole grid unless a rank holds one z slab of
+// it): outside them nothing counts, not even background. uDomainClips != 0 when they are less than the
+// grid, so that a whole-grid frame runs exactly the arithmetic it ran before domains existed.
+uniform ivec3 uDomainLo, uDomainHi;
+uniform int uDomainClips;
 // What a background cell (no Vot: the fit left it out) contributes, in the walked quantity: -inf for
 // the max (nothing), -background for the min, background for the mean (per unit length).
 uniform float uEmptyValue;
@@ -135,7 +141,7 @@ void walkStep(const bool mayEvaluate, inout ivec3 cell, inout float best, inout 
     ivec3 at = ivec3(floor(gOrigin + tExit * gDir));
     cell = mix(clamp(at, lo, cell), clamp(at, cell, hi - 1), gUp);
     cell = mix(cell, mix(lo - 1, hi, gUp), first);
-    if (tExit > gTOut || any(lessThan(cell, ivec3(0))) || any(greaterThanEqual(cell, uCells)) ||
+    if (tExit > gTOut || any(lessThan(cell, uDomainLo)) || any(greaterThanEqual(cell, uDomainHi)) ||
         --budget <= 0)
         walking = false;
 }
@@ -147,15 +153,24 @@ float walkPixel(vec2 fragCoord) {
     float farT;
     pixelRay(fragCoord, origin, dir, farT);
     gRange = clipRayToSlab(origin, dir, vec2(0.0, farT));
-    vec2 span = clipRayToBox(origin, dir, vec3(0.0), vec3(uCells));
+    vec2 span = clipRayToBox(origin, dir, vec3(uDomainLo), vec3(uDomainHi));
     float tIn = max(span.x, gRange.x);
     float tOut = min(span.y, gRange.y);
+    // A Vot crossing the domain's faces counts only inside them: its max or min is taken over the part of
+    // the ray in the domain, as its integral already is ([gTIn, gTOut]). Grown by the Vots' own clip
+    // slack, so that on the grid's faces a domain takes what the whole grid takes, and domains sharing a
+    // face overlap by a sliver, which leaves a min or max over them unchanged.
+    if (uDomainClips != 0) {
+        vec2 grown = clipRayToBox(origin, dir, vec3(uDomainLo) - CLIP_SLACK, vec3(uDomainHi) + CLIP_SLACK);
+        gRange = vec2(max(gRange.x, grown.x), min(gRange.y, grown.y));
+    }
+    if (uMode == WALK_MODE_LENGTH) return tOut > tIn ? tOut - tIn : 0.0;
     float best = uMode == WALK_MODE_MEAN ? 0.0 : NEG_INF;
     bool walking = tIn <= tOut;
     vec3 safeDir = mix(dir, vec3(1e-30), lessThan(abs(dir), vec3(1e-30)));
     vec3 invDir = 1.0 / safeDir;
     bvec3 up = greaterThan(safeDir, vec3(0.0));
-    ivec3 cell = clamp(ivec3(floor(origin + tIn * dir)), ivec3(0), uCells - 1);
+    ivec3 cell = clamp(ivec3(floor(origin + tIn * dir)), uDomainLo, uDomainHi - 1);
     // Every step moves at least one axis past the block it leaves and none backwards, so the walk ends
     // within the sum of the sides; the budget only guards against the unforeseen.
     int budget = uCells.x + uCells.y + uCells.z + 3;

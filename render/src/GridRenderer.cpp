@@ -15,7 +15,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
+#include <map>
 #include <string>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
 namespace vots::render {
@@ -53,10 +57,55 @@ ModeBlend modeBlend(RenderMode mode) {
 // before they run out of memory, and a frame's chunks are drawn one after another anyway.
 constexpr std::size_t MAX_CHUNK_BYTES = std::size_t{1} << 30;
 
+// How a volume's samples go into its textures: floats as R32F, 8- and 16-bit samples held in their
+// source type (fit::Volume::compact) as integer textures of that type, half or a quarter the memory. The
+// shader converts each texel to float, which gives the float-held sample exactly, so the images match.
+struct TexelFormat {
+    GLenum internalFormat;
+    GLenum pixelFormat;
+    GLenum pixelType;
+    const char* sampler; // grid_exact.frag's VOLUME_SAMPLER
+};
+
+template <typename T> TexelFormat texelFormatOf() {
+    if constexpr (std::is_same_v<T, std::uint8_t>)
+        return {GL_R8UI, GL_RED_INTEGER, GL_UNSIGNED_BYTE, "usampler3D"};
+    else if constexpr (std::is_same_v<T, std::int8_t>)
+        return {GL_R8I, GL_RED_INTEGER, GL_BYTE, "isampler3D"};
+    else if constexpr (std::is_same_v<T, std::uint16_t>)
+        return {GL_R16UI, GL_RED_INTEGER, GL_UNSIGNED_SHORT, "usampler3D"};
+    else if constexpr (std::is_same_v<T, std::int16_t>)
+        return {GL_R16I, GL_RED_INTEGER, GL_SHORT, "isampler3D"};
+    else
+        return {GL_R32F, GL_RED, GL_FLOAT, "sampler3D"};
+}
+
+/// Calls body(format, const T* samples) with the samples as the volume holds them.
+template <typename Body> void visitHeldSamples(const fit::Volume& volume, Body&& body) {
+    if (!volume.isCompact()) return body(texelFormatOf<float>(), volume.values.data());
+    std::visit(
+        [&](const auto& held) {
+            using Held = std::decay_t<decltype(held)>;
+            if constexpr (!std::is_same_v<Held, std::monostate>)
+                body(texelFormatOf<typename Held::value_type>(), held.data());
+        },
+        volume.compact);
+}
+
+/// grid_exact.frag with its sampler type defined on the line after `#version`.
+std::string gridShaderFor(const char* sampler) {
+    std::string source = shaders::GRID_EXACT_FRAG;
+    const std::size_t afterVersion = source.find('\n') + 1;
+    source.insert(afterVersion, std::string("#define VOLUME_SAMPLER ") + sampler + "\n");
+    return source;
+}
+
 } // namespace
 
 struct GridRenderer::Impl {
-    GlProgram program = buildProgram(shaders::FULLSCREEN_VERT, shaders::GRID_EXACT_FRAG, "grid_exact");
+    std::map<std::string, GlProgram> programs; // by sampler type: floats' at once, so a driver that
+                                               // cannot compile it fails here; the others when needed
+    GLuint program = programFor(texelFormatOf<float>().sampler); // reads the uploaded textures
     GlVertexArray vertexArray = createVertexArray();
     std::vector<Chunk> chunks;
     int chunkPlaneLimit = 0; // 0: from the GL limit and MAX_CHUNK_BYTES
@@ -66,6 +115,18 @@ struct GridRenderer::Impl {
     SceneBounds bounds;
     std::array<float, 2> valueRange{0.f, 0.f};
     FrameStats stats;
+
+    GLuint programFor(const std::string& sampler) {
+        auto found = programs.find(sampler);
+        if (found == programs.end()) {
+            const std::string fragment = gridShaderFor(sampler.c_str());
+            found =
+                programs
+                    .emplace(sampler, buildProgram(shaders::FULLSCREEN_VERT, fragment.c_str(), "grid_exact"))
+                    .first;
+        }
+        return found->second.get();
+    }
 
     void draw(const Camera& camera, int width, int height, const RenderOptions& options) {
         if (!hasData) throw RenderError("GridRenderer: render() before upload()");
@@ -80,7 +141,7 @@ struct GridRenderer::Impl {
         glDisable(GL_BLEND);
         glDisable(GL_CULL_FACE);
         glDisable(GL_DEPTH_TEST);
-        const GLuint p = program.get();
+        const GLuint p = program;
         glUseProgram(p);
         setMatrixUniform(p, "uClipToIndex", m.clipToIndex);
         glProgramUniform2f(p, glGetUniformLocation(p, "uViewport"), float(width), float(height));
@@ -120,10 +181,12 @@ void GridRenderer::upload(const fit::Volume& volume) {
         if (volume.dims[a] < 2 || (a < 2 && volume.dims[a] > maxSide))
             throw fit::InputError("volume side " + std::to_string(volume.dims[a]) + " outside 2.." +
                                   std::to_string(maxSide) + " for the reference renderer");
-    if (volume.values.size() != volume.sampleCount())
+    if (volume.heldSamples() != volume.sampleCount())
         throw fit::InputError("volume has the wrong number of samples");
     const std::size_t planeSamples =
         static_cast<std::size_t>(volume.dims[0]) * static_cast<std::size_t>(volume.dims[1]);
+    // Sized as floats whatever the texel: the chunks decide the order of aip's sums, so a volume gives
+    // the same image held as floats or in its source type.
     int planeLimit =
         d.chunkPlaneLimit > 0
             ? d.chunkPlaneLimit
@@ -142,18 +205,25 @@ void GridRenderer::upload(const fit::Volume& volume) {
         chunk.planes = chunk.cellZ[1] - z + 1;
         chunks.push_back(std::move(chunk));
     }
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    for (Chunk& chunk : chunks) {
-        chunk.texture = createTexture(GL_TEXTURE_3D);
-        const GLuint t = chunk.texture.get();
-        glTextureStorage3D(t, 1, GL_R32F, volume.dims[0], volume.dims[1], chunk.planes);
-        glTextureSubImage3D(t, 0, 0, 0, 0, volume.dims[0], volume.dims[1], chunk.planes, GL_RED, GL_FLOAT,
-                            volume.values.data() + static_cast<std::size_t>(chunk.firstPlane) * planeSamples);
-        // texelFetch of the corners only; no filtering.
-        glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        checkGl("GridRenderer upload");
-    }
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1); // rows of 8- and 16-bit samples need not fill 4 bytes
+    std::string sampler;
+    visitHeldSamples(volume, [&](const TexelFormat& format, const auto* samples) {
+        sampler = format.sampler;
+        for (Chunk& chunk : chunks) {
+            chunk.texture = createTexture(GL_TEXTURE_3D);
+            const GLuint t = chunk.texture.get();
+            glTextureStorage3D(t, 1, format.internalFormat, volume.dims[0], volume.dims[1], chunk.planes);
+            glTextureSubImage3D(t, 0, 0, 0, 0, volume.dims[0], volume.dims[1], chunk.planes,
+                                format.pixelFormat, format.pixelType,
+                                samples + static_cast<std::size_t>(chunk.firstPlane) * planeSamples);
+            // texelFetch of the corners only; no filtering (integer textures have none anyway).
+            glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+            glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+            checkGl("GridRenderer upload");
+        }
+    });
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4); // GL's default, which other uploads expect
+    d.program = d.programFor(sampler);
     d.chunks = std::move(chunks);
     d.bounds = sceneBounds(volume);
     d.valueRange = volume.valueRange();

@@ -30,10 +30,12 @@ inline constexpr int WALK_TARGET_IMAGE_UNIT = 0;
 /// The compute walk's work group: WALK_GROUP_SIDE^2 pixels.
 inline constexpr int WALK_GROUP_SIDE = 8;
 /// What the walk takes along each ray (uMode of vot_walk.glsl): the max; the max of the negated
-/// polynomials (the min, negated, so that the max's culling serves it unchanged); the integral.
+/// polynomials (the min, negated, so that the max's culling serves it unchanged); the integral; only the
+/// length of the ray's part the mean divides by (no walk), for compositing means across ranks.
 inline constexpr int WALK_MODE_MAX = 0;
 inline constexpr int WALK_MODE_MIN = 1;
 inline constexpr int WALK_MODE_MEAN = 2;
+inline constexpr int WALK_MODE_LENGTH = 3;
 /// Texture unit of the raster MIP's copy of the max image after the last batch.
 inline constexpr int PREV_MAX_UNIT = 0;
 
@@ -47,7 +49,7 @@ struct ContractFloat {
     float value;
 };
 
-inline constexpr std::array<ContractInt, 17> CONTRACT_INTS{{
+inline constexpr std::array<ContractInt, 18> CONTRACT_INTS{{
     {"TAYLOR_TERMS", static_cast<long long>(fit::MONOMIAL_COUNT)},
     {"VOT_BUFFER_BINDING", VOT_BUFFER_BINDING},
     {"INDEX_BUFFER_BINDING", INDEX_BUFFER_BINDING},
@@ -65,6 +67,7 @@ inline constexpr std::array<ContractInt, 17> CONTRACT_INTS{{
     {"WALK_MODE_MAX", WALK_MODE_MAX},
     {"WALK_MODE_MIN", WALK_MODE_MIN},
     {"WALK_MODE_MEAN", WALK_MODE_MEAN},
+    {"WALK_MODE_LENGTH", WALK_MODE_LENGTH},
 }};
 inline constexpr std::array<ContractFloat, 2> CONTRACT_FLOATS{{
     {"BOX_SLACK", BOX_SLACK},

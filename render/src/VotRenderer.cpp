@@ -38,6 +38,7 @@ struct VotRenderer::Impl {
     std::array<float, 2> densityRange{0.f, 1.f};
     bool culling = true;
     Strategy strategy = Strategy::Walk;
+    std::optional<CellDomain> domain;
     FrameStats stats;
 
     Strategy mipStrategy() const {
@@ -63,10 +64,13 @@ struct VotRenderer::Impl {
                 " needs a Vot-Space with disjoint boxes (fit --method fast) within the walk's "
                 "GL limits; this one can only be drawn as mip or density");
         const bool walked = alongRays || (mode == RenderMode::Mip && mipStrategy() == Strategy::Walk);
+        if (domain && !walked)
+            throw fit::InputError(std::string(renderModeName(mode)) +
+                                  " is drawn from boxes here, not cells: it takes no cell domain");
         std::optional<SlabPlanes> slab;
         if (options.slab) slab = slabPlanesInIndexSpace(*options.slab, camera, bounds);
         if (walked)
-            walk.draw(mode, m, slab, width, height, target, culling, stats);
+            walk.draw(mode, m, slab, domain, width, height, target, culling, stats);
         else
             raster.draw(mode, m, slab, width, height, target, vots, culling, stats);
         glDisable(GL_CULL_FACE);
@@ -76,6 +80,32 @@ struct VotRenderer::Impl {
         if (walked) walk.startSkipGrowth();
     }
 };
+
+void VotRenderer::setRayDomain(std::optional<CellDomain> domain) {
+    mImpl->domain = domain;
+}
+const std::optional<CellDomain>& VotRenderer::rayDomain() const {
+    return mImpl->domain;
+}
+
+FloatImage VotRenderer::rayLengths(const Camera& camera, int width, int height,
+                                   const std::optional<Slab>& slab) {
+    Impl& d = *mImpl;
+    if (!d.hasData) throw RenderError("VotRenderer: rayLengths() before upload()");
+    if (!d.walk.walkable())
+        throw fit::InputError(
+            "ray lengths are the walk's: this Vot-Space can only be drawn as mip or density");
+    const CameraMatrices m = computeCameraMatrices(camera, d.bounds, width, height);
+    std::optional<SlabPlanes> planes;
+    if (slab) planes = slabPlanesInIndexSpace(*slab, camera, d.bounds);
+    d.target.bind(width, height);
+    d.walk.drawRayLengths(m, planes, d.domain, width, height, d.target);
+    glDisable(GL_CULL_FACE);
+    glFinish();
+    checkGl("VotRenderer ray lengths");
+    FrameStats unused;
+    return readFloatFrame(d.target, unused);
+}
 
 VotRenderer::VotRenderer() : mImpl(std::make_unique<Impl>()) {}
 VotRenderer::~VotRenderer() = default;
@@ -128,7 +158,7 @@ void VotRenderer::upload(const fit::VotSpace& space) {
     d.valueRange = {lo, hi};
     d.densityRange = {0.f, std::max(maxLogSize, 1.f)};
 
-    d.walk.upload(std::move(grid), d.vots, walkRecords.get(), space.background);
+    d.walk.upload(std::move(grid), d.vots, walkRecords.get(), space.omittedCellValue());
     d.bounds = sceneBounds(space);
     d.hasData = true;
 }

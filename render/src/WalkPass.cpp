@@ -270,11 +270,34 @@ void WalkPass::uploadMinAndMeanTables(const std::vector<GpuVot>& vots, const Vot
 }
 
 void WalkPass::draw(RenderMode mode, const CameraMatrices& m, const std::optional<SlabPlanes>& slab,
-                    int width, int height, FloatTarget& target, bool culling, FrameStats& stats) {
-    applySkipBoxes(false);
+                    const std::optional<CellDomain>& domain, int width, int height, FloatTarget& target,
+                    bool culling, FrameStats& stats) {
     const int walkMode = mode == RenderMode::MinIp ? WALK_MODE_MIN
                          : mode == RenderMode::Aip ? WALK_MODE_MEAN
                                                    : WALK_MODE_MAX;
+    drawWalk(walkMode, m, slab, domain, width, height, target, culling, stats);
+}
+
+void WalkPass::drawRayLengths(const CameraMatrices& m, const std::optional<SlabPlanes>& slab,
+                              const std::optional<CellDomain>& domain, int width, int height,
+                              FloatTarget& target) {
+    FrameStats unused;
+    drawWalk(WALK_MODE_LENGTH, m, slab, domain, width, height, target, false, unused);
+}
+
+void WalkPass::drawWalk(int walkMode, const CameraMatrices& m, const std::optional<SlabPlanes>& slab,
+                        const std::optional<CellDomain>& domain, int width, int height, FloatTarget& target,
+                        bool culling, FrameStats& stats) {
+    applySkipBoxes(false);
+    // What no ray takes anything from: -inf, or for the length 0.
+    const float nothing = walkMode == WALK_MODE_LENGTH ? 0.f : -INFINITY;
+    const CellDomain cells = domainInGrid(domain, mCells);
+    if (cells.empty()) { // every ray misses it
+        target.clear(nothing);
+        stats.batches = 1;
+        stats.votsDrawn = 0;
+        return;
+    }
     const float emptyValue = emptyValueFor(walkMode, mBackground);
     const std::vector<float>& brickBound = walkMode == WALK_MODE_MIN ? mBrickLowNegated : mBrickMaxima;
     const bool compute = mShader == Shader::Compute;
@@ -294,6 +317,10 @@ void WalkPass::draw(RenderMode mode, const CameraMatrices& m, const std::optiona
     glProgramUniform1i(p, glGetUniformLocation(p, "uCull"), cull ? 1 : 0);
     glProgramUniform1i(p, glGetUniformLocation(p, "uMode"), walkMode);
     glProgramUniform1f(p, glGetUniformLocation(p, "uEmptyValue"), emptyValue);
+    glProgramUniform3i(p, glGetUniformLocation(p, "uDomainLo"), cells.lo[0], cells.lo[1], cells.lo[2]);
+    glProgramUniform3i(p, glGetUniformLocation(p, "uDomainHi"), cells.hi[0], cells.hi[1], cells.hi[2]);
+    const bool wholeGrid = cells.lo == std::array<int, 3>{0, 0, 0} && cells.hi == mCells;
+    glProgramUniform1i(p, glGetUniformLocation(p, "uDomainClips"), wholeGrid ? 0 : 1);
     setSlabUniforms(p, slab);
     // The bounds ahead depend on the view, so they are recomputed per frame (linear in the bricks).
     const auto aheadStart = FrameClock::now();
@@ -327,7 +354,7 @@ void WalkPass::draw(RenderMode mode, const CameraMatrices& m, const std::optiona
                         GL_FRAMEBUFFER_BARRIER_BIT);
         return;
     }
-    target.clear(-INFINITY);
+    target.clear(nothing);
     glBindVertexArray(mVertexArray.get());
     glEnable(GL_CULL_FACE);
     glCullFace(GL_FRONT); // back faces: every pixel whose ray meets the box, once, eye inside or not

@@ -7,6 +7,7 @@
 #include "VotWalkGrid.h"
 
 #include "vots/render/Camera.h"
+#include "vots/render/CellDomain.h"
 #include "vots/render/FrameStats.h"
 #include "vots/render/GpuLayout.h"
 #include "vots/render/RenderMode.h"
@@ -56,17 +57,22 @@ public:
     /// Stops the running skip-box growth (it ends by itself) before a new upload.
     void cancelSkipGrowth();
     /// Uploads the grid (walkable() true), or drops the last one when there is none. votRecords holds
-    /// WALK_RECORD_WORDS words per Vot, in the order of `vots`; `background` is the value the fit left
-    /// out (VotSpace::background), what background cells count as in the min and the mean.
+    /// WALK_RECORD_WORDS words per Vot, in the order of `vots`; `background` is what the cells the fit
+    /// left out count as in the min and the mean (VotSpace::omittedCellValue()).
     void upload(std::optional<Grid>&& walk, const std::vector<GpuVot>& vots, const std::uint32_t* votRecords,
                 float background);
     bool walkable() const { return mWalkable; }
 
-    /// Draws the max, min or mean along each ray (Mip, MinIp, Aip), within the slab if there is one, into
-    /// the bound target (every pixel is written); culling off evaluates every Vot on the ray (the mean
-    /// always does). Counts into `stats`.
-    void draw(RenderMode mode, const CameraMatrices& m, const std::optional<SlabPlanes>& slab, int width,
-              int height, FloatTarget& target, bool culling, FrameStats& stats);
+    /// Draws the max, min or mean along each ray (Mip, MinIp, Aip), within the slab if there is one and
+    /// the cell domain (nullopt: the whole grid), into the bound target (every pixel is written); culling
+    /// off evaluates every Vot on the ray (the mean always does). Counts into `stats`.
+    void draw(RenderMode mode, const CameraMatrices& m, const std::optional<SlabPlanes>& slab,
+              const std::optional<CellDomain>& domain, int width, int height, FloatTarget& target,
+              bool culling, FrameStats& stats);
+    /// Draws, per pixel, the length (index units) of the ray's part the mean divides its integral by:
+    /// inside the grid, the domain and the slab, from the mean's own arithmetic; 0 where the ray misses.
+    void drawRayLengths(const CameraMatrices& m, const std::optional<SlabPlanes>& slab,
+                        const std::optional<CellDomain>& domain, int width, int height, FloatTarget& target);
     /// Starts growing the skip boxes of this Vot-Space on another thread, unless it runs or ran.
     void startSkipGrowth();
     /// Puts finished skip boxes into the box table; with `wait`, waits for them first.
@@ -80,6 +86,10 @@ private:
     };
 
     GLuint program(bool compute);
+    /// draw() and drawRayLengths(): one walk-shader pass taking `walkMode` (WALK_MODE_*).
+    void drawWalk(int walkMode, const CameraMatrices& m, const std::optional<SlabPlanes>& slab,
+                  const std::optional<CellDomain>& domain, int width, int height, FloatTarget& target,
+                  bool culling, FrameStats& stats);
     void uploadMinAndMeanTables(const std::vector<GpuVot>& vots, const VotWalkGrid& grid,
                                 const std::vector<CellBlock>& votBoxes);
 

@@ -1,194 +1,47 @@
-// WebmWriter: RGBA -> yuv420p (libswscale) -> VP9 (libvpx through libavcodec) -> WebM (libavformat), in
-// memory.
+// WebmWriter: checks its arguments and hands the frames to the vots_webm module, loaded on first use.
 #include "vots/render/WebmWriter.h"
 
+#include "WebmModuleLoader.h"
 #include "vots/fit/Error.h"
 
-extern "C" {
-#include <libavcodec/avcodec.h>
-#include <libavformat/avformat.h>
-#include <libavutil/opt.h>
-#include <libswscale/swscale.h>
-}
-
-#include <algorithm>
-#include <cstring>
-#include <mutex>
 #include <stdexcept>
 #include <string>
 
 namespace vots::render {
 namespace {
 
-// Constant quality: the bit rate follows the picture. 20 keeps bone edges in a 512^2 MIP crisp.
-constexpr const char* VP9_CRF = "20";
-constexpr std::size_t IO_BUFFER_BYTES = 1 << 16;
-
-std::string avError(int code) {
-    char text[AV_ERROR_MAX_STRING_SIZE] = {};
-    av_strerror(code, text, sizeof text);
-    return text;
-}
-
-void check(int code, const char* what) {
-    if (code < 0) throw std::runtime_error(std::string("WebM encoding: ") + what + ": " + avError(code));
-}
-
-// FFmpeg's default log level prints an info line per encoder opened, on the command's stderr, where
-// the CLI promises only its own messages.
-void quietFfmpegLogs() {
-    static std::once_flag once;
-    std::call_once(once, [] { av_log_set_level(AV_LOG_ERROR); });
-}
-
-// FFmpeg 6.1 (libavformat 61) made the write callback's buffer const.
-#if LIBAVFORMAT_VERSION_MAJOR >= 61
-using WriteBuffer = const std::uint8_t*;
-#else
-using WriteBuffer = std::uint8_t*;
-#endif
-
-/// A seekable in-memory file: the WebM muxer seeks back to write the duration and the cues' position.
-struct MemoryFile {
-    std::vector<std::uint8_t> bytes;
-    std::size_t position = 0;
-
-    static int write(void* opaque, WriteBuffer data, int size) {
-        auto* f = static_cast<MemoryFile*>(opaque);
-        const auto n = static_cast<std::size_t>(size);
-        if (f->position + n > f->bytes.size()) f->bytes.resize(f->position + n);
-        std::memcpy(f->bytes.data() + f->position, data, n);
-        f->position += n;
-        return size;
-    }
-    static std::int64_t seek(void* opaque, std::int64_t offset, int whence) {
-        auto* f = static_cast<MemoryFile*>(opaque);
-        const auto size = static_cast<std::int64_t>(f->bytes.size());
-        if (whence & AVSEEK_SIZE) return size;
-        std::int64_t base = 0;
-        switch (whence & ~AVSEEK_FORCE) {
-        case SEEK_SET:
-            base = 0;
-            break;
-        case SEEK_CUR:
-            base = static_cast<std::int64_t>(f->position);
-            break;
-        case SEEK_END:
-            base = size;
-            break;
-        default:
-            return AVERROR(EINVAL);
-        }
-        if (base + offset < 0) return AVERROR(EINVAL);
-        f->position = static_cast<std::size_t>(base + offset);
-        return base + offset;
-    }
-};
+constexpr std::size_t ERROR_BYTES = 512;
 
 } // namespace
 
 struct WebmWriter::State {
+    const WebmModule& module;
+    VotsWebmEncoder* encoder = nullptr;
     int width = 0;
     int height = 0;
-    std::int64_t nextPts = 0;
     bool finished = false;
-    MemoryFile file;
-    AVFormatContext* format = nullptr;
-    AVIOContext* io = nullptr;
-    AVCodecContext* codec = nullptr;
-    AVStream* stream = nullptr;
-    SwsContext* scaler = nullptr;
-    AVFrame* frame = nullptr;
-    AVPacket* packet = nullptr;
+    char error[ERROR_BYTES] = {};
 
-    ~State() {
-        av_packet_free(&packet);
-        av_frame_free(&frame);
-        sws_freeContext(scaler);
-        avcodec_free_context(&codec);
-        if (format) avformat_free_context(format);
-        if (io) av_freep(&io->buffer);
-        avio_context_free(&io);
-    }
+    explicit State(const WebmModule& m) : module(m) {}
+    ~State() { module.destroy(encoder); }
+    State(const State&) = delete;
+    State& operator=(const State&) = delete;
 
-    /// Sends `input` (nullptr: flush) and muxes every packet the encoder has ready.
-    void encode(const AVFrame* input) {
-        check(avcodec_send_frame(codec, input), "send frame");
-        for (;;) {
-            const int got = avcodec_receive_packet(codec, packet);
-            if (got == AVERROR(EAGAIN) || got == AVERROR_EOF) return;
-            check(got, "receive packet");
-            av_packet_rescale_ts(packet, codec->time_base, stream->time_base);
-            packet->stream_index = stream->index;
-            check(av_interleaved_write_frame(format, packet), "write packet");
-        }
+    void check(int failed) const {
+        if (failed) throw std::runtime_error(error);
     }
 };
 
-WebmWriter::WebmWriter(int width, int height, int fps) : mState(std::make_unique<State>()) {
+WebmWriter::WebmWriter(int width, int height, int fps) {
     if (width < WEBM_MIN_SIDE || height < WEBM_MIN_SIDE)
         throw fit::InputError("a WebM animation needs frames of at least " + std::to_string(WEBM_MIN_SIDE) +
                               "x" + std::to_string(WEBM_MIN_SIDE) + " pixels");
-    quietFfmpegLogs();
+    mState = std::make_unique<State>(webmModule());
     State& s = *mState;
     s.width = width;
     s.height = height;
-    const AVCodec* vp9 = avcodec_find_encoder_by_name("libvpx-vp9");
-    if (!vp9) throw std::runtime_error("WebM encoding: this FFmpeg has no libvpx-vp9 encoder");
-
-    check(avformat_alloc_output_context2(&s.format, nullptr, "webm", nullptr), "open the WebM muxer");
-    s.format->flags |= AVFMT_FLAG_BITEXACT; // no library version or random ids in the header
-    auto* buffer = static_cast<unsigned char*>(av_malloc(IO_BUFFER_BYTES));
-    if (!buffer) throw std::bad_alloc();
-    s.io = avio_alloc_context(buffer, static_cast<int>(IO_BUFFER_BYTES), 1, &s.file, nullptr,
-                              &MemoryFile::write, &MemoryFile::seek);
-    if (!s.io) {
-        av_free(buffer);
-        throw std::bad_alloc();
-    }
-    s.format->pb = s.io;
-    s.format->flags |= AVFMT_FLAG_CUSTOM_IO;
-
-    s.codec = avcodec_alloc_context3(vp9);
-    if (!s.codec) throw std::bad_alloc();
-    s.codec->width = width;
-    s.codec->height = height;
-    s.codec->pix_fmt = AV_PIX_FMT_YUV420P;
-    // What libswscale's RGB -> YUV conversion produces by default (BT.601, limited range), said in the
-    // file so that players do not guess another matrix for the colour maps.
-    s.codec->colorspace = AVCOL_SPC_SMPTE170M;
-    s.codec->color_primaries = AVCOL_PRI_SMPTE170M;
-    s.codec->color_trc = AVCOL_TRC_SMPTE170M;
-    s.codec->color_range = AVCOL_RANGE_MPEG;
-    s.codec->time_base = AVRational{1, fps};
-    s.codec->framerate = AVRational{fps, 1};
-    s.codec->gop_size = fps;   // a key frame each second: seeking in the turn stays cheap
-    s.codec->bit_rate = 0;     // with crf: constant quality, no bit-rate cap
-    s.codec->thread_count = 1; // libvpx's threads may split the work differently run to run
-    s.codec->flags |= AV_CODEC_FLAG_BITEXACT;
-    if (s.format->oformat->flags & AVFMT_GLOBALHEADER) s.codec->flags |= AV_CODEC_FLAG_GLOBAL_HEADER;
-    check(av_opt_set(s.codec->priv_data, "crf", VP9_CRF, 0), "set crf");
-    // The fastest settings: a turn's encoding should cost little next to drawing its frames.
-    check(av_opt_set(s.codec->priv_data, "deadline", "realtime", 0), "set deadline");
-    check(av_opt_set(s.codec->priv_data, "cpu-used", "8", 0), "set speed");
-    check(av_opt_set(s.codec->priv_data, "row-mt", "0", 0), "set row-mt");
-    check(avcodec_open2(s.codec, vp9, nullptr), "open the VP9 encoder");
-
-    s.stream = avformat_new_stream(s.format, nullptr);
-    if (!s.stream) throw std::bad_alloc();
-    s.stream->time_base = s.codec->time_base;
-    check(avcodec_parameters_from_context(s.stream->codecpar, s.codec), "stream parameters");
-    check(avformat_write_header(s.format, nullptr), "write the WebM header");
-
-    s.scaler = sws_getContext(width, height, AV_PIX_FMT_RGBA, width, height, AV_PIX_FMT_YUV420P,
-                              SWS_BICUBIC | SWS_ACCURATE_RND | SWS_BITEXACT, nullptr, nullptr, nullptr);
-    s.frame = av_frame_alloc();
-    s.packet = av_packet_alloc();
-    if (!s.scaler || !s.frame || !s.packet) throw std::bad_alloc();
-    s.frame->format = AV_PIX_FMT_YUV420P;
-    s.frame->width = width;
-    s.frame->height = height;
-    check(av_frame_get_buffer(s.frame, 0), "frame buffer");
+    s.encoder = s.module.create(width, height, fps, s.error, sizeof s.error);
+    if (!s.encoder) throw std::runtime_error(s.error);
 }
 
 WebmWriter::~WebmWriter() = default;
@@ -198,22 +51,17 @@ void WebmWriter::addFrame(const RgbaImage& image) {
     if (s.finished) throw std::logic_error("WebmWriter::addFrame after finish");
     if (image.width != s.width || image.height != s.height)
         throw std::invalid_argument("WebmWriter: frame size differs from the animation's");
-    check(av_frame_make_writable(s.frame), "frame writable");
-    const std::uint8_t* const source[1] = {image.pixels.data()};
-    const int sourceStride[1] = {4 * image.width};
-    sws_scale(s.scaler, source, sourceStride, 0, image.height, s.frame->data, s.frame->linesize);
-    s.frame->pts = s.nextPts++;
-    s.encode(s.frame);
+    s.check(s.module.addFrame(s.encoder, image.pixels.data(), 4 * image.width, s.error, sizeof s.error));
 }
 
 std::vector<std::uint8_t> WebmWriter::finish() {
     State& s = *mState;
     if (s.finished) throw std::logic_error("WebmWriter::finish twice");
     s.finished = true;
-    s.encode(nullptr);
-    check(av_write_trailer(s.format), "write the WebM trailer");
-    avio_flush(s.io);
-    return std::move(s.file.bytes);
+    const std::uint8_t* bytes = nullptr;
+    std::size_t size = 0;
+    s.check(s.module.finish(s.encoder, &bytes, &size, s.error, sizeof s.error));
+    return {bytes, bytes + size};
 }
 
 } // namespace vots::render

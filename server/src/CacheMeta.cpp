@@ -18,6 +18,7 @@ std::string cacheMetaFor(const FitKey& key, const Dataset& dataset, const fit::F
     fit.stats = stats;
     fit.maxError = maxStoredError(space);
     fit.cacheKey = key.text();
+    fit.backgroundFill = space.backgroundFill;
     return buildFitMeta(fit);
 }
 

@@ -37,10 +37,10 @@ std::shared_ptr<const Dataset> loadDataset(const std::string& name, const fs::pa
                                            const std::string& dicomSeries,
                                            const fit::VolumeHeaderInfo& header) {
     auto volume = std::make_shared<fit::Volume>(
-        fit::loadVolume(path.string(), std::nullopt, fit::SampleStorage::Float, dicomSeries));
+        fit::loadVolume(path.string(), std::nullopt, DATASET_STORAGE, dicomSeries));
     auto dataset = std::make_shared<Dataset>();
-    dataset->loadAndFitBytes = fit::estimateLoadAndFitBytes(header);
-    const std::uint64_t held = fit::estimateLoadedVolumeBytes(header);
+    dataset->loadAndFitBytes = fit::estimateLoadAndFitBytes(header, DATASET_STORAGE);
+    const std::uint64_t held = fit::estimateLoadedVolumeBytes(header, DATASET_STORAGE);
     dataset->fitBytes = dataset->loadAndFitBytes > held ? dataset->loadAndFitBytes - held : 0;
     dataset->name = name;
     dataset->path = path;
@@ -208,7 +208,7 @@ std::shared_ptr<const Dataset> DatasetRegistry::find(const std::string& name) {
             // loads but cannot be fitted is of no use. Given back once loaded: the samples are then
             // resident, and each fit job is admitted for its own part (Dataset::fitBytes).
             const MemoryReservation admitted =
-                mMemory.admit(fit::estimateLoadAndFitBytes(*entry->header),
+                mMemory.admit(fit::estimateLoadAndFitBytes(*entry->header, DATASET_STORAGE),
                               "dataset '" + name + "' (" + entry->header->describe() + ")");
             auto dataset = loadDataset(name, entry->path, entry->dicomSeries, *entry->header);
             std::lock_guard lock(mMutex); // loaded() reads dataset under mMutex

@@ -47,6 +47,10 @@ struct Dataset {
     std::uint64_t fitBytes = 0; // what one fit needs beyond the loaded volume (admitted per fit job)
 };
 
+/// How the server holds a study's samples: in the file's 8- or 16-bit type where it has one (a half or a
+/// quarter of floats' memory); the loads, fits, CRCs and grid images are those of float samples.
+inline constexpr fit::SampleStorage DATASET_STORAGE = fit::SampleStorage::Source;
+
 /// Window presets for a value range: HU presets when it looks like CT, else fractions of the range.
 std::map<std::string, render::DisplaySettings> windowPresets(std::array<float, 2> range, bool isCt);
 

@@ -62,7 +62,7 @@ nlohmann::json refusedJson(const std::string& name, DatasetKind kind,
     if (header) {
         out["dims"] = header->dims;
         out["sourceType"] = fit::scalarTypeName(header->sourceType);
-        out["memoryNeeded"] = fit::estimateLoadAndFitBytes(*header);
+        out["memoryNeeded"] = fit::estimateLoadAndFitBytes(*header, DATASET_STORAGE);
     }
     return out;
 }

@@ -2,6 +2,7 @@
 #include "DeferredDiskWriter.h"
 
 #include "LowPriorityQueue.h"
+#include "VotSpaceLru.h"
 #include "VotSpaceStore.h"
 
 #include <iostream>
@@ -9,8 +10,9 @@
 
 namespace vots::server {
 
-DeferredDiskWriter::DeferredDiskWriter(VotSpaceStore& store)
-    : mStore(store), mQueue(std::make_unique<LowPriorityQueue>(MAX_PENDING)) {}
+DeferredDiskWriter::DeferredDiskWriter(VotSpaceStore& store, std::size_t maxPendingBytes)
+    : mStore(store), mMaxPendingBytes(maxPendingBytes),
+      mQueue(std::make_unique<LowPriorityQueue>(MAX_PENDING)) {}
 
 DeferredDiskWriter::~DeferredDiskWriter() {
     ++mFlushRequests; // the queue, destroyed first, finishes its tasks without waiting for quiet
@@ -38,13 +40,37 @@ void DeferredDiskWriter::waitForQuiet(std::chrono::steady_clock::time_point queu
 
 void DeferredDiskWriter::post(const FitKey& key, std::shared_ptr<const fit::VotSpace> space) {
     const auto queued = std::chrono::steady_clock::now();
-    if (!mQueue->post([this, key, space = std::move(space), queued] {
+    const std::size_t bytes = VotSpaceLru::bytesOf(*space);
+    {
+        std::lock_guard lock(mMutex);
+        if (mPendingBytes > 0 && mPendingBytes + bytes > mMaxPendingBytes) {
+            std::cerr << "vots serve: warning: " << key.text()
+                      << " is not written to the cache folder: the writes waiting hold "
+                      << (mPendingBytes >> 20) << " MiB, the most they may is " << (mMaxPendingBytes >> 20)
+                      << " MiB\n";
+            return;
+        }
+        mPendingBytes += bytes;
+    }
+    const auto written = [this, bytes] {
+        std::lock_guard lock(mMutex);
+        mPendingBytes -= bytes;
+    };
+    if (!mQueue->post([this, key, space = std::move(space), queued, written] {
             waitForQuiet(queued, true);
             mStore.write(key, *space, [this, queued] { waitForQuiet(queued, false); });
-        }))
+            written();
+        })) {
+        written();
         std::cerr << "vots serve: warning: " << key.text()
                   << " is not written to the cache folder: the writer is " << MAX_PENDING
                   << " files behind\n";
+    }
+}
+
+std::size_t DeferredDiskWriter::pendingBytes() const {
+    std::lock_guard lock(mMutex);
+    return mPendingBytes;
 }
 
 void DeferredDiskWriter::flush() {

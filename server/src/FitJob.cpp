@@ -56,7 +56,14 @@ JobSnapshot FitJob::waitChange(std::uint64_t seen, std::chrono::milliseconds tim
 
 std::shared_ptr<const fit::VotSpace> FitJob::space() const {
     std::lock_guard lock(mMutex);
-    return mSpace;
+    return mSpace ? mSpace : mReleasedSpace.lock();
+}
+
+void FitJob::releaseResult() {
+    std::lock_guard lock(mMutex);
+    if (!mSpace) return;
+    mReleasedSpace = mSpace;
+    mSpace.reset();
 }
 
 void FitJob::setRunning() {

@@ -44,8 +44,12 @@ public:
     JobSnapshot waitFinished(std::chrono::milliseconds timeout) const;
     /// Waits until the version moves past `seen` or the job finishes, at most timeout.
     JobSnapshot waitChange(std::uint64_t seen, std::chrono::milliseconds timeout) const;
-    /// The result once Done, else null.
+    /// The result once Done, else null; also null after releaseResult() once the memory cache has
+    /// dropped it.
     std::shared_ptr<const fit::VotSpace> space() const;
+    /// Keeps only a weak reference to the result: a remembered job must not hold a Vot-Space outside
+    /// the memory cache's budget (32 remembered embryo fits held 9 GB in the soak).
+    void releaseResult();
 
     // Written by the FitJobs workers only.
     void setRunning();
@@ -61,6 +65,7 @@ private:
     JobSnapshot mState;
     std::chrono::steady_clock::time_point mLastNotified{}; // last progress wake-up (setProgress)
     std::shared_ptr<const fit::VotSpace> mSpace;
+    std::weak_ptr<const fit::VotSpace> mReleasedSpace; // after releaseResult()
 };
 
 } // namespace vots::server

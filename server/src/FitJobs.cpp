@@ -105,6 +105,7 @@ int FitJobs::activeCount() const {
 }
 
 void FitJobs::rememberLocked(const std::shared_ptr<FitJob>& job) {
+    job->releaseResult(); // the memory cache holds it, within its budget
     mFinishedOrder.push_back(job->id());
     while (mFinishedOrder.size() > static_cast<std::size_t>(std::max(1, mLimits.keepFinished))) {
         mById.erase(mFinishedOrder.front());

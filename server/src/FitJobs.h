@@ -30,7 +30,7 @@ struct FitJobLimits {
     int maxRunning = 2;    // fits at once
     int maxQueued = 8;     // waiting fits beyond those; more is refused with 429
     int perClient = 3;     // queued or running fits one client (remote address) started; 0: no limit
-    int keepFinished = 32; // finished jobs remembered for /api/jobs/{id}
+    int keepFinished = 32; // finished jobs remembered for /api/jobs/{id} (their results only weakly)
     bool warmUp = true;    // fit eps / 2 into the box cache while idle (WarmUpFits)
 };
 

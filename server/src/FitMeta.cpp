@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #ifndef VOTS_VERSION
 #define VOTS_VERSION "unknown"
@@ -104,6 +105,8 @@ std::string buildFitMeta(const FitProvenance& r) {
     };
     // Only a volume whose file states its orientation gets the key: other files keep their bytes.
     if (vol.orientationKnown) meta["source"]["patient_axes"] = vol.patientAxes;
+    // Only a fit that left cells out has a fill; a reader without the key counts them as the threshold.
+    if (r.backgroundFill && std::isfinite(*r.backgroundFill)) meta["background_fill"] = *r.backgroundFill;
     if (!r.cacheKey.empty()) meta["key"] = r.cacheKey;
     // File names need not be UTF-8; replace bad bytes rather than fail after a long fit.
     return meta.dump(-1, ' ', false, json::error_handler_t::replace);
@@ -123,6 +126,10 @@ FitMetaView readFitMeta(const std::string& metaJson) {
     view.method = field<std::string>(j, json::json_pointer("/fit/method"));
     view.cacheKey = field<std::string>(j, json::json_pointer("/key"));
     view.patientAxes = patientAxesField(j, json::json_pointer("/source/patient_axes"));
+    // A float was written; anything outside float's range is damage (and would not convert).
+    if (const auto fill = field<double>(j, json::json_pointer("/background_fill"));
+        fill && std::abs(*fill) <= double{std::numeric_limits<float>::max()})
+        view.backgroundFill = static_cast<float>(*fill);
     const auto radius = field<double>(j, json::json_pointer("/fit/focus/radius"));
     const auto epsFocus = field<double>(j, json::json_pointer("/fit/focus/eps_focus"));
     const json::json_pointer centre("/fit/focus/center_index");
@@ -139,10 +146,11 @@ FitMetaView readFitMeta(const std::string& metaJson) {
     return view;
 }
 
-void placeInPatientSpace(fit::VotSpace& space) {
-    const auto axes = readFitMeta(space.metaJson).patientAxes;
-    space.orientationKnown = axes.has_value();
-    space.patientAxes = axes.value_or(fit::IDENTITY_PATIENT_AXES);
+void restoreMetaFields(fit::VotSpace& space) {
+    const FitMetaView meta = readFitMeta(space.metaJson);
+    space.orientationKnown = meta.patientAxes.has_value();
+    space.patientAxes = meta.patientAxes.value_or(fit::IDENTITY_PATIENT_AXES);
+    space.backgroundFill = meta.backgroundFill;
 }
 
 double maxStoredError(const fit::VotSpace& space) {

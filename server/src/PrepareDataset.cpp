@@ -26,7 +26,7 @@ void prepareDataset(Server::Impl& s, const std::string& name) {
         job.space = space;
         job.volume = dataset->volume;
         if (dataset->kind == DatasetKind::Volume) job.valueRange = dataset->range;
-        s.renderQueue->submit(job).get();
+        s.renderQueue->render(job);
     } catch (const std::exception& e) {
         // Nothing is lost: the first request for the dataset will load and fit it, and say what fails.
         std::cerr << "vots serve: could not prepare dataset '" << name << "': " << e.what() << "\n";

@@ -44,7 +44,31 @@ std::shared_ptr<const fit::VotSpace> spaceFor(Server::Impl& s, const std::shared
     if (done.state == JobState::Failed) throw HttpError(500, "fit failed: " + done.error);
     if (done.state != JobState::Done)
         throw HttpError(503, "fit still running; try again later (job " + std::to_string(done.id) + ")");
-    return job->space();
+    if (auto space = job->space()) return space;
+    // A finished job holds its result only weakly; newer fits can have pushed it out of memory between
+    // the job's end and this wake-up. Its cache file, when written, still has it.
+    if (auto space = s.cache.find(key)) return space;
+    throw HttpError(503, "the fit finished but newer fits have pushed it out of memory; try again");
+}
+
+/// Under mpirun: the frame is drawn on every rank from its slab's own fit, so rank 0 fits nothing whole;
+/// what the ranks cannot composite is refused before any work.
+PreparedRender prepareComposite(Server::Impl& s, const Dataset& dataset, PreparedRender prepared) {
+    RenderJob& job = prepared.job;
+    const std::string refusal = dataset.kind == DatasetKind::Volume
+                                    ? s.options.compositor->refusal(dataset.name, job.params)
+                                    : "under mpirun a .vots dataset is not drawn across the ranks yet";
+    if (!refusal.empty()) throw HttpError(409, refusal);
+    CompositeRequest request;
+    request.frame = job.params;
+    request.dataset = dataset.name;
+    request.volumePath = dataset.path;
+    request.valueRange = dataset.range;
+    request.eps = resolveEps(dataset, job.params.eps);
+    request.degree = job.params.degree;
+    job.composite = std::move(request);
+    prepared.drawnFrom = fitKeyFor(dataset, job.params.eps, job.params.degree).text() + "|ranks";
+    return prepared;
 }
 
 } // namespace
@@ -62,6 +86,7 @@ PreparedRender prepareRender(Server::Impl& s, const RenderParams& params, const 
     if (!s.renderQueue || !s.renderQueue->hasContext())
         throw HttpError(503, s.renderQueue ? "rendering is unavailable: " + s.renderQueue->contextError()
                                            : "rendering is disabled");
+    if (s.options.compositor) return prepareComposite(s, *dataset, std::move(prepared));
     if (dataset->kind == DatasetKind::Vots) {
         job.space = dataset->space;
         prepared.drawnFrom = dataset->name + "_vots"; // the file's one Vot-Space, loaded once
@@ -82,7 +107,7 @@ std::shared_ptr<const FrameCache::Frame> cachedFrame(Server::Impl& s, const Prep
         [&] {
             RenderJob job = prepared.job;
             job.params = params;
-            const RenderResult result = s.renderQueue->submit(std::move(job)).get(); // throws HttpError
+            const RenderResult result = s.renderQueue->render(std::move(job)); // throws HttpError
             // PNG encoding runs here, on the HTTP thread, in parallel with the next frame.
             const std::vector<std::uint8_t> png = render::encodePng(result.image);
             return FrameCache::Frame{std::string(png.begin(), png.end()), result.votCount, result.frameMs};

@@ -15,6 +15,7 @@
 
 #include <chrono>
 #include <iostream>
+#include <stdexcept>
 
 namespace vots::server {
 
@@ -28,8 +29,9 @@ struct RenderQueue::Renderers {
     std::shared_ptr<const fit::Volume> uploadedVolume;
 };
 
-RenderQueue::RenderQueue(ServerStats& stats, ForegroundActivity& foreground, std::size_t maxWaiting)
-    : mStats(stats), mForeground(foreground), mMaxWaiting(maxWaiting) {
+RenderQueue::RenderQueue(ServerStats& stats, ForegroundActivity& foreground, FrameCompositor* compositor,
+                         std::size_t maxWaiting)
+    : mStats(stats), mForeground(foreground), mCompositor(compositor), mMaxWaiting(maxWaiting) {
     mThread = std::thread([this] { threadMain(); });
     std::unique_lock lock(mMutex);
     mWake.wait(lock, [this] { return mReady; });
@@ -43,7 +45,7 @@ RenderQueue::~RenderQueue() {
     mWake.notify_all();
     mThread.join();
     for (Item& item : mQueue) // left by a thread that had no context, or by the stop
-        item.promise.set_exception(std::make_exception_ptr(HttpError(503, "server is stopping")));
+        item.promise.set_value(Refusal{503, "server is stopping"});
 }
 
 std::size_t RenderQueue::waiting() const {
@@ -51,7 +53,13 @@ std::size_t RenderQueue::waiting() const {
     return mQueue.size();
 }
 
-std::future<RenderResult> RenderQueue::submit(RenderJob job) {
+RenderResult RenderQueue::render(RenderJob job) {
+    Outcome outcome = submit(std::move(job)).get();
+    if (auto* refusal = std::get_if<Refusal>(&outcome)) throw HttpError(refusal->status, refusal->message);
+    return std::move(std::get<RenderResult>(outcome));
+}
+
+std::future<RenderQueue::Outcome> RenderQueue::submit(RenderJob job) {
     Item item{std::move(job), {}};
     auto future = item.promise.get_future();
     std::lock_guard lock(mMutex);
@@ -62,7 +70,7 @@ std::future<RenderResult> RenderQueue::submit(RenderJob job) {
         for (auto it = mQueue.begin(); it != mQueue.end(); ++it) {
             if (it->job.params.client != client) continue;
             // The client has moved on: it wants this newer frame, not the one still waiting.
-            it->promise.set_exception(std::make_exception_ptr(HttpError(409, "superseded")));
+            it->promise.set_value(Refusal{409, "superseded"});
             mQueue.erase(it);
             mStats.addSuperseded();
             break; // at most one can wait per client, since each arrival replaces the previous
@@ -111,17 +119,20 @@ void RenderQueue::threadMain() {
             item = std::move(mQueue.front());
             mQueue.pop_front();
         }
+        Outcome outcome;
         try {
-            item.promise.set_value(draw(renderers, item.job));
-        } catch (const HttpError&) {
-            item.promise.set_exception(std::current_exception());
+            outcome = draw(renderers, item.job);
+        } catch (const HttpError& e) {
+            outcome = Refusal{e.status(), e.what()};
+        } catch (const RanksLost& e) { // logged once by the compositor
+            outcome = Refusal{503, e.what()};
         } catch (const fit::InputError& e) {
-            item.promise.set_exception(std::make_exception_ptr(HttpError(400, e.what())));
+            outcome = Refusal{400, e.what()};
         } catch (const std::exception& e) {
             std::cerr << "vots serve: render failed: " << e.what() << "\n";
-            item.promise.set_exception(
-                std::make_exception_ptr(HttpError(500, std::string("render failed: ") + e.what())));
+            outcome = Refusal{500, std::string("render failed: ") + e.what()};
         }
+        item.promise.set_value(std::move(outcome));
     }
 }
 
@@ -130,6 +141,17 @@ RenderResult RenderQueue::draw(Renderers& r, const RenderJob& job) {
     RenderResult result;
     const ForegroundMark mark(mForeground, Foreground::Frame); // warm-ups and cache files wait meanwhile
     const auto start = std::chrono::steady_clock::now();
+    if (job.composite) {
+        if (!mCompositor) throw std::logic_error("a composite frame on a queue without a compositor");
+        CompositeRequest request = *job.composite;
+        request.frame = p;
+        r.uploadedSpace = nullptr; // the compositor uploads its own slab's Vots
+        result.image = mCompositor->draw(request, *r.vots);
+        result.frameMs =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        mStats.addFrame(result.frameMs);
+        return result;
+    }
     if (p.renderer == render::RendererKind::Grid) {
         if (r.uploadedVolume != job.volume) {
             r.grid->upload(*job.volume);

@@ -5,6 +5,7 @@
 #include "vots/fit/Volume.h"
 #include "vots/fit/VotSpace.h"
 #include "vots/render/Image.h"
+#include "vots/server/FrameCompositor.h"
 
 #include <array>
 #include <condition_variable>
@@ -16,6 +17,7 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <variant>
 #include <vector>
 
 namespace vots::server {
@@ -32,6 +34,8 @@ struct RenderJob {
     // The volume's min and max sample, as the registry keeps it, so that no frame scans the volume;
     // nullopt: the Vot-Space's own range (a .vots dataset, as `vots render FILE.vots` draws it).
     std::optional<std::array<float, 2>> valueRange;
+    // Set when a FrameCompositor draws the frame on every rank (then `space` is null): its request.
+    std::optional<CompositeRequest> composite;
 };
 
 struct RenderResult {
@@ -40,11 +44,13 @@ struct RenderResult {
     std::size_t votCount = 0; // Vots in the Vot-Space drawn (0 for reference)
 };
 
-/// Thread-safe. If no EGL context can be made, every submit() gives HttpError 503.
+/// Thread-safe. If no EGL context can be made, every render() gives HttpError 503.
 class RenderQueue {
 public:
-    /// Starts the thread and waits until it has (or has failed to get) a context.
-    RenderQueue(ServerStats& stats, ForegroundActivity& foreground, std::size_t maxWaiting = 64);
+    /// Starts the thread and waits until it has (or has failed to get) a context. Jobs with a composite
+    /// request are drawn through `compositor`, which must then outlive the queue.
+    RenderQueue(ServerStats& stats, ForegroundActivity& foreground, FrameCompositor* compositor = nullptr,
+                std::size_t maxWaiting = 64);
     ~RenderQueue(); // answers waiting jobs with 503 and joins
 
     RenderQueue(const RenderQueue&) = delete;
@@ -56,23 +62,34 @@ public:
     /// "compute" or "fragment": the shader stage the Vot walk runs in (VotRenderer::WalkShader).
     const std::string& walkShaderName() const { return mWalkShaderName; }
 
-    /// Queues a job. The future throws HttpError 409 ("superseded") when a newer job with the same
-    /// non-empty client id arrived while this one waited, 503 without a context or when the queue is
-    /// full, 400 for input the renderer refuses.
-    std::future<RenderResult> submit(RenderJob job);
+    /// Queues a job and waits for it. Throws HttpError 409 ("superseded") when a newer job with the
+    /// same non-empty client id arrived while this one waited, 503 without a context or when the queue
+    /// is full, 400 for input the renderer refuses.
+    RenderResult render(RenderJob job);
     std::size_t waiting() const;
 
 private:
+    // A refused job travels back as a value, and render() throws a fresh HttpError on the waiting
+    // thread: an exception object shared across threads through a future is freed by whichever thread
+    // drops the last reference, and that count lives in libstdc++, where ThreadSanitizer cannot see
+    // the ordering (it reported the free racing the waiting thread's read of what()).
+    struct Refusal {
+        int status = 500;
+        std::string message;
+    };
+    using Outcome = std::variant<RenderResult, Refusal>;
     struct Item {
         RenderJob job;
-        std::promise<RenderResult> promise;
+        std::promise<Outcome> promise;
     };
+    std::future<Outcome> submit(RenderJob job);
     struct Renderers; // VotRenderer + GridRenderer + what they hold, render thread only
     void threadMain();
     RenderResult draw(Renderers& renderers, const RenderJob& job);
 
     ServerStats& mStats;
     ForegroundActivity& mForeground;
+    FrameCompositor* const mCompositor;
     const std::size_t mMaxWaiting;
     mutable std::mutex mMutex;
     std::condition_variable mWake;

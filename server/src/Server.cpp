@@ -57,10 +57,12 @@ void raiseListenBacklog(const Server::Impl& s) {
 Server::Impl::Impl(ServerOptions opts)
     : options(std::move(opts)),
       memory(options.memoryBudgetBytes ? options.memoryBudgetBytes : fit::defaultMemoryBudget()),
-      registry(options.dataDirs, memory), cache(options.cacheDir, options.memoryCacheBytes),
+      registry(options.dataDirs, memory),
+      cache(options.cacheDir, options.memoryCacheBytes, options.diskCacheBytes),
       fitJobs(cache, stats, foreground, memory, limitsFrom(options)), frames(options.frameCacheBytes),
       renders(options.maxRendersPerClient, "renders"), guard(options.allowedHosts, options.accessToken) {
-    if (options.withRenderer) renderQueue = std::make_unique<RenderQueue>(stats, foreground);
+    if (options.withRenderer)
+        renderQueue = std::make_unique<RenderQueue>(stats, foreground, options.compositor.get());
     cache.deferDiskWritesWhile([this] { return foreground.busyWithin(DISK_WRITE_QUIET); });
 }
 

@@ -2,6 +2,7 @@
 // hold.
 #include "HttpJson.h"
 #include "ServerImpl.h"
+#include "vots/server/FrameCompositor.h"
 
 namespace vots::server {
 
@@ -38,8 +39,19 @@ void installStatsRoute(Server::Impl& s) {
                                    {"walkShader", queue ? queue->walkShaderName() : ""},
                                    {"error", queue ? queue->contextError() : "renderer disabled"},
                                    {"waiting", queue ? queue->waiting() : 0}};
+        // Under mpirun: the ranks and their parts of the last composited frame.
+        const FrameCompositor* compositor = s.options.compositor.get();
+        nlohmann::json rankTimes = nlohmann::json::array();
+        if (compositor)
+            for (const RankTimes& t : compositor->lastTimes())
+                rankTimes.push_back({{"rank", t.rank},
+                                     {"fitMs", t.fitMs},
+                                     {"frameMs", t.frameMs},
+                                     {"compositeMs", t.compositeMs}});
         sendJson(res, 200,
-                 {{"frames",
+                 {{"ranks", compositor ? compositor->ranks() : 1},
+                  {"rankTimes", rankTimes},
+                  {"frames",
                    {{"count", frames.frames},
                     {"lastMs", frames.lastMs},
                     {"medianMs", frames.medianMs},

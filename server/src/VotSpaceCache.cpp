@@ -3,8 +3,10 @@
 
 namespace vots::server {
 
-VotSpaceCache::VotSpaceCache(std::filesystem::path cacheDir, std::size_t memoryBudgetBytes)
-    : mMemory(memoryBudgetBytes), mDisk(std::move(cacheDir)), mWriter(mDisk) {}
+VotSpaceCache::VotSpaceCache(std::filesystem::path cacheDir, std::size_t memoryBudgetBytes,
+                             std::uint64_t diskBudgetBytes)
+    : mMemory(memoryBudgetBytes), mDisk(std::move(cacheDir), diskBudgetBytes),
+      mWriter(mDisk, memoryBudgetBytes) {}
 
 std::shared_ptr<const fit::VotSpace> VotSpaceCache::findInMemory(const FitKey& key) {
     return mMemory.find(key.text());

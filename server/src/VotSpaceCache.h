@@ -19,8 +19,10 @@ namespace vots::server {
 /// Thread-safe. The memory, the folder and the writer that the server's fits share.
 class VotSpaceCache {
 public:
-    /// cacheDir empty: memory only.
-    VotSpaceCache(std::filesystem::path cacheDir, std::size_t memoryBudgetBytes);
+    /// cacheDir empty: memory only. The Vot-Spaces waiting for their disk write are bounded by the memory
+    /// budget too, so fitted Vot-Spaces hold at most twice it (a waiting one may have left the memory).
+    VotSpaceCache(std::filesystem::path cacheDir, std::size_t memoryBudgetBytes,
+                  std::uint64_t diskBudgetBytes = VotSpaceStore::DEFAULT_BUDGET_BYTES);
 
     /// Memory first, then disk (a disk hit is validated, must carry the same key, and enters memory).
     std::shared_ptr<const fit::VotSpace> find(const FitKey& key);
@@ -37,6 +39,7 @@ public:
     void deferDiskWritesWhile(std::function<bool()> busy) { mWriter.deferWhile(std::move(busy)); }
     /// Waits for the writes queued so far, deferred ones included (they start at once).
     void waitForDiskWrites() { mWriter.flush(); }
+    std::size_t pendingDiskWriteBytes() const { return mWriter.pendingBytes(); }
 
     std::vector<VotSpaceLru::Entry> memoryEntries() const { return mMemory.entries(); }
     std::vector<VotSpaceStore::Entry> diskEntries() const { return mDisk.entries(); }

@@ -9,12 +9,14 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <iostream>
 
 namespace vots::server {
 namespace fs = std::filesystem;
 
-VotSpaceStore::VotSpaceStore(fs::path dir) : mDir(std::move(dir)) {
+VotSpaceStore::VotSpaceStore(fs::path dir, std::uint64_t budgetBytes)
+    : mDir(std::move(dir)), mBudget(budgetBytes) {
     if (mDir.empty()) return;
     std::lock_guard lock(mMutex);
     std::error_code ec;
@@ -53,7 +55,8 @@ std::shared_ptr<const fit::VotSpace> VotSpaceStore::read(const FitKey& key) cons
     try {
         fit::VotSpace space = fit::readVotSpaceFile(file.string());
         if (!carriesKey(space, key.text())) return nullptr; // a stranger's file under our name: refit
-        placeInPatientSpace(space);
+        restoreMetaFields(space);
+        fs::last_write_time(file, fs::file_time_type::clock::now(), ec); // used: last to be trimmed
         return std::make_shared<const fit::VotSpace>(std::move(space));
     } catch (const std::exception& e) { // truncated or corrupt file: refit and overwrite it
         std::cerr << "vots serve: warning: ignoring cache file '" << file.string() << "': " << e.what()
@@ -67,9 +70,34 @@ void VotSpaceStore::write(const FitKey& key, const fit::VotSpace& space,
     if (!enabled()) return;
     try {
         fit::writeVotSpaceFile(fileFor(key).string(), space, betweenChunks);
+        trimToBudget(fileFor(key));
     } catch (const std::exception& e) {
         std::lock_guard lock(mMutex);
         if (mEnabled) disableLocked(e.what());
+    }
+}
+
+void VotSpaceStore::trimToBudget(const fs::path& keep) const {
+    struct File {
+        fs::path path;
+        fs::file_time_type used;
+        std::uintmax_t bytes = 0;
+    };
+    std::vector<File> files;
+    std::uintmax_t total = 0;
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(mDir, ec)) {
+        if (entry.path().extension() != ".vots" || !entry.is_regular_file(ec)) continue;
+        File file{entry.path(), entry.last_write_time(ec), entry.file_size(ec)};
+        if (ec) continue; // removed meanwhile by another writer's trim
+        total += file.bytes;
+        files.push_back(std::move(file));
+    }
+    std::sort(files.begin(), files.end(), [](const File& a, const File& b) { return a.used < b.used; });
+    for (const File& file : files) {
+        if (total <= mBudget) break;
+        if (file.path == keep) continue;
+        if (fs::remove(file.path, ec)) total -= file.bytes;
     }
 }
 

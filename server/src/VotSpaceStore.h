@@ -16,11 +16,15 @@
 namespace vots::server {
 
 /// Thread-safe. A folder that cannot be created or written logs one warning and is then not used; on
-/// construction, temporaries of writers that no longer run are removed.
+/// construction, temporaries of writers that no longer run are removed. Its .vots files are kept within
+/// a byte budget, least recently used (written or read) removed first: a server that refits at new eps
+/// all day would otherwise fill the disk (its soak wrote 0.6 GB a minute).
 class VotSpaceStore {
 public:
-    /// dir empty: no folder.
-    explicit VotSpaceStore(std::filesystem::path dir);
+    static constexpr std::uint64_t DEFAULT_BUDGET_BYTES = std::uint64_t{16} << 30;
+
+    /// dir empty: no folder. The newest file always stays, even when it alone exceeds the budget.
+    explicit VotSpaceStore(std::filesystem::path dir, std::uint64_t budgetBytes = DEFAULT_BUDGET_BYTES);
 
     /// The file's Vot-Space when it exists, reads, and carries the key; else null (a corrupt file
     /// is logged, and overwritten by the next write).
@@ -40,8 +44,11 @@ public:
 private:
     std::filesystem::path fileFor(const FitKey& key) const;
     void disableLocked(const std::string& reason);
+    /// Removes the least recently used .vots files (by modification time) beyond the budget, never `keep`.
+    void trimToBudget(const std::filesystem::path& keep) const;
 
     const std::filesystem::path mDir;
+    const std::uint64_t mBudget;
     mutable std::mutex mMutex;
     bool mEnabled = false;
 };

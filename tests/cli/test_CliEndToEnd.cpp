@@ -12,6 +12,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <memory>
 
 namespace vots::test {
@@ -21,6 +22,11 @@ using nlohmann::json;
 
 const std::string HEAD = std::string(VOTS_SHARED_DATA_DIR) + "/HeadMRVolume_48x62x42_uint8.nrrd";
 const std::string NEGHIP = std::string(VOTS_SHARED_DATA_DIR) + "/neghip_64x64x64_uint8.nrrd";
+
+std::string readBytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), {}};
+}
 
 /// One fit of the head MRI shared by the suite (the fit is the slow part).
 class CliEndToEnd : public ::testing::Test {
@@ -87,6 +93,44 @@ TEST_F(CliEndToEnd, InfoTextNamesEachField) {
     for (const char* key : {"grid", "48 x 62 x 42", "degree", "2 requested", "eps", "background", "Vots",
                             "per sample", "max error", "fit time", "box sizes", "33+"})
         EXPECT_NE(r.out.find(key), std::string::npos) << key << " missing from:\n" << r.out;
+}
+
+TEST_F(CliEndToEnd, TheFileCountsOmittedCellsAsTheirFillAsTheVolumeDoes) {
+    ASSERT_EQ(sFit.exitCode, 0);
+    const json info = infoJson(sVots);
+    ASSERT_TRUE(info.at("background_fill").is_number()) << info.dump();
+    // The mean of the air the fit left out lies below the threshold it was left out by.
+    EXPECT_LT(info.at("background_fill").get<double>(), info.at("background").get<double>());
+    EXPECT_GE(info.at("background_fill").get<double>(), 0.0);
+
+    // The same file without the key, as written before it: omitted cells count as the threshold.
+    fit::VotSpace space = fit::readVotSpaceFile(sVots);
+    json meta = json::parse(space.metaJson);
+    meta.erase("background_fill");
+    space.metaJson = meta.dump();
+    const std::string old = sDir->file("old.vots");
+    fit::writeVotSpaceFile(old, space);
+    EXPECT_TRUE(infoJson(old).at("background_fill").is_null());
+
+    const auto render = [&](const std::string& input, const std::string& mode, const std::string& png,
+                            bool fit) {
+        std::vector<std::string> args{"render", input,      "-o",     sDir->file(png), "--mode",   mode,
+                                      "--view", "anterior", "--size", "64x64",         "--window", "40,80"};
+        if (fit) args.insert(args.end(), {"--eps", "3%", "--degree", "2", "--certify", "samples"});
+        const CliResult r = runVots(args);
+        EXPECT_EQ(r.exitCode, 0) << describe(args, r);
+        return readBytes(sDir->file(png));
+    };
+    for (const std::string mode : {"minip", "aip"}) {
+        const auto fromFile = render(sVots, mode, "file.png", false);
+        EXPECT_EQ(fromFile, render(HEAD, mode, "volume.png", true)) << mode;
+        EXPECT_NE(fromFile, render(old, mode, "old.png", false)) << mode << ": the fill changes the air";
+    }
+    EXPECT_EQ(render(sVots, "mip", "file.png", false), render(old, "mip", "old.png", false))
+        << "the max ignores omitted cells";
+    std::filesystem::remove(old);
+    for (const char* png : {"file.png", "volume.png", "old.png"})
+        std::filesystem::remove(sDir->file(png));
 }
 
 TEST_F(CliEndToEnd, VerifyPassesOnTheFit) {

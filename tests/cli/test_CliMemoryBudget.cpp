@@ -94,7 +94,7 @@ TEST(CliMemoryBudget, RenderOfAVolumeRefusesAHugeHeaderBeforeLoading) {
 
 TEST(CliMemoryBudget, ASmallVolumeFitsUnderASmallBudgetThatIsBigEnough) {
     TempDir dir;
-    // HeadMR is 125 k uint8 samples: its estimate is the model's fixed part plus about 1.5 MB.
+    // HeadMR is 125 k uint8 samples: its estimate is the model's fixed part plus half a MB.
     const std::vector<std::string> fits{"fit", HEAD_MR,           "-o",  dir.file("ok.vots"), "--eps",
                                         "5%",  "--memory-budget", "400M"};
     const CliResult ok = runVots(fits);

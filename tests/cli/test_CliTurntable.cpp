@@ -1,5 +1,5 @@
 // `vots render --turntable N`: PNG frames equal single renders byte for byte, the WebM decodes, bad input
-// exits 2.
+// exits 2, a missing encoder module exits 1.
 #include "CliExpect.h"
 #include "CliRunner.h"
 #include "TempDir.h"
@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <charconv>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -93,6 +94,34 @@ TEST(CliTurntable, WebmDecodesToTheFramesAndRepeatsByteForByte) {
     ASSERT_EQ(runVots(args).exitCode, 0);
     EXPECT_EQ(slurpText(dir.file("turn.webm")), slurpText(dir.file("again.WEBM")));
     EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), 2) << "no temporaries";
+}
+
+/// Points the children's module lookup at `path` (WebmModuleLoader.h) while it lives.
+struct ModuleOverride {
+    explicit ModuleOverride(const std::string& path) { ::setenv("VOTS_WEBM_MODULE", path.c_str(), 1); }
+    ~ModuleOverride() { ::unsetenv("VOTS_WEBM_MODULE"); }
+    ModuleOverride(const ModuleOverride&) = delete;
+    ModuleOverride& operator=(const ModuleOverride&) = delete;
+};
+
+TEST(CliTurntable, WithoutItsEncoderModuleAWebmFailsWithOneLineAndAPngStillRenders) {
+    TempDir dir;
+    const std::string missing = dir.file("no-such-folder/libvots_webm.so");
+    const ModuleOverride module(missing);
+    const CliResult r =
+        runVots({"render", HEAD, "--size", "32x32", "--turntable", "3", "-o", dir.file("t.webm")});
+    const std::string error = "vots: error: WebM encoding needs the module libvots_webm.so";
+    if (r.err.find(error) == std::string::npos && skipWithoutEgl(r))
+        GTEST_SKIP() << "no EGL context here: " << r.err;
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    ASSERT_FALSE(r.errLines().empty());
+    EXPECT_EQ(r.errLines().back().rfind(error, 0), 0u) << "one line: " << r.err;
+    EXPECT_NE(r.err.find(missing), std::string::npos) << "names the path it tried: " << r.err;
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), 0)
+        << "no file, no temporary";
+    // A PNG never loads the module, so the broken path does not matter to it.
+    const CliResult png = runVots({"render", HEAD, "--size", "32x32", "-o", dir.file("one.png")});
+    EXPECT_EQ(png.exitCode, 0) << png.err;
 }
 
 TEST(CliTurntable, BadArgumentsExit2WithOneLine) {

@@ -181,6 +181,59 @@ TEST(Fitter, CertifyCellsBoundsTheErrorAtCellCentres) {
     EXPECT_LE(report.maxCellCentreError, 50.0 + 1e-2);
 }
 
+TEST(Fitter, BackgroundFillIsTheMeanOfTheTrilinearFieldOverTheOmittedCells) {
+    // Three cells along x; the first two have every corner below 10 and are omitted, the third has 100s.
+    constexpr double COLUMN[4] = {-8.0, -4.0, -2.0, 100.0};
+    const Volume volume = sampleVolume(
+        {4, 2, 2}, [&](int x, int y, int z) { return x == 3 ? COLUMN[3] : COLUMN[x] + y + 2 * z; });
+    FitOptions o = options(1.f, 3);
+    o.background = 10.f;
+    const FitResult fit = fitVotSpace(volume, o);
+    EXPECT_EQ(fit.stats.backgroundCells, 2u);
+    // Each omitted cell's mean is its corners' mean: (-8 - 4) / 2 + 0.5 + 1 and (-4 - 2) / 2 + 0.5 + 1.
+    EXPECT_EQ(fit.stats.backgroundValueSum, -4.5 + -1.5);
+    ASSERT_TRUE(fit.space.backgroundFill);
+    EXPECT_EQ(*fit.space.backgroundFill, -3.f);
+    EXPECT_EQ(fit.space.omittedCellValue(), -3.f);
+    EXPECT_EQ(fit.space.background, 10.f);
+
+    // Nothing omitted (no threshold, or one below every sample): no fill, and the threshold stands.
+    const FitResult none = fitVotSpace(volume, options(1.f, 3));
+    EXPECT_FALSE(none.space.backgroundFill);
+    o.background = -100.f;
+    const FitResult low = fitVotSpace(volume, o);
+    EXPECT_EQ(low.stats.backgroundCells, 0u);
+    EXPECT_FALSE(low.space.backgroundFill);
+    EXPECT_EQ(low.space.omittedCellValue(), -100.f);
+}
+
+TEST(Fitter, BackgroundFillAveragesEveryOmittedCellOfARandomVolume) {
+    const Volume volume = randomVolume({13, 11, 9}, 41u, -1000.0, 1000.0);
+    FitOptions o = options(200.f, 2);
+    o.background = 600.f; // random corners: about a quarter of cells have all 8 below
+    const FitResult fit = fitVotSpace(volume, o);
+    double sum = 0.0;
+    std::size_t cells = 0;
+    for (int k = 0; k + 1 < 9; ++k)
+        for (int j = 0; j + 1 < 11; ++j)
+            for (int i = 0; i + 1 < 13; ++i) {
+                double corners = 0.0;
+                bool omitted = true;
+                for (int c = 0; c < 8; ++c) {
+                    const float v = volume.at(i + (c & 1), j + (c >> 1 & 1), k + (c >> 2 & 1));
+                    omitted = omitted && v < 600.f;
+                    corners += v;
+                }
+                if (omitted) sum += corners / 8.0, ++cells;
+            }
+    ASSERT_GT(cells, 50u);
+    EXPECT_EQ(fit.stats.backgroundCells, cells);
+    EXPECT_NEAR(fit.stats.backgroundValueSum, sum, 1e-9 * std::abs(sum) + 1e-6);
+    ASSERT_TRUE(fit.space.backgroundFill);
+    EXPECT_FLOAT_EQ(*fit.space.backgroundFill, static_cast<float>(sum / double(cells)));
+    EXPECT_LT(*fit.space.backgroundFill, 600.f);
+}
+
 TEST(Fitter, RejectsAbsurdOptions) {
     const Volume volume = randomVolume({4, 4, 4}, 1u);
     EXPECT_THROW(fitVotSpace(volume, options(0.f, 3)), InputError);

@@ -152,6 +152,48 @@ TEST(MemoryEstimate, GrowsWithSamplesAndStoredBytesAndCoversTheLoadedVolume) {
     EXPECT_GE(fit::estimateLoadAndFitBytes(tallest), 3.8e9);
 }
 
+TEST(MemoryEstimate, SourceStorageCountsTheBytesTheLoadHolds) {
+    const fit::VolumeHeaderInfo int16s{{512, 512, 1000}, ScalarType::Int16};
+    const std::uint64_t n = int16s.sampleCount();
+    EXPECT_EQ(fit::estimateLoadedVolumeBytes(int16s), 4 * n); // floats unless told otherwise
+    EXPECT_EQ(fit::estimateLoadedVolumeBytes(int16s, fit::SampleStorage::Float), 4 * n);
+    EXPECT_EQ(fit::estimateLoadedVolumeBytes(int16s, fit::SampleStorage::Source), 2 * n);
+    // Compact samples save their bytes in the whole estimate too, which still covers what stays held.
+    EXPECT_EQ(fit::estimateLoadAndFitBytes(int16s, fit::SampleStorage::Float) -
+                  fit::estimateLoadAndFitBytes(int16s, fit::SampleStorage::Source),
+              2 * n);
+    EXPECT_GE(fit::estimateLoadAndFitBytes(int16s, fit::SampleStorage::Source),
+              fit::estimateLoadedVolumeBytes(int16s, fit::SampleStorage::Source) + int16s.storedBytes());
+    // The peak of `vots fit --certify cells`, which holds them compact (bench/RESULTS.md "Fit memory").
+    EXPECT_GE(fit::estimateLoadAndFitBytes(int16s, fit::SampleStorage::Source), 0.64e9);
+    const fit::VolumeHeaderInfo uint8s{{64, 64, 64}, ScalarType::UInt8};
+    EXPECT_EQ(fit::estimateLoadedVolumeBytes(uint8s, fit::SampleStorage::Source), uint8s.sampleCount());
+    for (ScalarType wide :
+         {ScalarType::Int32, ScalarType::UInt32, ScalarType::Float32, ScalarType::Float64}) {
+        const fit::VolumeHeaderInfo h{{64, 64, 64}, wide};
+        EXPECT_EQ(fit::estimateLoadedVolumeBytes(h, fit::SampleStorage::Source), 4 * h.sampleCount())
+            << fit::scalarTypeName(wide);
+    }
+}
+
+TEST(MemoryEstimate, ScaledNiftiSamplesAreCountedAsTheFloatsTheyLoadAs) {
+    TempDir dir;
+    const auto samples =
+        vots::test::encode(vots::test::fixtureValues(ScalarType::Int16), ScalarType::Int16, false);
+    vots::test::NiftiSpec spec;
+    const std::string plain = dir.write("plain.nii", vots::test::niftiHeader(spec) + samples);
+    spec.sclSlope = 2.5f;
+    spec.sclInter = -10.0f;
+    const std::string scaled = dir.write("scaled.nii", vots::test::niftiHeader(spec) + samples);
+    for (const auto& [path, bytes] : {std::pair{plain, 2u}, std::pair{scaled, 4u}}) {
+        const fit::VolumeHeaderInfo header = fit::volumeHeaderInfo(path);
+        EXPECT_EQ(fit::heldBytesPerSample(header, fit::SampleStorage::Source), bytes) << path;
+        // The estimate agrees with what the load then holds.
+        const fit::Volume volume = fit::loadVolume(path, std::nullopt, fit::SampleStorage::Source);
+        EXPECT_EQ(volume.isCompact(), bytes == 2u) << path;
+    }
+}
+
 TEST(MemorySize, ParsesUnitsAndRefusesNonsense) {
     EXPECT_EQ(fit::parseMemorySize("8G", "--memory-budget"), 8 * GIB);
     EXPECT_EQ(fit::parseMemorySize("8GB", "x"), 8 * GIB);

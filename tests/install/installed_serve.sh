@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the build into a temporary prefix, moves the build tree aside, and checks the installed
-# `vots serve` answers / with its viewer from <prefix>/share/vots/web (and /api/datasets, /render).
+# `vots serve` answers / with its viewer from <prefix>/share/vots/web (and /api/datasets, /render, and
+# /turntable through the installed encoder module).
 #
 # Usage: tests/install/installed_serve.sh BUILD_DIR      (ctest: Install.InstalledServeFindsItsViewer)
 # Moves BUILD_DIR to BUILD_DIR.moved-by-install-test while the installed server runs and puts it back on
@@ -68,4 +69,8 @@ grep -qi '<html' "$work/index.html" || fail "GET / is not HTML"
 curl -sf --max-time 30 "$url/api/datasets" | grep -q '"name":"tiny"' || fail "/api/datasets does not list tiny"
 curl -sf --max-time 120 -o "$work/tiny.png" "$url/render?dataset=tiny&size=32x32" || fail "/render did not answer 200"
 [[ "$(head -c 8 "$work/tiny.png" | od -An -tx1 | tr -d ' \n')" == 89504e470d0a1a0a ]] || fail "/render is not a PNG"
+# The turntable's encoder is the installed module, loaded from <prefix>/lib/.../vots with the build tree away.
+curl -sf --max-time 120 -o "$work/tiny.webm" "$url/turntable?dataset=tiny&size=32x32&frames=2" ||
+    fail "/turntable did not answer 200 (the installed vots_webm module?)"
+[[ "$(head -c 4 "$work/tiny.webm" | od -An -tx1 | tr -d ' \n')" == 1a45dfa3 ]] || fail "/turntable is not a WebM"
 echo "installed_serve: PASS: $vots serves $prefix/share/vots/web with $build moved aside"

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <set>
 
 using namespace vots;
@@ -101,6 +102,8 @@ TEST(Images, EveryColormapAndModeIsNonBlank) {
     const Camera cam = parseCamera("az=30,el=20");
     const auto range = vots.valueRange();
     const auto density = vots.densityRange();
+    // Made here too: on a fresh machine this test can run before any saveForInspection made it.
+    std::filesystem::create_directories("/tmp/vots_render_tests");
     for (Colormap map : ALL_COLORMAPS) {
         const std::string name(colormapName(map));
         const RgbaImage mip = vots.renderRgba(cam, 96, 96, windowForRange(range[0], range[1], map));

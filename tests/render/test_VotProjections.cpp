@@ -145,7 +145,7 @@ TEST(VotProjections, ASlabThickerThanTheVolumeChangesNoPixel) {
     }
 }
 
-TEST(VotProjections, BackgroundCellsCountAsTheBackgroundValue) {
+TEST(VotProjections, BackgroundCellsCountAsTheFillOrWithoutOneTheBackgroundValue) {
     test::glContext();
     const test::Polynomial p = test::randomPolynomial(2, N, AMPLITUDE, 31u);
     fit::VotSpace space = test::polynomialVotSpace(p, {N, N, N}, 4);
@@ -160,31 +160,44 @@ TEST(VotProjections, BackgroundCellsCountAsTheBackgroundValue) {
     const auto inHole = [](double x, double y, double z) {
         return x > 8 && x < 16 && y > 8 && y < 16 && z > 8 && z < 16;
     };
-    const auto field = [&](double x, double y, double z) {
-        return inHole(x, y, z) ? BACKGROUND : p(x, y, z);
-    };
-    VotRenderer renderer;
-    renderer.upload(space);
     const Camera cam = test::obliqueCamera(Projection::Orthographic);
-    const CameraMatrices m = computeCameraMatrices(cam, renderer.bounds(), W, H);
-    const FloatImage minImage = renderer.render(cam, W, H, RenderMode::MinIp);
-    const FloatImage meanImage = renderer.render(cam, W, H, RenderMode::Aip);
-    int throughHole = 0, hits = 0;
-    std::vector<test::RayProfile> oracle(W * H);
-    for (int y = 0; y < H; ++y)
-        for (int x = 0; x < W; ++x) {
-            oracle[y * W + x] = test::cpuRayProfile(m, {N, N, N}, W, H, x, y, field, 20000);
-            if (oracle[y * W + x].min == BACKGROUND) ++throughHole;
-        }
-    EXPECT_GT(throughHole, 50);
-    EXPECT_LT(worstDifference(
-                  minImage, [&](int x, int y) { return oracle[y * W + x].min; }, &hits),
-              1e-4 * AMPLITUDE);
-    // Simpson's rule across the hole's faces, where the field jumps by ~11 amplitudes, errs by about
-    // jump x step / path length.
-    EXPECT_LT(worstDifference(
-                  meanImage, [&](int x, int y) { return oracle[y * W + x].mean; }, &hits),
-              5e-3 * AMPLITUDE);
+    // Without a fill (a file from before it) the hole is the threshold; with one, the fill, which sits
+    // further below the field than the threshold does: the two images differ wherever a ray crosses it.
+    std::vector<FloatImage> minImages;
+    for (const std::optional<float> fill :
+         {std::optional<float>{}, std::optional<float>{1.5f * BACKGROUND}}) {
+        space.backgroundFill = fill;
+        const float holeValue = fill.value_or(BACKGROUND);
+        const auto field = [&](double x, double y, double z) {
+            return inHole(x, y, z) ? holeValue : p(x, y, z);
+        };
+        VotRenderer renderer;
+        renderer.upload(space);
+        const CameraMatrices m = computeCameraMatrices(cam, renderer.bounds(), W, H);
+        const FloatImage minImage = renderer.render(cam, W, H, RenderMode::MinIp);
+        const FloatImage meanImage = renderer.render(cam, W, H, RenderMode::Aip);
+        int throughHole = 0, hits = 0;
+        std::vector<test::RayProfile> oracle(W * H);
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                oracle[y * W + x] = test::cpuRayProfile(m, {N, N, N}, W, H, x, y, field, 20000);
+                if (oracle[y * W + x].min == holeValue) ++throughHole;
+            }
+        EXPECT_GT(throughHole, 50);
+        EXPECT_LT(worstDifference(
+                      minImage, [&](int x, int y) { return oracle[y * W + x].min; }, &hits),
+                  1e-4 * AMPLITUDE)
+            << holeValue;
+        // Simpson's rule across the hole's faces, where the field jumps by ~11 amplitudes (~16 with the
+        // fill), errs by about jump x step / path length.
+        EXPECT_LT(worstDifference(
+                      meanImage, [&](int x, int y) { return oracle[y * W + x].mean; }, &hits),
+                  5e-3 * AMPLITUDE * (holeValue / BACKGROUND))
+            << holeValue;
+        minImages.push_back(minImage);
+    }
+    const test::ImageComparison c = test::compareImages(minImages[0], minImages[1], 0.0);
+    EXPECT_LT(c.bitIdentical, minImages[0].pixels.size()) << "the fill must change the rays through the hole";
 }
 
 TEST(VotProjections, CullingNeverChangesTheMinIp) {

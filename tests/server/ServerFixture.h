@@ -78,10 +78,13 @@ inline nlohmann::json waitForJob(httplib::Client& c, const nlohmann::json& poste
     return job;
 }
 
-/// Polls /api/stats until `until(stats)` holds or about a minute has passed; returns the last stats.
+/// Polls /api/stats until `until(stats)` holds or four minutes have passed; returns the last stats.
 template <class Until> nlohmann::json waitForStats(httplib::Client& c, Until until) {
+    // Generous: a warm-up fit runs at nice 19, and under ThreadSanitizer on a busy 2-core machine it took
+    // longer than a minute to be scheduled at all.
+    const auto giveUp = std::chrono::steady_clock::now() + std::chrono::minutes(4);
     nlohmann::json stats;
-    for (int i = 0; i < 6000; ++i) {
+    while (std::chrono::steady_clock::now() < giveUp) {
         stats = bodyJson(c.Get("/api/stats"));
         if (until(stats)) break;
         std::this_thread::sleep_for(std::chrono::milliseconds(10));

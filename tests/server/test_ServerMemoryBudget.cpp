@@ -1,5 +1,6 @@
 // The server's --memory-budget over real loopback HTTP: a dataset whose header announces a huge volume is
 // listed as not fitting and refused with 507 JSON before anything is allocated, and the others still serve.
+#include "DatasetRegistry.h"
 #include "ServerFixture.h"
 
 #include "vots/fit/MemoryBudget.h"
@@ -13,6 +14,8 @@ namespace vots::test {
 namespace {
 
 constexpr const char* HUGE_NAME = "huge";
+// The server holds 8- and 16-bit samples in their type, and estimates for that.
+constexpr fit::SampleStorage HELD = server::DATASET_STORAGE;
 
 // The tests with a budget a few tens of MB above what the process holds measure resident memory, which
 // the sanitizers inflate (shadow memory, the freed-memory quarantine); they run in normal builds only.
@@ -88,9 +91,9 @@ TEST(ServerMemoryBudget, ASmallBudgetThatIsBigEnoughServesAndOneTooSmallRefuses)
     if (RESIDENT_MEMORY_IS_INFLATED) GTEST_SKIP() << "a sanitizer inflates resident memory";
     ServerWorld world;
     const std::string headMr = (world.data() / (std::string(HEAD_MR) + ".nrrd")).string();
-    const std::uint64_t needed = fit::estimateLoadAndFitBytes(fit::volumeHeaderInfo(headMr));
+    const std::uint64_t needed = fit::estimateLoadAndFitBytes(fit::volumeHeaderInfo(headMr), HELD);
     const std::uint64_t neghip = fit::estimateLoadAndFitBytes(
-        fit::volumeHeaderInfo((world.data() / (std::string(NEGHIP) + ".nrrd")).string()));
+        fit::volumeHeaderInfo((world.data() / (std::string(NEGHIP) + ".nrrd")).string()), HELD);
     auto options = world.options();
     options.withRenderer = false;
     options.warmUpFits = false;
@@ -124,7 +127,7 @@ TEST(ServerMemoryBudget, AFitJobReservesItsMemoryUntilItEnds) {
     if (RESIDENT_MEMORY_IS_INFLATED) GTEST_SKIP() << "a sanitizer inflates resident memory";
     ServerWorld world;
     const std::string path = (world.data() / (std::string(NEGHIP) + ".nrrd")).string();
-    const std::uint64_t needed = fit::estimateLoadAndFitBytes(fit::volumeHeaderInfo(path));
+    const std::uint64_t needed = fit::estimateLoadAndFitBytes(fit::volumeHeaderInfo(path), HELD);
     auto options = world.options();
     options.withRenderer = false;
     options.warmUpFits = false;

@@ -1,6 +1,7 @@
-// VotSpaceCache and FitKey: exact keys, LRU eviction by bytes, disk round trip, foreign files ignored.
+// VotSpaceCache and FitKey: exact keys, LRU eviction by bytes, bounded later writes, disk round trip.
 #include "CacheMeta.h"
 #include "VotSpaceCache.h"
+#include "VotSpaceStore.h"
 
 #include "vots/fit/VotSpaceFile.h"
 
@@ -114,6 +115,32 @@ TEST(VotSpaceCache, LaterWritesWaitWhileTheServerIsBusy) {
     EXPECT_EQ(cache.diskEntries().size(), 2u);
 }
 
+TEST(VotSpaceCache, WritesWaitingHoldNoMoreThanTheMemoryBudget) {
+    test::TempDir dir;
+    const FitKey k1{"a", 1.f, 3, 0.f, std::nullopt}, k2{"a", 2.f, 3, 0.f, std::nullopt},
+        k3{"a", 3.f, 3, 0.f, std::nullopt};
+    const std::size_t one = VotSpaceLru::bytesOf(*spaceWith(100, k1));
+    std::atomic<bool> busy{true};
+    VotSpaceCache cache(dir.path(), 2 * one + one / 2);
+    cache.deferDiskWritesWhile([&busy] { return busy.load(); });
+    cache.storeOnDiskLater(k1, spaceWith(100, k1));
+    cache.storeOnDiskLater(k2, spaceWith(100, k2));
+    EXPECT_EQ(cache.pendingDiskWriteBytes(), 2 * one);
+    cache.storeOnDiskLater(k3, spaceWith(100, k3)); // a third would exceed the budget: skipped
+    EXPECT_EQ(cache.pendingDiskWriteBytes(), 2 * one);
+    busy = false;
+    cache.waitForDiskWrites();
+    EXPECT_EQ(cache.pendingDiskWriteBytes(), 0u);
+    EXPECT_EQ(cache.diskEntries().size(), 2u);
+    EXPECT_FALSE(cache.find(k3));
+
+    // One Vot-Space larger than the whole budget is still written when nothing else waits.
+    VotSpaceCache small(dir.path(), one / 2);
+    small.storeOnDiskLater(k3, spaceWith(100, k3));
+    small.waitForDiskWrites();
+    EXPECT_TRUE(small.find(k3));
+}
+
 TEST(VotSpaceCache, DiskRoundTripAndForeignFilesIgnored) {
     test::TempDir dir;
     const FitKey key{"a", 1.f, 3, 0.f, std::nullopt};
@@ -137,6 +164,58 @@ TEST(VotSpaceCache, DiskRoundTripAndForeignFilesIgnored) {
     const FitKey third{"a", 3.f, 3, 0.f, std::nullopt};
     dir.write(third.text() + ".vots", "VOTS");
     EXPECT_FALSE(cache.find(third));
+}
+
+TEST(VotSpaceStore, KeepsItsFilesWithinTheBudgetLeastRecentlyUsedFirst) {
+    namespace fs = std::filesystem;
+    const FitKey a{"a", 1.f, 3, 0.f, std::nullopt}, b{"a", 2.f, 3, 0.f, std::nullopt},
+        c{"a", 3.f, 3, 0.f, std::nullopt};
+    std::uintmax_t fileBytes = 0;
+    {
+        test::TempDir probe;
+        VotSpaceStore unlimited(probe.path(), std::uint64_t{1} << 40);
+        unlimited.write(a, *spaceWith(200, a));
+        ASSERT_EQ(unlimited.entries().size(), 1u);
+        fileBytes = unlimited.entries()[0].bytes;
+    }
+    ASSERT_GT(fileBytes, 200u * 100);
+    test::TempDir dir;
+    VotSpaceStore store(dir.path(), fileBytes * 5 / 2); // room for two files of this size
+    const auto fileOf = [&](const FitKey& key) { return dir.path() / (key.text() + ".vots"); };
+    const auto now = fs::file_time_type::clock::now();
+    store.write(a, *spaceWith(200, a));
+    fs::last_write_time(fileOf(a), now - std::chrono::seconds(30));
+    store.write(b, *spaceWith(200, b));
+    fs::last_write_time(fileOf(b), now - std::chrono::seconds(20));
+    EXPECT_EQ(store.entries().size(), 2u);
+    ASSERT_TRUE(store.read(a)) << "a read makes `a` the most recently used";
+    store.write(c, *spaceWith(200, c));
+    EXPECT_TRUE(fs::exists(fileOf(a)));
+    EXPECT_FALSE(fs::exists(fileOf(b))) << "the least recently used file goes first";
+    EXPECT_TRUE(fs::exists(fileOf(c)));
+    EXPECT_EQ(store.entries().size(), 2u);
+
+    VotSpaceStore tiny(dir.path(), 0);
+    tiny.write(b, *spaceWith(200, b));
+    ASSERT_EQ(tiny.entries().size(), 1u) << "over the budget, only the newest file stays";
+    EXPECT_TRUE(tiny.read(b));
+}
+
+TEST(VotSpaceStore, ACachedFitKeepsItsBackgroundFill) {
+    // The server's own fits reach the disk through cacheMetaFor and come back as `vots render` reads files.
+    const FitKey key{"a", 1.f, 3, -983.9f, std::nullopt};
+    fit::VotSpace space = *spaceWith(3, key);
+    space.background = key.background;
+    space.backgroundFill = -1000.25f;
+    space.metaJson = cacheMetaFor(key, datasetFor(key), fit::FitStats{}, space);
+    test::TempDir dir;
+    VotSpaceStore store(dir.path(), std::uint64_t{1} << 30);
+    store.write(key, space);
+    const auto read = store.read(key);
+    ASSERT_TRUE(read);
+    ASSERT_TRUE(read->backgroundFill);
+    EXPECT_EQ(*read->backgroundFill, -1000.25f);
+    EXPECT_EQ(read->background, -983.9f);
 }
 
 TEST(VotSpaceCache, RemovesTemporariesOfDeadWritersOnStart) {

@@ -5,6 +5,7 @@
 #include "vots/fit/Volume.h"
 #include "vots/fit/VotSpace.h"
 
+#include <array>
 #include <atomic>
 #include <cstddef>
 #include <functional>
@@ -45,6 +46,9 @@ struct FitStats {
     std::size_t cacheHits = 0;    // box errors reused from a FitCache
     std::size_t coveredCells = 0; // non-background cells (all covered)
     std::size_t backgroundCells = 0;
+    /// Over the background cells, the sum of each one's mean corner value (its integral of the
+    /// trilinear field): ranks' fits add up to the whole volume's.
+    double backgroundValueSum = 0.0;
     double maxError = 0.0; // max certified |residual| over all chosen Vots
 };
 
@@ -83,7 +87,14 @@ void validateFitOptions(const Volume& volume, const FitOptions& options);
 /// degree and certify mode.
 FitResult fitVotSpace(const Volume& volume, const FitOptions& options, FitCache* cache = nullptr);
 
+/// VotSpace::backgroundFill of a fit with these stats: the mean over its background cells of the
+/// trilinear field, nullopt when it has none.
+std::optional<float> backgroundFillOf(const FitStats& stats);
+
 /// Default background threshold: min + 1 % of the value range, so flat empty space is omitted.
 float defaultBackground(const Volume& volume);
+/// The same for a volume whose value range is [range[0], range[1]] (one known without its samples, as
+/// the union of the ranks' slabs under mpirun): the same float for the same range.
+float defaultBackground(std::array<float, 2> range);
 
 } // namespace vots::fit

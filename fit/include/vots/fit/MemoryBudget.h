@@ -9,22 +9,29 @@
 namespace vots::fit {
 
 /// The fitter's peak resident memory as a linear model of the volume: the one place its factors live.
-/// peak = samples * perSample + storedBytes * perStoredByte + fixedBytes
+/// peak = samples * (heldBytesPerSample + perSample) + storedBytes * perStoredByte + fixedBytes, where
+/// the held bytes are the samples as the load keeps them (heldBytesPerSample).
 struct FitMemoryModel {
-    double perSample = 0.0;     // bytes per sample whatever the file's type (float samples, masks)
+    double perSample = 0.0;     // bytes per sample beyond the held samples (the fitter's masks, boxes)
     double perStoredByte = 0.0; // per byte of the samples as the file stores them (the read payload)
     double fixedBytes = 0.0;    // independent of the size (code, threads, caches)
 };
 
+/// Bytes a loaded Volume holds per sample: 4 (floats), or the source type's 1 or 2 where `storage` is
+/// Source and the file's 8- or 16-bit samples stay compact (not when NIfTI scaling makes them floats).
+unsigned heldBytesPerSample(const VolumeHeaderInfo& header, SampleStorage storage);
+
 /// The model the estimates use, measured on the current fitter (docs/API.md, "Memory budget").
 FitMemoryModel fitMemoryModel();
 
-/// Peak resident bytes of loading this volume and fitting it once (`vots fit`, a server's first fit),
-/// saturating at UINT64_MAX.
-std::uint64_t estimateLoadAndFitBytes(const VolumeHeaderInfo& header);
-/// The part of that peak that stays once the volume is loaded (the samples as a Volume holds them),
-/// so that a later fit of a loaded volume needs estimateLoadAndFitBytes - this.
-std::uint64_t estimateLoadedVolumeBytes(const VolumeHeaderInfo& header);
+/// Peak resident bytes of loading this volume with `storage` and fitting it once (`vots fit`, a server's
+/// first fit), saturating at UINT64_MAX.
+std::uint64_t estimateLoadAndFitBytes(const VolumeHeaderInfo& header,
+                                      SampleStorage storage = SampleStorage::Float);
+/// The part of that peak that stays once the volume is loaded (the samples as a Volume holds them with
+/// `storage`), so that a later fit of a loaded volume needs estimateLoadAndFitBytes - this.
+std::uint64_t estimateLoadedVolumeBytes(const VolumeHeaderInfo& header,
+                                        SampleStorage storage = SampleStorage::Float);
 
 /// "8G", "512M", "1.5G", "64K", "1T" (powers of 1024; an optional trailing B or iB) or plain bytes.
 /// Throws InputError naming `what` for anything else, zero or negative.

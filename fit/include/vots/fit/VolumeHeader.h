@@ -16,6 +16,8 @@ namespace vots::fit {
 struct VolumeHeaderInfo {
     std::array<std::uint64_t, 3> dims{0, 0, 0};
     ScalarType sourceType = ScalarType::UInt8;
+    /// NIfTI scl_slope/scl_inter apply: the samples load as floats, whatever sourceType says.
+    bool scaled = false;
 
     /// dims[0] * dims[1] * dims[2], saturating at UINT64_MAX instead of wrapping.
     std::uint64_t sampleCount() const;

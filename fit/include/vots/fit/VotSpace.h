@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,9 +22,17 @@ struct VotSpace {
     int degree = 3;         // highest degree of any nonzero stored coefficient
     float eps = 0.f;        // nominal (context) error bound, data units
     float background = 0.f; // cells with all corners below it are omitted
+    /// What the omitted cells stand for in the min and the mean of a ray: the mean of the trilinear field
+    /// over them (the fit's backgroundValueSum / backgroundCells). Absent when no cell was omitted, and
+    /// in files written before it (a file keeps it in its meta block, like patientAxes): those count
+    /// omitted cells as `background`.
+    std::optional<float> backgroundFill;
     bool epsVaries = false; // flag bit 0: eps varies in space (focus region)
     std::vector<Vot> vots;
     std::string metaJson = "{}"; // UTF-8 JSON block (source, parameters, timings)
+
+    /// The value omitted cells count as in the min and the mean: backgroundFill, else background.
+    float omittedCellValue() const { return backgroundFill.value_or(background); }
 
     static constexpr std::uint32_t FLAG_EPS_VARIES = 1u;
 };

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "vots/render/Camera.h"
+#include "vots/render/CellDomain.h"
 #include "vots/render/DisplaySettings.h"
 #include "vots/render/FrameStats.h"
 #include "vots/render/Image.h"
@@ -79,6 +80,20 @@ public:
     /// render() followed by the display pass on the GPU; only RGBA8 is read back.
     RgbaImage renderRgba(const Camera& camera, int width, int height, const DisplaySettings& display,
                          const RenderOptions& options = RenderMode::Mip) override;
+
+    /// Cuts every ray of the walk's frames (minip, aip, and mip when the walk draws it) to the cells of
+    /// `domain`, exactly: outside it nothing counts, not even background, and the mean divides by the
+    /// length inside it; the part outside the grid is dropped. Under mpirun each rank walks its z slab, so
+    /// the ranks' frames composite to the whole one (docs/DESIGN.md §12). nullopt (default): the whole
+    /// grid, as before. Kept across uploads. A mip the raster strategy draws, and density, refuse a
+    /// domain (fit::InputError): they see boxes, not cells.
+    void setRayDomain(std::optional<CellDomain> domain);
+    const std::optional<CellDomain>& rayDomain() const;
+    /// Per pixel, the length in index units of the ray's part that aip divides its integral by (inside
+    /// the grid, the domain and the slab), from the walk's own arithmetic, so mean x length is the
+    /// integral to a rounding; 0 where the ray misses. Needs a Vot-Space the walk draws, as aip does.
+    FloatImage rayLengths(const Camera& camera, int width, int height,
+                          const std::optional<Slab>& slab = std::nullopt);
 
     /// Culling on (default) or off; off draws every Vot in one instanced draw (Raster) or evaluates
     /// every Vot along the ray (Walk); for tests and bench.

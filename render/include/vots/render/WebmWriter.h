@@ -20,8 +20,9 @@ inline constexpr int WEBM_MIN_SIDE = 2;
 /// the same libraries (docs/DESIGN.md, "Turntables"). Not thread-safe; one writer per animation.
 class WebmWriter {
 public:
-    /// Throws vots::fit::InputError for a size the encoder refuses, std::runtime_error when FFmpeg
-    /// lacks the VP9 encoder or fails.
+    /// Loads the FFmpeg module on first use (render/src/WebmModuleLoader.h). Throws vots::fit::InputError
+    /// for a size the encoder refuses, std::runtime_error when the module does not load, or FFmpeg lacks
+    /// the VP9 encoder or fails.
     WebmWriter(int width, int height, int fps = ANIMATION_FPS);
     ~WebmWriter();
     WebmWriter(const WebmWriter&) = delete;

@@ -21,6 +21,7 @@ struct FitProvenance {
     fit::FitStats stats;
     double maxError = 0.0; // max of the stored Vots' err
     std::string cacheKey;  // the server's key for the fit (its cache files carry it); empty: no key
+    std::optional<float> backgroundFill; // VotSpace::backgroundFill; absent: no key in the block
 };
 
 /// The meta block (one JSON object). Files without a cache key have exactly the keys `vots fit` wrote
@@ -38,13 +39,17 @@ struct FitMetaView {
     std::optional<std::string> method;
     std::optional<std::string> cacheKey;
     std::optional<fit::PatientAxes> patientAxes; // source.patient_axes: the grid's directions in LPS
+    std::optional<float> backgroundFill;         // background_fill: what omitted cells stand for
 };
 
 FitMetaView readFitMeta(const std::string& metaJson);
 
-/// Sets the space's patientAxes and orientationKnown from its meta block: the identity and false when the
-/// block has no valid source.patient_axes (files written before the key, or of unoriented volumes).
-void placeInPatientSpace(fit::VotSpace& space);
+/// Sets the fields a .vots file keeps in its meta block rather than its header: patientAxes and
+/// orientationKnown (the identity and false without a valid source.patient_axes: files written before
+/// the key, or of unoriented volumes) and backgroundFill (absent without a valid background_fill, so files
+/// written before the key count their omitted cells as the threshold, as they always did). Every reader
+/// of a file calls it.
+void restoreMetaFields(fit::VotSpace& space);
 
 /// The largest error bound stored in the Vots (0 for none).
 double maxStoredError(const fit::VotSpace& space);

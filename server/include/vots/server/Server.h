@@ -10,12 +10,15 @@
 
 namespace vots::server {
 
+class FrameCompositor;
+
 struct ServerOptions {
-    std::vector<std::filesystem::path> dataDirs;         // searched in order for volumes
-    std::filesystem::path webDir;                        // static files; empty: none served
-    std::filesystem::path cacheDir;                      // .vots cache; empty: memory only
-    std::size_t memoryCacheBytes = std::size_t{1} << 30; // fitted Vot-Spaces kept in memory
-    std::size_t frameCacheBytes = std::size_t{64} << 20; // encoded /render answers kept in memory
+    std::vector<std::filesystem::path> dataDirs;            // searched in order for volumes
+    std::filesystem::path webDir;                           // static files; empty: none served
+    std::filesystem::path cacheDir;                         // .vots cache; empty: memory only
+    std::size_t memoryCacheBytes = std::size_t{1} << 30;    // fitted Vot-Spaces kept in memory
+    std::uint64_t diskCacheBytes = std::uint64_t{16} << 30; // .vots files kept in cacheDir (LRU beyond)
+    std::size_t frameCacheBytes = std::size_t{64} << 20;    // encoded /render answers kept in memory
     int maxRunningFits = 2;
     int maxQueuedFits = 8;
     bool warmUpFits = true;     // fit eps / 2 into the box cache while idle (WarmUpFits)
@@ -38,6 +41,9 @@ struct ServerOptions {
     // process's resident memory: never an allocation the kernel kills the server for. 0: the default,
     // fit::defaultMemoryBudget() (80 % of the memory available at start).
     std::uint64_t memoryBudgetBytes = 0;
+    // Under mpirun (cli/MpiServe): frames of Vots are drawn through it on every rank and composited;
+    // what it refuses is answered 409. Null: frames are drawn here alone.
+    std::shared_ptr<FrameCompositor> compositor;
 };
 
 /// The folders `vots serve` uses when none are given: ./data and ../shared/data when present.

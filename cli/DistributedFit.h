@@ -1,0 +1,29 @@
+// `vots fit` under mpirun: each rank fits the planes of its z slab; rank 0 gathers and writes one file.
+#pragma once
+
+#include "MpiWorld.h"
+#include "ZSlab.h"
+
+#include "vots/fit/Fitter.h"
+#include "vots/fit/Volume.h"
+
+#include <array>
+#include <cstdint>
+#include <string>
+
+namespace vots::cli {
+
+/// This rank's slab of a volume of `planesZ` z planes. Throws InputError for fewer than 2 planes or more
+/// ranks than z cells (a rank without a cell would have nothing to fit).
+ZSlab fitSlabOfRank(const MpiWorld& world, std::uint64_t planesZ);
+
+/// Moves every rank's fit of its slab's planes into the grid of `whole` and gathers it onto rank 0 in
+/// rank order: there the result holds every Vot, the highest degree, the summed counters, the largest
+/// error and the longest fit time; elsewhere it is left without Vots. A collective: every rank calls it.
+void gatherFitOnRoot(const MpiWorld& world, fit::FitResult& result, ZSlab slab, const fit::Volume& whole);
+
+/// The meta block of a fit under mpirun: `meta` (built for the whole volume's grid, which holds no
+/// samples) with the whole volume's value range and "ranks": the number of ranks that fitted it.
+std::string metaOfRanks(const std::string& meta, std::array<float, 2> range, int ranks);
+
+} // namespace vots::cli

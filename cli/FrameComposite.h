@@ -1,0 +1,32 @@
+// The composite of the ranks' float frames on rank 0 without collectives, for `vots serve` under mpirun:
+// each rank's frame is combined as it arrives, so a rank that never answers leaves nothing waiting.
+#pragma once
+
+#include "SlabDrawer.h"
+
+#include "vots/render/Image.h"
+#include "vots/render/RenderMode.h"
+
+#include <vector>
+
+namespace vots::cli {
+
+/// The same arithmetic as compositeOnRoot / compositeMeansOnRoot: max for mip, min for minip (a rank's
+/// ray that takes nothing, -inf, never wins), per pixel sum(mean x length) / sum(length) for the aip.
+/// The density is not composited here (its display range is a reduction over the ranks too).
+class FrameComposite {
+public:
+    /// Starts from rank 0's frame; throws std::logic_error for the density.
+    FrameComposite(render::RenderMode mode, SlabFrame first);
+    /// Adds another rank's frame; throws std::runtime_error when its size is not the first's.
+    void add(const SlabFrame& other);
+    /// The composited frame; the composite is spent.
+    render::FloatImage finish();
+
+private:
+    render::RenderMode mMode;
+    render::FloatImage mFrame; // mip, minip (+inf for "nothing yet"): the running max / min
+    std::vector<double> mSums; // aip: the integrals, then the lengths, of every pixel
+};
+
+} // namespace vots::cli

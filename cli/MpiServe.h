@@ -1,0 +1,46 @@
+// `vots serve` under mpirun: rank 0's FrameCompositor and the other ranks' loop (docs/DESIGN.md §12).
+#pragma once
+
+#include "MpiWorld.h"
+#include "SlabDrawer.h"
+
+#include "vots/server/FrameCompositor.h"
+
+#include <mutex>
+#include <string>
+#include <vector>
+
+namespace vots::cli {
+
+/// Rank 0's hook: sends each frame (and the eps its slab fit needs) to every other rank, draws its own
+/// slab meanwhile, and composites the ranks' float frames as `mpirun vots render` does. A rank that does
+/// not answer within the deadline (the frame's, plus a fit's when the eps is new) is taken as lost: the
+/// frame and every later one throw RanksLost, logged once. Only one dataset, the one named at start.
+class MpiFrameCompositor : public server::FrameCompositor {
+public:
+    /// Sets MPI_ERRORS_RETURN on the world, so a failing peer gives an error code, not an abort.
+    MpiFrameCompositor(const MpiWorld& world, std::string dataset);
+    int ranks() const override { return mWorld.size(); }
+    std::string refusal(const std::string& dataset, const render::FrameRequest& frame) const override;
+    render::RgbaImage draw(const server::CompositeRequest& request, render::VotRenderer& vots) override;
+    std::vector<server::RankTimes> lastTimes() const override;
+    /// Tells the ranks still answering to leave their loop; after the server (its render thread) is gone.
+    void releaseRanks();
+
+private:
+    [[noreturn]] void lose(int rank, const std::string& why);
+    const MpiWorld& mWorld;
+    const std::string mDataset;
+    SlabDrawer mDrawer;
+    std::string mSentFitKey; // what the other ranks hold fitted, as far as rank 0 has told them
+    int mLostRank = -1;
+    std::string mLostMessage;
+    mutable std::mutex mTimesMutex;
+    std::vector<server::RankTimes> mTimes;
+};
+
+/// Ranks > 0: fit and draw this rank's slab for each command from rank 0 and send the float frame back,
+/// until rank 0 says quit. Never serves HTTP.
+void serveOtherRank(const MpiWorld& world);
+
+} // namespace vots::cli

@@ -1,0 +1,62 @@
+// SlabDrawer: a rank's slab fitted as `mpirun vots render` fits it, and drawn for the composite.
+#include "SlabDrawer.h"
+
+#include "DistributedRender.h"
+
+#include "vots/fit/Error.h"
+#include "vots/fit/Fitter.h"
+#include "vots/fit/VolumeHeader.h"
+#include "vots/render/VotRenderer.h"
+
+#include <chrono>
+#include <cstring>
+
+namespace vots::cli {
+
+std::string SlabDrawer::fitKey(const std::string& volumePath, float eps, int degree) {
+    std::uint32_t bits = 0;
+    std::memcpy(&bits, &eps, sizeof bits); // the exact eps: a key differs whenever the fit would
+    return volumePath + '|' + std::to_string(bits) + '|' + std::to_string(degree);
+}
+
+double SlabDrawer::ensureFit(const std::string& volumePath, float eps, int degree, std::array<float, 2> range,
+                             render::VotRenderer& vots) {
+    const std::string key = fitKey(volumePath, eps, degree);
+    if (key == mKey) return 0.0;
+    const auto start = std::chrono::steady_clock::now();
+    mKey.clear(); // until the new fit is uploaded, nothing is held
+    const auto planesZ = fit::volumeHeaderInfo(volumePath).dims[2];
+    if (planesZ < 2) throw fit::InputError("volume needs at least 2 grid points along every axis");
+    const ZSlab slab = zSlabOfRank(static_cast<int>(planesZ) - 1, mRank, mRanks);
+    const fit::VolumeSlab read = loadSlab(volumePath, slab, std::nullopt, fit::SampleStorage::Float, "");
+    fit::FitOptions options;
+    options.eps = eps;
+    options.degree = degree;
+    options.background = fit::defaultBackground(range);
+    options.certify = render::RENDER_FIT_CERTIFY;
+    fit::VotSpace space;
+    if (!slab.empty()) {
+        fit::validateFitOptions(read.planes, options);
+        space = fit::fitVotSpace(read.planes, options).space;
+    }
+    placeSlabFitInGrid(space, slab, read.whole);
+    vots.upload(space);
+    mSlab = slab;
+    mDims = space.dims;
+    mKey = key;
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+SlabFrame SlabDrawer::draw(const render::FrameRequest& f, render::VotRenderer& vots) const {
+    SlabFrame drawn;
+    std::optional<render::CellDomain> domain;
+    if (compositesCutRays(f.mode)) domain = cellDomainOfSlab(mSlab, mDims);
+    vots.setRayDomain(domain);
+    drawn.frame = vots.render(f.camera, f.width, f.height, render::RenderOptions{f.mode, f.slab});
+    if (f.mode == render::RenderMode::Aip)
+        drawn.lengths = vots.rayLengths(f.camera, f.width, f.height, f.slab);
+    vots.setRayDomain(std::nullopt);
+    return drawn;
+}
+
+} // namespace vots::cli

@@ -1,0 +1,48 @@
+// One rank's part of a served frame: the fit of its z slab at the requested eps, and its float frame.
+#pragma once
+
+#include "ZSlab.h"
+
+#include "vots/render/FrameRequest.h"
+#include "vots/render/Image.h"
+
+#include <array>
+#include <optional>
+#include <string>
+
+namespace vots::render {
+class VotRenderer;
+}
+
+namespace vots::cli {
+
+/// What one rank drew: the projection's float frame, and for the aip the ray lengths in its slab.
+struct SlabFrame {
+    render::FloatImage frame;
+    std::optional<render::FloatImage> lengths;
+};
+
+/// The fit of a volume's slab as `mpirun vots render VOLUME --eps` makes it (automatic background, cells
+/// certified), kept while the volume, eps and degree stay the same.
+class SlabDrawer {
+public:
+    SlabDrawer(int rank, int ranks) : mRank(rank), mRanks(ranks) {}
+    /// Reads and fits this rank's planes when they differ from the last call, and uploads the Vots to
+    /// `vots`; returns the milliseconds it took (0 when it held the fit). `range` is the whole volume's.
+    double ensureFit(const std::string& volumePath, float eps, int degree, std::array<float, 2> range,
+                     render::VotRenderer& vots);
+    /// The frame's projection of this rank's Vots, rays cut to its cells where the composite needs it.
+    SlabFrame draw(const render::FrameRequest& frame, render::VotRenderer& vots) const;
+
+    /// The key ensureFit compares.
+    static std::string fitKey(const std::string& volumePath, float eps, int degree);
+
+private:
+    int mRank;
+    int mRanks;
+    std::string mKey;
+    ZSlab mSlab;
+    std::array<int, 3> mDims{0, 0, 0};
+};
+
+} // namespace vots::cli

@@ -1,0 +1,38 @@
+// Runs of z planes of a volume: cut from a loaded one, or read from the file without the other planes.
+#pragma once
+
+#include "vots/fit/Volume.h"
+#include "vots/fit/VolumeLoad.h"
+
+#include <optional>
+#include <string>
+
+namespace vots::fit {
+
+/// Planes [first, last] along z (the slowest axis) of a loaded volume, held as it holds them (floats or
+/// compact), with the origin moved to plane `first`. Throws InputError unless 0 <= first <= last < dims z.
+Volume planesOf(const Volume& volume, int first, int last);
+
+/// True when loadVolumePlanes reads only the planes' bytes: NRRD with raw encoding (attached, detached or
+/// several data files), NIfTI .nii, MetaImage without CompressedData, raw layouts. Gzip/zlib payloads and
+/// DICOM series are loaded whole and cut. Reads the header only; throws InputError as loadVolume does.
+bool readsPlanesByOffset(const std::string& path, const std::optional<RawLayout>& raw = std::nullopt);
+
+/// A run of planes of a volume file, and the grid of the whole volume they belong to.
+struct VolumeSlab {
+    Volume planes;
+    Volume whole; // dims, spacing, origin, axes, type and name of the whole volume; no samples
+};
+
+/// The whole volume's grid (as loadVolume would give it) without its samples.
+Volume gridOf(const Volume& volume);
+
+/// Planes [first, last] of the volume loadVolume would give: the same result as planesOf(loadVolume(...),
+/// first, last), bit for bit, read by offset where readsPlanesByOffset says so. Sample checks (NaN, Inf)
+/// see only the planes read. Throws InputError for bad input or planes outside the grid.
+VolumeSlab loadVolumePlanes(const std::string& path, int first, int last,
+                            const std::optional<RawLayout>& raw = std::nullopt,
+                            SampleStorage storage = SampleStorage::Float,
+                            const std::string& dicomSeries = {});
+
+} // namespace vots::fit

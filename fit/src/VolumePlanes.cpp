@@ -1,0 +1,90 @@
+// Runs of z planes: cut out of a loaded volume, or read by offset from files that store samples uncompressed.
+#include "vots/fit/VolumePlanes.h"
+
+#include "vots/fit/DicomSeries.h"
+#include "vots/fit/Error.h"
+
+#include "InputFile.h"
+#include "StoredSamples.h"
+
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <variant>
+
+namespace vots::fit {
+
+Volume detail::gridOfPlanes(const Volume& volume, int first, int last) {
+    if (first < 0 || last < first || last >= volume.dims[2])
+        throw InputError("planes " + std::to_string(first) + ".." + std::to_string(last) +
+                         " are not inside the volume's 0.." + std::to_string(volume.dims[2] - 1));
+    Volume part;
+    part.dims = {volume.dims[0], volume.dims[1], last - first + 1};
+    part.spacing = volume.spacing;
+    part.origin = volume.origin;
+    if (first > 0) // plane 0 keeps the origin's bits (also a -0.0)
+        for (int w = 0; w < 3; ++w)
+            part.origin[w] += volume.patientAxes[2][w] * volume.spacing[2] * first;
+    part.patientAxes = volume.patientAxes;
+    part.orientationKnown = volume.orientationKnown;
+    part.sourceType = volume.sourceType;
+    part.name = volume.name;
+    return part;
+}
+
+Volume gridOf(const Volume& volume) {
+    return detail::gridOfPlanes(volume, 0, volume.dims[2] - 1);
+}
+
+Volume planesOf(const Volume& volume, int first, int last) {
+    Volume part = detail::gridOfPlanes(volume, first, last);
+    const std::size_t plane =
+        static_cast<std::size_t>(volume.dims[0]) * static_cast<std::size_t>(volume.dims[1]);
+    const auto begin = static_cast<std::ptrdiff_t>(plane * static_cast<std::size_t>(first));
+    const auto end = static_cast<std::ptrdiff_t>(plane * (static_cast<std::size_t>(last) + 1));
+    if (!volume.isCompact()) {
+        part.values.assign(volume.values.begin() + begin, volume.values.begin() + end);
+        return part;
+    }
+    std::visit(
+        [&](const auto& held) {
+            using Held = std::decay_t<decltype(held)>;
+            if constexpr (!std::is_same_v<Held, std::monostate>)
+                part.compact = Held(held.begin() + begin, held.begin() + end);
+        },
+        volume.compact);
+    return part;
+}
+
+namespace {
+
+// The layout of a file whose samples can be read by offset; nullopt for compressed payloads and DICOM.
+std::optional<detail::StoredSamples> storedSamplesOf(const std::string& path,
+                                                     const std::optional<RawLayout>& raw) {
+    if (raw) return detail::storedRawSamples(path, *raw);
+    if (isDicomFolder(path)) return std::nullopt;
+    const std::string extension = detail::volumeExtension(path);
+    if (extension == ".nrrd" || extension == ".nhdr") return detail::storedNrrdSamples(path);
+    if (extension == ".nii" || extension == ".nii.gz") return detail::storedNiftiSamples(path);
+    if (extension == ".mhd" || extension == ".mha") return detail::storedMetaImageSamples(path);
+    detail::throwUnknownVolumeFormat(path);
+}
+
+} // namespace
+
+bool readsPlanesByOffset(const std::string& path, const std::optional<RawLayout>& raw) {
+    return storedSamplesOf(path, raw).has_value();
+}
+
+VolumeSlab loadVolumePlanes(const std::string& path, int first, int last, const std::optional<RawLayout>& raw,
+                            SampleStorage storage, const std::string& dicomSeries) {
+    if (auto stored = storedSamplesOf(path, raw)) {
+        Volume planes = detail::readStoredPlanes(path, *stored, first, last, storage);
+        return {std::move(planes), std::move(stored->grid)};
+    }
+    // Compressed or DICOM: the planes cannot be reached without reading what precedes them.
+    const Volume whole = loadVolume(path, raw, storage, dicomSeries);
+    return {planesOf(whole, first, last), gridOf(whole)};
+}
+
+} // namespace vots::fit

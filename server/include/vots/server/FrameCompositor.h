@@ -1,0 +1,59 @@
+// The hook through which the render thread has a frame drawn on other processes too and composited with
+// its own (`vots serve` under mpirun); the server knows nothing of how the others are reached.
+#pragma once
+
+#include "vots/render/FrameRequest.h"
+#include "vots/render/Image.h"
+
+#include <array>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace vots::render {
+class VotRenderer;
+}
+
+namespace vots::server {
+
+/// One frame of a volume dataset fitted at `eps`, as every rank draws its part of it.
+struct CompositeRequest {
+    render::FrameRequest frame;
+    std::string dataset;
+    std::filesystem::path volumePath;          // the same path on every rank
+    std::array<float, 2> valueRange{0.f, 0.f}; // the whole volume's min and max sample
+    float eps = 0.f;                           // data units
+    int degree = 3;
+};
+
+/// One rank's part of the last composited frame.
+struct RankTimes {
+    int rank = 0;
+    double fitMs = 0.0;       // fitting its slab for this frame (0 when it held the fit already)
+    double frameMs = 0.0;     // drawing its float frame
+    double compositeMs = 0.0; // on rank 0, from the end of its own frame until this rank's was combined
+};
+
+/// Thrown by draw() when a rank no longer answers: the frame and every later one are refused (503).
+class RanksLost : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+class FrameCompositor {
+public:
+    virtual ~FrameCompositor() = default;
+    /// Processes drawing each frame, this one included.
+    virtual int ranks() const = 0;
+    /// Empty when draw() can take this frame of the dataset; else why not (the server answers 409).
+    virtual std::string refusal(const std::string& dataset, const render::FrameRequest& frame) const = 0;
+    /// On the render thread, its GL context current: draws the frame on every rank (this one's part with
+    /// `vots`, which it may upload to) and returns the displayed image. Throws RanksLost, or
+    /// fit::InputError / std::runtime_error for what a rank could not draw.
+    virtual render::RgbaImage draw(const CompositeRequest& request, render::VotRenderer& vots) = 0;
+    /// The last composited frame's times, in rank order; empty before the first. Thread-safe.
+    virtual std::vector<RankTimes> lastTimes() const = 0;
+};
+
+} // namespace vots::server

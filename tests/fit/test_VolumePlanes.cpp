@@ -1,0 +1,235 @@
+// Runs of z planes: read by offset from every uncompressed format, bit-identical to cutting the whole.
+#include "vots/fit/Error.h"
+#include "vots/fit/VolumeLoad.h"
+#include "vots/fit/VolumePlanes.h"
+
+#include "TempDir.h"
+#include "VolumeFixtures.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <limits>
+#include <optional>
+
+namespace {
+
+using namespace vots::fit;
+using vots::test::encode;
+using vots::test::FIXTURE_DIMS;
+using vots::test::fixtureValues;
+using vots::test::TempDir;
+
+// Every byte of the samples and every field of the grid, so "equal" means bit-identical.
+void expectSameVolume(const Volume& got, const Volume& want) {
+    EXPECT_EQ(got.dims, want.dims);
+    EXPECT_EQ(got.spacing, want.spacing);
+    EXPECT_EQ(std::memcmp(got.origin.data(), want.origin.data(), sizeof got.origin), 0);
+    EXPECT_EQ(got.patientAxes, want.patientAxes);
+    EXPECT_EQ(got.orientationKnown, want.orientationKnown);
+    EXPECT_EQ(got.sourceType, want.sourceType);
+    EXPECT_EQ(got.name, want.name);
+    ASSERT_EQ(got.values.size(), want.values.size());
+    // memcmp of an empty vector's data() is undefined (it may be null); the grid-only volumes have none.
+    if (!got.values.empty()) {
+        EXPECT_EQ(std::memcmp(got.values.data(), want.values.data(), got.values.size() * sizeof(float)), 0);
+    }
+    EXPECT_EQ(got.compact, want.compact);
+}
+
+struct Case {
+    std::string path;
+    std::optional<RawLayout> raw;
+};
+
+// Each plane run of the fixture grid, both storages: read by offset (or not) and cut agree.
+void expectPlanesMatchCut(const Case& c, bool byOffset) {
+    SCOPED_TRACE(c.path);
+    EXPECT_EQ(readsPlanesByOffset(c.path, c.raw), byOffset);
+    for (const SampleStorage storage : {SampleStorage::Float, SampleStorage::Source}) {
+        const Volume whole = loadVolume(c.path, c.raw, storage);
+        for (int first = 0; first < FIXTURE_DIMS[2]; ++first) {
+            for (int last = first; last < FIXTURE_DIMS[2]; ++last) {
+                SCOPED_TRACE("planes " + std::to_string(first) + ".." + std::to_string(last));
+                const Volume cut = planesOf(whole, first, last);
+                ASSERT_EQ(cut.dims[2], last - first + 1);
+                const VolumeSlab slab = loadVolumePlanes(c.path, first, last, c.raw, storage);
+                expectSameVolume(slab.planes, cut);
+                expectSameVolume(slab.whole, gridOf(whole));
+                EXPECT_TRUE(slab.whole.values.empty() && !slab.whole.isCompact());
+            }
+        }
+    }
+}
+
+const ScalarType TYPES[] = {ScalarType::UInt8, ScalarType::Int16,   ScalarType::UInt16,
+                            ScalarType::Int32, ScalarType::Float32, ScalarType::Float64};
+
+std::string nrrdType(ScalarType type) {
+    return type == ScalarType::Float32   ? "float"
+           : type == ScalarType::Float64 ? "double"
+                                         : scalarTypeName(type);
+}
+
+TEST(VolumePlanes, CutKeepsPlanesInOrderAndMovesTheOriginAlongTheZAxis) {
+    Volume volume;
+    volume.dims = {2, 2, 4};
+    volume.spacing = {1.0, 1.0, 2.5};
+    volume.origin = {10.0, 20.0, 30.0};
+    volume.patientAxes = {{{1.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, {0.0, -1.0, 0.0}}};
+    volume.orientationKnown = true;
+    for (int i = 0; i < 16; ++i)
+        volume.values.push_back(static_cast<float>(i));
+    const Volume part = planesOf(volume, 1, 2);
+    EXPECT_EQ(part.dims, (std::array<int, 3>{2, 2, 2}));
+    EXPECT_EQ(part.values, (std::vector<float>{4, 5, 6, 7, 8, 9, 10, 11}));
+    EXPECT_EQ(part.origin, (std::array<double, 3>{10.0, 17.5, 30.0})); // one plane down -y
+    EXPECT_EQ(part.patientAxes, volume.patientAxes);
+    EXPECT_THROW(planesOf(volume, 2, 4), InputError);
+    EXPECT_THROW(planesOf(volume, -1, 0), InputError);
+    EXPECT_THROW(planesOf(volume, 2, 1), InputError);
+}
+
+TEST(VolumePlanes, NrrdAttachedAndDetachedRawEveryType) {
+    TempDir dir;
+    for (const ScalarType type : TYPES) {
+        for (const bool bigEndian : {false, true}) {
+            const std::string data = encode(fixtureValues(type), type, bigEndian);
+            const std::string stem = nrrdType(type) + (bigEndian ? "be" : "le");
+            const std::string fields = std::string("endian: ") + (bigEndian ? "big" : "little") +
+                                       "\nspace: RAS\nspace directions: (0,1.5,0) (-2,0,0) (0,0,3)\n"
+                                       "space origin: (1,2,3)\n";
+            const std::string attached = dir.write(
+                stem + ".nrrd", vots::test::nrrdHeader(nrrdType(type), "raw", fields) + "\n" + data);
+            dir.write(stem + ".raw", "skip me\n" + data);
+            const std::string detached =
+                dir.write(stem + ".nhdr",
+                          vots::test::nrrdHeader(nrrdType(type), "raw",
+                                                 fields + "line skip: 1\ndata file: " + stem + ".raw\n"));
+            expectPlanesMatchCut({attached, std::nullopt}, true);
+            expectPlanesMatchCut({detached, std::nullopt}, true);
+        }
+    }
+}
+
+TEST(VolumePlanes, NrrdDataFilesSplitOtherThanByPlane) {
+    // Four files of 15 samples each: plane runs start and end inside files.
+    TempDir dir;
+    const std::string data = encode(fixtureValues(ScalarType::Int16), ScalarType::Int16, false);
+    std::string list;
+    for (int k = 0; k < 4; ++k) {
+        dir.write("part" + std::to_string(k) + ".raw", data.substr(k * data.size() / 4, data.size() / 4));
+        list += "part" + std::to_string(k) + ".raw\n";
+    }
+    const std::string header = dir.write(
+        "list.nhdr", vots::test::nrrdHeader("short", "raw", "endian: little\ndata file: LIST\n" + list));
+    expectPlanesMatchCut({header, std::nullopt}, true);
+}
+
+TEST(VolumePlanes, NiftiPlainEveryTypeAndScaled) {
+    TempDir dir;
+    const std::pair<short, ScalarType> datatypes[] = {{2, ScalarType::UInt8},    {4, ScalarType::Int16},
+                                                      {16, ScalarType::Float32}, {64, ScalarType::Float64},
+                                                      {512, ScalarType::UInt16}, {8, ScalarType::Int32}};
+    for (const auto& [datatype, type] : datatypes) {
+        for (const float slope : {0.0f, 2.5f}) {
+            if (slope != 0.0f && type == ScalarType::Float64) continue; // its 3e38 would leave float range
+            vots::test::NiftiSpec spec;
+            spec.datatype = datatype;
+            spec.bitpix = static_cast<short>(8 * encode({0.0}, type, false).size());
+            spec.sclSlope = slope;
+            spec.sclInter = slope != 0.0f ? -10.0f : 0.0f;
+            spec.sformCode = 1;
+            spec.srow = {{{-0.5f, 0.0f, 0.0f}, {0.0f, 0.0f, 3.0f}, {0.0f, 1.25f, 0.0f}}};
+            spec.srowOffset = {4.0f, -5.0f, 6.0f};
+            const std::string path =
+                dir.write(std::to_string(datatype) + "s" + std::to_string(static_cast<int>(slope)) + ".nii",
+                          vots::test::niftiHeader(spec) + encode(fixtureValues(type), type, false));
+            expectPlanesMatchCut({path, std::nullopt}, true);
+        }
+    }
+}
+
+TEST(VolumePlanes, MetaImageLocalAndDetachedWithHeaderSize) {
+    TempDir dir;
+    for (const ScalarType type : {ScalarType::Int16, ScalarType::Float32}) {
+        const char* met = type == ScalarType::Int16 ? "MET_SHORT" : "MET_FLOAT";
+        const std::string data = encode(fixtureValues(type), type, true);
+        const std::string fields = std::string("NDims = 3\nDimSize = 5 4 3\nElementSpacing = 1 2 3\n"
+                                               "Offset = 1 2 3\nTransformMatrix = 0 1 0 1 0 0 0 0 -1\n"
+                                               "ElementByteOrderMSB = True\nElementType = ") +
+                                   met + "\n";
+        const std::string local =
+            dir.write(std::string(met) + ".mha", fields + "ElementDataFile = LOCAL\n" + data);
+        dir.write(std::string(met) + ".raw", std::string(11, 'h') + data);
+        const std::string detached = dir.write(
+            std::string(met) + ".mhd", fields + "HeaderSize = 11\n" + "ElementDataFile = " + met + ".raw\n");
+        expectPlanesMatchCut({local, std::nullopt}, true);
+        expectPlanesMatchCut({detached, std::nullopt}, true);
+    }
+}
+
+TEST(VolumePlanes, RawLayoutWithHeaderBytes) {
+    TempDir dir;
+    for (const ScalarType type : TYPES) {
+        RawLayout layout;
+        layout.dims = FIXTURE_DIMS;
+        layout.type = type;
+        layout.spacing = {0.5, 0.5, 2.0};
+        layout.bigEndian = true;
+        layout.headerBytes = 9;
+        const std::string path = dir.write(scalarTypeName(type) + ".dat",
+                                           std::string(9, 'h') + encode(fixtureValues(type), type, true));
+        expectPlanesMatchCut({path, layout}, true);
+    }
+}
+
+TEST(VolumePlanes, CompressedFilesAreLoadedWholeAndCut) {
+    TempDir dir;
+    const std::string data = encode(fixtureValues(ScalarType::Int16), ScalarType::Int16, false);
+    const std::string gzNrrd =
+        dir.write("g.nrrd", vots::test::nrrdHeader("short", "gzip", "endian: little\n") + "\n");
+    vots::test::appendGzip(gzNrrd, data);
+    vots::test::NiftiSpec spec;
+    const std::string gzNifti = dir.file("g.nii.gz");
+    vots::test::appendGzip(gzNifti, vots::test::niftiHeader(spec) + data);
+    const std::string packed = vots::test::zlibBytes(data);
+    const std::string zlibMha = dir.write("z.mha", "NDims = 3\nDimSize = 5 4 3\nElementType = MET_SHORT\n"
+                                                   "CompressedData = True\nElementDataFile = LOCAL\n" +
+                                                       packed);
+    for (const std::string& path : {gzNrrd, gzNifti, zlibMha})
+        expectPlanesMatchCut({path, std::nullopt}, false);
+}
+
+TEST(VolumePlanes, ReadsOnlyThePlanesBytes) {
+    // A NaN in plane 2: the whole load refuses it, planes 0..1 never read it.
+    TempDir dir;
+    std::vector<double> values = fixtureValues(ScalarType::Float32);
+    values.back() = std::numeric_limits<double>::quiet_NaN();
+    const std::string path =
+        dir.write("nan.nrrd", vots::test::nrrdHeader("float", "raw", "endian: little\n") + "\n" +
+                                  encode(values, ScalarType::Float32, false));
+    EXPECT_THROW(loadVolume(path), InputError);
+    const Volume planes = loadVolumePlanes(path, 0, 1).planes;
+    EXPECT_EQ(planes.dims, (std::array<int, 3>{5, 4, 2}));
+    EXPECT_THROW(loadVolumePlanes(path, 1, 2), InputError);
+}
+
+TEST(VolumePlanes, RefusesPlanesOutsideTheGridAndShortFiles) {
+    TempDir dir;
+    const std::string data = encode(fixtureValues(ScalarType::Int16), ScalarType::Int16, false);
+    const std::string path =
+        dir.write("v.nrrd", vots::test::nrrdHeader("short", "raw", "endian: little\n") + "\n" + data);
+    EXPECT_THROW(loadVolumePlanes(path, 0, 3), InputError);
+    EXPECT_THROW(loadVolumePlanes(path, 2, 1), InputError);
+    // The planes asked for are there, but the file is short of the whole payload: refused alike.
+    const std::string cut = dir.write("cut.nrrd", vots::test::nrrdHeader("short", "raw", "endian: little\n") +
+                                                      "\n" + data.substr(0, 50));
+    EXPECT_THROW(loadVolumePlanes(cut, 0, 0), InputError);
+    EXPECT_THROW(loadVolumePlanes(dir.file("missing.nrrd"), 0, 0), InputError);
+    EXPECT_THROW(readsPlanesByOffset(dir.write("v.xyz", data)), InputError);
+}
+
+} // namespace

@@ -1,0 +1,88 @@
+#!/usr/bin/env bash
+# `mpirun -np N vots fit` on loopback, N = 1, 2, 3 (3 oversubscribed on 2 cores): each rank reads only its
+# slab of a raw NRRD; the one file rank 0 writes verifies against the volume, records the ranks, is
+# reproducible, with one rank holds the single-process Vots, renders alike in one process and on N
+# ranks; the gzip input (loaded whole, then cut) gives the same Vots; a failure on one rank ends all
+# (fit and render).
+# Usage: tests/mpi/mpi_fit.sh VOTS_BINARY GZIP_NRRD_VOLUME
+set -euo pipefail
+vots=$1 gzipped=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+# CI runs as root; Open MPI refuses that unless told, and must not look for other hosts.
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl=self,vader
+mpi() { mpirun --oversubscribe -np "$1" "${@:2}"; }
+fail() { echo "mpi_fit: $*" >&2; exit 1; }
+# The header and the Vot records of a .vots file (docs/DESIGN.md §8): everything but meta_bytes and the
+# meta block, whose fit times differ from run to run.
+vots_body() {
+    local count
+    count=$(od -An -tu8 -j88 -N8 "$1" | tr -d ' ')
+    { head -c 96 "$1"; tail -c +105 "$1" | head -c $((24 + 120 * count)); }
+}
+# A key of `vots info --json` (compact JSON, the meta block in it), without jq: "ranks":2, ...
+json_key() { "$vots" info --json "$1" | grep -oE "\"$2\":(\[[^]]*\]|[^,}]*)"; }
+fit_args=(--eps 2% --threads 1)
+view=(--cam az=30,el=20 --size 96x80)
+
+# The same samples as a detached raw NRRD, which the ranks read by offset.
+header_lines=$(sed -n '/^$/=' "$gzipped" | head -1)
+tail -n +$((header_lines + 1)) "$gzipped" | gunzip >"$work/head.raw"
+head -n "$header_lines" "$gzipped" | grep -aE '^(type|dimension|sizes|spacings|endian):' >"$work/fields"
+{ echo NRRD0004; cat "$work/fields"; echo "encoding: raw"; echo "data file: head.raw"; } >"$work/head.nhdr"
+volume=$work/head.nhdr
+
+"$vots" fit "$volume" -o "$work/one.vots" "${fit_args[@]}" >/dev/null
+for n in 1 2 3; do
+    out=$work/$n.vots
+    mpi "$n" "$vots" fit "$volume" -o "$out" "${fit_args[@]}" >"$work/stdout" 2>"$work/stderr" ||
+        fail "$n ranks: fit failed: $(cat "$work/stderr")"
+    (($(grep -c '^wrote ' "$work/stdout") == 1)) || fail "$n ranks: not exactly one rank reported: $(cat "$work/stdout")"
+    "$vots" verify "$out" "$volume" >"$work/verify" || fail "$n ranks: verify failed: $(cat "$work/verify")"
+    [[ $(json_key "$out" ranks) == "\"ranks\":$n" ]] || fail "$n ranks: the meta block does not record ranks $n"
+    "$vots" info "$out" | grep -q "^ranks *$n " || fail "$n ranks: vots info does not show the ranks"
+    for key in value_range background eps; do
+        [[ $(json_key "$out" $key) == "$(json_key "$work/one.vots" $key)" ]] ||
+            fail "$n ranks: $key differs from one process's: $(json_key "$out" $key)"
+    done
+done
+cmp -s <(vots_body "$work/one.vots") <(vots_body "$work/1.vots") || fail "one rank's Vots differ from one process's"
+cmp -s <(vots_body "$work/one.vots") <(vots_body "$work/2.vots") && fail "two ranks gave one process's Vots (no split?)"
+
+# Reproducible: the same arguments and N give the same bytes, meta block apart from its fit times.
+mpi 2 "$vots" fit "$volume" -o "$work/2b.vots" "${fit_args[@]}" >/dev/null
+cmp -s <(vots_body "$work/2.vots") <(vots_body "$work/2b.vots") || fail "two runs on 2 ranks differ"
+no_times() { "$vots" info --json "$1" | sed -E 's/"(fit_)?seconds":[^,}]*//g; s/"file":"[^"]*"//'; }
+[[ $(no_times "$work/2.vots") == "$(no_times "$work/2b.vots")" ]] || fail "two runs on 2 ranks: meta blocks differ"
+
+# The gzip file is loaded whole on each rank and cut: the same slabs, so the same Vots.
+mpi 2 "$vots" fit "$gzipped" -o "$work/gz.vots" "${fit_args[@]}" >/dev/null
+cmp -s <(vots_body "$work/2.vots") <(vots_body "$work/gz.vots") || fail "gzip and raw input differ on 2 ranks"
+
+# The N-rank file in one process and on N ranks (each rank its Vots, frames composited) draws alike.
+for n in 2 3; do
+    "$vots" render "$work/$n.vots" -o "$work/$n-one.png" "${view[@]}" 2>/dev/null
+    mpi "$n" "$vots" render "$work/$n.vots" -o "$work/$n-ranks.png" "${view[@]}" 2>/dev/null
+    cmp -s "$work/$n-one.png" "$work/$n-ranks.png" || fail "the $n-rank file renders differently on $n ranks"
+done
+
+# A NaN in the last plane: only the last rank reads it; every rank exits 2, rank 0 names it, no file.
+{
+    printf 'NRRD0004\ntype: float\ndimension: 3\nsizes: 8 8 10\nencoding: raw\nendian: little\n\n'
+    head -c 1280 /dev/zero
+    for _ in $(seq 319); do printf '\x00\x00\x80\x3f'; done
+    printf '\x00\x00\xc0\x7f'
+} >"$work/nan.nrrd"
+status=0
+timeout 120 mpirun --oversubscribe -np 2 "$vots" fit "$work/nan.nrrd" -o "$work/nan.vots" --eps 0.1 \
+    >/dev/null 2>"$work/err" || status=$?
+((status == 2)) || fail "a NaN on rank 1: exit $status, not 2: $(cat "$work/err")"
+grep -q "vots: error: rank 1: .*not finite" "$work/err" || fail "a NaN on rank 1: no clear message: $(cat "$work/err")"
+[[ ! -e $work/nan.vots ]] || fail "a failed fit wrote its output"
+status=0 # `vots render VOLUME` reads its slabs alike
+timeout 120 mpirun --oversubscribe -np 2 "$vots" render "$work/nan.nrrd" -o "$work/nan.png" --eps 0.1 \
+    --size 32x32 >/dev/null 2>"$work/err" || status=$?
+((status == 2)) || fail "render, a NaN on rank 1: exit $status, not 2: $(cat "$work/err")"
+grep -q "vots: error: rank 1: .*not finite" "$work/err" || fail "render, a NaN on rank 1: $(cat "$work/err")"
+[[ ! -e $work/nan.png ]] || fail "a failed render wrote its output"
+echo "mpi_fit: OK"

@@ -1,0 +1,113 @@
+#!/usr/bin/env bash
+# `mpirun -np 2 vots serve` on loopback: rank 0 answers /render with the frame the two ranks composite,
+# the bytes of `mpirun -np 2 vots render` of the same camera and eps (mip, minip with a slab; the aip
+# within one grey level); /api/stats says "ranks": 2 with both ranks' times; what is not composited is
+# refused with 409; a rank killed mid-session makes the next /render a 503 JSON within the frame deadline,
+# and every later one; SIGTERM to rank 0 then ends the job cleanly, all of it bounded by timeouts.
+# Usage: tests/mpi/mpi_serve.sh VOTS_BINARY VOLUME [OTHER_VOLUME]
+set -euo pipefail
+vots=$1 volume=$2 other=${3:-}
+work=$(mktemp -d)
+job=
+cleanup() {
+    [[ -n $job ]] && kill -KILL "$job" 2>/dev/null
+    rm -rf "$work"
+}
+trap cleanup EXIT
+# CI runs as root; Open MPI refuses that unless told, and must not look for other hosts.
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl=self,vader
+fail() {
+    echo "mpi_serve: $*" >&2
+    sed 's/^/  serve: /' "$work/serve.log" >&2 || true
+    exit 1
+}
+png_diff() { /usr/bin/python3 "$(dirname "$0")/png_diff.py" "$@"; } # Debian's python3-pil
+
+mkdir "$work/data"
+ln -s "$(realpath "$volume")" "$work/data/$(basename "$volume")"
+[[ -n $other ]] && ln -s "$(realpath "$other")" "$work/data/$(basename "$other")"
+name=$(basename "$volume" | sed -E 's/\.(nrrd|nhdr|nii\.gz|nii|mhd|mha)$//')
+
+# --enable-recovery: without it Open MPI ends the whole job, rank 0 too, when one rank dies.
+mpirun --oversubscribe --enable-recovery -np 2 "$vots" serve --port 0 --data "$work/data" \
+    --cache-dir "$work/cache" --prepare "$name" >"$work/serve.log" 2>&1 &
+job=$!
+url=
+for _ in $(seq 240); do
+    url=$(sed -nE 's|^vots serve: listening on (http://[^ ]+/)$|\1|p' "$work/serve.log")
+    [[ -n $url ]] && break
+    kill -0 "$job" 2>/dev/null || fail "mpirun ended before listening"
+    sleep 0.5
+done
+[[ -n $url ]] || fail "no 'listening on' line within 120 s"
+get() { curl -s --max-time 60 -o "$1" -w '%{http_code}' "${url}$2"; }
+view="cam=az=30,el=20&size=96x80&eps=2%25"
+render_args=(--cam az=30,el=20 --size 96x80 --eps 2%)
+
+code=$(get "$work/served-mip.png" "render?dataset=$name&$view")
+[[ $code == 200 ]] || fail "/render answered $code: $(cat "$work/served-mip.png")"
+mpirun --oversubscribe -np 2 "$vots" render "$volume" -o "$work/ranks-mip.png" "${render_args[@]}" 2>/dev/null
+cmp -s "$work/served-mip.png" "$work/ranks-mip.png" || fail "the served mip differs from mpirun vots render's"
+
+code=$(get "$work/served-minip.png" "render?dataset=$name&$view&mode=minip&slab=-10,30")
+[[ $code == 200 ]] || fail "/render mode=minip answered $code"
+mpirun --oversubscribe -np 2 "$vots" render "$volume" -o "$work/ranks-minip.png" --mode minip --slab -10,30 \
+    "${render_args[@]}" 2>/dev/null
+cmp -s "$work/served-minip.png" "$work/ranks-minip.png" || fail "the served minip differs from mpirun vots render's"
+
+code=$(get "$work/served-aip.png" "render?dataset=$name&$view&mode=aip")
+[[ $code == 200 ]] || fail "/render mode=aip answered $code"
+mpirun --oversubscribe -np 2 "$vots" render "$volume" -o "$work/ranks-aip.png" --mode aip "${render_args[@]}" \
+    2>/dev/null
+read -r worst differing < <(png_diff "$work/served-aip.png" "$work/ranks-aip.png")
+((worst <= 1)) || fail "the served aip differs from mpirun vots render's by $worst grey levels ($differing pixels)"
+
+get "$work/stats.json" "api/stats" >/dev/null
+/usr/bin/python3 - "$work/stats.json" <<'PY' || fail "/api/stats: $(cat "$work/stats.json")"
+import json, sys
+stats = json.load(open(sys.argv[1]))
+assert stats["ranks"] == 2, stats["ranks"]
+times = stats["rankTimes"]
+assert [t["rank"] for t in times] == [0, 1], times
+assert all(t["frameMs"] > 0 for t in times), times
+PY
+
+for refused in "render?dataset=$name&$view&mode=density" "render?dataset=$name&$view&mode=reference"; do
+    code=$(get "$work/refused.json" "$refused")
+    [[ $code == 409 ]] && grep -q '"error"' "$work/refused.json" || fail "$refused answered $code, not 409 JSON"
+done
+if [[ -n $other ]]; then
+    otherName=$(basename "$other" | sed -E 's/\.(nrrd|nhdr|nii\.gz|nii|mhd|mha)$//')
+    code=$(get "$work/refused.json" "render?dataset=$otherName&$view")
+    [[ $code == 409 ]] || fail "a second dataset answered $code, not 409"
+fi
+
+rank_pid() {
+    local pid
+    for pid in $(pgrep -P "$job"); do
+        tr '\0' '\n' <"/proc/$pid/environ" 2>/dev/null | grep -qx "OMPI_COMM_WORLD_RANK=$1" && echo "$pid"
+    done
+}
+rank0=$(rank_pid 0) rank1=$(rank_pid 1)
+[[ -n $rank0 && -n $rank1 ]] || fail "cannot find the ranks' processes"
+kill -KILL "$rank1"
+start=$(date +%s)
+code=$(get "$work/lost.json" "render?dataset=$name&cam=az=60,el=20&size=96x80&eps=2%25")
+seconds=$(($(date +%s) - start))
+[[ $code == 503 ]] && grep -q '"error":"rank 1' "$work/lost.json" ||
+    fail "with rank 1 killed /render answered $code: $(cat "$work/lost.json")"
+((seconds <= 30)) || fail "the 503 took $seconds s"
+code=$(get "$work/lost.json" "render?dataset=$name&cam=az=90,el=20&size=96x80&eps=2%25")
+[[ $code == 503 ]] || fail "a later /render answered $code, not 503"
+(($(grep -c "rank 1 of 2" "$work/serve.log") == 1)) || fail "the lost rank is not logged once"
+
+kill -TERM "$rank0"
+for _ in $(seq 60); do
+    kill -0 "$job" 2>/dev/null || break
+    sleep 0.5
+done
+kill -0 "$job" 2>/dev/null && fail "mpirun still runs 30 s after SIGTERM to rank 0"
+wait "$job" || true
+job=
+grep -q "vots serve: stopping" "$work/serve.log" || fail "rank 0 did not stop cleanly"
+echo "mpi_serve: OK (503 after $seconds s)"

@@ -1,0 +1,100 @@
+// The FrameCompositor hook (`vots serve` under mpirun): frames go through it unfitted, what it refuses is
+// 409, a lost rank is 503, and /api/stats shows its ranks; a fake compositor stands for the MPI one.
+#include "ServerFixture.h"
+
+#include "vots/render/Png.h"
+#include "vots/server/FrameCompositor.h"
+
+#include <atomic>
+#include <mutex>
+#include <optional>
+
+namespace vots::test {
+namespace {
+
+/// Draws a flat colour, or throws RanksLost once told a rank is gone; keeps the last request.
+class FakeCompositor : public server::FrameCompositor {
+public:
+    int ranks() const override { return 3; }
+    std::string refusal(const std::string& dataset, const render::FrameRequest& frame) const override {
+        if (dataset != HEAD_MR) return "only " + std::string(HEAD_MR);
+        return frame.mode == render::RenderMode::Density ? "no density" : "";
+    }
+    render::RgbaImage draw(const server::CompositeRequest& request, render::VotRenderer&) override {
+        if (lost) throw server::RanksLost("rank 2 of 3 did not answer the frame in time");
+        std::lock_guard lock(mutex);
+        last = request;
+        return flat(request.frame.width, request.frame.height);
+    }
+    std::vector<server::RankTimes> lastTimes() const override {
+        return {{0, 0.0, 1.0, 0.5}, {1, 2.0, 3.0, 4.0}, {2, 0.0, 5.0, 6.0}};
+    }
+    static render::RgbaImage flat(int width, int height) {
+        render::RgbaImage image{width, height, {}};
+        for (int i = 0; i < width * height; ++i)
+            image.pixels.insert(image.pixels.end(), {40, 90, 200, 255});
+        return image;
+    }
+
+    std::atomic<bool> lost{false};
+    std::mutex mutex;
+    std::optional<server::CompositeRequest> last;
+};
+
+std::string pngOf(const render::RgbaImage& image) {
+    const auto bytes = render::encodePng(image);
+    return {bytes.begin(), bytes.end()};
+}
+
+TEST(ServerCompositor, FramesGoThroughItUnfittedRefusalsAre409AndALostRankIs503) {
+    ServerWorld world;
+    auto compositor = std::make_shared<FakeCompositor>();
+    server::ServerOptions options = world.options();
+    options.compositor = compositor;
+    options.warmUpFits = false;
+    LoopbackServer server(options);
+    auto c = server.client();
+
+    const auto res =
+        c->Get("/render?dataset=HeadMRVolume_48x62x42_uint8&cam=az=30,el=20&size=40x30&eps=2%25");
+    ASSERT_TRUE(res);
+    if (res->status == 503) GTEST_SKIP() << "no renderer here: " << res->body;
+    ASSERT_EQ(res->status, 200) << res->body;
+    EXPECT_EQ(res->body, pngOf(FakeCompositor::flat(40, 30)));
+    {
+        std::lock_guard lock(compositor->mutex);
+        ASSERT_TRUE(compositor->last);
+        const server::CompositeRequest& asked = *compositor->last;
+        EXPECT_EQ(asked.dataset, HEAD_MR);
+        EXPECT_EQ(asked.volumePath.filename(), std::string(HEAD_MR) + ".nrrd");
+        EXPECT_EQ(asked.frame.width, 40);
+        EXPECT_EQ(asked.frame.camera.azimuthDeg, 30.0);
+        EXPECT_LT(asked.valueRange[0], asked.valueRange[1]);
+        // 2 % of the whole range, in data units, as every rank resolves it.
+        EXPECT_FLOAT_EQ(asked.eps, 0.02f * (asked.valueRange[1] - asked.valueRange[0]));
+    }
+
+    nlohmann::json stats = bodyJson(c->Get("/api/stats"));
+    EXPECT_EQ(stats["ranks"], 3);
+    ASSERT_EQ(stats["rankTimes"].size(), 3u);
+    EXPECT_EQ(stats["rankTimes"][1]["rank"], 1);
+    EXPECT_EQ(stats["rankTimes"][2]["compositeMs"], 6.0);
+    EXPECT_TRUE(stats["fits"].empty()) << "rank 0 fitted the whole volume: " << stats["fits"];
+
+    for (const char* refused : {"/render?dataset=neghip_64x64x64_uint8&size=40x30",
+                                "/render?dataset=HeadMRVolume_48x62x42_uint8&size=40x30&mode=density"}) {
+        const auto no = c->Get(refused);
+        ASSERT_TRUE(no);
+        EXPECT_EQ(no->status, 409) << refused;
+        EXPECT_TRUE(bodyJson(no).contains("error")) << refused;
+    }
+
+    compositor->lost = true;
+    const auto lost = c->Get("/render?dataset=HeadMRVolume_48x62x42_uint8&cam=az=60,el=20&size=40x30");
+    ASSERT_TRUE(lost);
+    EXPECT_EQ(lost->status, 503);
+    EXPECT_EQ(bodyJson(lost)["error"], "rank 2 of 3 did not answer the frame in time");
+}
+
+} // namespace
+} // namespace vots::test
