@@ -31,15 +31,12 @@ FrameCache::get(const std::string& key, const std::function<Frame()>& render, So
             }
         }
         if (inFlight.valid()) {
-            try {
-                FramePtr frame = inFlight.get();
-                std::lock_guard lock(mMutex);
-                ++mShared;
-                if (source) *source = Source::Shared;
-                return frame;
-            } catch (...) {
-                continue; // its failure was its own: look again, and render if nobody else does
-            }
+            FramePtr frame = inFlight.get();
+            if (!frame) continue; // its failure was its own: look again, and render if nobody else does
+            std::lock_guard lock(mMutex);
+            ++mShared;
+            if (source) *source = Source::Shared;
+            return frame;
         }
         try {
             auto frame = std::make_shared<const Frame>(render());
@@ -55,7 +52,9 @@ FrameCache::get(const std::string& key, const std::function<Frame()>& render, So
                 std::lock_guard lock(mMutex);
                 if (registered) mInFlight.erase(key);
             }
-            if (registered) mine.set_exception(std::current_exception());
+            // Joiners learn of the failure as no frame: the exception object stays on this thread
+            // (one shared across threads is freed where ThreadSanitizer cannot see the ordering).
+            if (registered) mine.set_value(nullptr);
             throw;
         }
     }
