@@ -11,6 +11,7 @@
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
+#include <future>
 #include <unistd.h>
 #include <vector>
 
@@ -105,6 +106,31 @@ void checkOutputFolder(const std::string& path) {
         throw fit::InputError("cannot write " + path + ": folder '" + folder.string() + "' is not writable");
 }
 
+namespace {
+
+/// Runs each frame's encoding and write on a second thread, one at a time and in frame order, while the
+/// caller's GL thread draws the next frame: encoding a frame costs about as much as drawing it.
+class OverlappedWrites {
+public:
+    ~OverlappedWrites() {
+        // A draw that throws mid-turn still lets the frame in flight finish before the caller's
+        // destructors remove the temporaries it may be writing.
+        if (mInFlight.valid()) mInFlight.wait();
+    }
+    void push(std::function<void()> write) {
+        if (mInFlight.valid()) mInFlight.get(); // rethrows the previous frame's error here
+        mInFlight = std::async(std::launch::async, std::move(write));
+    }
+    void finish() {
+        if (mInFlight.valid()) mInFlight.get();
+    }
+
+private:
+    std::future<void> mInFlight;
+};
+
+} // namespace
+
 void writeTurntable(const TurntableOutput& output, const render::FrameRequest& first, int frames,
                     std::optional<double> elevationDeg,
                     const std::function<render::RgbaImage(const render::FrameRequest&)>& draw) {
@@ -115,14 +141,20 @@ void writeTurntable(const TurntableOutput& output, const render::FrameRequest& f
     };
     if (output.format == TurntableFormat::Webm) {
         render::WebmWriter video(first.width, first.height);
+        OverlappedWrites writes; // after `video`, so it is destroyed (and waited for) first
         for (int k = 0; k < frames; ++k)
-            video.addFrame(draw(frameAt(k)));
+            writes.push([&video, image = draw(frameAt(k))] { video.addFrame(image); });
+        writes.finish();
         render::writeFileAtomically(output.path, video.finish());
         return;
     }
     PendingFrames pending;
+    OverlappedWrites writes; // after `pending`, so a frame in flight ends before its temporary is removed
     for (int k = 0; k < frames; ++k)
-        pending.add(framePath(output.path, k), draw(frameAt(k)));
+        writes.push([&pending, path = framePath(output.path, k), image = draw(frameAt(k))] {
+            pending.add(path, image);
+        });
+    writes.finish();
     pending.commit();
 }
 
