@@ -54,7 +54,7 @@ void checkPlanesFitBudget(const std::string& path, const std::optional<fit::RawL
                           fit::SampleStorage storage) {
     fit::VolumeHeaderInfo header = fit::volumeHeaderInfo(path, raw, dicomSeries);
     // Otherwise the whole is loaded before its planes are cut: its estimate stays, an upper bound.
-    if (fit::readsPlanesByOffset(path, raw)) header.dims[2] = std::min(header.dims[2], planes);
+    if (fit::readsOnlyPlanes(path, raw)) header.dims[2] = std::min(header.dims[2], planes);
     checkFitsBudget(path, header, budgetText, storage);
 }
 

@@ -28,7 +28,7 @@ void checkVolumeFitsBudget(const std::string& path, const std::optional<fit::Raw
                            fit::SampleStorage storage = fit::SampleStorage::Float);
 
 /// The same for one rank under mpirun that loads and fits `planes` z planes: read by offset where the
-/// format allows (fit::readsPlanesByOffset), else the whole volume is read before its planes are cut.
+/// format allows (fit::readsOnlyPlanes), else the whole volume is read before its planes are cut.
 void checkPlanesFitBudget(const std::string& path, const std::optional<fit::RawLayout>& raw,
                           const std::string& budgetText, const std::string& dicomSeries, std::uint64_t planes,
                           fit::SampleStorage storage = fit::SampleStorage::Float);

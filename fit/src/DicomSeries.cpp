@@ -5,6 +5,7 @@
 #include "DicomChild.h"
 #include "DicomLayout.h"
 #include "InputFile.h"
+#include "StoredSamples.h"
 
 #include <gdcmImage.h>
 #include <gdcmImageReader.h>
@@ -102,21 +103,25 @@ void decodeAndSend(const DicomSliceHeader& slice, const std::array<int, 3>& dims
     child.send(buffer.data(), expected);
 }
 
-template <typename T> void loadInto(const DicomSeriesLayout& layout, std::vector<T>& out) {
+/// Decodes slices [first, last] of the layout into `out`, plane first - first onwards; the other
+/// slices' files are not opened again.
+template <typename T> void loadInto(const DicomSeriesLayout& layout, int first, int last, std::vector<T>& out) {
     const std::size_t pixels =
         static_cast<std::size_t>(layout.dims[0]) * static_cast<std::size_t>(layout.dims[1]);
-    out.resize(pixels * static_cast<std::size_t>(layout.dims[2]));
+    const auto begin = layout.slices.begin() + first;
+    const auto end = layout.slices.begin() + last + 1;
+    out.resize(pixels * static_cast<std::size_t>(last - first + 1));
     detail::runIsolated(
         [&](detail::ChildSender& child) {
-            for (const DicomSliceHeader& slice : layout.slices) {
-                child.announce(slice.path);
-                decodeAndSend(slice, layout.dims, child);
+            for (auto slice = begin; slice != end; ++slice) {
+                child.announce(slice->path);
+                decodeAndSend(*slice, layout.dims, child);
             }
         },
         [&](detail::ParentReceiver& parent) {
             std::vector<char> buffer;
-            for (std::size_t z = 0; z < layout.slices.size(); ++z) {
-                const DicomSliceHeader& header = layout.slices[z];
+            for (std::size_t z = 0; z < static_cast<std::size_t>(end - begin); ++z) {
+                const DicomSliceHeader& header = *(begin + static_cast<std::ptrdiff_t>(z));
                 SliceFormat format;
                 parent.nextInto(reinterpret_cast<char*>(&format), sizeof format);
                 buffer.resize(pixels * static_cast<std::size_t>(format.bitsAllocated / 8));
@@ -150,8 +155,10 @@ VolumeHeaderInfo dicomSeriesHeaderInfo(const std::string& folder, const std::str
     return info;
 }
 
-Volume loadDicomSeries(const std::string& folder, const std::string& seriesUid, SampleStorage storage) {
-    const DicomSeriesLayout layout = detail::layoutDicomSeries(folder, seriesUid);
+namespace {
+
+/// The series' grid as loadDicomSeries gives it, without samples.
+Volume gridOfLayout(const DicomSeriesLayout& layout, const std::string& folder) {
     Volume volume;
     volume.dims = layout.dims;
     volume.spacing = layout.spacing;
@@ -160,17 +167,39 @@ Volume loadDicomSeries(const std::string& folder, const std::string& seriesUid, 
     volume.orientationKnown = true;
     volume.sourceType = layout.valueType;
     volume.name = folderName(folder);
+    return volume;
+}
+
+/// Fills `into` (a grid of planes [first, last]) with those slices, in the storage asked for.
+void loadSlices(const DicomSeriesLayout& layout, int first, int last, SampleStorage storage, Volume& into) {
     const bool compact = storage == SampleStorage::Source && layout.valueType != ScalarType::Float32;
     if (!compact) {
-        loadInto(layout, volume.values);
+        loadInto(layout, first, last, into.values);
     } else if (layout.valueType == ScalarType::UInt8) {
-        loadInto(layout, volume.compact.emplace<std::vector<std::uint8_t>>());
+        loadInto(layout, first, last, into.compact.emplace<std::vector<std::uint8_t>>());
     } else if (layout.valueType == ScalarType::Int16) {
-        loadInto(layout, volume.compact.emplace<std::vector<std::int16_t>>());
+        loadInto(layout, first, last, into.compact.emplace<std::vector<std::int16_t>>());
     } else {
-        loadInto(layout, volume.compact.emplace<std::vector<std::uint16_t>>());
+        loadInto(layout, first, last, into.compact.emplace<std::vector<std::uint16_t>>());
     }
+}
+
+} // namespace
+
+Volume loadDicomSeries(const std::string& folder, const std::string& seriesUid, SampleStorage storage) {
+    const DicomSeriesLayout layout = detail::layoutDicomSeries(folder, seriesUid);
+    Volume volume = gridOfLayout(layout, folder);
+    loadSlices(layout, 0, layout.dims[2] - 1, storage, volume);
     return volume;
+}
+
+Volume loadDicomSeriesPlanes(const std::string& folder, int first, int last, Volume& grid,
+                             const std::string& seriesUid, SampleStorage storage) {
+    const DicomSeriesLayout layout = detail::layoutDicomSeries(folder, seriesUid);
+    grid = gridOfLayout(layout, folder);
+    Volume planes = detail::gridOfPlanes(grid, first, last); // throws for planes outside the series
+    loadSlices(layout, first, last, storage, planes);
+    return planes;
 }
 
 } // namespace vots::fit

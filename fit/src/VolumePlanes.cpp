@@ -1,4 +1,4 @@
-// Runs of z planes: cut out of a loaded volume, or read by offset from files that store samples uncompressed.
+// Runs of z planes: cut out of a loaded volume, or read alone (by offset, or a DICOM series' own slices).
 #include "vots/fit/VolumePlanes.h"
 
 #include "vots/fit/DicomSeries.h"
@@ -72,17 +72,22 @@ std::optional<detail::StoredSamples> storedSamplesOf(const std::string& path,
 
 } // namespace
 
-bool readsPlanesByOffset(const std::string& path, const std::optional<RawLayout>& raw) {
-    return storedSamplesOf(path, raw).has_value();
+bool readsOnlyPlanes(const std::string& path, const std::optional<RawLayout>& raw) {
+    return (!raw && isDicomFolder(path)) || storedSamplesOf(path, raw).has_value();
 }
 
 VolumeSlab loadVolumePlanes(const std::string& path, int first, int last, const std::optional<RawLayout>& raw,
                             SampleStorage storage, const std::string& dicomSeries) {
+    if (!raw && isDicomFolder(path)) {
+        VolumeSlab slab;
+        slab.planes = loadDicomSeriesPlanes(path, first, last, slab.whole, dicomSeries, storage);
+        return slab;
+    }
     if (auto stored = storedSamplesOf(path, raw)) {
         Volume planes = detail::readStoredPlanes(path, *stored, first, last, storage);
         return {std::move(planes), std::move(stored->grid)};
     }
-    // Compressed or DICOM: the planes cannot be reached without reading what precedes them.
+    // Compressed: the planes cannot be reached without decompressing what precedes them.
     const Volume whole = loadVolume(path, raw, storage, dicomSeries);
     return {planesOf(whole, first, last), gridOf(whole)};
 }

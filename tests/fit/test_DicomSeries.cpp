@@ -3,6 +3,7 @@
 #include "vots/fit/Error.h"
 #include "vots/fit/VolumeHeader.h"
 #include "vots/fit/VolumeLoad.h"
+#include "vots/fit/VolumePlanes.h"
 
 #include "SampleVolume.h"
 #include "TempDir.h"
@@ -10,7 +11,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 namespace {
 
@@ -227,6 +231,73 @@ TEST(DicomSeries, DamagedHeaderIsNotSkipped) {
         EXPECT_NE(std::string(e.what()).find("slice-0002.dcm: is a"), std::string::npos) << e.what();
         EXPECT_NE(std::string(e.what()).find("DICOM file"), std::string::npos) << e.what();
     }
+}
+
+// Under mpirun each rank loads its planes of a series: the same bits as cutting the whole series, with
+// only the planes' slice files decoded.
+TEST(DicomSeries, PlanesAreTheCutOfTheWholeSeries) {
+    TempDir dir;
+    const Volume source = ramp({9, 7, 5});
+    DicomWriteOptions o;
+    o.order = DicomFileOrder::Shuffled; // planes follow the positions, not the file names
+    o.slicesAlongNormal = false;        // and a third axis against the normal
+    o.origin = {3.25, -7.5, 41.0};
+    writeDicomSeries(source, dir.file("ct"), o);
+    EXPECT_TRUE(readsOnlyPlanes(dir.file("ct")));
+    for (const SampleStorage storage : {SampleStorage::Float, SampleStorage::Source}) {
+        const Volume whole = loadVolume(dir.file("ct"), std::nullopt, storage);
+        for (int first = 0; first < 5; ++first) {
+            for (int last = first; last < 5; ++last) {
+                SCOPED_TRACE("planes " + std::to_string(first) + ".." + std::to_string(last));
+                const Volume cut = planesOf(whole, first, last);
+                const VolumeSlab slab = loadVolumePlanes(dir.file("ct"), first, last, std::nullopt, storage);
+                EXPECT_EQ(slab.planes.dims, cut.dims);
+                EXPECT_EQ(std::memcmp(slab.planes.origin.data(), cut.origin.data(), sizeof cut.origin), 0);
+                EXPECT_EQ(slab.planes.spacing, cut.spacing);
+                EXPECT_EQ(slab.planes.patientAxes, cut.patientAxes);
+                EXPECT_EQ(slab.planes.name, cut.name);
+                EXPECT_EQ(slab.planes.values, cut.values);
+                EXPECT_EQ(slab.planes.compact, cut.compact);
+                EXPECT_EQ(slab.whole.dims, whole.dims);
+                EXPECT_EQ(slab.whole.origin, whole.origin);
+                EXPECT_TRUE(slab.whole.values.empty() && !slab.whole.isCompact());
+            }
+        }
+    }
+    EXPECT_THROW(loadVolumePlanes(dir.file("ct"), 3, 5), InputError);
+}
+
+TEST(DicomSeries, PlanesDecodeOnlyTheirOwnSlices) {
+    TempDir dir;
+    DicomWriteOptions o;
+    o.syntax = "rle";
+    writeDicomSeries(ramp(), dir.file("ct"), o);
+    // Slice 4's headers stay valid, its RLE header announces 15 segments at offsets past the data:
+    // only decoding its pixels can find that.
+    const std::string damaged = dir.file("ct") + "/slice-0005.dcm";
+    std::string bytes;
+    {
+        std::ifstream in(damaged, std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    const std::string itemTag("\xfe\xff\x00\xe0", 4);
+    const std::size_t fragment = bytes.rfind(itemTag);
+    ASSERT_NE(fragment, std::string::npos);
+    for (std::size_t i = 0; i < 16; ++i) {
+        const std::uint32_t word = i == 0 ? 15u : 0x7fff0000u + static_cast<std::uint32_t>(i);
+        std::memcpy(bytes.data() + fragment + 8 + 4 * i, &word, 4);
+    }
+    std::ofstream(damaged, std::ios::binary) << bytes;
+    try {
+        loadVolume(dir.file("ct"));
+        ADD_FAILURE() << "the damaged slice was not found";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("slice-0005.dcm"), std::string::npos) << e.what();
+    }
+    const Volume planes = loadVolumePlanes(dir.file("ct"), 0, 3).planes;
+    EXPECT_EQ(planes.dims, (std::array<int, 3>{9, 7, 4}));
+    expectSameSamples(planes, planesOf(ramp(), 0, 3));
+    EXPECT_THROW(loadVolumePlanes(dir.file("ct"), 3, 4), InputError);
 }
 
 } // namespace

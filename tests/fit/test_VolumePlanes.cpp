@@ -47,7 +47,7 @@ struct Case {
 // Each plane run of the fixture grid, both storages: read by offset (or not) and cut agree.
 void expectPlanesMatchCut(const Case& c, bool byOffset) {
     SCOPED_TRACE(c.path);
-    EXPECT_EQ(readsPlanesByOffset(c.path, c.raw), byOffset);
+    EXPECT_EQ(readsOnlyPlanes(c.path, c.raw), byOffset);
     for (const SampleStorage storage : {SampleStorage::Float, SampleStorage::Source}) {
         const Volume whole = loadVolume(c.path, c.raw, storage);
         for (int first = 0; first < FIXTURE_DIMS[2]; ++first) {
@@ -229,7 +229,7 @@ TEST(VolumePlanes, RefusesPlanesOutsideTheGridAndShortFiles) {
                                                       "\n" + data.substr(0, 50));
     EXPECT_THROW(loadVolumePlanes(cut, 0, 0), InputError);
     EXPECT_THROW(loadVolumePlanes(dir.file("missing.nrrd"), 0, 0), InputError);
-    EXPECT_THROW(readsPlanesByOffset(dir.write("v.xyz", data)), InputError);
+    EXPECT_THROW(readsOnlyPlanes(dir.write("v.xyz", data)), InputError);
 }
 
 } // namespace

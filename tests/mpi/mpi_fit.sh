@@ -2,11 +2,11 @@
 # `mpirun -np N vots fit` on loopback, N = 1, 2, 3 (3 oversubscribed on 2 cores): each rank reads only its
 # slab of a raw NRRD; the one file rank 0 writes verifies against the volume, records the ranks, is
 # reproducible, with one rank holds the single-process Vots, renders alike in one process and on N
-# ranks; the gzip input (loaded whole, then cut) gives the same Vots; a failure on one rank ends all
-# (fit and render).
-# Usage: tests/mpi/mpi_fit.sh VOTS_BINARY GZIP_NRRD_VOLUME
+# ranks; the gzip input (loaded whole, then cut) gives the same Vots; a DICOM series of the same
+# samples (each rank decodes only its slices) verifies; a failure on one rank ends all (fit and render).
+# Usage: tests/mpi/mpi_fit.sh VOTS_BINARY GZIP_NRRD_VOLUME VOTS_WRITE_DICOM_BINARY
 set -euo pipefail
-vots=$1 gzipped=$2
+vots=$1 gzipped=$2 write_dicom=$3
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 # CI runs as root; Open MPI refuses that unless told, and must not look for other hosts.
@@ -58,6 +58,20 @@ no_times() { "$vots" info --json "$1" | sed -E 's/"(fit_)?seconds":[^,}]*//g; s/
 # The gzip file is loaded whole on each rank and cut: the same slabs, so the same Vots.
 mpi 2 "$vots" fit "$gzipped" -o "$work/gz.vots" "${fit_args[@]}" >/dev/null
 cmp -s <(vots_body "$work/2.vots") <(vots_body "$work/gz.vots") || fail "gzip and raw input differ on 2 ranks"
+
+# A DICOM series written by GDCM from the same volume: one rank holds the single-process Vots, two
+# ranks (each decoding only its own slices' files) give a file that verifies against the series.
+"$write_dicom" "$work/series" --input "$volume" >/dev/null
+"$vots" fit "$work/series" -o "$work/dcm-one.vots" "${fit_args[@]}" >/dev/null
+mpi 1 "$vots" fit "$work/series" -o "$work/dcm-1.vots" "${fit_args[@]}" >/dev/null
+cmp -s <(vots_body "$work/dcm-one.vots") <(vots_body "$work/dcm-1.vots") ||
+    fail "DICOM: one rank's Vots differ from one process's"
+mpi 2 "$vots" fit "$work/series" -o "$work/dcm-2.vots" "${fit_args[@]}" >/dev/null 2>"$work/stderr" ||
+    fail "DICOM on 2 ranks: fit failed: $(cat "$work/stderr")"
+"$vots" verify "$work/dcm-2.vots" "$work/series" >"$work/verify" ||
+    fail "DICOM on 2 ranks: verify failed: $(cat "$work/verify")"
+[[ $(json_key "$work/dcm-2.vots" value_range) == "$(json_key "$work/dcm-one.vots" value_range)" ]] ||
+    fail "DICOM on 2 ranks: the value range is not the whole series'"
 
 # The N-rank file in one process and on N ranks (each rank its Vots, frames composited) draws alike.
 for n in 2 3; do

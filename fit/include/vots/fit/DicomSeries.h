@@ -36,4 +36,11 @@ VolumeHeaderInfo dicomSeriesHeaderInfo(const std::string& folder, const std::str
 Volume loadDicomSeries(const std::string& folder, const std::string& seriesUid = {},
                        SampleStorage storage = SampleStorage::Float);
 
+/// Slices [first, last] of what loadDicomSeries gives, bit for bit, with the origin at slice `first`:
+/// every file's header is read to order the series, but only those slices' pixels are decoded, so a
+/// rank of `mpirun vots fit` holds its slab alone. `grid` receives the whole series' grid, without
+/// samples. Throws InputError as loadDicomSeries does, and for slices outside the series.
+Volume loadDicomSeriesPlanes(const std::string& folder, int first, int last, Volume& grid,
+                             const std::string& seriesUid = {}, SampleStorage storage = SampleStorage::Float);
+
 } // namespace vots::fit

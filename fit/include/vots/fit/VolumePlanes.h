@@ -13,10 +13,11 @@ namespace vots::fit {
 /// compact), with the origin moved to plane `first`. Throws InputError unless 0 <= first <= last < dims z.
 Volume planesOf(const Volume& volume, int first, int last);
 
-/// True when loadVolumePlanes reads only the planes' bytes: NRRD with raw encoding (attached, detached or
-/// several data files), NIfTI .nii, MetaImage without CompressedData, raw layouts. Gzip/zlib payloads and
-/// DICOM series are loaded whole and cut. Reads the header only; throws InputError as loadVolume does.
-bool readsPlanesByOffset(const std::string& path, const std::optional<RawLayout>& raw = std::nullopt);
+/// True when loadVolumePlanes reads only the planes' samples: by offset from NRRD with raw encoding
+/// (attached, detached or several data files), NIfTI .nii, MetaImage without CompressedData and raw
+/// layouts; a DICOM series decodes only the planes' slice files. Gzip/zlib payloads are loaded whole and
+/// cut. Reads the header only; throws InputError as loadVolume does.
+bool readsOnlyPlanes(const std::string& path, const std::optional<RawLayout>& raw = std::nullopt);
 
 /// A run of planes of a volume file, and the grid of the whole volume they belong to.
 struct VolumeSlab {
@@ -28,7 +29,7 @@ struct VolumeSlab {
 Volume gridOf(const Volume& volume);
 
 /// Planes [first, last] of the volume loadVolume would give: the same result as planesOf(loadVolume(...),
-/// first, last), bit for bit, read by offset where readsPlanesByOffset says so. Sample checks (NaN, Inf)
+/// first, last), bit for bit, read alone where readsOnlyPlanes says so. Sample checks (NaN, Inf)
 /// see only the planes read. Throws InputError for bad input or planes outside the grid.
 VolumeSlab loadVolumePlanes(const std::string& path, int first, int last,
                             const std::optional<RawLayout>& raw = std::nullopt,
