@@ -105,7 +105,8 @@ void decodeAndSend(const DicomSliceHeader& slice, const std::array<int, 3>& dims
 
 /// Decodes slices [first, last] of the layout into `out`, plane first - first onwards; the other
 /// slices' files are not opened again.
-template <typename T> void loadInto(const DicomSeriesLayout& layout, int first, int last, std::vector<T>& out) {
+template <typename T>
+void loadInto(const DicomSeriesLayout& layout, int first, int last, std::vector<T>& out) {
     const std::size_t pixels =
         static_cast<std::size_t>(layout.dims[0]) * static_cast<std::size_t>(layout.dims[1]);
     const auto begin = layout.slices.begin() + first;
