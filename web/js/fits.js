@@ -2,8 +2,9 @@
 import { followJob, startFit } from './api.js';
 
 // progress: {box, bar, label} elements. banner: createBanner's object. showFacts({votCount, fitSeconds})
-// shows a finished fit's numbers; onReady(eps) runs once frames may use eps; onChange() whenever the status may differ.
-export function createFits({ progress, banner, showFacts, onReady, onChange }) {
+// shows a finished fit's numbers; onStart(eps) runs when a fit starts being waited for; onReady(eps) runs once
+// frames may use eps; onChange() whenever the status may differ.
+export function createFits({ progress, banner, showFacts, onStart, onReady, onChange }) {
   const fitted = new Map(); // dataset name -> Set of eps known to be fitted
   let token = 0; // bumped per request, so the answers of a superseded one are dropped
   let follow = null;
@@ -14,9 +15,11 @@ export function createFits({ progress, banner, showFacts, onReady, onChange }) {
     fitted.get(name).add(eps);
   }
 
-  // A dataset's default eps counts as fitted: the server fits it first, and /render waits for it anyway.
-  function isFitted(name, eps, defaultEps) {
-    if (defaultEps === eps) return true;
+  // A .vots dataset's one eps is its file. A volume's default eps is asked for like any other: the server
+  // answers at once when it has prepared it, and otherwise the page shows the fit's progress (and the
+  // exact grid meanwhile) instead of a /render that waits silently for the whole fit.
+  function isFitted(name, eps, fixedEps) {
+    if (fixedEps) return true;
     return fitted.has(name) && fitted.get(name).has(eps);
   }
 
@@ -30,8 +33,9 @@ export function createFits({ progress, banner, showFacts, onReady, onChange }) {
   }
 
   // Starts (or joins) the fit for eps; frames keep the old eps until it is done, then swap.
-  // defaultEps: the server's default for the dataset, or null when it sent none.
-  async function ensure({ dataset, eps, degree, defaultEps }) {
+  // eps: null or 0 when the server sent no default and the user chose none. fixedEps: the dataset is
+  // drawn at eps alone (a .vots file), there is nothing to fit.
+  async function ensure({ dataset, eps, degree, fixedEps = false }) {
     if (follow) follow.cancel();
     follow = null;
     if (!(eps > 0)) {
@@ -42,7 +46,7 @@ export function createFits({ progress, banner, showFacts, onReady, onChange }) {
       banner.show(`No error bound ε for '${dataset}': the server sent no default; choose one with the ε slider.`, 'fit');
       return;
     }
-    if (isFitted(dataset, eps, defaultEps)) {
+    if (isFitted(dataset, eps, fixedEps)) {
       // Supersede a fit still in flight for another eps: its reply must not swap frames away from this one.
       token++;
       fitting = null;
@@ -59,6 +63,7 @@ export function createFits({ progress, banner, showFacts, onReady, onChange }) {
       if (mine !== token) return;
       let result = job;
       if (job.state !== 'done') {
+        onStart(eps);
         follow = followJob(job.job, (p) => {
           if (mine === token) setProgress(p.progress, p.stage);
         });

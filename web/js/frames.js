@@ -15,6 +15,9 @@ export function createFrames({ viewEl, image, view, banner, showFacts, isMoving,
   // One random id per page: the server answers 409 "superseded" to our older requests.
   const clientId = [...crypto.getRandomValues(new Uint8Array(8))].map((b) => b.toString(16).padStart(2, '0')).join('');
   let renderEps = null; // eps used for frames: the target once its fit is done, else the previous one
+  // No eps is ready yet but a fit is on its way: meanwhile frames come from the exact grid renderer,
+  // which needs no fit (a study of thousands of slices shows its first image long before its Vots).
+  let previewEps = null;
   let rafId = 0;
   let wantDraft = false;
   let inflight = null; // {url, draft, controller}
@@ -41,19 +44,25 @@ export function createFrames({ viewEl, image, view, banner, showFacts, isMoving,
 
   // The /render parameters of the view at the size a frame of this kind gets (client: the page's id or none).
   function frameParams(draft, client) {
+    const preview = previewing();
     return {
       dataset: view.dataset,
       cam: formatCamera(view.cam),
       size: frameSize(draft),
-      eps: renderEps,
+      eps: preview ? previewEps : renderEps,
       degree: view.degree,
       mode: view.mode,
-      renderer: view.renderer,
+      renderer: preview ? 'grid' : view.renderer,
       slab: view.slab ? formatSlab(view.slab) : undefined,
       window: { level: fmtExact(view.window.level), width: fmtExact(view.window.width) },
       colormap: view.colormap,
       client,
     };
+  }
+
+  // The grid draws every mode but density (Vot sizes), which waits for its Vots.
+  function previewing() {
+    return renderEps === null && previewEps !== null && view.mode !== 'density';
   }
 
   function frameUrl(draft) {
@@ -69,7 +78,7 @@ export function createFrames({ viewEl, image, view, banner, showFacts, isMoving,
 
   function flush() {
     rafId = 0;
-    if (!view.dataset || renderEps === null) return onChange();
+    if (!view.dataset || (renderEps === null && !previewing())) return onChange();
     const draft = wantDraft;
     const url = frameUrl(draft);
     if (inflight) {
@@ -89,6 +98,7 @@ export function createFrames({ viewEl, image, view, banner, showFacts, isMoving,
 
   async function send(url, draft) {
     const mine = { url, draft, controller: new AbortController() };
+    const preview = previewing(); // a grid frame in place of Vots still being fitted: it says nothing of them
     inflight = mine;
     if (!draft) draftPending = false;
     onChange();
@@ -111,16 +121,19 @@ export function createFrames({ viewEl, image, view, banner, showFacts, isMoving,
       image.src = objectUrl;
       image.dataset.quality = draft ? 'draft' : 'full';
       image.dataset.frameUrl = url;
+      image.dataset.renderer = new URLSearchParams(url.split('?')[1]).get('renderer') || 'vots';
       image.dataset.width = String(probe.naturalWidth);
       image.dataset.height = String(probe.naturalHeight);
       if (shownObjectUrl) URL.revokeObjectURL(shownObjectUrl);
       shownObjectUrl = objectUrl;
       shownUrl = url;
       lastFrame = { w: probe.naturalWidth, h: probe.naturalHeight, frameMs: frame.frameMs };
-      showFacts({
-        votCount: frame.votCount !== null ? frame.votCount : undefined,
-        fitSeconds: frame.fitSeconds !== null ? frame.fitSeconds : undefined,
-      });
+      if (!preview) {
+        showFacts({
+          votCount: frame.votCount !== null ? frame.votCount : undefined,
+          fitSeconds: frame.fitSeconds !== null ? frame.fitSeconds : undefined,
+        });
+      }
       banner.clear('render');
     } catch (e) {
       if (inflight !== mine) return;
@@ -151,7 +164,15 @@ export function createFrames({ viewEl, image, view, banner, showFacts, isMoving,
     // Frames from now on use this eps (null: none until a fit is done).
     useEps(eps) {
       renderEps = eps;
+      if (eps === null) previewEps = null;
     },
+    // A fit for eps is running while no eps is ready: show the exact grid until it is done.
+    previewWhileFitting(eps) {
+      previewEps = eps;
+      if (renderEps === null) schedule();
+    },
+    // Whether the frames now come from the grid in place of the Vots that are still being fitted.
+    previewing,
     busy: () => Boolean(inflight || rafId || resizeTimer || draftPending),
     // The full-quality frame's parameters without the page's id (for download links), null before a fit.
     viewParams: () => (view.dataset && renderEps !== null ? frameParams(false, undefined) : null),

@@ -1,15 +1,17 @@
 // The status line's state and text from what the viewer is doing; no DOM.
 import { fmtValue } from './format.js';
 
-// fitting: {eps, progress, stage} or null; lastFrame: {w, h, frameMs} or null.
-export function statusLine({ hasDatasets, errorShown, fitting, rendering, frameShown, lastFrame, cam }) {
+// fitting: {eps, progress, stage} or null; previewing: the frames come from the grid while the fit runs;
+// lastFrame: {w, h, frameMs} or null.
+export function statusLine({ hasDatasets, errorShown, fitting, previewing, rendering, frameShown, lastFrame, cam }) {
   if (!hasDatasets) {
     return errorShown ? { state: 'error', text: 'No datasets.' } : { state: 'loading', text: 'Loading datasets…' };
   }
   if (fitting) {
     return {
       state: 'fitting',
-      text: `Fitting ε = ${fmtValue(fitting.eps)}: ${Math.round(fitting.progress * 100)} % ${fitting.stage || ''}`,
+      text: `Fitting ε = ${fmtValue(fitting.eps)}: ${Math.round(fitting.progress * 100)} % ${fitting.stage || ''}` +
+        (previewing ? ' · exact grid shown meanwhile' : ''),
     };
   }
   if (rendering) return { state: 'rendering', text: 'Rendering…' };

@@ -12,7 +12,7 @@ import { fmtCount, fmtSeconds } from './format.js';
 import { createFrames } from './frames.js';
 import { createHashWriter, formatHash, parseHash } from './hash.js';
 import { attachInput } from './input.js';
-import { fitViewToDataset } from './kind.js';
+import { fitViewToDataset, isVotsDataset } from './kind.js';
 import { showOverlays } from './overlays.js';
 import { attachSlabControl } from './slab-control.js';
 import { statusLine } from './status.js';
@@ -105,6 +105,9 @@ const fits = createFits({
   progress: { box: el.fitProgress, bar: el.progress, label: el.progressLabel },
   banner,
   showFacts,
+  onStart(eps) {
+    frames.previewWhileFitting(eps);
+  },
   onReady(eps) {
     frames.useEps(eps);
     syncDownloads(el.downloads, frames.viewParams());
@@ -118,6 +121,7 @@ function updateStatus() {
     hasDatasets: datasets.length > 0,
     errorShown: banner.source() !== null,
     fitting: fits.fitting(),
+    previewing: frames.previewing(),
     rendering: frames.busy(),
     frameShown: frames.hasShownFrame(),
     lastFrame: frames.lastFrame(),
@@ -162,7 +166,7 @@ function syncPanel() {
 }
 
 function ensureFitted() {
-  fits.ensure({ dataset: view.dataset, eps: view.eps, degree: view.degree, defaultEps: defaultEpsOf(currentDataset()) });
+  fits.ensure({ dataset: view.dataset, eps: view.eps, degree: view.degree, fixedEps: isVotsDataset(currentDataset()) });
 }
 
 // Adopts the URL hash into the view; problems with the link go to the banner.
