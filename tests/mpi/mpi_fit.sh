@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# `mpirun -np N vots fit` on loopback, N = 1, 2, 3 (3 oversubscribed on 2 cores): each rank reads only its
-# slab of a raw NRRD; the one file rank 0 writes verifies against the volume, records the ranks, is
-# reproducible, with one rank holds the single-process Vots, renders alike in one process and on N
-# ranks; the gzip input (loaded whole, then cut) gives the same Vots; a DICOM series of the same
+# `mpirun -np N vots fit` on loopback, N = 1, 2, 3, 4 (3 and 4 oversubscribed on 2 cores): each rank
+# reads only its slab of a raw NRRD; the one file rank 0 writes verifies against the volume, records the
+# ranks, is reproducible, with one rank holds the single-process Vots, renders alike in one process and
+# on N ranks; the gzip input (loaded whole, then cut) gives the same Vots; a DICOM series of the same
 # samples (each rank decodes only its slices) verifies; a failure on one rank ends all (fit and render).
 # Usage: tests/mpi/mpi_fit.sh VOTS_BINARY GZIP_NRRD_VOLUME VOTS_WRITE_DICOM_BINARY
 set -euo pipefail
@@ -33,7 +33,7 @@ head -n "$header_lines" "$gzipped" | grep -aE '^(type|dimension|sizes|spacings|e
 volume=$work/head.nhdr
 
 "$vots" fit "$volume" -o "$work/one.vots" "${fit_args[@]}" >/dev/null
-for n in 1 2 3; do
+for n in 1 2 3 4; do
     out=$work/$n.vots
     mpi "$n" "$vots" fit "$volume" -o "$out" "${fit_args[@]}" >"$work/stdout" 2>"$work/stderr" ||
         fail "$n ranks: fit failed: $(cat "$work/stderr")"

@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # `mpirun -np N vots render` on loopback: the ranks' slabs composited by MAX give the single-process
-# bytes of the same Vot-Space for N = 1, 2, 3 (3 oversubscribed on 2 cores); MinIP and the average, each
-# rank's rays cut to its slab of cells, give the same bytes twice and the single-process image within
-# one grey level; fitting per slab is reproducible and with one rank is the single-process fit; what is
-# not composited yet exits 2.
+# bytes of the same Vot-Space for N = 1, 2, 3, 4 (3 and 4 oversubscribed on 2 cores); MinIP and the
+# average, each rank's rays cut to its slab of cells, give the same bytes twice and the single-process
+# image within one grey level; fitting per slab is reproducible and with one rank is the single-process
+# fit; what is not composited yet exits 2.
 # Usage: tests/mpi/mpi_render.sh VOTS_BINARY VOLUME
 set -euo pipefail
 vots=$1 volume=$2
@@ -18,7 +18,7 @@ view=(--cam az=30,el=20 --size 96x80)
 "$vots" fit "$volume" -o "$work/v.vots" --eps 2% --certify cells >/dev/null 2>&1
 for mode in mip density; do
     "$vots" render "$work/v.vots" -o "$work/one-$mode.png" --mode "$mode" "${view[@]}" 2>/dev/null
-    for n in 1 2 3; do
+    for n in 1 2 3 4; do
         mpi "$n" "$vots" render "$work/v.vots" -o "$work/$n-$mode.png" --mode "$mode" "${view[@]}" 2>/dev/null
         cmp -s "$work/one-$mode.png" "$work/$n-$mode.png" || fail "$mode of the .vots on $n ranks differs from one process"
     done
@@ -41,7 +41,7 @@ for projection in "--mode minip" "--mode aip" "--mode aip --slab 5,20" "--mode m
     read -ra how <<<"$projection"
     tag=$(tr -c 'a-z0-9' _ <<<"$projection")
     "$vots" render "$work/v.vots" -o "$work/one-$tag.png" "${how[@]}" "${view[@]}" 2>/dev/null
-    for n in 1 2 3; do
+    for n in 1 2 3 4; do
         for run in a b; do
             mpi "$n" "$vots" render "$work/v.vots" -o "$work/$n$run-$tag.png" "${how[@]}" "${view[@]}" 2>/dev/null
         done
