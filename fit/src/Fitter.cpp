@@ -80,7 +80,7 @@ FitResult fitVotSpace(const Volume& volume, const FitOptions& options, FitCache*
     } else {
         boxes = splitZones(mask, tester, control);
         if (control.progress) control.progress(0.9, "merge");
-        mergeNeighbours(boxes, tester, control, ZONE_CELLS); // across zone borders
+        mergeAcrossZones(boxes, tester, control);
     }
     if (control.progress) control.progress(1.0, "done");
 

@@ -152,25 +152,55 @@ std::vector<FittedBox> splitZones(const CellMask& mask, const BoxTester& tester,
 
 void mergeNeighbours(std::vector<FittedBox>& boxes, const BoxTester& tester, const FitControl& control,
                      int zoneCells) {
+    const int cells = std::max(0, zoneCells);
+    mergeNeighbours(boxes, tester, control, std::array<int, 3>{cells, cells, cells});
+}
+
+void mergeAcrossZones(std::vector<FittedBox>& boxes, const BoxTester& tester, const FitControl& control) {
+    // Each box lies inside one zone, so inside one slab.
+    std::size_t slabCount = 0;
+    for (const FittedBox& b : boxes)
+        slabCount = std::max(slabCount, static_cast<std::size_t>(b.box.lo[2] / MERGE_SLAB_CELLS) + 1);
+    if (slabCount <= 1) return mergeNeighbours(boxes, tester, control, ZONE_CELLS);
+    std::vector<std::vector<FittedBox>> slabs(slabCount);
+    for (const FittedBox& b : boxes)
+        slabs[static_cast<std::size_t>(b.box.lo[2] / MERGE_SLAB_CELLS)].push_back(b);
+    parallelFor(slabCount, control.threads, [&](std::size_t k, int) {
+        mergeNeighbours(slabs[k], tester, FitControl{1, nullptr, control.cancel}, ZONE_CELLS);
+    });
+    boxes.clear();
+    for (auto& slab : slabs) {
+        boxes.insert(boxes.end(), slab.begin(), slab.end());
+        std::vector<FittedBox>().swap(slab);
+    }
+    mergeNeighbours(boxes, tester, control, std::array<int, 3>{0, 0, MERGE_SLAB_CELLS});
+}
+
+void mergeNeighbours(std::vector<FittedBox>& boxes, const BoxTester& tester, const FitControl& control,
+                     const std::array<int, 3>& planeCells) {
     if (boxes.size() >= BoxCorners::NONE) throw InputError("too many boxes to merge");
     std::vector<bool> alive(boxes.size(), true);
     BoxCorners corners(boxes);
-    auto onZonePlane = [zoneCells](const Box& b) {
+    const bool everyFace = planeCells[0] <= 0 && planeCells[1] <= 0 && planeCells[2] <= 0;
+    auto onPlane = [&](int a, int coordinate) {
+        return planeCells[a] > 0 && coordinate % planeCells[a] == 0;
+    };
+    auto onAnyPlane = [&](const Box& b) {
         for (int a = 0; a < 3; ++a)
-            if (b.lo[a] % zoneCells == 0 || b.hi[a] % zoneCells == 0) return true;
+            if (onPlane(a, b.lo[a]) || onPlane(a, b.hi[a])) return true;
         return false;
     };
-    // A box from the per-zone merge has already been tried against every neighbour inside its zone
-    // and refused; only its faces on a zone plane can meet a box it has not been tried with. A box
+    // A box from an earlier merge has already been tried against every neighbour it shares no plane
+    // with and refused; only its faces on a plane can meet a box it has not been tried with. A box
     // this merge makes is new to all its neighbours.
-    const std::size_t firstNew = zoneCells > 0 ? boxes.size() : 0;
+    const std::size_t firstNew = everyFace ? 0 : boxes.size();
     auto faceIsNew = [&](std::size_t i, int a, bool high) {
-        return i >= firstNew || (high ? boxes[i].box.hi[a] : boxes[i].box.lo[a]) % zoneCells == 0;
+        return i >= firstNew || onPlane(a, high ? boxes[i].box.hi[a] : boxes[i].box.lo[a]);
     };
     std::vector<std::size_t> work;
     work.reserve(boxes.size());
     for (std::size_t i = 0; i < boxes.size(); ++i)
-        if (zoneCells <= 0 || onZonePlane(boxes[i].box)) work.push_back(i);
+        if (everyFace || onAnyPlane(boxes[i].box)) work.push_back(i);
     while (!work.empty()) {
         control.checkCancel();
         const std::size_t i = work.back();

@@ -4,6 +4,7 @@
 #include "BoxTester.h"
 #include "CellMask.h"
 
+#include <array>
 #include <functional>
 #include <vector>
 
@@ -34,5 +35,19 @@ std::vector<FittedBox> splitZones(const CellMask& mask, const BoxTester& tester,
 /// to answer them; test_SplitMerge.cpp checks the equivalence).
 void mergeNeighbours(std::vector<FittedBox>& boxes, const BoxTester& tester, const FitControl& control,
                      int zoneCells = 0);
+
+/// The same with planes per axis: planeCells[a] > 0 says every pair of boxes not separated by a plane
+/// at a multiple of planeCells[a] along some axis a has been tried; 0 on an axis: no such planes.
+void mergeNeighbours(std::vector<FittedBox>& boxes, const BoxTester& tester, const FitControl& control,
+                     const std::array<int, 3>& planeCells);
+
+/// splitZones' boxes are merged across zone planes in slabs of this many cells along z, each slab on
+/// a thread of its own, and then across the slab planes only: the merge across zones no longer runs on
+/// one thread (bench/RESULTS.md, "512x512x1000 under mpirun"). Fixed, not taken from the thread count,
+/// so that a fit's boxes never depend on how many threads made them.
+inline constexpr int MERGE_SLAB_CELLS = 4 * ZONE_CELLS;
+
+/// Merges splitZones' boxes across zone planes: slab by slab in parallel, then across slab planes.
+void mergeAcrossZones(std::vector<FittedBox>& boxes, const BoxTester& tester, const FitControl& control);
 
 } // namespace vots::fit

@@ -80,3 +80,45 @@ TEST(SplitMerge, MergeAcrossZonesMatchesTryingEveryFaceAndLeavesNoMergeablePair)
     EXPECT_GT(crossing, 0u) << "some merges should cross a zone plane";
     EXPECT_GT(pairs, 0u);
 }
+
+// Taller than two merge slabs: the slabs are merged on their own threads, then across the slab planes.
+TEST(SplitMerge, MergeAcrossZonesInSlabsIsTheSameOnAnyThreadCountAndLeavesNoMergeablePair) {
+    std::mt19937 rng(11);
+    std::normal_distribution<double> noise(0.0, 2.0);
+    const Volume volume = sampleVolume({34, 27, 2 * MERGE_SLAB_CELLS + 40}, [&](int x, int y, int z) {
+        if (x + y < 6) return -1000.0;
+        return 300.0 * std::sin(0.11 * x + 0.01 * z) * std::cos(0.13 * y) + 0.5 * z + noise(rng);
+    });
+    const BoxFitter fitter(volume, 3, Certify::Cells);
+    const EpsField eps(30.f);
+    FitCounters counters;
+    const BoxTester tester(fitter, eps, counters, nullptr);
+    const CellMask mask(volume, -900.f);
+
+    const std::vector<FittedBox> split = splitZones(mask, tester, FitControl{2, nullptr, nullptr});
+    std::vector<FittedBox> oneThread = split, twoThreads = split;
+    mergeAcrossZones(oneThread, tester, FitControl{1, nullptr, nullptr});
+    mergeAcrossZones(twoThreads, tester, FitControl{2, nullptr, nullptr});
+    ASSERT_GT(oneThread.size(), 50u) << "the field should need many boxes";
+    ASSERT_EQ(oneThread.size(), twoThreads.size());
+    for (std::size_t i = 0; i < oneThread.size(); ++i)
+        ASSERT_EQ(oneThread[i].box, twoThreads[i].box) << "box " << i;
+
+    std::size_t crossingSlabs = 0;
+    for (std::size_t i = 0; i < oneThread.size(); ++i) {
+        const Box& a = oneThread[i].box;
+        if (a.lo[2] / MERGE_SLAB_CELLS != (a.hi[2] - 1) / MERGE_SLAB_CELLS) ++crossingSlabs;
+        for (std::size_t j = i + 1; j < oneThread.size(); ++j) {
+            const Box& b = oneThread[j].box;
+            bool overlap = true;
+            for (int axis = 0; axis < 3; ++axis)
+                if (a.hi[axis] <= b.lo[axis] || b.hi[axis] <= a.lo[axis]) overlap = false;
+            EXPECT_FALSE(overlap) << "boxes " << i << " and " << j << " overlap";
+            if (shareWholeFace(a, b)) {
+                EXPECT_FALSE(tester.test(unite(a, b)).accepted)
+                    << "boxes " << i << " and " << j << " could still merge";
+            }
+        }
+    }
+    EXPECT_GT(crossingSlabs, 0u) << "some merges should cross a slab plane";
+}
