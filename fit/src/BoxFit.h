@@ -7,6 +7,7 @@
 
 #include <array>
 #include <atomic>
+#include <cmath>
 #include <cstddef>
 
 namespace vots::fit {
@@ -43,10 +44,11 @@ private:
 /// Result of testing one box against the eps field.
 struct BoxOutcome {
     bool accepted = false;
-    bool exact = false;       // errCriterion is the exact maximum (the scan ran to the end)
-    float errCriterion = 0.f; // max |residual| over the certified points; a lower bound when !exact
-    float errSamples = 0.f;   // max |residual| over grid samples (what the file records)
-    std::array<float, 3> p{}; // expansion point (box centre), index space
+    bool exact = false;                 // errCriterion is the exact maximum (the scan ran to the end)
+    float errCriterion = 0.f;           // max |residual| over the certified points; a lower bound when !exact
+    float errCriterionBound = INFINITY; // an upper bound of that maximum; errCriterion itself when exact
+    float errSamples = 0.f;             // max |residual| over grid samples (what the file records)
+    std::array<float, 3> p{};           // expansion point (box centre), index space
     std::array<float, MONOMIAL_COUNT> c{}; // index-unit coefficients, float as stored
 };
 

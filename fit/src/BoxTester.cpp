@@ -11,7 +11,7 @@ BoxOutcome BoxTester::test(const Box& box) const {
         BoxOutcome o = cached->outcome;
         const float epsMin = mEps.minOverBox(box);
         const float epsMax = mEps.maxOverBox(box);
-        if (o.exact && (singleCell || o.errCriterion <= epsMin)) {
+        if (singleCell ? o.exact : o.errCriterionBound <= epsMin) {
             mCounters.addCacheHit();
             o.accepted = true;
             return o;
@@ -25,7 +25,7 @@ BoxOutcome BoxTester::test(const Box& box) const {
             // Between the bounds only a scan with the stored coefficients can decide.
             mCounters.addCacheHit();
             mFitter.certify(box, mEps, o, mCounters);
-            if (o.exact) mCache->store(box, CachedBox{o, true});
+            if (o.exact || o.accepted) mCache->store(box, CachedBox{o, true});
             return o;
         }
     }
