@@ -174,15 +174,24 @@ GridRenderer::GridRenderer() : mImpl(std::make_unique<Impl>()) {}
 GridRenderer::~GridRenderer() = default;
 
 void GridRenderer::upload(const fit::Volume& volume) {
+    uploadSlab(volume, 0, volume);
+}
+
+void GridRenderer::uploadSlab(const fit::Volume& volume, int firstPlane, const fit::Volume& whole) {
     Impl& d = *mImpl;
     GLint maxSide = 0;
     glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &maxSide);
     for (int a = 0; a < 3; ++a)
-        if (volume.dims[a] < 2 || (a < 2 && volume.dims[a] > maxSide))
-            throw fit::InputError("volume side " + std::to_string(volume.dims[a]) + " outside 2.." +
+        if (whole.dims[a] < 2 || (a < 2 && whole.dims[a] > maxSide))
+            throw fit::InputError("volume side " + std::to_string(whole.dims[a]) + " outside 2.." +
                                   std::to_string(maxSide) + " for the reference renderer");
     if (volume.heldSamples() != volume.sampleCount())
         throw fit::InputError("volume has the wrong number of samples");
+    const int lastPlane = firstPlane + volume.dims[2] - 1;
+    if (volume.dims[0] != whole.dims[0] || volume.dims[1] != whole.dims[1] || firstPlane < 0 ||
+        volume.dims[2] < 1 || lastPlane >= whole.dims[2])
+        throw fit::InputError("planes " + std::to_string(firstPlane) + ".." + std::to_string(lastPlane) +
+                              " are not a slab of the volume's grid");
     const std::size_t planeSamples =
         static_cast<std::size_t>(volume.dims[0]) * static_cast<std::size_t>(volume.dims[1]);
     // Sized as floats whatever the texel: the chunks decide the order of aip's sums, so a volume gives
@@ -194,14 +203,14 @@ void GridRenderer::upload(const fit::Volume& volume) {
                                                      MAX_CHUNK_BYTES / (planeSamples * sizeof(float))));
     if (planeLimit < 4)
         throw fit::InputError("volume planes too large for the reference renderer's textures");
-    // Chunk k owns the cells z in [k (P - 1), (k + 1) (P - 1)): P planes, the last shared with the next.
-    const int depth = volume.dims[2];
+    // Chunk k owns the cells z in [k (P - 1), (k + 1) (P - 1)) from the slab's first plane: P planes, the
+    // last shared with the next. A slab of one plane owns no cell and has no chunk: it draws nothing.
     const int ownedCells = planeLimit - 1;
     std::vector<Chunk> chunks;
-    for (int z = 0; z < depth - 1; z += ownedCells) {
+    for (int z = firstPlane; z < lastPlane; z += ownedCells) {
         Chunk chunk;
         chunk.firstPlane = z;
-        chunk.cellZ = {z, std::min(depth - 1, z + ownedCells)};
+        chunk.cellZ = {z, std::min(lastPlane, z + ownedCells)};
         chunk.planes = chunk.cellZ[1] - z + 1;
         chunks.push_back(std::move(chunk));
     }
@@ -215,7 +224,8 @@ void GridRenderer::upload(const fit::Volume& volume) {
             glTextureStorage3D(t, 1, format.internalFormat, volume.dims[0], volume.dims[1], chunk.planes);
             glTextureSubImage3D(t, 0, 0, 0, 0, volume.dims[0], volume.dims[1], chunk.planes,
                                 format.pixelFormat, format.pixelType,
-                                samples + static_cast<std::size_t>(chunk.firstPlane) * planeSamples);
+                                samples +
+                                    static_cast<std::size_t>(chunk.firstPlane - firstPlane) * planeSamples);
             // texelFetch of the corners only; no filtering (integer textures have none anyway).
             glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
             glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
@@ -225,7 +235,7 @@ void GridRenderer::upload(const fit::Volume& volume) {
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4); // GL's default, which other uploads expect
     d.program = d.programFor(sampler);
     d.chunks = std::move(chunks);
-    d.bounds = sceneBounds(volume);
+    d.bounds = sceneBounds(whole);
     d.valueRange = volume.valueRange();
     d.hasData = true;
 }
