@@ -66,6 +66,29 @@ void compositeMeansOnRoot(const MpiWorld& world, render::FloatImage& means,
         means.pixels[i] = sums[count + i] > 0.0 ? static_cast<float>(sums[i] / sums[count + i]) : -INFINITY;
 }
 
+void compositeGridOnRoot(const MpiWorld& world, render::RenderMode mode, render::FloatImage& frame) {
+    switch (mode) {
+    case render::RenderMode::Mip:
+        world.reduceMaxToRoot(frame.pixels);
+        return;
+    case render::RenderMode::MinIp:
+        world.reduceMinToRoot(frame.pixels);
+        return;
+    case render::RenderMode::Aip: {
+        // Summed in double: two ranks' parts round once, as the chunks of one process add in float.
+        std::vector<double> sums(frame.pixels.begin(), frame.pixels.end());
+        world.reduceSumToRoot(sums);
+        if (world.rank() == 0)
+            for (std::size_t i = 0; i < sums.size(); ++i)
+                frame.pixels[i] = static_cast<float>(sums[i]);
+        return;
+    }
+    case render::RenderMode::Density:
+        break;
+    }
+    throw std::logic_error("compositeGridOnRoot: the grid draws no density");
+}
+
 double slowestRankMillisSince(const MpiWorld& world, std::chrono::steady_clock::time_point start) {
     const std::chrono::duration<double, std::milli> took = std::chrono::steady_clock::now() - start;
     return world.maxOverRanks(took.count());

@@ -39,6 +39,11 @@ void compositeOnRoot(const MpiWorld& world, render::RenderMode mode, render::Flo
 void compositeMeansOnRoot(const MpiWorld& world, render::FloatImage& means,
                           const render::FloatImage& lengths);
 
+/// The exact grid's frames composited onto rank 0: each rank draws its slab of cells with the whole ray's
+/// length (GridRenderer::uploadSlab), so the frame of the whole is the max (mip), the min (minip: +inf
+/// where a rank's ray takes nothing, as where one process's misses) or the sum (aip) of the ranks' frames.
+void compositeGridOnRoot(const MpiWorld& world, render::RenderMode mode, render::FloatImage& frame);
+
 /// `vots render --times`: milliseconds since `start`, the slowest rank's (every rank must call it: it
 /// waits for them all, so the next step's time is its own).
 double slowestRankMillisSince(const MpiWorld& world, std::chrono::steady_clock::time_point start);

@@ -1,20 +1,20 @@
-// `vots render`: a .vots file or a volume -> MIP / density / reference PNG, headless; argument checks first.
+// `vots render`: a .vots file or a volume -> MIP / density / reference PNG or turntable, headless, in one
+// process or (RenderOnRanks.cpp) across the ranks of mpirun.
 #include "Args.h"
 #include "Commands.h"
 #include "DistributedRender.h"
 #include "MemoryBudgetOption.h"
 #include "MpiWorld.h"
 #include "RawOptions.h"
+#include "RenderArgs.h"
+#include "RenderOnRanks.h"
 #include "SeriesOption.h"
 #include "TurntableOutput.h"
 
-#include "vots/fit/DicomSeries.h"
 #include "vots/fit/Error.h"
 #include "vots/fit/Fitter.h"
-#include "vots/fit/VolumeHeader.h"
 #include "vots/fit/VolumeLoad.h"
 #include "vots/fit/VotSpaceFile.h"
-#include "vots/render/CameraText.h"
 #include "vots/render/DisplayPass.h"
 #include "vots/render/EglContext.h"
 #include "vots/render/FrameRequest.h"
@@ -29,250 +29,11 @@
 #include <CLI/CLI.hpp>
 
 #include <array>
-#include <fstream>
 #include <memory>
 #include <optional>
-#include <tuple>
 
 namespace vots::cli {
 namespace {
-
-std::string sizeText(int width, int height) {
-    return std::to_string(width) + "x" + std::to_string(height);
-}
-
-std::string certifyName(fit::Certify certify) {
-    return certify == fit::Certify::Cells ? "cells" : "samples";
-}
-
-struct RenderArgs {
-    std::string input;
-    std::string output;
-    std::string cam;
-    std::string view;
-    std::string size = sizeText(render::DEFAULT_FRAME_SIDE, render::DEFAULT_FRAME_SIDE);
-    std::string mode{render::renderModeName(render::FrameRequest{}.mode)};
-    std::string renderer; // empty: what the mode implies (vots; grid for reference)
-    std::string slab;     // empty: whole rays
-    std::string window;
-    std::string colormap{render::colormapName(render::FrameRequest{}.colormap)};
-    std::string eps = formatNumber(fit::DEFAULT_EPS_PERCENT) + "%";
-    int degree = 3;
-    std::string background = "auto";
-    std::string certify = certifyName(render::RENDER_FIT_CERTIFY);
-    std::string volume;
-    std::string memoryBudget;     // empty: the default
-    std::string series;           // DICOM SeriesInstanceUID; empty: the folder's only series
-    RawArgs raw;                  // the layout of a headerless volume (INPUT, or --volume of a .vots input)
-    std::optional<int> turntable; // frames of a turn about the vertical axis; nullopt: one frame
-    std::optional<double> elevation; // the turn's elevation; nullopt: the camera's
-    bool times = false;              // print the frame's render and composite milliseconds on stderr
-};
-
-struct CheckedArgs {
-    render::FrameRequest frame;
-    fit::EpsSpec eps;
-    std::optional<fit::RawLayout> raw;
-    std::optional<TurntableOutput> turntable;
-};
-
-/// The turntable's options, checked with the output folders before any load or fit.
-std::optional<TurntableOutput> checkTurntableArgs(const RenderArgs& a, const render::FrameRequest& first) {
-    if (!a.turntable) {
-        if (a.elevation) throw fit::InputError("--elevation is for --turntable N");
-        if (isWebmPath(a.output))
-            throw fit::InputError("-o " + a.output + ": a WebM animation needs --turntable N");
-        checkOutputFolder(a.output);
-        return std::nullopt;
-    }
-    const int frames = *a.turntable;
-    if (frames < 1 || frames > render::MAX_TURNTABLE_FRAMES)
-        throw fit::InputError("--turntable " + std::to_string(frames) + " is outside 1.." +
-                              std::to_string(render::MAX_TURNTABLE_FRAMES) + " frames");
-    render::validateCamera(render::turntableCamera(first.camera, frames, 0, a.elevation));
-    const TurntableOutput output = parseTurntableOutput(a.output);
-    if (output.format == TurntableFormat::Webm) {
-        if (first.width < render::WEBM_MIN_SIDE || first.height < render::WEBM_MIN_SIDE)
-            throw fit::InputError("--size " + a.size + " is too small for a WebM animation (at least " +
-                                  std::to_string(render::WEBM_MIN_SIDE) + " per side)");
-        checkOutputFolder(output.path);
-    } else {
-        for (int k = 0; k < frames; ++k)
-            checkOutputFolder(framePath(output.path, k));
-    }
-    return output;
-}
-
-std::pair<int, int> parseSize(const std::string& text) {
-    const render::SizeParse size = render::parseFrameSize(text, render::MAX_IMAGE_SIDE);
-    if (size.problem != render::SizeProblem::None)
-        throw fit::InputError("--size '" + text +
-                              "' is not WxH with 1 <= W, H <= " + std::to_string(render::MAX_IMAGE_SIDE));
-    return {size.width, size.height};
-}
-
-CheckedArgs checkArgs(const RenderArgs& a) {
-    CheckedArgs c;
-    render::FrameRequest& f = c.frame;
-    if (!a.cam.empty() && !a.view.empty()) throw fit::InputError("give --cam or --view, not both");
-    if (!a.view.empty()) {
-        const auto view = render::findView(a.view);
-        if (!view)
-            throw fit::InputError("--view '" + a.view +
-                                  "' is unknown (anterior, posterior, left, right, superior, inferior)");
-        f.camera = render::cameraForView(*view);
-    } else if (!a.cam.empty()) {
-        f.camera = render::parseCamera(a.cam);
-    }
-    std::tie(f.width, f.height) = parseSize(a.size);
-    const auto given = [](const std::string& text) {
-        return text.empty() ? std::nullopt : std::optional<std::string_view>(text);
-    };
-    render::applyProjection(f, a.mode, given(a.renderer), given(a.slab));
-    f.colormap = render::parseColormap(a.colormap);
-    if (!a.window.empty()) f.window = render::parseWindow(a.window, f.colormap);
-    c.eps = parseEps(a.eps, "--eps");
-    if (a.degree < 0 || a.degree > 3) throw fit::InputError("--degree must be 0..3");
-    c.raw = rawLayoutFrom(a.raw);
-    c.turntable = checkTurntableArgs(a, f);
-    return c;
-}
-
-bool isVotsFile(const std::string& path) {
-    if (fit::isDicomFolder(path)) return false;
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw fit::InputError("cannot open '" + path + "'");
-    char magic[4] = {};
-    in.read(magic, 4);
-    return in.gcount() == 4 && std::string(magic, 4) == "VOTS";
-}
-
-std::optional<float> resolveBackground(const std::string& text, std::array<float, 2> range) {
-    if (text == "none") return std::nullopt;
-    if (text == "auto") return fit::defaultBackground(range);
-    return static_cast<float>(parseNumber(text, "--background"));
-}
-
-// Fits `volume` with the options the arguments give for a whole volume whose values span `range` (eps in
-// percent of it, its background): the volume itself, or under mpirun one rank's slab of it.
-fit::FitResult fitForRender(const fit::Volume& volume, std::array<float, 2> range, const RenderArgs& a,
-                            const CheckedArgs& c) {
-    fit::FitOptions options;
-    options.eps = static_cast<float>(c.eps.resolve(range[0], range[1]));
-    if (!(options.eps > 0))
-        throw fit::InputError("--eps " + a.eps + " is 0 for this volume; give it in data units");
-    options.degree = a.degree;
-    options.background = resolveBackground(a.background, range);
-    options.certify = a.certify == "samples" ? fit::Certify::Samples : fit::Certify::Cells;
-    fit::validateFitOptions(volume, options);
-    return fit::fitVotSpace(volume, options);
-}
-
-// Under mpirun: what the ranks composite (one frame of the Vots, any projection), refused before anything
-// is read otherwise.
-void checkDistributable(const CheckedArgs& c) {
-    if (c.turntable || c.frame.renderer == render::RendererKind::Grid)
-        throw fit::InputError("under mpirun, vots render draws one frame of the Vots "
-                              "(not yet: --renderer grid, --turntable)");
-}
-
-// The frame of the whole Vot-Space from every rank's slab, written by rank 0: for mip and density the
-// same bytes as one process draws from the same Vots; minip and aip cut each rank's rays to its slab of
-// cells (`domain`) and composite the min and the length-weighted mean.
-void renderDistributed(const MpiWorld& world, const CheckedArgs& c, render::VotRenderer& vots,
-                       const std::optional<render::CellDomain>& domain,
-                       std::optional<std::array<float, 2>> volumeRange, const RenderArgs& a) {
-    const render::FrameRequest& f = c.frame;
-    render::FloatImage frame;
-    std::optional<render::FloatImage> lengths;
-    auto start = std::chrono::steady_clock::now();
-    // A rank that fails to draw (a Vot-Space the walk cannot draw, say) ends every rank.
-    world.allOrNone([&] {
-        vots.setRayDomain(domain);
-        frame = vots.render(f.camera, f.width, f.height, render::RenderOptions{f.mode, f.slab});
-        if (f.mode == render::RenderMode::Aip) lengths = vots.rayLengths(f.camera, f.width, f.height, f.slab);
-    });
-    const double renderMs = a.times ? slowestRankMillisSince(world, start) : 0.0;
-    start = std::chrono::steady_clock::now();
-    if (lengths)
-        compositeMeansOnRoot(world, frame, *lengths);
-    else
-        compositeOnRoot(world, f.mode, frame);
-    if (a.times) reportFrameTimes(world, renderMs, slowestRankMillisSince(world, start));
-    std::array<float, 2> range = volumeRange ? *volumeRange : vots.valueRange();
-    if (f.mode == render::RenderMode::Density) range = vots.densityRange();
-    range = world.unionOfRanges(range);
-    if (world.rank() == 0)
-        render::writePng(a.output, render::applyDisplay(frame, render::displayFor(f, range)));
-}
-
-// Under mpirun: each rank holds the Vots of its z slab, read from the .vots file or fitted from the planes
-// it alone reads of the volume, and the frames are composited on rank 0. A failure on any rank ends all.
-void runRenderOnRanks(const MpiWorld& world, const RenderArgs& a) {
-    CheckedArgs c;
-    ZSlab slab;
-    fit::VotSpace space;
-    std::optional<fit::VolumeSlab> read; // the volume's planes of this slab, when there is a volume
-    bool fitHere = false;
-    world.allOrNone([&] {
-        c = checkArgs(a);
-        checkDistributable(c);
-        std::string volumePath = a.volume;
-        if (isVotsFile(a.input)) {
-            if (c.raw && a.volume.empty())
-                throw fit::InputError("--raw-* describe a volume; a .vots input has one only with --volume");
-            space = fit::readVotSpaceFile(a.input);
-            server::restoreMetaFields(space);
-            slab = zSlabOfRank(space.dims[2] - 1, world.rank(), world.size());
-            space = votsOfSlab(std::move(space), slab, compositesCutRays(c.frame.mode));
-        } else {
-            if (!a.volume.empty())
-                throw fit::InputError("--volume is only for .vots input; INPUT is already a volume");
-            volumePath = a.input;
-            const auto planesZ = fit::volumeHeaderInfo(a.input, c.raw, a.series).dims[2];
-            if (planesZ < 2)
-                throw fit::InputError("volume needs at least 2 grid points along every axis to form a cell");
-            slab = zSlabOfRank(static_cast<int>(planesZ) - 1, world.rank(), world.size());
-            fitHere = true;
-        }
-        if (volumePath.empty()) return;
-        // An empty slab (more ranks than cells) still reads its one plane: its range counts alike.
-        checkPlanesFitBudget(volumePath, c.raw, a.memoryBudget, a.series,
-                             static_cast<std::uint64_t>(slab.end - slab.first + 1));
-        read = loadSlab(volumePath, slab, c.raw, fit::SampleStorage::Float, a.series);
-    });
-    std::optional<std::array<float, 2>> volumeRange;
-    if (read) volumeRange = world.unionOfRanges(read->planes.valueRange());
-    fit::FitStats slabStats; // of this rank's fit: its background cells count towards the whole's fill
-    if (fitHere) {
-        world.allOrNone([&] {
-            if (!slab.empty()) {
-                fit::FitResult fitted = fitForRender(read->planes, *volumeRange, a, c);
-                slabStats = fitted.stats;
-                space = std::move(fitted.space);
-            }
-            placeSlabFitInGrid(space, slab, read->whole);
-            read.reset(); // the samples are fitted; only the range is needed from here on
-        });
-        // Each rank's fit knows only its slab's omitted cells: the fill of the whole volume, as
-        // `vots fit` under mpirun gives it, from the sums over the ranks (the slabs split the cells).
-        slabStats.backgroundCells =
-            world.sumOverRanks(std::vector<std::uint64_t>{slabStats.backgroundCells})[0];
-        slabStats.backgroundValueSum = world.sumOverRanks(slabStats.backgroundValueSum);
-        space.backgroundFill = fit::backgroundFillOf(slabStats);
-    }
-    std::unique_ptr<render::EglContext> context;
-    std::optional<render::VotRenderer> vots;
-    world.allOrNone([&] {
-        context = render::EglContext::createOrThrow();
-        vots.emplace();
-        server::applyRenderPolicy(*vots);
-        vots->upload(space);
-    });
-    std::optional<render::CellDomain> domain;
-    if (compositesCutRays(c.frame.mode)) domain = cellDomainOfSlab(slab, space.dims);
-    renderDistributed(world, c, *vots, domain, volumeRange, a);
-}
 
 void runRender(const RenderArgs& a) {
     const CheckedArgs c = checkArgs(a);

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <future>
+#include <optional>
 #include <unistd.h>
 #include <vector>
 
@@ -131,31 +132,57 @@ private:
 
 } // namespace
 
+struct TurntableWriter::State {
+    TurntableOutput output;
+    int frames = 0; // added so far
+    std::optional<render::WebmWriter> video;
+    PendingFrames pending;
+    OverlappedWrites writes; // last, so a frame in flight ends before its temporary or the video goes
+};
+
+TurntableWriter::TurntableWriter(const TurntableOutput& output, int width, int height)
+    : mState(std::make_unique<State>()) {
+    mState->output = output;
+    if (output.format == TurntableFormat::Webm) mState->video.emplace(width, height);
+}
+
+TurntableWriter::~TurntableWriter() = default;
+
+void TurntableWriter::add(render::RgbaImage image) {
+    State& s = *mState;
+    const int index = s.frames++;
+    if (s.video) {
+        s.writes.push([&video = *s.video, image = std::move(image)] { video.addFrame(image); });
+        return;
+    }
+    s.writes.push([&pending = s.pending, path = framePath(s.output.path, index), image = std::move(image)] {
+        pending.add(path, image);
+    });
+}
+
+void TurntableWriter::finish() {
+    State& s = *mState;
+    s.writes.finish();
+    if (s.video)
+        render::writeFileAtomically(s.output.path, s.video->finish());
+    else
+        s.pending.commit();
+}
+
 void writeTurntable(const TurntableOutput& output, const render::FrameRequest& first, int frames,
                     std::optional<double> elevationDeg,
                     const std::function<render::RgbaImage(const render::FrameRequest&)>& draw) {
-    const auto frameAt = [&](int index) {
-        render::FrameRequest frame = first;
-        frame.camera = render::turntableCamera(first.camera, frames, index, elevationDeg);
-        return frame;
-    };
-    if (output.format == TurntableFormat::Webm) {
-        render::WebmWriter video(first.width, first.height);
-        OverlappedWrites writes; // after `video`, so it is destroyed (and waited for) first
-        for (int k = 0; k < frames; ++k)
-            writes.push([&video, image = draw(frameAt(k))] { video.addFrame(image); });
-        writes.finish();
-        render::writeFileAtomically(output.path, video.finish());
-        return;
-    }
-    PendingFrames pending;
-    OverlappedWrites writes; // after `pending`, so a frame in flight ends before its temporary is removed
+    TurntableWriter writer(output, first.width, first.height);
     for (int k = 0; k < frames; ++k)
-        writes.push([&pending, path = framePath(output.path, k), image = draw(frameAt(k))] {
-            pending.add(path, image);
-        });
-    writes.finish();
-    pending.commit();
+        writer.add(draw(turntableFrame(first, frames, k, elevationDeg)));
+    writer.finish();
+}
+
+render::FrameRequest turntableFrame(const render::FrameRequest& first, int frames, int index,
+                                    std::optional<double> elevationDeg) {
+    render::FrameRequest frame = first;
+    frame.camera = render::turntableCamera(first.camera, frames, index, elevationDeg);
+    return frame;
 }
 
 } // namespace vots::cli

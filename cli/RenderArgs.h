@@ -1,0 +1,65 @@
+// `vots render`'s arguments: the parsed options, their checks, and the fit a volume input gets.
+#pragma once
+
+#include "Args.h"
+#include "RawOptions.h"
+#include "TurntableOutput.h"
+
+#include "vots/fit/EpsSpec.h"
+#include "vots/fit/Fitter.h"
+#include "vots/fit/Volume.h"
+#include "vots/fit/VolumeLoad.h"
+#include "vots/render/FrameRequest.h"
+
+#include <array>
+#include <optional>
+#include <string>
+
+namespace vots::cli {
+
+std::string sizeText(int width, int height);
+std::string certifyName(fit::Certify certify);
+
+struct RenderArgs {
+    std::string input;
+    std::string output;
+    std::string cam;
+    std::string view;
+    std::string size = sizeText(render::DEFAULT_FRAME_SIDE, render::DEFAULT_FRAME_SIDE);
+    std::string mode{render::renderModeName(render::FrameRequest{}.mode)};
+    std::string renderer; // empty: what the mode implies (vots; grid for reference)
+    std::string slab;     // empty: whole rays
+    std::string window;
+    std::string colormap{render::colormapName(render::FrameRequest{}.colormap)};
+    std::string eps = formatNumber(fit::DEFAULT_EPS_PERCENT) + "%";
+    int degree = 3;
+    std::string background = "auto";
+    std::string certify = certifyName(render::RENDER_FIT_CERTIFY);
+    std::string volume;
+    std::string memoryBudget;     // empty: the default
+    std::string series;           // DICOM SeriesInstanceUID; empty: the folder's only series
+    RawArgs raw;                  // the layout of a headerless volume (INPUT, or --volume of a .vots input)
+    std::optional<int> turntable; // frames of a turn about the vertical axis; nullopt: one frame
+    std::optional<double> elevation; // the turn's elevation; nullopt: the camera's
+    bool times = false;              // print the frame's render and composite milliseconds on stderr
+};
+
+struct CheckedArgs {
+    render::FrameRequest frame;
+    fit::EpsSpec eps;
+    std::optional<fit::RawLayout> raw;
+    std::optional<TurntableOutput> turntable;
+};
+
+/// Every option checked (and the output folders), before any load or fit; throws fit::InputError.
+CheckedArgs checkArgs(const RenderArgs& a);
+
+/// True when the file starts with the .vots magic (a DICOM folder is not one); throws when unreadable.
+bool isVotsFile(const std::string& path);
+
+/// Fits `volume` with the options the arguments give for a whole volume whose values span `range` (eps
+/// in percent of it, its background): the volume itself, or under mpirun one rank's slab of it.
+fit::FitResult fitForRender(const fit::Volume& volume, std::array<float, 2> range, const RenderArgs& a,
+                            const CheckedArgs& c);
+
+} // namespace vots::cli
