@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -14,12 +15,18 @@ class Inflater {
 public:
     /// `path` only names the file in error messages; `data` must outlive the Inflater.
     Inflater(std::string path, const unsigned char* data, std::size_t size);
+    /// The stream in `file` from byte `offset` to its end, read a chunk at a time (never held whole), so
+    /// a reader that stops early has read only the compressed bytes up to its data.
+    Inflater(std::string path, const std::string& file, std::uint64_t offset);
     ~Inflater();
     Inflater(const Inflater&) = delete;
     Inflater& operator=(const Inflater&) = delete;
 
     /// Exactly `count` decompressed bytes; throws InputError when the stream ends first or is corrupt.
     std::vector<unsigned char> readExactly(std::size_t count);
+    /// Exactly `count` decompressed bytes at `destination` (memory the caller already holds); throws as
+    /// readExactly.
+    void readInto(unsigned char* destination, std::size_t count);
     /// Discards exactly `count` bytes.
     void skip(std::size_t count);
     /// Throws InputError unless the stream ends here (checking its CRC on the way).
@@ -27,6 +34,10 @@ public:
 
 private:
     std::size_t read(unsigned char* out, std::size_t count);
+    /// Hands zlib at least `want` bytes of input where that much is left (fewer only at the end).
+    void topUp(std::size_t want);
+    /// True when the input left after a stream's end is zeros only (padding); consumes it.
+    bool restIsZeros();
 
     struct State;
     std::string mPath;

@@ -4,7 +4,7 @@
 #include "vots/fit/Error.h"
 #include "vots/fit/PatientAxes.h"
 
-#include "Gzip.h"
+#include "GzipPlanes.h"
 #include "HeaderText.h"
 #include "InputFile.h"
 #include "SampleDecode.h"
@@ -284,25 +284,6 @@ std::uint64_t rawDataStart(const NrrdHeader& header, const std::string& file, st
     return start;
 }
 
-// Reads one gzip data file's share of the payload (`bytes` long) and appends it. Decompressed output
-// grows with the data, not with the header's claim, so it cannot go straight into the samples.
-void appendGzipData(const NrrdHeader& header, const std::string& file, std::uint64_t offset,
-                    std::size_t bytes, std::vector<unsigned char>& payload) {
-    const std::uint64_t size = regularFileSize(file);
-    if (header.lineSkip > 0) offset = skipLines(file, offset, header.lineSkip);
-    if (header.byteSkip < 0) throwInputError(file, "'byte skip: -1' cannot be used with gzip encoding");
-    const std::vector<unsigned char> packed =
-        readFileBytes(file, offset, static_cast<std::size_t>(size - offset));
-    Inflater inflater(file, packed.data(), packed.size());
-    inflater.skip(static_cast<std::size_t>(header.byteSkip)); // byte skip counts decompressed bytes
-    std::vector<unsigned char> part = inflater.readExactly(bytes);
-    inflater.expectEnd();
-    if (payload.empty())
-        payload = std::move(part);
-    else
-        payload.insert(payload.end(), part.begin(), part.end());
-}
-
 // A NRRD file whose header passed every check: its grid, sample layout and data files.
 struct NrrdFile {
     NrrdHeader header;
@@ -375,6 +356,24 @@ StoredSamples storedSamplesOf(NrrdFile file) {
     return stored;
 }
 
+// The gzip streams in the data files: each starts after the file's line skip; the byte skip counts
+// decompressed bytes.
+GzipSamples gzipSamplesOf(NrrdFile file) {
+    GzipSamples stored;
+    stored.grid = std::move(file.grid);
+    stored.type = file.type;
+    stored.bigEndian = file.bigEndian;
+    for (const auto& [name, offset] : file.sources) {
+        if (file.header.byteSkip < 0)
+            throwInputError(name, "'byte skip: -1' cannot be used with gzip encoding");
+        const std::uint64_t start =
+            file.header.lineSkip > 0 ? skipLines(name, offset, file.header.lineSkip) : offset;
+        stored.pieces.push_back(
+            {name, start, static_cast<std::uint64_t>(file.header.byteSkip), file.perFile});
+    }
+    return stored;
+}
+
 } // namespace
 
 std::optional<StoredSamples> detail::storedNrrdSamples(const std::string& path) {
@@ -383,14 +382,17 @@ std::optional<StoredSamples> detail::storedNrrdSamples(const std::string& path) 
     return storedSamplesOf(std::move(file));
 }
 
+std::optional<GzipSamples> detail::gzipNrrdSamples(const std::string& path) {
+    NrrdFile file = openNrrd(path);
+    if (!file.gzip) return std::nullopt;
+    return gzipSamplesOf(std::move(file));
+}
+
 Volume loadNrrd(const std::string& path, SampleStorage storage) {
     NrrdFile file = openNrrd(path);
     if (!file.gzip) return readStoredVolume(path, storedSamplesOf(std::move(file)), storage);
-    std::vector<unsigned char> payload;
-    for (const auto& [name, offset] : file.sources)
-        appendGzipData(file.header, name, offset, file.perFile, payload);
-    storeSamples(file.grid, path, payload.data(), file.shape.samples, file.type, file.bigEndian, storage);
-    return std::move(file.grid);
+    const int planes = file.shape.dims[2];
+    return readGzipPlanes(path, gzipSamplesOf(std::move(file)), 0, planes - 1, storage);
 }
 
 } // namespace vots::fit

@@ -1,9 +1,11 @@
-// Runs of z planes: cut out of a loaded volume, or read alone (by offset, or a DICOM series' own slices).
+// Runs of z planes: cut out of a loaded volume, or read alone (by offset, from a gzip stream, or a DICOM
+// series' own slices).
 #include "vots/fit/VolumePlanes.h"
 
 #include "vots/fit/DicomSeries.h"
 #include "vots/fit/Error.h"
 
+#include "GzipPlanes.h"
 #include "InputFile.h"
 #include "StoredSamples.h"
 
@@ -70,10 +72,20 @@ std::optional<detail::StoredSamples> storedSamplesOf(const std::string& path,
     detail::throwUnknownVolumeFormat(path);
 }
 
+// The streams of a gzip NRRD; nullopt for every other file (also a raw NRRD).
+std::optional<detail::GzipSamples> gzipSamplesOf(const std::string& path,
+                                                 const std::optional<RawLayout>& raw) {
+    if (raw || isDicomFolder(path)) return std::nullopt;
+    const std::string extension = detail::volumeExtension(path);
+    if (extension == ".nrrd" || extension == ".nhdr") return detail::gzipNrrdSamples(path);
+    return std::nullopt;
+}
+
 } // namespace
 
 bool readsOnlyPlanes(const std::string& path, const std::optional<RawLayout>& raw) {
-    return (!raw && isDicomFolder(path)) || storedSamplesOf(path, raw).has_value();
+    return (!raw && isDicomFolder(path)) || storedSamplesOf(path, raw).has_value() ||
+           gzipSamplesOf(path, raw).has_value();
 }
 
 VolumeSlab loadVolumePlanes(const std::string& path, int first, int last, const std::optional<RawLayout>& raw,
@@ -87,7 +99,11 @@ VolumeSlab loadVolumePlanes(const std::string& path, int first, int last, const 
         Volume planes = detail::readStoredPlanes(path, *stored, first, last, storage);
         return {std::move(planes), std::move(stored->grid)};
     }
-    // Compressed: the planes cannot be reached without decompressing what precedes them.
+    if (auto stored = gzipSamplesOf(path, raw)) {
+        Volume planes = detail::readGzipPlanes(path, *stored, first, last, storage);
+        return {std::move(planes), std::move(stored->grid)};
+    }
+    // NIfTI .nii.gz and MetaImage's CompressedData: loaded whole and cut (not yet streamed).
     const Volume whole = loadVolume(path, raw, storage, dicomSeries);
     return {planesOf(whole, first, last), gridOf(whole)};
 }

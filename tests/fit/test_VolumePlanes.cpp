@@ -1,4 +1,5 @@
-// Runs of z planes: read by offset from every uncompressed format, bit-identical to cutting the whole.
+// Runs of z planes: read by offset from every uncompressed format, streamed from gzip NRRD, bit-identical to
+// cutting the whole.
 #include "vots/fit/Error.h"
 #include "vots/fit/VolumeLoad.h"
 #include "vots/fit/VolumePlanes.h"
@@ -9,8 +10,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <optional>
 
@@ -186,7 +189,7 @@ TEST(VolumePlanes, RawLayoutWithHeaderBytes) {
     }
 }
 
-TEST(VolumePlanes, CompressedFilesAreLoadedWholeAndCut) {
+TEST(VolumePlanes, GzipNrrdPlanesAreStreamedOthersCompressedAreLoadedWholeAndCut) {
     TempDir dir;
     const std::string data = encode(fixtureValues(ScalarType::Int16), ScalarType::Int16, false);
     const std::string gzNrrd =
@@ -199,8 +202,98 @@ TEST(VolumePlanes, CompressedFilesAreLoadedWholeAndCut) {
     const std::string zlibMha = dir.write("z.mha", "NDims = 3\nDimSize = 5 4 3\nElementType = MET_SHORT\n"
                                                    "CompressedData = True\nElementDataFile = LOCAL\n" +
                                                        packed);
-    for (const std::string& path : {gzNrrd, gzNifti, zlibMha})
+    expectPlanesMatchCut({gzNrrd, std::nullopt}, true);
+    for (const std::string& path : {gzNifti, zlibMha})
         expectPlanesMatchCut({path, std::nullopt}, false);
+}
+
+TEST(VolumePlanes, GzipNrrdDataFilesMembersAndSkips) {
+    TempDir dir;
+    for (const ScalarType type : TYPES) {
+        SCOPED_TRACE(nrrdType(type));
+        const std::string data = encode(fixtureValues(type), type, true);
+        // Four data files of 15 samples each (runs of planes start and end inside files), each after a
+        // skipped line and 3 decompressed bytes of byte skip; the second file as two gzip members.
+        const std::size_t quarter = data.size() / 4;
+        std::string list;
+        for (std::size_t k = 0; k < 4; ++k) {
+            const std::string name = "p" + nrrdType(type) + std::to_string(k) + ".gz";
+            const std::string share = "xyz" + data.substr(k * quarter, quarter);
+            dir.write(name, "line to skip\n");
+            if (k == 1) {
+                vots::test::appendGzip(dir.file(name), share.substr(0, 7));
+                vots::test::appendGzip(dir.file(name), share.substr(7));
+            } else {
+                vots::test::appendGzip(dir.file(name), share);
+            }
+            list += name + "\n";
+        }
+        const std::string header = dir.write(
+            nrrdType(type) + ".nhdr",
+            vots::test::nrrdHeader(nrrdType(type), "gzip",
+                                   "endian: big\nline skip: 1\nbyte skip: 3\ndata file: LIST\n" + list));
+        expectPlanesMatchCut({header, std::nullopt}, true);
+    }
+}
+
+namespace {
+
+// A gzip NRRD of `planes` planes of 192 x 160 int16 samples that compress poorly (so the stream is
+// longer than the reader's chunks of input), written as one gzip member per 7 planes.
+std::string writeLargeGzipNrrd(TempDir& dir, const std::string& name, int planes) {
+    const int nx = 192, ny = 160;
+    std::vector<double> values(static_cast<std::size_t>(nx) * ny * planes);
+    std::uint32_t state = 12345;
+    for (double& v : values) {
+        state = state * 1664525u + 1013904223u;
+        v = static_cast<double>(static_cast<std::int16_t>(state >> 16));
+    }
+    const std::string data = encode(values, ScalarType::Int16, false);
+    const std::string path =
+        dir.write(name, "NRRD0004\ntype: short\ndimension: 3\nsizes: 192 160 " + std::to_string(planes) +
+                            "\nencoding: gzip\nendian: little\n\n");
+    const std::size_t planeBytes = std::size_t{nx} * ny * 2;
+    for (int z = 0; z < planes; z += 7)
+        vots::test::appendGzip(path, data.substr(z * planeBytes, 7 * planeBytes));
+    return path;
+}
+
+} // namespace
+
+TEST(VolumePlanes, LargeGzipNrrdPlanesAreTheCutOfTheWholeAndHoldOnlyThePlanes) {
+    TempDir dir;
+    const int planes = 40;
+    const std::string path = writeLargeGzipNrrd(dir, "large.nrrd", planes);
+    ASSERT_GT(std::filesystem::file_size(path), std::uintmax_t{2} << 20); // more than 2 chunks of input
+    const std::size_t plane = 192 * 160;
+    for (const SampleStorage storage : {SampleStorage::Float, SampleStorage::Source}) {
+        const Volume whole = loadVolume(path, std::nullopt, storage);
+        for (const auto& [first, last] : {std::pair{0, 0}, {0, 13}, {6, 7}, {13, 26}, {20, 39}, {39, 39}}) {
+            SCOPED_TRACE("planes " + std::to_string(first) + ".." + std::to_string(last));
+            const VolumeSlab slab = loadVolumePlanes(path, first, last, std::nullopt, storage);
+            expectSameVolume(slab.planes, planesOf(whole, first, last));
+            // The reader gives back the slab alone, never the whole volume.
+            EXPECT_EQ(slab.planes.heldSamples(), plane * static_cast<std::size_t>(last - first + 1));
+            EXPECT_TRUE(slab.whole.values.empty() && !slab.whole.isCompact());
+        }
+    }
+}
+
+TEST(VolumePlanes, GzipPlanesStopAfterTheirLastPlaneAndTheEndIsCheckedByItsReader) {
+    // The stream cut short at 60 %: the whole load refuses it, the first planes never reach the cut, and
+    // the reader of the last planes refuses it as the whole load does.
+    TempDir dir;
+    const std::string path = writeLargeGzipNrrd(dir, "cut.nrrd", 40);
+    std::filesystem::resize_file(path, std::filesystem::file_size(path) * 6 / 10);
+    EXPECT_THROW(loadVolume(path), InputError);
+    EXPECT_EQ(loadVolumePlanes(path, 0, 10).planes.dims, (std::array<int, 3>{192, 160, 11}));
+    EXPECT_THROW(loadVolumePlanes(path, 30, 39), InputError);
+    // Bytes after the stream: only the reader of the stream's end sees them.
+    const std::string longer = writeLargeGzipNrrd(dir, "longer.nrrd", 14);
+    std::ofstream(longer, std::ios::binary | std::ios::app) << "trailing";
+    EXPECT_THROW(loadVolume(longer), InputError);
+    EXPECT_NO_THROW(loadVolumePlanes(longer, 0, 12));
+    EXPECT_THROW(loadVolumePlanes(longer, 12, 13), InputError);
 }
 
 TEST(VolumePlanes, ReadsOnlyThePlanesBytes) {

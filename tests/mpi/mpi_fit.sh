@@ -2,8 +2,8 @@
 # `mpirun -np N vots fit` on loopback, N = 1, 2, 3, 4 (3 and 4 oversubscribed on 2 cores): each rank
 # reads only its slab of a raw NRRD; the one file rank 0 writes verifies against the volume, records the
 # ranks, is reproducible, with one rank holds the single-process Vots, renders alike in one process and
-# on N ranks; the gzip input (loaded whole, then cut) gives the same Vots; a DICOM series of the same
-# samples (each rank decodes only its slices) verifies; a failure on one rank ends all (fit and render).
+# on N ranks; the gzip input (each rank streams its planes alone) gives the same Vots; a DICOM series of
+# the same samples (each rank decodes only its slices) verifies; a failure on one rank ends all (fit and render).
 # Usage: tests/mpi/mpi_fit.sh VOTS_BINARY GZIP_NRRD_VOLUME VOTS_WRITE_DICOM_BINARY
 set -euo pipefail
 vots=$1 gzipped=$2 write_dicom=$3
@@ -55,7 +55,7 @@ cmp -s <(vots_body "$work/2.vots") <(vots_body "$work/2b.vots") || fail "two run
 no_times() { "$vots" info --json "$1" | sed -E 's/"(fit_)?seconds":[^,}]*//g; s/"file":"[^"]*"//'; }
 [[ $(no_times "$work/2.vots") == "$(no_times "$work/2b.vots")" ]] || fail "two runs on 2 ranks: meta blocks differ"
 
-# The gzip file is loaded whole on each rank and cut: the same slabs, so the same Vots.
+# Each rank inflates the gzip file up to its last plane and keeps its planes: the same slabs, so the same Vots.
 mpi 2 "$vots" fit "$gzipped" -o "$work/gz.vots" "${fit_args[@]}" >/dev/null
 cmp -s <(vots_body "$work/2.vots") <(vots_body "$work/gz.vots") || fail "gzip and raw input differ on 2 ranks"
 

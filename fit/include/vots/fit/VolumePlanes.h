@@ -13,10 +13,12 @@ namespace vots::fit {
 /// compact), with the origin moved to plane `first`. Throws InputError unless 0 <= first <= last < dims z.
 Volume planesOf(const Volume& volume, int first, int last);
 
-/// True when loadVolumePlanes reads only the planes' samples: by offset from NRRD with raw encoding
+/// True when loadVolumePlanes holds only the planes' samples: read by offset from NRRD with raw encoding
 /// (attached, detached or several data files), NIfTI .nii, MetaImage without CompressedData and raw
-/// layouts; a DICOM series decodes only the planes' slice files. Gzip/zlib payloads are loaded whole and
-/// cut. Reads the header only; throws InputError as loadVolume does.
+/// layouts; decompressed from the start of a gzip NRRD's streams, keeping only the planes' bytes and
+/// stopping after them; a DICOM series decodes only the planes' slice files. NIfTI .nii.gz and
+/// MetaImage's CompressedData are loaded whole and cut. Reads the header only; throws InputError as
+/// loadVolume does.
 bool readsOnlyPlanes(const std::string& path, const std::optional<RawLayout>& raw = std::nullopt);
 
 /// A run of planes of a volume file, and the grid of the whole volume they belong to.

@@ -1,0 +1,47 @@
+// Runs of z planes of a gzip payload: every stream inflated from its start, kept only where the planes are.
+#include "GzipPlanes.h"
+
+#include "Gzip.h"
+#include "SampleDecode.h"
+#include "StoredSamples.h"
+
+#include <algorithm>
+
+namespace vots::fit::detail {
+
+Volume readGzipPlanes(const std::string& path, const GzipSamples& stored, int first, int last,
+                      SampleStorage storage) {
+    Volume volume = gridOfPlanes(stored.grid, first, last);
+    const std::size_t plane =
+        static_cast<std::size_t>(stored.grid.dims[0]) * static_cast<std::size_t>(stored.grid.dims[1]);
+    const std::size_t count = plane * static_cast<std::size_t>(volume.dims[2]);
+    const std::size_t sampleBytes = scalarTypeSize(stored.type);
+    const std::uint64_t from =
+        static_cast<std::uint64_t>(plane) * static_cast<std::uint64_t>(first) * sampleBytes;
+    const std::uint64_t to = from + static_cast<std::uint64_t>(count) * sampleBytes;
+    // Grown with the data actually decompressed (Inflater::readExactly), not the header's claim.
+    std::vector<unsigned char> payload;
+    std::uint64_t pieceStart = 0; // where the piece's share begins in the payload
+    for (const GzipPiece& piece : stored.pieces) {
+        const std::uint64_t pieceEnd = pieceStart + piece.bytes;
+        if (from < pieceEnd && to > pieceStart) {
+            const std::uint64_t begin = std::max(from, pieceStart);
+            const std::uint64_t end = std::min(to, pieceEnd);
+            Inflater inflater(piece.file, piece.file, piece.start);
+            inflater.skip(static_cast<std::size_t>(piece.skip + (begin - pieceStart)));
+            std::vector<unsigned char> part = inflater.readExactly(static_cast<std::size_t>(end - begin));
+            // The reader of a stream's last bytes checks that it ends there; under mpirun every stream's
+            // end is some rank's, so a file the whole load refuses is refused by the ranks together.
+            if (end == pieceEnd) inflater.expectEnd();
+            if (payload.empty())
+                payload = std::move(part);
+            else
+                payload.insert(payload.end(), part.begin(), part.end());
+        }
+        pieceStart = pieceEnd;
+    }
+    storeSamples(volume, path, payload.data(), count, stored.type, stored.bigEndian, storage);
+    return volume;
+}
+
+} // namespace vots::fit::detail

@@ -1,0 +1,42 @@
+// Private: runs of z planes of a gzip-compressed payload, decompressed as a stream and kept from the first.
+#pragma once
+
+#include "vots/fit/Volume.h"
+#include "vots/fit/VolumeLoad.h"
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace vots::fit::detail {
+
+/// One data file's share of the payload, compressed: the stream starts at `start` in `file` and holds
+/// `skip` bytes (NRRD's byte skip counts decompressed bytes) before the share's `bytes`.
+struct GzipPiece {
+    std::string file;
+    std::uint64_t start = 0;
+    std::uint64_t skip = 0;
+    std::size_t bytes = 0;
+};
+
+/// A volume file whose payload is gzip or zlib streams, header already checked: the grid and the streams
+/// that, one after the other, decompress to the payload.
+struct GzipSamples {
+    Volume grid;
+    ScalarType type = ScalarType::UInt8;
+    bool bigEndian = false;
+    std::vector<GzipPiece> pieces;
+};
+
+/// NRRD's header pass for gzip encoding; nullopt for a raw payload (StoredSamples reads that by offset).
+std::optional<GzipSamples> gzipNrrdSamples(const std::string& path);
+
+/// Planes [first, last] (first <= last inside the grid), as cutting them out of the whole load gives them.
+/// Each stream is decompressed from its start, the bytes before the planes are discarded as they come,
+/// and it stops after the last plane, so the memory taken is the planes' bytes (and a chunk of
+/// compressed input). A stream whose end is read must end there, as the whole load checks.
+Volume readGzipPlanes(const std::string& path, const GzipSamples& stored, int first, int last,
+                      SampleStorage storage);
+
+} // namespace vots::fit::detail
