@@ -1,6 +1,7 @@
 // `vots render` under mpirun: which Vots and cells each rank draws, and the composite on rank 0.
 #include "DistributedRender.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <iostream>
@@ -25,6 +26,49 @@ render::CellDomain cellDomainOfSlab(ZSlab slab, const std::array<int, 3>& dims) 
     return {{0, 0, slab.first}, {dims[0] - 1, dims[1] - 1, slab.end}};
 }
 
+void minIpForCombining(std::vector<float>& pixels) {
+    for (float& v : pixels)
+        if (v == -INFINITY) v = INFINITY;
+}
+
+void minIpFromCombined(std::vector<float>& pixels) {
+    for (float& v : pixels)
+        if (v == INFINITY) v = -INFINITY;
+}
+
+void combineExtremes(render::RenderMode mode, std::vector<float>& into, const std::vector<float>& other) {
+    if (other.size() != into.size()) throw std::runtime_error("a rank's frame has another size");
+    if (mode == render::RenderMode::Mip) {
+        for (std::size_t i = 0; i < into.size(); ++i)
+            into[i] = std::max(into[i], other[i]);
+        return;
+    }
+    if (mode == render::RenderMode::Aip) throw std::logic_error("combineExtremes: the aip adds its parts");
+    for (std::size_t i = 0; i < into.size(); ++i)
+        into[i] = std::min(into[i], other[i]);
+}
+
+void addMeanParts(std::vector<double>& sums, const render::FloatImage& means,
+                  const render::FloatImage& lengths) {
+    const std::size_t count = means.pixels.size();
+    if (lengths.pixels.size() != count || sums.size() != 2 * count)
+        throw std::runtime_error("a rank's aip frame has another size");
+    // A float's product with a float is exact in double, so the sum over the ranks rounds only where it adds.
+    for (std::size_t i = 0; i < count; ++i) {
+        const float mean = means.pixels[i], length = lengths.pixels[i];
+        if (!std::isfinite(mean) || !(length > 0.f)) continue; // this rank's ray misses its cells
+        sums[i] += double(mean) * double(length);
+        sums[count + i] += double(length);
+    }
+}
+
+void meansFromParts(const std::vector<double>& sums, render::FloatImage& means) {
+    const std::size_t count = means.pixels.size();
+    if (sums.size() != 2 * count) throw std::logic_error("meansFromParts: sizes differ");
+    for (std::size_t i = 0; i < count; ++i)
+        means.pixels[i] = sums[count + i] > 0.0 ? static_cast<float>(sums[i] / sums[count + i]) : -INFINITY;
+}
+
 void compositeOnRoot(const MpiWorld& world, render::RenderMode mode, render::FloatImage& frame) {
     switch (mode) {
     case render::RenderMode::Mip:
@@ -34,12 +78,9 @@ void compositeOnRoot(const MpiWorld& world, render::RenderMode mode, render::Flo
         world.reduceMinToRoot(frame.pixels); // the smallest Vot along the ray; no Vot is +inf on every rank
         return;
     case render::RenderMode::MinIp:
-        // A rank whose cut ray takes nothing has -inf, which must not win the min: +inf while reducing.
-        for (float& v : frame.pixels)
-            if (v == -INFINITY) v = INFINITY;
+        minIpForCombining(frame.pixels);
         world.reduceMinToRoot(frame.pixels);
-        for (float& v : frame.pixels)
-            if (v == INFINITY) v = -INFINITY;
+        minIpFromCombined(frame.pixels);
         return;
     case render::RenderMode::Aip:
         break;
@@ -49,21 +90,12 @@ void compositeOnRoot(const MpiWorld& world, render::RenderMode mode, render::Flo
 
 void compositeMeansOnRoot(const MpiWorld& world, render::FloatImage& means,
                           const render::FloatImage& lengths) {
-    const std::size_t count = means.pixels.size();
-    if (lengths.pixels.size() != count) throw std::logic_error("compositeMeansOnRoot: sizes differ");
-    // Integrals, then lengths, in double: a float's product with a float is exact in it, so the sum over
-    // the ranks rounds only where it adds.
-    std::vector<double> sums(2 * count, 0.0);
-    for (std::size_t i = 0; i < count; ++i) {
-        const float mean = means.pixels[i], length = lengths.pixels[i];
-        if (!std::isfinite(mean) || !(length > 0.f)) continue; // this rank's ray misses its cells
-        sums[i] = double(mean) * double(length);
-        sums[count + i] = double(length);
-    }
+    if (lengths.pixels.size() != means.pixels.size())
+        throw std::logic_error("compositeMeansOnRoot: sizes differ");
+    std::vector<double> sums(2 * means.pixels.size(), 0.0); // the integrals, then the lengths
+    addMeanParts(sums, means, lengths);
     world.reduceSumToRoot(sums);
-    if (world.rank() != 0) return;
-    for (std::size_t i = 0; i < count; ++i)
-        means.pixels[i] = sums[count + i] > 0.0 ? static_cast<float>(sums[i] / sums[count + i]) : -INFINITY;
+    if (world.rank() == 0) meansFromParts(sums, means);
 }
 
 void compositeGridOnRoot(const MpiWorld& world, render::RenderMode mode, render::FloatImage& frame) {

@@ -12,6 +12,7 @@
 
 #include <array>
 #include <chrono>
+#include <vector>
 
 namespace vots::cli {
 
@@ -28,6 +29,22 @@ fit::VotSpace votsOfSlab(fit::VotSpace space, ZSlab slab, bool cutRays);
 
 /// The slab's cells as the walk's domain, on a grid of `dims` points.
 render::CellDomain cellDomainOfSlab(ZSlab slab, const std::array<int, 3>& dims);
+
+/// The per-pixel arithmetic of every composite of the Vots' frames, shared by the collectives below
+/// (`vots render`) and FrameComposite (`vots serve`, one rank's frame at a time), so both give the same
+/// bits. MinIP: a rank whose cut ray takes nothing has -inf, which must not win the min: it is +inf while
+/// the ranks' frames combine (minIpForCombining), and turned back after (minIpFromCombined).
+void minIpForCombining(std::vector<float>& pixels);
+void minIpFromCombined(std::vector<float>& pixels);
+/// Element-wise max (mip) or min (minip in its combining form, density) of `other` into `into`.
+void combineExtremes(render::RenderMode mode, std::vector<float>& into, const std::vector<float>& other);
+/// The aip: adds one rank's integrals (mean x length, exact in double) and lengths to `sums` (2 x pixels:
+/// the integrals, then the lengths), skipping pixels whose ray misses the rank's cells; throws
+/// std::runtime_error when the sizes disagree.
+void addMeanParts(std::vector<double>& sums, const render::FloatImage& means,
+                  const render::FloatImage& lengths);
+/// sum(integrals) / sum(lengths) per pixel into `means`, -inf where no rank's ray has any length.
+void meansFromParts(const std::vector<double>& sums, render::FloatImage& means);
 
 /// Composites the ranks' float frames of one projection onto rank 0: max for mip, min for density and
 /// minip (whose ranks' rays are cut to their slabs). The aip goes through compositeMeansOnRoot.

@@ -11,9 +11,9 @@
 
 namespace vots::cli {
 
-/// The same arithmetic as compositeOnRoot / compositeMeansOnRoot: max for mip, min for minip (a rank's
-/// ray that takes nothing, -inf, never wins), per pixel sum(mean x length) / sum(length) for the aip.
-/// The density is not composited here (its display range is a reduction over the ranks too).
+/// The arithmetic of compositeOnRoot / compositeMeansOnRoot (the same functions): max for mip, min for minip
+/// (a rank's ray that takes nothing, -inf, never wins), per pixel sum(mean x length) / sum(length) for the
+/// aip. The density is not composited here (its display range is a reduction over the ranks too).
 class FrameComposite {
 public:
     /// Starts from rank 0's frame; throws std::logic_error for the density.
