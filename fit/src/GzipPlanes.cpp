@@ -40,7 +40,11 @@ Volume readGzipPlanes(const std::string& path, const GzipSamples& stored, int fi
         }
         pieceStart = pieceEnd;
     }
-    storeSamples(volume, path, payload.data(), count, stored.type, stored.bigEndian, storage);
+    // Scaled samples are not integers any more: only unscaled ones stay compact.
+    const bool scaled = stored.slope != 0.0;
+    storeSamples(volume, path, payload.data(), count, stored.type, stored.bigEndian,
+                 scaled ? SampleStorage::Float : storage);
+    if (scaled) applyScaling(path, volume.values, stored.slope, stored.inter);
     return volume;
 }
 

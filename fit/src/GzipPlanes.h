@@ -27,10 +27,14 @@ struct GzipSamples {
     ScalarType type = ScalarType::UInt8;
     bool bigEndian = false;
     std::vector<GzipPiece> pieces;
+    double slope = 0.0; // NIfTI scl_slope and scl_inter; slope 0: the samples are not scaled
+    double inter = 0.0;
 };
 
-/// NRRD's header pass for gzip encoding; nullopt for a raw payload (StoredSamples reads that by offset).
+/// NRRD's header pass for gzip encoding, NIfTI's for a .nii.gz (its header read from the stream's start);
+/// nullopt for an uncompressed payload (StoredSamples reads that by offset).
 std::optional<GzipSamples> gzipNrrdSamples(const std::string& path);
+std::optional<GzipSamples> gzipNiftiSamples(const std::string& path);
 
 /// Planes [first, last] (first <= last inside the grid), as cutting them out of the whole load gives them.
 /// Each stream is decompressed from its start, the bytes before the planes are discarded as they come,

@@ -4,6 +4,7 @@
 #include "vots/fit/PatientAxes.h"
 
 #include "Gzip.h"
+#include "GzipPlanes.h"
 #include "InputFile.h"
 #include "SampleDecode.h"
 #include "StoredSamples.h"
@@ -228,23 +229,28 @@ StoredSamples storedPlain(const std::string& path, std::uint64_t fileSize) {
     return stored;
 }
 
-std::vector<unsigned char> readGzipped(const std::string& path, std::uint64_t fileSize, NiftiInfo& info) {
-    const std::vector<unsigned char> packed = readFileBytes(path, 0, static_cast<std::size_t>(fileSize));
-    Inflater inflater(path, packed.data(), packed.size());
-    const std::vector<unsigned char> header = inflater.readExactly(HEADER_BYTES);
-    info = parseHeader(path, header.data());
-    inflater.skip(info.voxOffset - HEADER_BYTES);
-    std::vector<unsigned char> payload = inflater.readExactly(info.shape.bytes);
-    inflater.expectEnd();
-    return payload;
-}
-
 } // namespace
 
 std::optional<StoredSamples> detail::storedNiftiSamples(const std::string& path) {
     const std::uint64_t fileSize = regularFileSize(path);
     if (isGzipped(path, fileSize)) return std::nullopt;
     return storedPlain(path, fileSize);
+}
+
+std::optional<GzipSamples> detail::gzipNiftiSamples(const std::string& path) {
+    if (!isGzipped(path, regularFileSize(path))) return std::nullopt;
+    // The header is the stream's first bytes; the samples start at vox_offset of the decompressed file.
+    Inflater inflater(path, path, 0);
+    const std::vector<unsigned char> header = inflater.readExactly(HEADER_BYTES);
+    const NiftiInfo info = parseHeader(path, header.data());
+    GzipSamples stored;
+    stored.grid = gridOf(path, info);
+    stored.type = info.type;
+    stored.bigEndian = info.bigEndian;
+    stored.pieces.push_back({path, 0, info.voxOffset, info.shape.bytes});
+    stored.slope = info.slope;
+    stored.inter = info.inter;
+    return stored;
 }
 
 void detail::applyScaling(const std::string& path, std::vector<float>& values, double slope, double inter) {
@@ -262,14 +268,8 @@ void detail::applyScaling(const std::string& path, std::vector<float>& values, d
 Volume loadNifti(const std::string& path, SampleStorage storage) {
     const std::uint64_t fileSize = regularFileSize(path);
     if (!isGzipped(path, fileSize)) return readStoredVolume(path, storedPlain(path, fileSize), storage);
-    NiftiInfo info;
-    const std::vector<unsigned char> payload = readGzipped(path, fileSize, info);
-    Volume volume = gridOf(path, info);
-    // Scaled samples are not integers any more: only unscaled ones stay compact.
-    storeSamples(volume, path, payload.data(), info.shape.samples, info.type, info.bigEndian,
-                 info.slope != 0.0 ? SampleStorage::Float : storage);
-    if (info.slope != 0.0) applyScaling(path, volume.values, info.slope, info.inter);
-    return volume;
+    const GzipSamples stored = *gzipNiftiSamples(path);
+    return readGzipPlanes(path, stored, 0, stored.grid.dims[2] - 1, storage);
 }
 
 } // namespace vots::fit

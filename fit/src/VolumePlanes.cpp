@@ -72,12 +72,13 @@ std::optional<detail::StoredSamples> storedSamplesOf(const std::string& path,
     detail::throwUnknownVolumeFormat(path);
 }
 
-// The streams of a gzip NRRD; nullopt for every other file (also a raw NRRD).
+// The streams of a gzip NRRD or NIfTI; nullopt for every other file (also an uncompressed one).
 std::optional<detail::GzipSamples> gzipSamplesOf(const std::string& path,
                                                  const std::optional<RawLayout>& raw) {
     if (raw || isDicomFolder(path)) return std::nullopt;
     const std::string extension = detail::volumeExtension(path);
     if (extension == ".nrrd" || extension == ".nhdr") return detail::gzipNrrdSamples(path);
+    if (extension == ".nii" || extension == ".nii.gz") return detail::gzipNiftiSamples(path);
     return std::nullopt;
 }
 
@@ -103,7 +104,7 @@ VolumeSlab loadVolumePlanes(const std::string& path, int first, int last, const 
         Volume planes = detail::readGzipPlanes(path, *stored, first, last, storage);
         return {std::move(planes), std::move(stored->grid)};
     }
-    // NIfTI .nii.gz and MetaImage's CompressedData: loaded whole and cut (not yet streamed).
+    // MetaImage's CompressedData: loaded whole and cut (not yet streamed).
     const Volume whole = loadVolume(path, raw, storage, dicomSeries);
     return {planesOf(whole, first, last), gridOf(whole)};
 }

@@ -1,5 +1,5 @@
-// Runs of z planes: read by offset from every uncompressed format, streamed from gzip NRRD, bit-identical to
-// cutting the whole.
+// Runs of z planes: read by offset from every uncompressed format, streamed from gzip NRRD and NIfTI,
+// bit-identical to cutting the whole.
 #include "vots/fit/Error.h"
 #include "vots/fit/VolumeLoad.h"
 #include "vots/fit/VolumePlanes.h"
@@ -151,6 +151,12 @@ TEST(VolumePlanes, NiftiPlainEveryTypeAndScaled) {
                 dir.write(std::to_string(datatype) + "s" + std::to_string(static_cast<int>(slope)) + ".nii",
                           vots::test::niftiHeader(spec) + encode(fixtureValues(type), type, false));
             expectPlanesMatchCut({path, std::nullopt}, true);
+            // The same file gzipped whole (.nii.gz): its planes are streamed, scaled alike.
+            const std::string gz = dir.file(std::to_string(datatype) + "s" +
+                                            std::to_string(static_cast<int>(slope)) + ".nii.gz");
+            vots::test::appendGzip(gz,
+                                   vots::test::niftiHeader(spec) + encode(fixtureValues(type), type, false));
+            expectPlanesMatchCut({gz, std::nullopt}, true);
         }
     }
 }
@@ -189,7 +195,7 @@ TEST(VolumePlanes, RawLayoutWithHeaderBytes) {
     }
 }
 
-TEST(VolumePlanes, GzipNrrdPlanesAreStreamedOthersCompressedAreLoadedWholeAndCut) {
+TEST(VolumePlanes, GzipPlanesAreStreamedZlibMetaImagesAreLoadedWholeAndCut) {
     TempDir dir;
     const std::string data = encode(fixtureValues(ScalarType::Int16), ScalarType::Int16, false);
     const std::string gzNrrd =
@@ -203,8 +209,8 @@ TEST(VolumePlanes, GzipNrrdPlanesAreStreamedOthersCompressedAreLoadedWholeAndCut
                                                    "CompressedData = True\nElementDataFile = LOCAL\n" +
                                                        packed);
     expectPlanesMatchCut({gzNrrd, std::nullopt}, true);
-    for (const std::string& path : {gzNifti, zlibMha})
-        expectPlanesMatchCut({path, std::nullopt}, false);
+    expectPlanesMatchCut({gzNifti, std::nullopt}, true);
+    expectPlanesMatchCut({zlibMha, std::nullopt}, false);
 }
 
 TEST(VolumePlanes, GzipNrrdDataFilesMembersAndSkips) {

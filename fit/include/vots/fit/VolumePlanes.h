@@ -15,9 +15,9 @@ Volume planesOf(const Volume& volume, int first, int last);
 
 /// True when loadVolumePlanes holds only the planes' samples: read by offset from NRRD with raw encoding
 /// (attached, detached or several data files), NIfTI .nii, MetaImage without CompressedData and raw
-/// layouts; decompressed from the start of a gzip NRRD's streams, keeping only the planes' bytes and
-/// stopping after them; a DICOM series decodes only the planes' slice files. NIfTI .nii.gz and
-/// MetaImage's CompressedData are loaded whole and cut. Reads the header only; throws InputError as
+/// layouts; decompressed from the start of a gzip NRRD's streams or a NIfTI .nii.gz, keeping only the
+/// planes' bytes and stopping after them; a DICOM series decodes only the planes' slice files.
+/// MetaImage's CompressedData is loaded whole and cut. Reads the header only; throws InputError as
 /// loadVolume does.
 bool readsOnlyPlanes(const std::string& path, const std::optional<RawLayout>& raw = std::nullopt);
 
