@@ -19,7 +19,8 @@ double evaluate(const BoxOutcome& o, double x, double y, double z) {
     double sum = 0.0;
     for (std::size_t i = 0; i < MONOMIAL_COUNT; ++i) {
         const auto& e = MONOMIAL_EXPONENTS[i];
-        sum += static_cast<double>(o.c[i]) * std::pow(d[0], e[0]) * std::pow(d[1], e[1]) * std::pow(d[2], e[2]);
+        sum +=
+            static_cast<double>(o.c[i]) * std::pow(d[0], e[0]) * std::pow(d[1], e[1]) * std::pow(d[2], e[2]);
     }
     return sum;
 }
