@@ -117,6 +117,27 @@ bool indexBrick(const VotWalkGrid& grid, std::size_t brick, const std::vector<Ce
     std::array<int, 3> extent{};
     for (int a = 0; a < 3; ++a)
         extent[a] = std::min(side, grid.cells[a] - origin[a]);
+    // Most bricks lie in one Vot or in background alone: their one block is known without painting a
+    // cell, which keeps the build's time with the mixed bricks rather than the cells. The same palette
+    // and block as painting gives (one block grown over the whole brick, no table).
+    const std::size_t touching = bins.start[brick + 1] - bins.start[brick];
+    if (touching == 0) {
+        out.emptyBlocks.push_back(
+            {origin, {origin[0] + extent[0], origin[1] + extent[1], origin[2] + extent[2]}});
+        out.palette.push_back(EMPTY_LOCAL);
+        return true;
+    }
+    if (touching == 1) {
+        const std::uint32_t vot = bins.vots[bins.start[brick]];
+        const CellBlock& b = boxes[vot];
+        bool covers = true;
+        for (int a = 0; a < 3; ++a)
+            covers = covers && b.lo[a] <= origin[a] && b.hi[a] >= origin[a] + extent[a];
+        if (covers) {
+            out.palette.push_back(vot);
+            return true;
+        }
+    }
     std::fill(s.ids.begin(), s.ids.end(), OUTSIDE);
     for (int z = 0; z < extent[2]; ++z)
         for (int y = 0; y < extent[1]; ++y)

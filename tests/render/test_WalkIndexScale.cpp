@@ -61,3 +61,65 @@ TEST(WalkIndexScale, MoreCellsThanATextureBufferHoldsStayOnTheWalk) {
         EXPECT_GT(finite, a.pixels.size() / 4) << text << ": the Vots cover most of the view";
     }
 }
+
+TEST(WalkIndexScale, BricksInsideOneVotOrBackgroundAreNamedWithoutTables) {
+    // 39^3 cells in bricks of 8 (the last partial): a large Vot over whole bricks and beyond a brick
+    // border, a small one inside a brick, and background bricks that touch neither.
+    constexpr std::array<int, 3> DIMS{40, 40, 40};
+    std::vector<GpuVot> vots(2);
+    for (int a = 0; a < 3; ++a) {
+        vots[0].lo[a] = 0.0f, vots[0].hi[a] = a == 2 ? 19.0f : 24.0f;
+        vots[1].lo[a] = 33.0f, vots[1].hi[a] = 35.0f;
+    }
+    std::string why;
+    const auto grid = buildVotWalkGrid(vots, DIMS, 3, &why);
+    ASSERT_TRUE(grid) << why;
+    auto inside = [](const GpuVot& v, int x, int y, int z) {
+        return float(x) >= v.lo[0] && float(x) < v.hi[0] && float(y) >= v.lo[1] && float(y) < v.hi[1] &&
+               float(z) >= v.lo[2] && float(z) < v.hi[2];
+    };
+    std::vector<int> covered(39 * 39 * 39, 0);
+    for (const CellBlock& b : grid->emptyBlocks)
+        for (int z = b.lo[2]; z < b.hi[2]; ++z)
+            for (int y = b.lo[1]; y < b.hi[1]; ++y)
+                for (int x = b.lo[0]; x < b.hi[0]; ++x)
+                    ++covered[static_cast<std::size_t>((z * 39 + y) * 39 + x)];
+    for (int z = 0; z < 39; ++z)
+        for (int y = 0; y < 39; ++y)
+            for (int x = 0; x < 39; ++x) {
+                const std::uint32_t id = blockAt(*grid, {x, y, z});
+                const int expected = inside(vots[0], x, y, z) ? 0 : inside(vots[1], x, y, z) ? 1 : -1;
+                const int count = covered[static_cast<std::size_t>((z * 39 + y) * 39 + x)];
+                if (expected >= 0) {
+                    ASSERT_EQ(id, std::uint32_t(expected)) << x << "," << y << "," << z;
+                    ASSERT_EQ(count, 0) << x << "," << y << "," << z;
+                } else {
+                    ASSERT_GE(id, vots.size()) << x << "," << y << "," << z;
+                    ASSERT_EQ(count, 1) << x << "," << y << "," << z;
+                    const CellBlock& b = grid->emptyBlocks[id - vots.size()];
+                    ASSERT_TRUE(x >= b.lo[0] && x < b.hi[0] && y >= b.lo[1] && y < b.hi[1] && z >= b.lo[2] &&
+                                z < b.hi[2]);
+                }
+            }
+    // Bricks wholly in Vot 0 (x, y < 3, z < 2) and bricks Vot 1 does not reach past (x, y, z >= 3, with
+    // Vot 1 inside brick 4) hold one palette entry and no cell table; a brick wholly in background is
+    // one empty block of its own extent.
+    const PalettedCells& cells = grid->index;
+    auto paletteSize = [&](std::size_t brick) {
+        const std::uint32_t end = brick + 1 < cells.paletteStart.size() ? cells.paletteStart[brick + 1]
+                                                                        : std::uint32_t(cells.palette.size());
+        return end - cells.paletteStart[brick];
+    };
+    auto brickOf = [&](int x, int y, int z) { return std::size_t((z * 5 + y) * 5 + x); };
+    ASSERT_EQ(grid->bricks, (std::array<int, 3>{5, 5, 5}));
+    for (int z = 0; z < 2; ++z)
+        for (int y = 0; y < 3; ++y)
+            for (int x = 0; x < 3; ++x) {
+                EXPECT_EQ(paletteSize(brickOf(x, y, z)), 1u);
+                EXPECT_EQ(cells.palette[cells.paletteStart[brickOf(x, y, z)]], 0u);
+            }
+    EXPECT_EQ(paletteSize(brickOf(0, 0, 2)), 2u) << "Vot 0 ends inside the brick at z = 16..23";
+    EXPECT_GT(paletteSize(brickOf(4, 4, 4)), 2u) << "Vot 1 and the background blocks around it";
+    EXPECT_EQ(paletteSize(brickOf(3, 3, 3)), 1u);
+    EXPECT_EQ(cells.cellTable[brickOf(3, 3, 3)] & ((1u << CELL_TABLE_CODE_BITS) - 1), 0u);
+}
