@@ -93,7 +93,7 @@ int main(int argc, char** argv) {
         const vots::fit::Volume volume = vots::fit::loadVolume(volumePath);
         const auto range = volume.valueRange();
         vots::render::GridRenderer grid;
-        grid.upload(volume);
+        if (!noReference) grid.upload(volume); // a 3000-slice grid is 1.5 GB of texture: only when timed
         const char* threads = std::getenv("LP_NUM_THREADS");
         std::cout << "renderer: " << context->renderer()
                   << ", LP_NUM_THREADS=" << (threads ? threads : "(unset)") << ", volume " << volumePath

@@ -13,7 +13,8 @@ namespace vots::cli {
 
 /// The arithmetic of compositeOnRoot / compositeMeansOnRoot (the same functions): max for mip, min for minip
 /// (a rank's ray that takes nothing, -inf, never wins), per pixel sum(mean x length) / sum(length) for the
-/// aip. The density is not composited here (its display range is a reduction over the ranks too).
+/// aip. Frames of the exact grid (SlabFrame::fromGrid) combine as compositeGridOnRoot's: max, min, sum.
+/// The density is not composited here (its display range is a reduction over the ranks too).
 class FrameComposite {
 public:
     /// Starts from rank 0's frame; throws std::logic_error for the density.
@@ -25,8 +26,9 @@ public:
 
 private:
     render::RenderMode mMode;
+    bool mFromGrid;
     render::FloatImage mFrame; // mip, minip (+inf for "nothing yet"): the running max / min
-    std::vector<double> mSums; // aip: the integrals, then the lengths, of every pixel
+    std::vector<double> mSums; // aip: the integrals, then the lengths, of every pixel (the grid's: the sums)
 };
 
 } // namespace vots::cli

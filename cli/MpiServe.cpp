@@ -3,10 +3,12 @@
 #include "MpiServe.h"
 
 #include "FrameComposite.h"
+#include "MpiPolling.h"
 
 #include "vots/fit/Error.h"
 #include "vots/render/DisplayPass.h"
 #include "vots/render/EglContext.h"
+#include "vots/render/GridRenderer.h"
 #include "vots/render/VotRenderer.h"
 #include "vots/server/RenderPolicy.h"
 
@@ -25,18 +27,20 @@
 namespace vots::cli {
 namespace {
 
-using Clock = std::chrono::steady_clock;
+using Clock = PollClock;
 
 constexpr int COMMAND_TAG = 7101;
 constexpr int REPLY_TAG = 7102;
-// Polling, not blocking: Open MPI's blocking calls spin a core, and a rank that has died never completes
-// them. The deadlines: a frame of a held fit, and the fit of a new eps besides.
-constexpr auto POLL_PERIOD = std::chrono::milliseconds(2);
+// The deadlines: a frame of a held fit, and the fit of a new eps besides.
 constexpr auto FRAME_DEADLINE = std::chrono::seconds(10);
 constexpr auto FIT_DEADLINE = std::chrono::minutes(10);
 constexpr auto RELEASE_DEADLINE = std::chrono::seconds(2);
+// Rank 0 says it is alive this often, and the other ranks leave when it has said nothing for longer than
+// the silence: a rank 0 that died would otherwise leave them waiting for commands, and mpirun with them.
+constexpr auto HEARTBEAT_PERIOD = std::chrono::seconds(2);
+constexpr auto RANK0_SILENCE = std::chrono::seconds(30);
 
-enum class CommandKind : std::int32_t { Quit = 0, Frame = 1 };
+enum class CommandKind : std::int32_t { Quit = 0, Frame = 1, Alive = 2 };
 
 /// A command's fixed part; the volume's path follows it. Ranks are the same binary on the same kind of
 /// host, so the frame travels as its bytes.
@@ -56,58 +60,11 @@ struct ReplyHead {
     std::int32_t width = 0;
     std::int32_t height = 0;
     std::int32_t withLengths = 0;
-    double fitMs = 0.0;
+    std::int32_t fromGrid = 0;
+    double fitMs = 0.0; // or the grid's read of the slab's planes
     double frameMs = 0.0;
 };
 static_assert(std::is_trivially_copyable_v<ReplyHead>, "replies travel as their bytes");
-
-template <typename Head>
-std::vector<char> messageOf(const Head& head, const void* tail, std::size_t tailBytes) {
-    std::vector<char> bytes(sizeof head + tailBytes);
-    std::memcpy(bytes.data(), &head, sizeof head);
-    if (tailBytes) std::memcpy(bytes.data() + sizeof head, tail, tailBytes);
-    return bytes;
-}
-
-template <typename Head> Head headOf(const std::vector<char>& bytes) {
-    if (bytes.size() < sizeof(Head)) throw std::runtime_error("a rank's message is too short");
-    Head head;
-    std::memcpy(&head, bytes.data(), sizeof head);
-    return head;
-}
-
-/// Waits for a message from `source` until `deadline` (none: for ever); nullopt when none came or MPI
-/// reports an error.
-std::optional<std::vector<char>> receiveBefore(int source, int tag,
-                                               std::optional<Clock::time_point> deadline) {
-    for (;;) {
-        int arrived = 0;
-        MPI_Status status;
-        if (MPI_Iprobe(source, tag, MPI_COMM_WORLD, &arrived, &status) != MPI_SUCCESS) return std::nullopt;
-        if (arrived) {
-            int count = 0;
-            MPI_Get_count(&status, MPI_BYTE, &count);
-            std::vector<char> bytes(static_cast<std::size_t>(count));
-            if (MPI_Recv(bytes.data(), count, MPI_BYTE, source, tag, MPI_COMM_WORLD, MPI_STATUS_IGNORE) !=
-                MPI_SUCCESS)
-                return std::nullopt;
-            return bytes;
-        }
-        if (deadline && Clock::now() >= *deadline) return std::nullopt;
-        std::this_thread::sleep_for(POLL_PERIOD);
-    }
-}
-
-/// Completes a nonblocking send by `deadline`; false when it did not (the request is left to MPI).
-bool completedBefore(MPI_Request& request, Clock::time_point deadline) {
-    for (;;) {
-        int done = 0;
-        if (MPI_Test(&request, &done, MPI_STATUS_IGNORE) != MPI_SUCCESS) return false;
-        if (done) return true;
-        if (Clock::now() >= deadline) return false;
-        std::this_thread::sleep_for(POLL_PERIOD);
-    }
-}
 
 double msSince(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
@@ -131,23 +88,70 @@ SlabFrame slabFrameOf(const ReplyHead& head, const std::vector<char>& bytes) {
                     pixels * sizeof(float));
         return out;
     };
-    SlabFrame drawn{image(0), std::nullopt};
+    SlabFrame drawn{image(0), std::nullopt, head.fromGrid != 0};
     if (head.withLengths) drawn.lengths = image(pixels);
+    return drawn;
+}
+
+CommandHead aliveCommand() {
+    CommandHead alive;
+    alive.kind = CommandKind::Alive;
+    return alive;
+}
+
+/// What a command asks of one rank: its slab fitted (or its planes read, for the grid) and its frame drawn.
+/// Returns the frame; *prepareMs is the fit's or read's time, *drawMs the frame's.
+SlabFrame drawRankPart(SlabDrawer& drawer, const CommandHead& head, const std::string& path,
+                       render::VotRenderer& vots, render::GridRenderer& grid, double* prepareMs,
+                       double* drawMs) {
+    const bool fromGrid = head.frame.renderer == render::RendererKind::Grid;
+    *prepareMs = fromGrid ? drawer.ensureGrid(path, grid)
+                          : drawer.ensureFit(path, head.eps, head.degree, head.range, vots);
+    const auto start = Clock::now();
+    SlabFrame drawn = fromGrid ? SlabDrawer::drawGrid(head.frame, grid) : drawer.draw(head.frame, vots);
+    *drawMs = msSince(start);
     return drawn;
 }
 
 } // namespace
 
 MpiFrameCompositor::MpiFrameCompositor(const MpiWorld& world, std::string dataset)
-    : mWorld(world), mDataset(std::move(dataset)), mDrawer(world.rank(), world.size()) {
+    : mWorld(world), mDataset(std::move(dataset)), mDrawer(world.rank(), world.size()),
+      mAlive(messageOf(aliveCommand(), nullptr, 0)),
+      mAliveSends(static_cast<std::size_t>(world.size()), MPI_REQUEST_NULL) {
     MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
+    mHeartbeat = std::thread([this] { sendHeartbeats(); });
+}
+
+MpiFrameCompositor::~MpiFrameCompositor() {
+    stopHeartbeats();
+}
+
+void MpiFrameCompositor::sendHeartbeats() {
+    std::unique_lock lock(mHeartbeatMutex);
+    while (!mStopHeartbeats) {
+        for (int r = 1; r < mWorld.size(); ++r) {
+            MPI_Request& send = mAliveSends[static_cast<std::size_t>(r)];
+            // One at a time to each rank: a rank that takes nothing (lost, or busy with a fit: its queue
+            // holds the last one) is not piled up on.
+            if (r != mLostRank.load() && sendDone(send)) startSend(mAlive, r, COMMAND_TAG, send);
+        }
+        mHeartbeatWake.wait_for(lock, HEARTBEAT_PERIOD, [this] { return mStopHeartbeats; });
+    }
+}
+
+void MpiFrameCompositor::stopHeartbeats() {
+    {
+        std::lock_guard lock(mHeartbeatMutex);
+        mStopHeartbeats = true;
+    }
+    mHeartbeatWake.notify_all();
+    if (mHeartbeat.joinable()) mHeartbeat.join();
 }
 
 std::string MpiFrameCompositor::refusal(const std::string& dataset, const render::FrameRequest& frame) const {
     if (dataset != mDataset)
         return "under mpirun this server draws only the dataset '" + mDataset + "' (--prepare)";
-    if (frame.renderer == render::RendererKind::Grid)
-        return "under mpirun the frames are drawn from the ranks' Vots: not --renderer grid or reference";
     if (frame.mode == render::RenderMode::Density) return "under mpirun the density is not composited yet";
     return "";
 }
@@ -161,22 +165,24 @@ void MpiFrameCompositor::lose(int rank, const std::string& why) {
     throw server::RanksLost(mLostMessage);
 }
 
-render::RgbaImage MpiFrameCompositor::draw(const server::CompositeRequest& request,
-                                           render::VotRenderer& vots) {
-    if (mLostRank >= 0) throw server::RanksLost(mLostMessage);
+render::RgbaImage MpiFrameCompositor::draw(const server::CompositeRequest& request, render::VotRenderer& vots,
+                                           render::GridRenderer& grid) {
+    if (mLostRank.load() >= 0) throw server::RanksLost(mLostMessage);
     const auto start = Clock::now();
     const std::string path = request.volumePath.string();
     CommandHead head{CommandKind::Frame, request.frame, request.eps, request.degree, request.valueRange};
     const std::vector<char> command = messageOf(head, path.data(), path.size());
-    const std::string fitKey = SlabDrawer::fitKey(path, request.eps, request.degree);
-    const bool refit = fitKey != mSentFitKey;
-    mSentFitKey = fitKey;
+    // A new fit, or a first read of the planes for the grid, gets the fit's deadline besides the frame's.
+    const bool fromGrid = request.frame.renderer == render::RendererKind::Grid;
+    std::string& sentKey = fromGrid ? mSentGridKey : mSentFitKey;
+    const std::string key = fromGrid ? path : SlabDrawer::fitKey(path, request.eps, request.degree);
+    const bool refit = key != sentKey;
+    sentKey = key;
     const Clock::time_point deadline = start + FRAME_DEADLINE + (refit ? FIT_DEADLINE : Clock::duration{0});
     const int ranks = mWorld.size();
     std::vector<MPI_Request> sends(static_cast<std::size_t>(ranks), MPI_REQUEST_NULL);
     for (int r = 1; r < ranks; ++r)
-        if (MPI_Isend(command.data(), static_cast<int>(command.size()), MPI_BYTE, r, COMMAND_TAG,
-                      MPI_COMM_WORLD, &sends[static_cast<std::size_t>(r)]) != MPI_SUCCESS)
+        if (!startSend(command, r, COMMAND_TAG, sends[static_cast<std::size_t>(r)]))
             lose(r, "cannot be sent the frame");
 
     // This rank's part, while the others draw theirs; a failure here still takes every reply, so that
@@ -185,10 +191,7 @@ render::RgbaImage MpiFrameCompositor::draw(const server::CompositeRequest& reque
     std::optional<FrameComposite> composite;
     std::exception_ptr failure;
     try {
-        times[0].fitMs = mDrawer.ensureFit(path, request.eps, request.degree, request.valueRange, vots);
-        const auto drawStart = Clock::now();
-        SlabFrame mine = mDrawer.draw(request.frame, vots);
-        times[0].frameMs = msSince(drawStart);
+        SlabFrame mine = drawRankPart(mDrawer, head, path, vots, grid, &times[0].fitMs, &times[0].frameMs);
         composite.emplace(request.frame.mode, std::move(mine));
     } catch (...) {
         failure = std::current_exception();
@@ -220,7 +223,7 @@ render::RgbaImage MpiFrameCompositor::draw(const server::CompositeRequest& reque
         t.compositeMs = msSince(ownEnd);
     }
     if (failure) {
-        mSentFitKey.clear(); // the next frame gives the fit its full deadline again
+        sentKey.clear(); // the next frame gives the fit or read its full deadline again
         std::rethrow_exception(failure);
     }
     const auto finishStart = Clock::now();
@@ -239,15 +242,14 @@ std::vector<server::RankTimes> MpiFrameCompositor::lastTimes() const {
 }
 
 void MpiFrameCompositor::releaseRanks() {
+    stopHeartbeats();
     const CommandHead quit{};
     const std::vector<char> command = messageOf(quit, nullptr, 0);
     const auto deadline = Clock::now() + RELEASE_DEADLINE;
     for (int r = 1; r < mWorld.size(); ++r) {
-        if (r == mLostRank) continue;
+        if (r == mLostRank.load()) continue;
         MPI_Request send = MPI_REQUEST_NULL;
-        if (MPI_Isend(command.data(), static_cast<int>(command.size()), MPI_BYTE, r, COMMAND_TAG,
-                      MPI_COMM_WORLD, &send) == MPI_SUCCESS &&
-            !completedBefore(send, deadline))
+        if (startSend(command, r, COMMAND_TAG, send) && !completedBefore(send, deadline))
             std::cerr << "vots serve: rank " << r << " did not take the quit\n";
     }
 }
@@ -256,30 +258,36 @@ void serveOtherRank(const MpiWorld& world) {
     // Without a renderer this rank still answers every frame (with the reason), so rank 0 never waits.
     std::unique_ptr<render::EglContext> context;
     std::unique_ptr<render::VotRenderer> vots;
+    std::unique_ptr<render::GridRenderer> grid;
     std::string noRenderer;
     try {
         context = render::EglContext::createOrThrow();
         vots = std::make_unique<render::VotRenderer>();
         server::applyRenderPolicy(*vots);
+        grid = std::make_unique<render::GridRenderer>();
     } catch (const std::exception& e) {
         noRenderer = std::string("no renderer: ") + e.what();
     }
     SlabDrawer drawer(world.rank(), world.size());
+    const std::string self =
+        "vots serve: rank " + std::to_string(world.rank()) + " of " + std::to_string(world.size());
+    const std::string silence = std::to_string(std::chrono::seconds(RANK0_SILENCE).count());
     for (;;) {
-        const auto command = receiveBefore(0, COMMAND_TAG, std::nullopt);
-        if (!command) throw std::runtime_error("rank " + std::to_string(world.rank()) + ": lost rank 0");
+        const auto command = receiveBefore(0, COMMAND_TAG, Clock::now() + RANK0_SILENCE);
+        if (!command)
+            throw std::runtime_error(self + ": rank 0 has sent nothing for " + silence + " s; leaving");
         const auto head = headOf<CommandHead>(*command);
         if (head.kind == CommandKind::Quit) return;
+        if (head.kind == CommandKind::Alive) continue;
         const std::string path(command->begin() + sizeof head, command->end());
         ReplyHead reply;
         std::vector<float> floats;
         std::string error;
         try {
             if (!vots) throw std::runtime_error(noRenderer);
-            reply.fitMs = drawer.ensureFit(path, head.eps, head.degree, head.range, *vots);
-            const auto drawStart = Clock::now();
-            const SlabFrame drawn = drawer.draw(head.frame, *vots);
-            reply.frameMs = msSince(drawStart);
+            const SlabFrame drawn =
+                drawRankPart(drawer, head, path, *vots, *grid, &reply.fitMs, &reply.frameMs);
+            reply.fromGrid = drawn.fromGrid ? 1 : 0;
             reply.width = drawn.frame.width;
             reply.height = drawn.frame.height;
             reply.withLengths = drawn.lengths ? 1 : 0;
@@ -293,7 +301,10 @@ void serveOtherRank(const MpiWorld& world) {
         const std::vector<char> bytes = reply.ok
                                             ? messageOf(reply, floats.data(), floats.size() * sizeof(float))
                                             : messageOf(reply, error.data(), error.size());
-        MPI_Send(bytes.data(), static_cast<int>(bytes.size()), MPI_BYTE, 0, REPLY_TAG, MPI_COMM_WORLD);
+        MPI_Request send = MPI_REQUEST_NULL;
+        if (!startSend(bytes, 0, REPLY_TAG, send) || !completedBefore(send, Clock::now() + RANK0_SILENCE))
+            throw std::runtime_error(self + ": rank 0 did not take the frame within " + silence +
+                                     " s; leaving");
     }
 }
 

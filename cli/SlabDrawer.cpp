@@ -6,12 +6,26 @@
 #include "vots/fit/Error.h"
 #include "vots/fit/Fitter.h"
 #include "vots/fit/VolumeHeader.h"
+#include "vots/render/GridRenderer.h"
 #include "vots/render/VotRenderer.h"
 
 #include <chrono>
 #include <cstring>
 
 namespace vots::cli {
+namespace {
+
+double msSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+ZSlab slabOfVolume(const std::string& volumePath, int rank, int ranks) {
+    const auto planesZ = fit::volumeHeaderInfo(volumePath).dims[2];
+    if (planesZ < 2) throw fit::InputError("volume needs at least 2 grid points along every axis");
+    return zSlabOfRank(static_cast<int>(planesZ) - 1, rank, ranks);
+}
+
+} // namespace
 
 std::string SlabDrawer::fitKey(const std::string& volumePath, float eps, int degree) {
     std::uint32_t bits = 0;
@@ -25,9 +39,7 @@ double SlabDrawer::ensureFit(const std::string& volumePath, float eps, int degre
     if (key == mKey) return 0.0;
     const auto start = std::chrono::steady_clock::now();
     mKey.clear(); // until the new fit is uploaded, nothing is held
-    const auto planesZ = fit::volumeHeaderInfo(volumePath).dims[2];
-    if (planesZ < 2) throw fit::InputError("volume needs at least 2 grid points along every axis");
-    const ZSlab slab = zSlabOfRank(static_cast<int>(planesZ) - 1, mRank, mRanks);
+    const ZSlab slab = slabOfVolume(volumePath, mRank, mRanks);
     const fit::VolumeSlab read = loadSlab(volumePath, slab, std::nullopt, fit::SampleStorage::Float, "");
     fit::FitOptions options;
     options.eps = eps;
@@ -44,7 +56,7 @@ double SlabDrawer::ensureFit(const std::string& volumePath, float eps, int degre
     mSlab = slab;
     mDims = space.dims;
     mKey = key;
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return msSince(start);
 }
 
 SlabFrame SlabDrawer::draw(const render::FrameRequest& f, render::VotRenderer& vots) const {
@@ -56,6 +68,25 @@ SlabFrame SlabDrawer::draw(const render::FrameRequest& f, render::VotRenderer& v
     if (f.mode == render::RenderMode::Aip)
         drawn.lengths = vots.rayLengths(f.camera, f.width, f.height, f.slab);
     vots.setRayDomain(std::nullopt);
+    return drawn;
+}
+
+double SlabDrawer::ensureGrid(const std::string& volumePath, render::GridRenderer& grid) {
+    if (volumePath == mGridPath) return 0.0;
+    const auto start = std::chrono::steady_clock::now();
+    mGridPath.clear(); // until the new planes are uploaded, nothing is held
+    // An empty slab (more ranks than cells) still reads its one plane and draws nothing of its own.
+    const ZSlab slab = slabOfVolume(volumePath, mRank, mRanks);
+    const fit::VolumeSlab read = loadSlab(volumePath, slab, std::nullopt, fit::SampleStorage::Float, "");
+    grid.uploadSlab(read.planes, slab.first, read.whole);
+    mGridPath = volumePath;
+    return msSince(start);
+}
+
+SlabFrame SlabDrawer::drawGrid(const render::FrameRequest& f, render::GridRenderer& grid) {
+    SlabFrame drawn;
+    drawn.frame = grid.render(f.camera, f.width, f.height, render::RenderOptions{f.mode, f.slab});
+    drawn.fromGrid = true;
     return drawn;
 }
 

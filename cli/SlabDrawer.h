@@ -1,4 +1,5 @@
-// One rank's part of a served frame: the fit of its z slab at the requested eps, and its float frame.
+// One rank's part of a served frame: the fit of its z slab at the requested eps (or the slab's samples
+// for the exact grid), and its float frame.
 #pragma once
 
 #include "ZSlab.h"
@@ -11,15 +12,18 @@
 #include <string>
 
 namespace vots::render {
+class GridRenderer;
 class VotRenderer;
-}
+} // namespace vots::render
 
 namespace vots::cli {
 
-/// What one rank drew: the projection's float frame, and for the aip the ray lengths in its slab.
+/// What one rank drew: the projection's float frame, and for the Vots' aip the ray lengths in its slab.
+/// The grid's parts need no lengths: each is drawn with the whole ray's (GridRenderer::uploadSlab).
 struct SlabFrame {
     render::FloatImage frame;
     std::optional<render::FloatImage> lengths;
+    bool fromGrid = false;
 };
 
 /// The fit of a volume's slab as `mpirun vots render VOLUME --eps` makes it (automatic background, cells
@@ -34,6 +38,12 @@ public:
     /// The frame's projection of this rank's Vots, rays cut to its cells where the composite needs it.
     SlabFrame draw(const render::FrameRequest& frame, render::VotRenderer& vots) const;
 
+    /// Reads this rank's planes of the volume into `grid` when they are not the ones it holds; returns
+    /// the milliseconds it took (0 when it held them).
+    double ensureGrid(const std::string& volumePath, render::GridRenderer& grid);
+    /// The frame's projection of this rank's planes on the exact grid (ensureGrid first).
+    static SlabFrame drawGrid(const render::FrameRequest& frame, render::GridRenderer& grid);
+
     /// The key ensureFit compares.
     static std::string fitKey(const std::string& volumePath, float eps, int degree);
 
@@ -43,6 +53,7 @@ private:
     std::string mKey;
     ZSlab mSlab;
     std::array<int, 3> mDims{0, 0, 0};
+    std::string mGridPath; // the volume whose planes ensureGrid last uploaded
 };
 
 } // namespace vots::cli

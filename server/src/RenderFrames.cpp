@@ -67,7 +67,9 @@ PreparedRender prepareComposite(Server::Impl& s, const Dataset& dataset, Prepare
     request.eps = resolveEps(dataset, job.params.eps);
     request.degree = job.params.degree;
     job.composite = std::move(request);
-    prepared.drawnFrom = fitKeyFor(dataset, job.params.eps, job.params.degree).text() + "|ranks";
+    prepared.drawnFrom = job.params.renderer == render::RendererKind::Grid
+                             ? dataset.name + "_v" + std::to_string(dataset.contentCrc) + "|ranks"
+                             : fitKeyFor(dataset, job.params.eps, job.params.degree).text() + "|ranks";
     return prepared;
 }
 

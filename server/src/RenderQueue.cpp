@@ -145,8 +145,9 @@ RenderResult RenderQueue::draw(Renderers& r, const RenderJob& job) {
         if (!mCompositor) throw std::logic_error("a composite frame on a queue without a compositor");
         CompositeRequest request = *job.composite;
         request.frame = p;
-        r.uploadedSpace = nullptr; // the compositor uploads its own slab's Vots
-        result.image = mCompositor->draw(request, *r.vots);
+        r.uploadedSpace = nullptr; // the compositor uploads its own slab's Vots and samples
+        r.uploadedVolume = nullptr;
+        result.image = mCompositor->draw(request, *r.vots, *r.grid);
         result.frameMs =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
         mStats.addFrame(result.frameMs);

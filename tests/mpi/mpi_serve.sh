@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # `mpirun -np 2 vots serve` on loopback: rank 0 answers /render with the frame the two ranks composite,
 # the bytes of `mpirun -np 2 vots render` of the same camera and eps (mip, minip with a slab; the aip
-# within one grey level); /api/stats says "ranks": 2 with both ranks' times; what is not composited is
-# refused with 409; a rank killed mid-session makes the next /render a 503 JSON within the frame deadline,
-# and every later one; SIGTERM to rank 0 then ends the job cleanly, all of it bounded by timeouts.
+# within one grey level), and the exact grid's frames from the ranks' planes; /api/stats says "ranks": 2
+# with both ranks' times; what is not composited (the density) is refused with 409; a rank killed
+# mid-session makes the next /render a 503 JSON within the frame deadline, and every later one; SIGTERM to rank 0 then ends the job cleanly, all of it bounded by timeouts.
 # Usage: tests/mpi/mpi_serve.sh VOTS_BINARY VOLUME [OTHER_VOLUME]
 set -euo pipefail
 vots=$1 volume=$2 other=${3:-}
@@ -29,17 +29,20 @@ ln -s "$(realpath "$volume")" "$work/data/$(basename "$volume")"
 name=$(basename "$volume" | sed -E 's/\.(nrrd|nhdr|nii\.gz|nii|mhd|mha)$//')
 
 # --enable-recovery: without it Open MPI ends the whole job, rank 0 too, when one rank dies.
-mpirun --oversubscribe --enable-recovery -np 2 "$vots" serve --port 0 --data "$work/data" \
-    --cache-dir "$work/cache" --prepare "$name" >"$work/serve.log" 2>&1 &
-job=$!
-url=
-for _ in $(seq 240); do
-    url=$(sed -nE 's|^vots serve: listening on (http://[^ ]+/)$|\1|p' "$work/serve.log")
-    [[ -n $url ]] && break
-    kill -0 "$job" 2>/dev/null || fail "mpirun ended before listening"
-    sleep 0.5
-done
-[[ -n $url ]] || fail "no 'listening on' line within 120 s"
+start_job() {
+    mpirun --oversubscribe --enable-recovery -np 2 "$vots" serve --port 0 --data "$work/data" \
+        --cache-dir "$work/cache" --prepare "$name" >"$work/serve.log" 2>&1 &
+    job=$!
+    url=
+    for _ in $(seq 240); do
+        url=$(sed -nE 's|^vots serve: listening on (http://[^ ]+/)$|\1|p' "$work/serve.log")
+        [[ -n $url ]] && return
+        kill -0 "$job" 2>/dev/null || fail "mpirun ended before listening"
+        sleep 0.5
+    done
+    fail "no 'listening on' line within 120 s"
+}
+start_job
 get() { curl -s --max-time 60 -o "$1" -w '%{http_code}' "${url}$2"; }
 view="cam=az=30,el=20&size=96x80&eps=2%25"
 render_args=(--cam az=30,el=20 --size 96x80 --eps 2%)
@@ -72,10 +75,23 @@ assert [t["rank"] for t in times] == [0, 1], times
 assert all(t["frameMs"] > 0 for t in times), times
 PY
 
-for refused in "render?dataset=$name&$view&mode=density" "render?dataset=$name&$view&mode=reference"; do
-    code=$(get "$work/refused.json" "$refused")
-    [[ $code == 409 ]] && grep -q '"error"' "$work/refused.json" || fail "$refused answered $code, not 409 JSON"
+# The exact grid: each rank reads its slab's planes; the reference (the grid's mip) is the one-process
+# image bit for bit, the grid's minip and aip are mpirun vots render's.
+code=$(get "$work/served-ref.png" "render?dataset=$name&$view&mode=reference")
+[[ $code == 200 ]] || fail "/render mode=reference answered $code: $(cat "$work/served-ref.png")"
+"$vots" render "$volume" -o "$work/one-ref.png" --mode reference "${render_args[@]}" 2>/dev/null
+cmp -s "$work/served-ref.png" "$work/one-ref.png" || fail "the served reference differs from one process's"
+for mode in minip aip; do
+    code=$(get "$work/served-grid-$mode.png" "render?dataset=$name&$view&mode=$mode&renderer=grid")
+    [[ $code == 200 ]] || fail "/render mode=$mode renderer=grid answered $code"
+    mpirun --oversubscribe -np 2 "$vots" render "$volume" -o "$work/ranks-grid-$mode.png" --mode "$mode" \
+        --renderer grid "${render_args[@]}" 2>/dev/null
+    cmp -s "$work/served-grid-$mode.png" "$work/ranks-grid-$mode.png" ||
+        fail "the served grid $mode differs from mpirun vots render's"
 done
+
+code=$(get "$work/refused.json" "render?dataset=$name&$view&mode=density")
+[[ $code == 409 ]] && grep -q '"error"' "$work/refused.json" || fail "the density answered $code, not 409 JSON"
 if [[ -n $other ]]; then
     otherName=$(basename "$other" | sed -E 's/\.(nrrd|nhdr|nii\.gz|nii|mhd|mha)$//')
     code=$(get "$work/refused.json" "render?dataset=$otherName&$view")
@@ -87,6 +103,7 @@ rank_pid() {
     for pid in $(pgrep -P "$job"); do
         tr '\0' '\n' <"/proc/$pid/environ" 2>/dev/null | grep -qx "OMPI_COMM_WORLD_RANK=$1" && echo "$pid"
     done
+    return 0
 }
 rank0=$(rank_pid 0) rank1=$(rank_pid 1)
 [[ -n $rank0 && -n $rank1 ]] || fail "cannot find the ranks' processes"
@@ -110,4 +127,22 @@ kill -0 "$job" 2>/dev/null && fail "mpirun still runs 30 s after SIGTERM to rank
 wait "$job" || true
 job=
 grep -q "vots serve: stopping" "$work/serve.log" || fail "rank 0 did not stop cleanly"
-echo "mpi_serve: OK (503 after $seconds s)"
+
+# Rank 0 killed: rank 1 misses its heartbeat and leaves within the 30 s silence, so mpirun ends.
+start_job
+code=$(get "$work/before.png" "render?dataset=$name&$view")
+[[ $code == 200 ]] || fail "/render of the second job answered $code"
+rank0=$(rank_pid 0)
+[[ -n $rank0 ]] || fail "cannot find rank 0's process"
+kill -KILL "$rank0"
+start=$(date +%s)
+for _ in $(seq 120); do
+    kill -0 "$job" 2>/dev/null || break
+    sleep 0.5
+done
+kill -0 "$job" 2>/dev/null && fail "mpirun still runs 60 s after rank 0 was killed"
+wait "$job" || true
+job=
+left=$(($(date +%s) - start))
+grep -q "rank 1 of 2: rank 0 has sent nothing" "$work/serve.log" || fail "rank 1 did not say why it left"
+echo "mpi_serve: OK (503 after $seconds s; with rank 0 killed the job ended after $left s)"

@@ -20,7 +20,8 @@ public:
         if (dataset != HEAD_MR) return "only " + std::string(HEAD_MR);
         return frame.mode == render::RenderMode::Density ? "no density" : "";
     }
-    render::RgbaImage draw(const server::CompositeRequest& request, render::VotRenderer&) override {
+    render::RgbaImage draw(const server::CompositeRequest& request, render::VotRenderer&,
+                           render::GridRenderer&) override {
         if (lost) throw server::RanksLost("rank 2 of 3 did not answer the frame in time");
         std::lock_guard lock(mutex);
         last = request;
@@ -72,6 +73,17 @@ TEST(ServerCompositor, FramesGoThroughItUnfittedRefusalsAre409AndALostRankIs503)
         EXPECT_LT(asked.valueRange[0], asked.valueRange[1]);
         // 2 % of the whole range, in data units, as every rank resolves it.
         EXPECT_FLOAT_EQ(asked.eps, 0.02f * (asked.valueRange[1] - asked.valueRange[0]));
+    }
+
+    // The exact grid goes through it too, as a grid frame (each rank reads its own planes), cached apart.
+    const auto grid =
+        c->Get("/render?dataset=HeadMRVolume_48x62x42_uint8&cam=az=30,el=20&size=40x30&mode=reference");
+    ASSERT_TRUE(grid);
+    ASSERT_EQ(grid->status, 200) << grid->body;
+    {
+        std::lock_guard lock(compositor->mutex);
+        EXPECT_EQ(compositor->last->frame.renderer, render::RendererKind::Grid);
+        EXPECT_EQ(compositor->last->frame.mode, render::RenderMode::Mip);
     }
 
     nlohmann::json stats = bodyJson(c->Get("/api/stats"));

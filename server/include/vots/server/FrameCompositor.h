@@ -12,12 +12,14 @@
 #include <vector>
 
 namespace vots::render {
+class GridRenderer;
 class VotRenderer;
-}
+} // namespace vots::render
 
 namespace vots::server {
 
-/// One frame of a volume dataset fitted at `eps`, as every rank draws its part of it.
+/// One frame of a volume dataset, as every rank draws its part of it: from the Vots of its slab fitted at
+/// `eps`, or from its slab's samples (frame.renderer == Grid; eps and degree unused).
 struct CompositeRequest {
     render::FrameRequest frame;
     std::string dataset;
@@ -49,9 +51,10 @@ public:
     /// Empty when draw() can take this frame of the dataset; else why not (the server answers 409).
     virtual std::string refusal(const std::string& dataset, const render::FrameRequest& frame) const = 0;
     /// On the render thread, its GL context current: draws the frame on every rank (this one's part with
-    /// `vots`, which it may upload to) and returns the displayed image. Throws RanksLost, or
+    /// `vots` or `grid`, which it may upload to) and returns the displayed image. Throws RanksLost, or
     /// fit::InputError / std::runtime_error for what a rank could not draw.
-    virtual render::RgbaImage draw(const CompositeRequest& request, render::VotRenderer& vots) = 0;
+    virtual render::RgbaImage draw(const CompositeRequest& request, render::VotRenderer& vots,
+                                   render::GridRenderer& grid) = 0;
     /// The last composited frame's times, in rank order; empty before the first. Thread-safe.
     virtual std::vector<RankTimes> lastTimes() const = 0;
 };

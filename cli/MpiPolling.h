@@ -1,0 +1,52 @@
+// Point-to-point MPI for `vots serve` under mpirun: byte messages, and waits polled against deadlines, so
+// that a rank that has died is noticed instead of waited for; every call serialized by one lock.
+#pragma once
+
+#include <chrono>
+#include <cstring>
+#include <mutex>
+#include <optional>
+#include <stdexcept>
+#include <vector>
+
+#include <mpi.h>
+
+namespace vots::cli {
+
+using PollClock = std::chrono::steady_clock;
+
+/// MPI is initialised MPI_THREAD_SERIALIZED and rank 0 calls it from two threads (frames, heartbeats):
+/// each call in this file's functions holds this lock, and so must any other call made while serving.
+std::mutex& mpiCallLock();
+
+/// A message: a trivially copyable head, then `tailBytes` of `tail`.
+template <typename Head>
+std::vector<char> messageOf(const Head& head, const void* tail, std::size_t tailBytes) {
+    std::vector<char> bytes(sizeof head + tailBytes);
+    std::memcpy(bytes.data(), &head, sizeof head);
+    if (tailBytes) std::memcpy(bytes.data() + sizeof head, tail, tailBytes);
+    return bytes;
+}
+
+/// The head of a message; throws std::runtime_error when it is too short to hold one.
+template <typename Head> Head headOf(const std::vector<char>& bytes) {
+    if (bytes.size() < sizeof(Head)) throw std::runtime_error("a rank's message is too short");
+    Head head;
+    std::memcpy(&head, bytes.data(), sizeof head);
+    return head;
+}
+
+/// Waits for a whole message from `source` until `deadline` (none: for ever); nullopt when none came in
+/// time, its transfer did not end in time (a sender that died mid-message), or MPI reports an error.
+std::optional<std::vector<char>> receiveBefore(int source, int tag, std::optional<PollClock::time_point> deadline);
+
+/// Completes a nonblocking request by `deadline`; false when it did not (the request is left to MPI).
+bool completedBefore(MPI_Request& request, PollClock::time_point deadline);
+
+/// Starts sending `bytes` (which must outlive the send) to `dest`; false when MPI refuses.
+bool startSend(const std::vector<char>& bytes, int dest, int tag, MPI_Request& request);
+
+/// True when a send started by startSend has completed (or was never started).
+bool sendDone(MPI_Request& request);
+
+} // namespace vots::cli
