@@ -23,8 +23,8 @@ measure() {
     awk '{ printf "%.2f %.0f\n", $1, $2 / 1024 }' <<<"$out"
 }
 
-echo "| slices | samples | Vots | fit s | fit peak MiB | one-shot vots render s (peak MiB) | one-shot reference s (peak MiB) | walk ms anterior / oblique / persp, 512^2 | walk ms, 1024^2 |"
-echo "|---|---|---|---|---|---|---|---|---|"
+echo "| slices | samples | Vots | fit s | fit peak MiB | one-shot vots render s (peak MiB) | one-shot reference s (peak MiB) | upload ms | strategy used | walk ms anterior / oblique / persp, 512^2 | walk ms, 1024^2 |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|"
 for n in "$@"; do
     if [[ $n == 108 ]]; then
         volume=data/cranium.nhdr
@@ -39,11 +39,18 @@ for n in "$@"; do
     read -r one_s one_mib < <(measure "$vots" render "$fitted" --cam az=30,el=20 -o "$dir/one$n.png")
     read -r ref_s ref_mib < <(measure "$vots" render "$fitted" --mode reference --volume "$volume" --cam az=30,el=20 \
         -o "$dir/ref$n.png")
-    walk() { # medians of the three views at one size, "a / o / p"
-        "$build/bench/render_bench" "$volume" --vots "$fitted" --size "$1" --frames 5 --warmup 1 --strategy walk 2>/dev/null |
-            awk -F'|' '/\| (anterior|oblique|persp) \|/ { gsub(/ /, "", $8); v[$3] = $8 }
-                END { printf "%s / %s / %s", v[" anterior "], v[" oblique "], v[" persp "] }'
+    # render_bench at one size: its table on stdout, its upload line on stderr.
+    "$build/bench/render_bench" "$volume" --vots "$fitted" --size 512 --frames 5 --warmup 1 --strategy walk \
+        --no-reference >"$dir/bench$n-512.txt" 2>"$dir/bench$n-512.err"
+    "$build/bench/render_bench" "$volume" --vots "$fitted" --size 1024 --frames 5 --warmup 1 --strategy walk \
+        --no-reference >"$dir/bench$n-1024.txt" 2>/dev/null
+    walk() { # medians of the three views, "a / o / p"
+        awk -F'|' '/\| (anterior|oblique|persp) \|/ { gsub(/ /, "", $8); v[$3] = $8 }
+            END { printf "%s / %s / %s", v[" anterior "], v[" oblique "], v[" persp "] }' "$1"
     }
+    strategies=$(awk -F'|' '/\| (anterior|oblique|persp) \|/ { gsub(/ /, "", $5); print $5 }' "$dir/bench$n-512.txt" "$dir/bench$n-1024.txt" |
+        sort -u | paste -sd, -)
+    upload_ms=$(sed -n 's/.*upload \([0-9.]*\) ms (walk).*/\1/p' "$dir/bench$n-512.err" | head -1)
     samples=$(awk -v n="$n" 'BEGIN { printf "%.0f M", (n == 108 ? 256 * 256 * 108 : 512 * 512 * n) / 1e6 }')
-    echo "| $n | $samples | $vot_count | $fit_s | $fit_mib | $one_s ($one_mib) | $ref_s ($ref_mib) | $(walk 512) | $(walk 1024) |"
+    echo "| $n | $samples | $vot_count | $fit_s | $fit_mib | $one_s ($one_mib) | $ref_s ($ref_mib) | ${upload_ms%.*} | $strategies | $(walk "$dir/bench$n-512.txt") | $(walk "$dir/bench$n-1024.txt") |"
 done
