@@ -171,8 +171,6 @@ void runFitOnRanks(const MpiWorld& world, const FitArgs& a) {
     fit::VolumeSlab read;
     world.allOrNone([&] {
         checked = checkArgs(a);
-        // The focus centre is checked against the grid each rank fits: not yet moved into the slabs.
-        if (checked.focus) throw fit::InputError("--focus is not supported under mpirun yet");
         if (world.rank() == 0) checkOutput(a);
         slab = fitSlabOfRank(world, fit::volumeHeaderInfo(a.input, checked.raw, a.series).dims[2]);
         const auto planes = static_cast<std::uint64_t>(slab.end - slab.first + 1);
@@ -186,6 +184,8 @@ void runFitOnRanks(const MpiWorld& world, const FitArgs& a) {
     fit::FitResult result;
     world.allOrNone([&] {
         options = fitOptionsFor(a, checked, range);
+        // The focus is named in the whole volume's index space; each rank's field is moved into its slab.
+        options.slabOf = fit::SlabOfGrid{slab.first, read.whole.dims};
         fit::validateFitOptions(read.planes, options);
         Progress progress(a.progress && world.rank() == 0); // rank 0's slab stands for the others
         if (a.progress && world.rank() == 0)

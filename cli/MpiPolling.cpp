@@ -25,7 +25,8 @@ std::mutex& mpiCallLock() {
     return lock;
 }
 
-std::optional<std::vector<char>> receiveBefore(int source, int tag, std::optional<PollClock::time_point> deadline) {
+std::optional<std::vector<char>> receiveBefore(int source, int tag,
+                                               std::optional<PollClock::time_point> deadline) {
     for (;;) {
         int arrived = 0;
         MPI_Message message = MPI_MESSAGE_NULL;

@@ -38,7 +38,8 @@ template <typename Head> Head headOf(const std::vector<char>& bytes) {
 
 /// Waits for a whole message from `source` until `deadline` (none: for ever); nullopt when none came in
 /// time, its transfer did not end in time (a sender that died mid-message), or MPI reports an error.
-std::optional<std::vector<char>> receiveBefore(int source, int tag, std::optional<PollClock::time_point> deadline);
+std::optional<std::vector<char>> receiveBefore(int source, int tag,
+                                               std::optional<PollClock::time_point> deadline);
 
 /// Completes a nonblocking request by `deadline`; false when it did not (the request is left to MPI).
 bool completedBefore(MPI_Request& request, PollClock::time_point deadline);

@@ -43,11 +43,19 @@ void validateFitOptions(const Volume& volume, const FitOptions& options) {
             throw InputError("volume needs at least 2 grid points along every axis to form a cell");
     if (volume.heldSamples() != volume.sampleCount())
         throw InputError("volume sample count does not match its dims");
+    std::array<int, 3> gridDims = volume.dims;
+    if (options.slabOf) {
+        gridDims = options.slabOf->gridDims;
+        const int first = options.slabOf->firstPlane;
+        if (gridDims[0] != volume.dims[0] || gridDims[1] != volume.dims[1] || first < 0 ||
+            static_cast<long long>(first) + volume.dims[2] > gridDims[2])
+            throw InputError("the volume is not a z slab of the grid it is placed in");
+    }
     if (options.focus) {
         const auto& f = *options.focus;
         for (int a = 0; a < 3; ++a)
             if (!std::isfinite(f.centerIndex[a]) || f.centerIndex[a] < 0.0 ||
-                f.centerIndex[a] > volume.dims[a] - 1)
+                f.centerIndex[a] > gridDims[a] - 1)
                 throw InputError("focus centre must lie inside the grid (index space)");
         if (!std::isfinite(f.radius) || f.radius <= 0.0) throw InputError("focus radius must be > 0");
         if (!std::isfinite(f.epsFocus) || f.epsFocus < 0.f || f.epsFocus > options.eps)
@@ -59,7 +67,9 @@ FitResult fitVotSpace(const Volume& volume, const FitOptions& options, FitCache*
     validateFitOptions(volume, options);
     const auto start = std::chrono::steady_clock::now();
 
-    const EpsField eps(options.eps, options.focus);
+    std::optional<FocusRegion> focus = options.focus; // in the fitted volume's own index space
+    if (focus && options.slabOf) focus->centerIndex[2] -= options.slabOf->firstPlane;
+    const EpsField eps(options.eps, focus);
     const BoxFitter fitter(volume, options.degree, options.certify);
     FitCounters counters;
     FitCache::Impl* cacheImpl = nullptr;

@@ -234,6 +234,31 @@ TEST(Fitter, BackgroundFillAveragesEveryOmittedCellOfARandomVolume) {
     EXPECT_LT(*fit.space.backgroundFill, 600.f);
 }
 
+TEST(Fitter, TheFocusOfASlabIsNamedInItsWholeGrid) {
+    // Planes 10..23 of a 32x32x24 grid, fitted alone as a rank fits its slab under mpirun.
+    const auto field = [](int x, int y, int z) { return 200.0 * std::sin(0.3 * x + 0.2 * y) + 0.4 * z * z; };
+    const Volume slab = sampleVolume({32, 32, 14}, [&](int x, int y, int z) { return field(x, y, z + 10); });
+    FitOptions inGrid = options(30.f, 2);
+    inGrid.slabOf = SlabOfGrid{10, {32, 32, 24}};
+    inGrid.focus = FocusRegion{{16.0, 16.0, 12.0}, 6.0, 2.f};
+    FitOptions inSlab = options(30.f, 2);
+    inSlab.focus = FocusRegion{{16.0, 16.0, 2.0}, 6.0, 2.f};
+    const FitResult a = fitVotSpace(slab, inGrid), b = fitVotSpace(slab, inSlab);
+    ASSERT_EQ(a.space.vots.size(), b.space.vots.size());
+    for (std::size_t i = 0; i < a.space.vots.size(); ++i)
+        ASSERT_EQ(a.space.vots[i].box.lo, b.space.vots[i].box.lo) << "Vot " << i;
+    EXPECT_GT(a.space.vots.size(), fitVotSpace(slab, options(30.f, 2)).space.vots.size());
+    EXPECT_TRUE(verifyVotSpace(a.space, slab, EpsField(30.f, inSlab.focus)).ok);
+
+    inGrid.focus->centerIndex[2] = 5.0; // in the grid, below the slab: allowed
+    EXPECT_NO_THROW(fitVotSpace(slab, inGrid));
+    inGrid.focus->centerIndex[2] = 30.0; // beyond the whole grid
+    EXPECT_THROW(fitVotSpace(slab, inGrid), InputError);
+    inGrid.focus->centerIndex[2] = 12.0;
+    inGrid.slabOf->firstPlane = 11; // planes 11..24 do not fit in 24
+    EXPECT_THROW(fitVotSpace(slab, inGrid), InputError);
+}
+
 TEST(Fitter, RejectsAbsurdOptions) {
     const Volume volume = randomVolume({4, 4, 4}, 1u);
     EXPECT_THROW(fitVotSpace(volume, options(0.f, 3)), InputError);

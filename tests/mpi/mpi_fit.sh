@@ -3,7 +3,8 @@
 # reads only its slab of a raw NRRD; the one file rank 0 writes verifies against the volume, records the
 # ranks, is reproducible, with one rank holds the single-process Vots, renders alike in one process and
 # on N ranks; the gzip input (each rank streams its planes alone) gives the same Vots; a DICOM series of
-# the same samples (each rank decodes only its slices) verifies; a failure on one rank ends all (fit and render).
+# the same samples (each rank decodes only its slices) verifies; a focus sphere across the slab border
+# verifies; a failure on one rank ends all (fit and render).
 # Usage: tests/mpi/mpi_fit.sh VOTS_BINARY GZIP_NRRD_VOLUME VOTS_WRITE_DICOM_BINARY
 set -euo pipefail
 vots=$1 gzipped=$2 write_dicom=$3
@@ -54,6 +55,23 @@ mpi 2 "$vots" fit "$volume" -o "$work/2b.vots" "${fit_args[@]}" >/dev/null
 cmp -s <(vots_body "$work/2.vots") <(vots_body "$work/2b.vots") || fail "two runs on 2 ranks differ"
 no_times() { "$vots" info --json "$1" | sed -E 's/"(fit_)?seconds":[^,}]*//g; s/"file":"[^"]*"//'; }
 [[ $(no_times "$work/2.vots") == "$(no_times "$work/2b.vots")" ]] || fail "two runs on 2 ranks: meta blocks differ"
+
+# A focus sphere across the slab border, named in the whole volume's index space: every rank holds its
+# samples to the focus's eps (vots verify rebuilds the field from the meta block), and the file records
+# the focus as one process's does.
+focus_args=(--eps 4% --focus 24,31,20,8 --eps-focus 1 --threads 1)
+"$vots" fit "$volume" -o "$work/focus1.vots" "${focus_args[@]}" >/dev/null
+mpi 2 "$vots" fit "$volume" -o "$work/focus2.vots" "${focus_args[@]}" >/dev/null 2>"$work/stderr" ||
+    fail "2 ranks with --focus: $(cat "$work/stderr")"
+"$vots" verify "$work/focus2.vots" "$volume" >"$work/verify" || fail "2 ranks with --focus: $(cat "$work/verify")"
+[[ $(json_key "$work/focus2.vots" focus) == "$(json_key "$work/focus1.vots" focus)" ]] ||
+    fail "2 ranks with --focus: the meta's focus differs: $(json_key "$work/focus2.vots" focus)"
+mpi 2 "$vots" fit "$volume" -o "$work/nofocus2.vots" --eps 4% --threads 1 >/dev/null
+votsOf() { "$vots" info "$1" | awk '$1 == "Vots" { gsub(",", "", $2); print $2; exit }'; }
+(($(votsOf "$work/focus2.vots") > $(votsOf "$work/nofocus2.vots"))) ||
+    fail "2 ranks: the focus gave no more Vots than none ($(votsOf "$work/focus2.vots"))"
+mpi 2 "$vots" fit "$volume" -o "$work/outside.vots" --eps 4% --focus 24,31,60,8 --eps-focus 1 >/dev/null 2>&1 &&
+    fail "2 ranks: a focus centre outside the volume was accepted"
 
 # Each rank inflates the gzip file up to its last plane and keeps its planes: the same slabs, so the same Vots.
 mpi 2 "$vots" fit "$gzipped" -o "$work/gz.vots" "${fit_args[@]}" >/dev/null

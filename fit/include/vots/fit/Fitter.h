@@ -26,6 +26,13 @@ enum class Certify {
     Cells    // also the trilinear value at cell centres and edge midpoints inside the box
 };
 
+/// Where a volume lies when it is a z slab of a larger grid (a rank's planes under mpirun): the focus is
+/// named in that grid's index space, as the user gives it for the whole volume.
+struct SlabOfGrid {
+    int firstPlane = 0;                   // the slab's plane 0 in the grid
+    std::array<int, 3> gridDims{0, 0, 0}; // the whole grid's points per axis
+};
+
 struct FitOptions {
     float eps = 1.f;                 // context error bound, data units (HU for CT)
     int degree = 3;                  // requested Taylor degree 0..3
@@ -33,6 +40,7 @@ struct FitOptions {
     FitMethod method = FitMethod::Fast;
     Certify certify = Certify::Samples;
     std::optional<FocusRegion> focus; // tighter eps in a sphere (grid index space)
+    std::optional<SlabOfGrid> slabOf; // set: the volume is this slab, and the focus is in the grid's space
     int threads = 0;                  // 0: all hardware threads
     /// Called now and then from the fitting threads with a fraction in [0,1] and a stage name.
     std::function<void(double fraction, const char* stage)> progress;
@@ -79,7 +87,7 @@ private:
 };
 
 /// Checks options against the volume; throws InputError (eps <= 0 or not finite, degree outside
-/// 0..3, focus outside the grid, empty volume, NaN samples).
+/// 0..3, focus outside the grid (the whole grid's when slabOf is set), empty volume, NaN samples).
 void validateFitOptions(const Volume& volume, const FitOptions& options);
 
 /// Fits a Vot-Space. Every non-background cell is covered and every grid sample inside a chosen
