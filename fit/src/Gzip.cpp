@@ -44,7 +44,8 @@ Inflater::Inflater(std::string path, const unsigned char* data, std::size_t size
     if (inflateInit2(&mState->stream, 15 + 32) != Z_OK) throwInputError(mPath, "cannot start zlib inflate");
 }
 
-Inflater::Inflater(std::string path, const std::string& file, std::uint64_t offset)
+Inflater::Inflater(std::string path, const std::string& file, std::uint64_t offset,
+                   std::optional<std::uint64_t> length)
     : mPath(std::move(path)), mState(std::make_unique<State>()) {
     State& s = *mState;
     s.fromFile = true;
@@ -52,6 +53,7 @@ Inflater::Inflater(std::string path, const std::string& file, std::uint64_t offs
     const std::uint64_t size = regularFileSize(file);
     s.fileNext = offset;
     s.fileLeft = size > offset ? size - offset : 0;
+    if (length) s.fileLeft = std::min(s.fileLeft, *length);
     if (inflateInit2(&s.stream, 15 + 32) != Z_OK) throwInputError(mPath, "cannot start zlib inflate");
 }
 

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,9 +16,11 @@ class Inflater {
 public:
     /// `path` only names the file in error messages; `data` must outlive the Inflater.
     Inflater(std::string path, const unsigned char* data, std::size_t size);
-    /// The stream in `file` from byte `offset` to its end, read a chunk at a time (never held whole), so
-    /// a reader that stops early has read only the compressed bytes up to its data.
-    Inflater(std::string path, const std::string& file, std::uint64_t offset);
+    /// The stream in `file` from byte `offset` to its end (or over `length` bytes, when given), read a
+    /// chunk at a time (never held whole), so a reader that stops early has read only the compressed
+    /// bytes up to its data.
+    Inflater(std::string path, const std::string& file, std::uint64_t offset,
+             std::optional<std::uint64_t> length = std::nullopt);
     ~Inflater();
     Inflater(const Inflater&) = delete;
     Inflater& operator=(const Inflater&) = delete;

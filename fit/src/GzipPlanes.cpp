@@ -27,7 +27,7 @@ Volume readGzipPlanes(const std::string& path, const GzipSamples& stored, int fi
         if (from < pieceEnd && to > pieceStart) {
             const std::uint64_t begin = std::max(from, pieceStart);
             const std::uint64_t end = std::min(to, pieceEnd);
-            Inflater inflater(piece.file, piece.file, piece.start);
+            Inflater inflater(piece.file, piece.file, piece.start, piece.packedBytes);
             inflater.skip(static_cast<std::size_t>(piece.skip + (begin - pieceStart)));
             std::vector<unsigned char> part = inflater.readExactly(static_cast<std::size_t>(end - begin));
             // The reader of a stream's last bytes checks that it ends there; under mpirun every stream's

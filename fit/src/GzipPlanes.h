@@ -12,12 +12,14 @@
 namespace vots::fit::detail {
 
 /// One data file's share of the payload, compressed: the stream starts at `start` in `file` and holds
-/// `skip` bytes (NRRD's byte skip counts decompressed bytes) before the share's `bytes`.
+/// `skip` bytes (NRRD's byte skip counts decompressed bytes) before the share's `bytes`. It runs to the
+/// file's end, or over `packedBytes` (MetaImage's CompressedDataSize) when given.
 struct GzipPiece {
     std::string file;
     std::uint64_t start = 0;
     std::uint64_t skip = 0;
     std::size_t bytes = 0;
+    std::optional<std::uint64_t> packedBytes;
 };
 
 /// A volume file whose payload is gzip or zlib streams, header already checked: the grid and the streams
@@ -31,10 +33,12 @@ struct GzipSamples {
     double inter = 0.0;
 };
 
-/// NRRD's header pass for gzip encoding, NIfTI's for a .nii.gz (its header read from the stream's start);
-/// nullopt for an uncompressed payload (StoredSamples reads that by offset).
+/// NRRD's header pass for gzip encoding, NIfTI's for a .nii.gz (its header read from the stream's start),
+/// MetaImage's for CompressedData (a zlib stream); nullopt for an uncompressed payload (StoredSamples
+/// reads that by offset).
 std::optional<GzipSamples> gzipNrrdSamples(const std::string& path);
 std::optional<GzipSamples> gzipNiftiSamples(const std::string& path);
+std::optional<GzipSamples> gzipMetaImageSamples(const std::string& path);
 
 /// Planes [first, last] (first <= last inside the grid), as cutting them out of the whole load gives them.
 /// Each stream is decompressed from its start, the bytes before the planes are discarded as they come,

@@ -5,7 +5,7 @@
 
 #include "vots/fit/Error.h"
 
-#include "Gzip.h"
+#include "GzipPlanes.h"
 #include "HeaderText.h"
 #include "InputFile.h"
 #include "SampleDecode.h"
@@ -271,6 +271,17 @@ StoredSamples storedSamplesOf(MetaFile file) {
     return stored;
 }
 
+// A compressed payload as one zlib stream of CompressedDataSize bytes (or to the file's end).
+GzipSamples gzipSamplesOf(MetaFile file) {
+    GzipSamples stored;
+    stored.grid = std::move(file.grid);
+    stored.type = file.type;
+    stored.bigEndian = file.bigEndian;
+    stored.pieces.push_back(
+        {file.payload.file, file.payload.start, 0, file.shape.bytes, file.payload.packedSize});
+    return stored;
+}
+
 } // namespace
 
 std::optional<StoredSamples> detail::storedMetaImageSamples(const std::string& path) {
@@ -279,16 +290,18 @@ std::optional<StoredSamples> detail::storedMetaImageSamples(const std::string& p
     return storedSamplesOf(std::move(file));
 }
 
+std::optional<GzipSamples> detail::gzipMetaImageSamples(const std::string& path) {
+    MetaFile file = openMetaImage(path);
+    if (!file.payload.compressed) return std::nullopt;
+    return gzipSamplesOf(std::move(file));
+}
+
 Volume loadMetaImage(const std::string& path, SampleStorage storage) {
     MetaFile file = openMetaImage(path);
     if (!file.payload.compressed) return readStoredVolume(path, storedSamplesOf(std::move(file)), storage);
-    const MetaPayload& where = file.payload;
-    const std::vector<unsigned char> packed =
-        readFileBytes(where.file, where.start, static_cast<std::size_t>(where.packedSize));
-    const std::vector<unsigned char> payload =
-        inflateExact(where.file, packed.data(), packed.size(), file.shape.bytes);
-    storeSamples(file.grid, path, payload.data(), file.shape.samples, file.type, file.bigEndian, storage);
-    return std::move(file.grid);
+    // The same stream reader as a rank's planes, over every plane: streamed, never held compressed.
+    const GzipSamples stored = gzipSamplesOf(std::move(file));
+    return readGzipPlanes(path, stored, 0, stored.grid.dims[2] - 1, storage);
 }
 
 } // namespace vots::fit

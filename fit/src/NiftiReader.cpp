@@ -247,7 +247,7 @@ std::optional<GzipSamples> detail::gzipNiftiSamples(const std::string& path) {
     stored.grid = gridOf(path, info);
     stored.type = info.type;
     stored.bigEndian = info.bigEndian;
-    stored.pieces.push_back({path, 0, info.voxOffset, info.shape.bytes});
+    stored.pieces.push_back({path, 0, info.voxOffset, info.shape.bytes, std::nullopt});
     stored.slope = info.slope;
     stored.inter = info.inter;
     return stored;

@@ -369,7 +369,7 @@ GzipSamples gzipSamplesOf(NrrdFile file) {
         const std::uint64_t start =
             file.header.lineSkip > 0 ? skipLines(name, offset, file.header.lineSkip) : offset;
         stored.pieces.push_back(
-            {name, start, static_cast<std::uint64_t>(file.header.byteSkip), file.perFile});
+            {name, start, static_cast<std::uint64_t>(file.header.byteSkip), file.perFile, std::nullopt});
     }
     return stored;
 }

@@ -72,13 +72,15 @@ std::optional<detail::StoredSamples> storedSamplesOf(const std::string& path,
     detail::throwUnknownVolumeFormat(path);
 }
 
-// The streams of a gzip NRRD or NIfTI; nullopt for every other file (also an uncompressed one).
+// The streams of a gzip NRRD, NIfTI or compressed MetaImage; nullopt for every other file (also an
+// uncompressed one).
 std::optional<detail::GzipSamples> gzipSamplesOf(const std::string& path,
                                                  const std::optional<RawLayout>& raw) {
     if (raw || isDicomFolder(path)) return std::nullopt;
     const std::string extension = detail::volumeExtension(path);
     if (extension == ".nrrd" || extension == ".nhdr") return detail::gzipNrrdSamples(path);
     if (extension == ".nii" || extension == ".nii.gz") return detail::gzipNiftiSamples(path);
+    if (extension == ".mhd" || extension == ".mha") return detail::gzipMetaImageSamples(path);
     return std::nullopt;
 }
 
@@ -104,7 +106,8 @@ VolumeSlab loadVolumePlanes(const std::string& path, int first, int last, const 
         Volume planes = detail::readGzipPlanes(path, *stored, first, last, storage);
         return {std::move(planes), std::move(stored->grid)};
     }
-    // MetaImage's CompressedData: loaded whole and cut (not yet streamed).
+    // What is neither stored by offset nor a gzip/zlib stream (an encoding the readers accept otherwise):
+    // loaded whole and cut.
     const Volume whole = loadVolume(path, raw, storage, dicomSeries);
     return {planesOf(whole, first, last), gridOf(whole)};
 }

@@ -1,5 +1,5 @@
-// Runs of z planes: read by offset from every uncompressed format, streamed from gzip NRRD and NIfTI,
-// bit-identical to cutting the whole.
+// Runs of z planes: read by offset from every uncompressed format, streamed from gzip NRRD, NIfTI and zlib
+// MetaImage, bit-identical to cutting the whole.
 #include "vots/fit/Error.h"
 #include "vots/fit/VolumeLoad.h"
 #include "vots/fit/VolumePlanes.h"
@@ -195,7 +195,7 @@ TEST(VolumePlanes, RawLayoutWithHeaderBytes) {
     }
 }
 
-TEST(VolumePlanes, GzipPlanesAreStreamedZlibMetaImagesAreLoadedWholeAndCut) {
+TEST(VolumePlanes, GzipAndZlibPlanesAreStreamed) {
     TempDir dir;
     const std::string data = encode(fixtureValues(ScalarType::Int16), ScalarType::Int16, false);
     const std::string gzNrrd =
@@ -210,7 +210,21 @@ TEST(VolumePlanes, GzipPlanesAreStreamedZlibMetaImagesAreLoadedWholeAndCut) {
                                                        packed);
     expectPlanesMatchCut({gzNrrd, std::nullopt}, true);
     expectPlanesMatchCut({gzNifti, std::nullopt}, true);
-    expectPlanesMatchCut({zlibMha, std::nullopt}, false);
+    expectPlanesMatchCut({zlibMha, std::nullopt}, true);
+    // A detached zlib payload with HeaderSize before it and CompressedDataSize short of the file's end:
+    // the stream is read over its stated bytes only, whatever follows them.
+    dir.write("z.zraw", "HEADER" + packed + "trailing bytes, not zlib");
+    const std::string zlibMhd =
+        dir.write("z.mhd", "NDims = 3\nDimSize = 5 4 3\nElementType = MET_SHORT\nCompressedData = True\n"
+                           "HeaderSize = 6\nCompressedDataSize = " +
+                               std::to_string(packed.size()) + "\nElementDataFile = z.zraw\n");
+    expectPlanesMatchCut({zlibMhd, std::nullopt}, true);
+    // A stream cut short is refused by whoever reads its end.
+    const std::string cutMha = dir.write("c.mha", "NDims = 3\nDimSize = 5 4 3\nElementType = MET_SHORT\n"
+                                                  "CompressedData = True\nElementDataFile = LOCAL\n" +
+                                                      packed.substr(0, packed.size() - 8));
+    EXPECT_THROW(loadVolumePlanes(cutMha, 2, 2, std::nullopt, SampleStorage::Float), InputError);
+    EXPECT_THROW(loadVolume(cutMha), InputError);
 }
 
 TEST(VolumePlanes, GzipNrrdDataFilesMembersAndSkips) {
