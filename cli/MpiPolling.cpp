@@ -26,7 +26,8 @@ std::mutex& mpiCallLock() {
 }
 
 std::optional<std::vector<char>> receiveBefore(int source, int tag,
-                                               std::optional<PollClock::time_point> deadline) {
+                                               std::optional<PollClock::time_point> deadline,
+                                               const KeepWaiting& keepWaiting) {
     for (;;) {
         int arrived = 0;
         MPI_Message message = MPI_MESSAGE_NULL;
@@ -50,17 +51,18 @@ std::optional<std::vector<char>> receiveBefore(int source, int tag,
                     return std::nullopt;
             }
             const auto end = deadline ? *deadline : PollClock::time_point::max();
-            if (completedBefore(request, end)) return std::move(*bytes);
+            if (completedBefore(request, end, keepWaiting)) return std::move(*bytes);
             std::lock_guard lock(mpiCallLock());
             abandonedBuffers().push_back(std::move(bytes));
             return std::nullopt;
         }
         if (deadline && PollClock::now() >= *deadline) return std::nullopt;
+        if (keepWaiting && !keepWaiting()) return std::nullopt;
         std::this_thread::sleep_for(POLL_PERIOD);
     }
 }
 
-bool completedBefore(MPI_Request& request, PollClock::time_point deadline) {
+bool completedBefore(MPI_Request& request, PollClock::time_point deadline, const KeepWaiting& keepWaiting) {
     for (;;) {
         int done = 0;
         {
@@ -69,7 +71,24 @@ bool completedBefore(MPI_Request& request, PollClock::time_point deadline) {
         }
         if (done) return true;
         if (PollClock::now() >= deadline) return false;
+        if (keepWaiting && !keepWaiting()) return false;
         std::this_thread::sleep_for(POLL_PERIOD);
+    }
+}
+
+std::vector<int> takeArrived(int tag) {
+    std::vector<int> sources;
+    std::lock_guard lock(mpiCallLock());
+    for (;;) {
+        int arrived = 0;
+        MPI_Message message = MPI_MESSAGE_NULL;
+        MPI_Status status;
+        if (MPI_Improbe(MPI_ANY_SOURCE, tag, MPI_COMM_WORLD, &arrived, &message, &status) != MPI_SUCCESS ||
+            !arrived)
+            return sources;
+        // Empty and already here: the matched receive completes at once.
+        if (MPI_Mrecv(nullptr, 0, MPI_BYTE, &message, MPI_STATUS_IGNORE) != MPI_SUCCESS) return sources;
+        sources.push_back(status.MPI_SOURCE);
     }
 }
 

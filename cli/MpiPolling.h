@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cstring>
+#include <functional>
 #include <mutex>
 #include <optional>
 #include <stdexcept>
@@ -36,13 +37,23 @@ template <typename Head> Head headOf(const std::vector<char>& bytes) {
     return head;
 }
 
-/// Waits for a whole message from `source` until `deadline` (none: for ever); nullopt when none came in
-/// time, its transfer did not end in time (a sender that died mid-message), or MPI reports an error.
-std::optional<std::vector<char>> receiveBefore(int source, int tag,
-                                               std::optional<PollClock::time_point> deadline);
+/// Asked between polls: false ends a wait as its deadline does (a peer found silent for too long).
+using KeepWaiting = std::function<bool()>;
 
-/// Completes a nonblocking request by `deadline`; false when it did not (the request is left to MPI).
-bool completedBefore(MPI_Request& request, PollClock::time_point deadline);
+/// Waits for a whole message from `source` until `deadline` (none: for ever) while `keepWaiting` (when
+/// given) holds; nullopt when none came in time, its transfer did not end in time (a sender that died
+/// mid-message), or MPI reports an error.
+std::optional<std::vector<char>> receiveBefore(int source, int tag,
+                                               std::optional<PollClock::time_point> deadline,
+                                               const KeepWaiting& keepWaiting = {});
+
+/// Completes a nonblocking request by `deadline` while `keepWaiting` (when given) holds; false when it did
+/// not (the request is left to MPI).
+bool completedBefore(MPI_Request& request, PollClock::time_point deadline,
+                     const KeepWaiting& keepWaiting = {});
+
+/// Takes every empty message with `tag` that has arrived, from any rank; returns their senders.
+std::vector<int> takeArrived(int tag);
 
 /// Starts sending `bytes` (which must outlive the send) to `dest`; false when MPI refuses.
 bool startSend(const std::vector<char>& bytes, int dest, int tag, MPI_Request& request);

@@ -31,6 +31,7 @@ using Clock = PollClock;
 
 constexpr int COMMAND_TAG = 7101;
 constexpr int REPLY_TAG = 7102;
+constexpr int ALIVE_TAG = 7103; // the other ranks' heartbeats, empty
 // The deadlines: a frame of a held fit, and the fit of a new eps besides.
 constexpr auto FRAME_DEADLINE = std::chrono::seconds(10);
 constexpr auto FIT_DEADLINE = std::chrono::minutes(10);
@@ -39,6 +40,9 @@ constexpr auto RELEASE_DEADLINE = std::chrono::seconds(2);
 // the silence: a rank 0 that died would otherwise leave them waiting for commands, and mpirun with them.
 constexpr auto HEARTBEAT_PERIOD = std::chrono::seconds(2);
 constexpr auto RANK0_SILENCE = std::chrono::seconds(30);
+// The other ranks say so too, from a thread of their own, so that rank 0 tells a rank still fitting (for
+// minutes, under the fit's deadline) from one that has died, and answers 503 soon after the death.
+constexpr auto RANK_SILENCE = std::chrono::seconds(15);
 
 enum class CommandKind : std::int32_t { Quit = 0, Frame = 1, Alive = 2 };
 
@@ -61,7 +65,8 @@ struct ReplyHead {
     std::int32_t height = 0;
     std::int32_t withLengths = 0;
     std::int32_t fromGrid = 0;
-    double fitMs = 0.0; // or the grid's read of the slab's planes
+    std::uint64_t votCount = 0; // of the rank's slab fit (0 for the grid)
+    double fitMs = 0.0;         // or the grid's read of the slab's planes
     double frameMs = 0.0;
 };
 static_assert(std::is_trivially_copyable_v<ReplyHead>, "replies travel as their bytes");
@@ -93,6 +98,38 @@ SlabFrame slabFrameOf(const ReplyHead& head, const std::vector<char>& bytes) {
     return drawn;
 }
 
+/// Ranks > 0: sends rank 0 an empty ALIVE_TAG message every HEARTBEAT_PERIOD from its own thread, while
+/// the rank's main thread waits, fits or draws; one in flight at a time.
+class HeartbeatToRank0 {
+public:
+    HeartbeatToRank0() : mThread([this] { run(); }) {}
+    ~HeartbeatToRank0() {
+        {
+            std::lock_guard lock(mMutex);
+            mStop = true;
+        }
+        mWake.notify_all();
+        mThread.join();
+    }
+    HeartbeatToRank0(const HeartbeatToRank0&) = delete;
+    HeartbeatToRank0& operator=(const HeartbeatToRank0&) = delete;
+
+private:
+    void run() {
+        std::unique_lock lock(mMutex);
+        while (!mStop) {
+            if (sendDone(mSend)) startSend(mEmpty, 0, ALIVE_TAG, mSend);
+            mWake.wait_for(lock, HEARTBEAT_PERIOD, [this] { return mStop; });
+        }
+    }
+    const std::vector<char> mEmpty;
+    MPI_Request mSend = MPI_REQUEST_NULL;
+    std::mutex mMutex;
+    std::condition_variable mWake;
+    bool mStop = false;
+    std::thread mThread; // last: started once the rest is built
+};
+
 CommandHead aliveCommand() {
     CommandHead alive;
     alive.kind = CommandKind::Alive;
@@ -118,7 +155,10 @@ SlabFrame drawRankPart(SlabDrawer& drawer, const CommandHead& head, const std::s
 MpiFrameCompositor::MpiFrameCompositor(const MpiWorld& world, std::string dataset)
     : mWorld(world), mDataset(std::move(dataset)), mDrawer(world.rank(), world.size()),
       mAlive(messageOf(aliveCommand(), nullptr, 0)),
-      mAliveSends(static_cast<std::size_t>(world.size()), MPI_REQUEST_NULL) {
+      mAliveSends(static_cast<std::size_t>(world.size()), MPI_REQUEST_NULL),
+      mLastHeard(static_cast<std::size_t>(world.size())) {
+    for (auto& heard : mLastHeard)
+        heard = Clock::now().time_since_epoch().count();
     MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
     mHeartbeat = std::thread([this] { sendHeartbeats(); });
 }
@@ -136,8 +176,16 @@ void MpiFrameCompositor::sendHeartbeats() {
             // holds the last one) is not piled up on.
             if (r != mLostRank.load() && sendDone(send)) startSend(mAlive, r, COMMAND_TAG, send);
         }
+        for (const int r : takeArrived(ALIVE_TAG))
+            if (r > 0 && r < mWorld.size())
+                mLastHeard[static_cast<std::size_t>(r)] = Clock::now().time_since_epoch().count();
         mHeartbeatWake.wait_for(lock, HEARTBEAT_PERIOD, [this] { return mStopHeartbeats; });
     }
+}
+
+bool MpiFrameCompositor::heardLately(int rank) const {
+    const Clock::time_point heard{Clock::duration{mLastHeard[static_cast<std::size_t>(rank)].load()}};
+    return Clock::now() - heard < RANK_SILENCE;
 }
 
 void MpiFrameCompositor::stopHeartbeats() {
@@ -192,6 +240,7 @@ render::RgbaImage MpiFrameCompositor::draw(const server::CompositeRequest& reque
     std::exception_ptr failure;
     try {
         SlabFrame mine = drawRankPart(mDrawer, head, path, vots, grid, &times[0].fitMs, &times[0].frameMs);
+        times[0].votCount = mine.fromGrid ? 0 : mDrawer.votCount();
         composite.emplace(request.frame.mode, std::move(mine));
     } catch (...) {
         failure = std::current_exception();
@@ -200,13 +249,17 @@ render::RgbaImage MpiFrameCompositor::draw(const server::CompositeRequest& reque
     for (int r = 1; r < ranks; ++r) {
         server::RankTimes& t = times[static_cast<std::size_t>(r)];
         t.rank = r;
-        if (!completedBefore(sends[static_cast<std::size_t>(r)], deadline))
-            lose(r, "did not take the frame in time");
-        const auto reply = receiveBefore(r, REPLY_TAG, deadline);
-        if (!reply) lose(r, "did not answer the frame in time");
+        const KeepWaiting alive = [this, r] { return heardLately(r); };
+        const std::string silent =
+            "has sent no heartbeat for " + std::to_string(std::chrono::seconds(RANK_SILENCE).count()) + " s";
+        if (!completedBefore(sends[static_cast<std::size_t>(r)], deadline, alive))
+            lose(r, heardLately(r) ? "did not take the frame in time" : silent);
+        const auto reply = receiveBefore(r, REPLY_TAG, deadline, alive);
+        if (!reply) lose(r, heardLately(r) ? "did not answer the frame in time" : silent);
         const auto replyHead = headOf<ReplyHead>(*reply);
         t.fitMs = replyHead.fitMs;
         t.frameMs = replyHead.frameMs;
+        t.votCount = replyHead.votCount;
         if (!replyHead.ok) {
             if (failure) continue;
             const std::string text = "rank " + std::to_string(r) + ": " +
@@ -268,6 +321,7 @@ void serveOtherRank(const MpiWorld& world) {
     } catch (const std::exception& e) {
         noRenderer = std::string("no renderer: ") + e.what();
     }
+    const HeartbeatToRank0 heartbeat;
     SlabDrawer drawer(world.rank(), world.size());
     const std::string self =
         "vots serve: rank " + std::to_string(world.rank()) + " of " + std::to_string(world.size());
@@ -288,6 +342,7 @@ void serveOtherRank(const MpiWorld& world) {
             const SlabFrame drawn =
                 drawRankPart(drawer, head, path, *vots, *grid, &reply.fitMs, &reply.frameMs);
             reply.fromGrid = drawn.fromGrid ? 1 : 0;
+            reply.votCount = drawn.fromGrid ? 0 : drawer.votCount();
             reply.width = drawn.frame.width;
             reply.height = drawn.frame.height;
             reply.withLengths = drawn.lengths ? 1 : 0;

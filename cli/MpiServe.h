@@ -19,8 +19,10 @@ namespace vots::cli {
 /// Rank 0's hook: sends each frame (and the eps its slab fit needs) to every other rank, draws its own
 /// slab meanwhile, and composites the ranks' float frames as `mpirun vots render` does. A rank that does
 /// not answer within the deadline (the frame's, plus a fit's when the eps is new) is taken as lost: the
-/// frame and every later one throw RanksLost, logged once. Only one dataset, the one named at start. A
-/// thread tells the other ranks every 2 s that rank 0 lives, so that they leave when it has died.
+/// frame and every later one throw RanksLost, logged once; so is a rank whose own heartbeat has stopped
+/// for 15 s, which ends a wait for a fit long before its deadline. Only one dataset, the one named at
+/// start. A thread tells the other ranks every 2 s that rank 0 lives, so that they leave when it has died,
+/// and takes theirs.
 class MpiFrameCompositor : public server::FrameCompositor {
 public:
     /// Sets MPI_ERRORS_RETURN on the world, so a failing peer gives an error code, not an abort.
@@ -47,8 +49,10 @@ private:
     std::string mLostMessage;
     mutable std::mutex mTimesMutex;
     std::vector<server::RankTimes> mTimes;
-    const std::vector<char> mAlive;       // the heartbeat message, alive while its sends are
-    std::vector<MPI_Request> mAliveSends; // per rank: the heartbeat in flight
+    bool heardLately(int rank) const;
+    const std::vector<char> mAlive;                      // the heartbeat message, alive while its sends are
+    std::vector<MPI_Request> mAliveSends;                // per rank: the heartbeat in flight
+    std::vector<std::atomic<PollClock::rep>> mLastHeard; // per rank: its last heartbeat taken, since epoch
     std::mutex mHeartbeatMutex;
     std::condition_variable mHeartbeatWake;
     bool mStopHeartbeats = false;
@@ -57,7 +61,8 @@ private:
 
 /// Ranks > 0: fit (or read) and draw this rank's slab for each command from rank 0 and send the float
 /// frame back, until rank 0 says quit; throws std::runtime_error when rank 0 has said nothing (not even
-/// its heartbeat) for 30 s or does not take a frame within that time. Never serves HTTP.
+/// its heartbeat) for 30 s or does not take a frame within that time. A thread sends rank 0 this rank's
+/// heartbeat every 2 s meanwhile, also while it fits. Never serves HTTP.
 void serveOtherRank(const MpiWorld& world);
 
 } // namespace vots::cli

@@ -53,6 +53,7 @@ double SlabDrawer::ensureFit(const std::string& volumePath, float eps, int degre
     }
     placeSlabFitInGrid(space, slab, read.whole);
     vots.upload(space);
+    mVotCount = space.vots.size();
     mSlab = slab;
     mDims = space.dims;
     mKey = key;

@@ -44,6 +44,9 @@ public:
     /// The frame's projection of this rank's planes on the exact grid (ensureGrid first).
     static SlabFrame drawGrid(const render::FrameRequest& frame, render::GridRenderer& grid);
 
+    /// The Vots of the slab fit held (0 before the first).
+    std::size_t votCount() const { return mVotCount; }
+
     /// The key ensureFit compares.
     static std::string fitKey(const std::string& volumePath, float eps, int degree);
 
@@ -53,6 +56,7 @@ private:
     std::string mKey;
     ZSlab mSlab;
     std::array<int, 3> mDims{0, 0, 0};
+    std::size_t mVotCount = 0;
     std::string mGridPath; // the volume whose planes ensureGrid last uploaded
 };
 

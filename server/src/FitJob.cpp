@@ -102,6 +102,17 @@ void FitJob::finish(std::shared_ptr<const fit::VotSpace> space, double seconds) 
     mChanged.notify_all();
 }
 
+void FitJob::finishOnRanks(std::size_t votCount, double seconds) {
+    std::lock_guard lock(mMutex);
+    mState.votCount = votCount;
+    mState.fitSeconds = seconds;
+    mState.progress = 1.0;
+    mState.stage = "done";
+    mState.state = JobState::Done;
+    ++mState.version;
+    mChanged.notify_all();
+}
+
 void FitJob::fail(const std::string& error) {
     std::lock_guard lock(mMutex);
     mState.error = error;

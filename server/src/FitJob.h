@@ -55,6 +55,8 @@ public:
     void setRunning();
     void setProgress(double fraction, const char* stage);
     void finish(std::shared_ptr<const fit::VotSpace> space, double seconds);
+    /// Done, with the Vot-Space held by other processes (`vots serve` under mpirun): space() stays null.
+    void finishOnRanks(std::size_t votCount, double seconds);
     void fail(const std::string& error);
 
 private:

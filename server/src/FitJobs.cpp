@@ -143,6 +143,12 @@ void FitJobs::run(const Pending& pending) {
     const ForegroundMark mark(mForeground, Foreground::Fit); // cache files of earlier fits wait meanwhile
     job.setRunning();
     try {
+        if (mFitOnRanks) {
+            const FitOnRanks done = mFitOnRanks(*pending.dataset, key);
+            job.finishOnRanks(done.votCount, done.seconds);
+            mStats.addFit(recordFor(job.snapshot(), "ranks"));
+            return;
+        }
         if (auto space = mCache.find(key)) { // fitted by an earlier run of the server
             const double seconds = fitSecondsOf(*space);
             job.finish(std::move(space), seconds);

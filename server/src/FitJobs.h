@@ -13,6 +13,7 @@
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -32,6 +33,13 @@ struct FitJobLimits {
     int perClient = 3;     // queued or running fits one client (remote address) started; 0: no limit
     int keepFinished = 32; // finished jobs remembered for /api/jobs/{id} (their results only weakly)
     bool warmUp = true;    // fit eps / 2 into the box cache while idle (WarmUpFits)
+};
+
+/// What a fit made by other processes gave (`vots serve` under mpirun): the Vots of all the ranks' slabs
+/// and the slowest rank's seconds. The Vot-Space itself stays with the ranks.
+struct FitOnRanks {
+    std::size_t votCount = 0;
+    double seconds = 0.0;
 };
 
 /// Owns the worker threads and the warm-ups that follow their fits. Thread-safe.
@@ -57,6 +65,11 @@ public:
     WarmUpSummary warmUps() const { return mWarmUps.summary(); }
     /// Refuses new jobs (503), fails queued ones and cancels running fits; idempotent.
     void shutdown();
+    /// Under mpirun: every fit is made by the ranks, each of its slab, through `fit` (which waits for
+    /// them), instead of here. Set before the first submit.
+    void fitOnRanksThrough(std::function<FitOnRanks(const Dataset&, const FitKey&)> fit) {
+        mFitOnRanks = std::move(fit);
+    }
 
 private:
     struct Pending {
@@ -89,6 +102,7 @@ private:
     std::map<std::uint64_t, std::shared_ptr<FitJob>> mById;      // active + recent finished
     std::deque<std::uint64_t> mFinishedOrder;
     std::vector<std::thread> mWorkers;
+    std::function<FitOnRanks(const Dataset&, const FitKey&)> mFitOnRanks;
 };
 
 } // namespace vots::server

@@ -3,6 +3,8 @@
 #include "HttpJson.h"
 #include "ServerImpl.h"
 
+#include "vots/server/FrameCompositor.h"
+
 #include <chrono>
 
 namespace vots::server {
@@ -43,6 +45,12 @@ void installJobRoutes(Server::Impl& s) {
         const FitParams p = parseFitParams(req.body);
         const auto dataset = s.registry.find(p.dataset);
         refuseFitOfVots(*dataset);
+        if (const FrameCompositor* compositor = s.options.compositor.get()) {
+            // Under mpirun the fit is the ranks' (FitJobs::fitOnRanksThrough): their dataset, no focus.
+            const std::string refused = compositor->refusal(dataset->name, render::FrameRequest{});
+            if (!refused.empty()) throw HttpError(409, refused);
+            if (p.focus) throw HttpError(409, "under mpirun the ranks fit without a focus sphere");
+        }
         FitKey key = fitKeyFor(*dataset, p.eps, p.degree);
         key.focus = p.focus;
         const auto job = s.fitJobs.submit(dataset, key, req.remote_addr);

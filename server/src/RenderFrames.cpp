@@ -51,6 +51,16 @@ std::shared_ptr<const fit::VotSpace> spaceFor(Server::Impl& s, const std::shared
     throw HttpError(503, "the fit finished but newer fits have pushed it out of memory; try again");
 }
 
+CompositeRequest compositeRequestFor(const Dataset& dataset, float eps, int degree) {
+    CompositeRequest request;
+    request.dataset = dataset.name;
+    request.volumePath = dataset.path;
+    request.valueRange = dataset.range;
+    request.eps = eps;
+    request.degree = degree;
+    return request;
+}
+
 /// Under mpirun: the frame is drawn on every rank from its slab's own fit, so rank 0 fits nothing whole;
 /// what the ranks cannot composite is refused before any work.
 PreparedRender prepareComposite(Server::Impl& s, const Dataset& dataset, PreparedRender prepared) {
@@ -59,13 +69,9 @@ PreparedRender prepareComposite(Server::Impl& s, const Dataset& dataset, Prepare
                                     ? s.options.compositor->refusal(dataset.name, job.params)
                                     : "under mpirun a .vots dataset is not drawn across the ranks yet";
     if (!refusal.empty()) throw HttpError(409, refusal);
-    CompositeRequest request;
+    CompositeRequest request =
+        compositeRequestFor(dataset, resolveEps(dataset, job.params.eps), job.params.degree);
     request.frame = job.params;
-    request.dataset = dataset.name;
-    request.volumePath = dataset.path;
-    request.valueRange = dataset.range;
-    request.eps = resolveEps(dataset, job.params.eps);
-    request.degree = job.params.degree;
     job.composite = std::move(request);
     prepared.drawnFrom = job.params.renderer == render::RendererKind::Grid
                              ? dataset.name + "_v" + std::to_string(dataset.contentCrc) + "|ranks"
@@ -100,6 +106,16 @@ PreparedRender prepareRender(Server::Impl& s, const RenderParams& params, const 
         prepared.drawnFrom = key.text();
     }
     return prepared;
+}
+
+FitOnRanks fitOnRanks(Server::Impl& s, const Dataset& dataset, const FitKey& key) {
+    RenderJob job;
+    job.params.dataset = dataset.name;
+    job.params.width = job.params.height = 1; // the fit is the work: the frame is one pixel
+    job.params.degree = key.degree;
+    job.composite = compositeRequestFor(dataset, key.eps, key.degree);
+    const RenderResult drawn = s.renderQueue->render(std::move(job));
+    return {drawn.votCount, drawn.fitMs / 1000.0};
 }
 
 std::shared_ptr<const FrameCache::Frame> cachedFrame(Server::Impl& s, const PreparedRender& prepared,

@@ -13,6 +13,7 @@
 #include "vots/render/VotRenderer.h"
 #include "vots/server/RenderPolicy.h"
 
+#include <algorithm>
 #include <chrono>
 #include <iostream>
 #include <stdexcept>
@@ -148,6 +149,11 @@ RenderResult RenderQueue::draw(Renderers& r, const RenderJob& job) {
         r.uploadedSpace = nullptr; // the compositor uploads its own slab's Vots and samples
         r.uploadedVolume = nullptr;
         result.image = mCompositor->draw(request, *r.vots, *r.grid);
+        // Read here, on the render thread, before another frame replaces them.
+        for (const RankTimes& t : mCompositor->lastTimes()) {
+            result.votCount += static_cast<std::size_t>(t.votCount);
+            result.fitMs = std::max(result.fitMs, t.fitMs);
+        }
         result.frameMs =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
         mStats.addFrame(result.frameMs);

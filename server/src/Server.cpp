@@ -2,6 +2,7 @@
 #include "vots/server/Server.h"
 
 #include "HttpJson.h"
+#include "RenderFrames.h"
 #include "ServerImpl.h"
 #include "StaticFiles.h"
 
@@ -63,6 +64,9 @@ Server::Impl::Impl(ServerOptions opts)
       renders(options.maxRendersPerClient, "renders"), guard(options.allowedHosts, options.accessToken) {
     if (options.withRenderer)
         renderQueue = std::make_unique<RenderQueue>(stats, foreground, options.compositor.get());
+    if (options.compositor && renderQueue)
+        fitJobs.fitOnRanksThrough(
+            [this](const Dataset& dataset, const FitKey& key) { return fitOnRanks(*this, dataset, key); });
     cache.deferDiskWritesWhile([this] { return foreground.busyWithin(DISK_WRITE_QUIET); });
 }
 

@@ -18,7 +18,7 @@ struct FitRecord {
     int degree = 3;
     std::size_t votCount = 0;
     double fitSeconds = 0.0;
-    std::string source; // "fit" or "disk"
+    std::string source; // "fit", "disk" or "ranks" (under mpirun)
 };
 
 struct FrameSummary {

@@ -47,7 +47,8 @@ void installStatsRoute(Server::Impl& s) {
                 rankTimes.push_back({{"rank", t.rank},
                                      {"fitMs", t.fitMs},
                                      {"frameMs", t.frameMs},
-                                     {"compositeMs", t.compositeMs}});
+                                     {"compositeMs", t.compositeMs},
+                                     {"votCount", t.votCount}});
         sendJson(res, 200,
                  {{"ranks", compositor ? compositor->ranks() : 1},
                   {"rankTimes", rankTimes},

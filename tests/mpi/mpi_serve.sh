@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
 # `mpirun -np 2 vots serve` on loopback: rank 0 answers /render with the frame the two ranks composite,
 # the bytes of `mpirun -np 2 vots render` of the same camera and eps (mip, minip with a slab; the aip
-# within one grey level), and the exact grid's frames from the ranks' planes; /api/stats says "ranks": 2
+# within one grey level), and the exact grid's frames from the ranks' planes; POST /api/fit has the ranks
+# fit (the next frame at that eps refits nothing); /api/stats says "ranks": 2
 # with both ranks' times; what is not composited (the density) is refused with 409; a rank killed
-# mid-session makes the next /render a 503 JSON within the frame deadline, and every later one; SIGTERM to rank 0 then ends the job cleanly, all of it bounded by timeouts.
+# mid-session makes the next /render (one that refits: its deadline is 10 min, the rank's silent heartbeat
+# ends the wait after 15 s) a 503 JSON within 30 s, and every later one; SIGTERM to rank 0 then ends the
+# job cleanly, all of it bounded by timeouts.
 # Usage: tests/mpi/mpi_serve.sh VOTS_BINARY VOLUME [OTHER_VOLUME]
 set -euo pipefail
 vots=$1 volume=$2 other=${3:-}
@@ -75,6 +78,29 @@ assert [t["rank"] for t in times] == [0, 1], times
 assert all(t["frameMs"] > 0 for t in times), times
 PY
 
+# POST /api/fit (the viewer's eps slider): the ranks fit their slabs, rank 0 nothing whole; the next
+# frame at that eps finds every rank's fit held.
+/usr/bin/python3 - "$url" "$name" <<'PY' || fail "POST /api/fit under mpirun failed"
+import json, sys, time, urllib.request
+url, name = sys.argv[1], sys.argv[2]
+body = json.dumps({"dataset": name, "eps": "3%"}).encode()
+post = urllib.request.Request(url + "api/fit", data=body, headers={"Content-Type": "application/json"})
+job_id = json.load(urllib.request.urlopen(post, timeout=60))["job"]
+for _ in range(600):
+    job = json.load(urllib.request.urlopen(url + "api/jobs/%d" % job_id, timeout=60))
+    if job["state"] in ("done", "failed"):
+        break
+    time.sleep(0.1)
+assert job["state"] == "done" and job["votCount"] > 0, job
+stats = json.load(urllib.request.urlopen(url + "api/stats", timeout=60))
+assert [f["source"] for f in stats["fits"]] == ["ranks"], stats["fits"]
+PY
+code=$(get "$work/served-3.png" "render?dataset=$name&cam=az=30,el=20&size=96x80&eps=3%25")
+[[ $code == 200 ]] || fail "/render at the fitted eps answered $code"
+get "$work/stats3.json" "api/stats" >/dev/null
+/usr/bin/python3 -c 'import json, sys; t = json.load(open(sys.argv[1]))["rankTimes"]; assert all(r["fitMs"] == 0 and r["votCount"] > 0 for r in t), t' \
+    "$work/stats3.json" || fail "the frame after POST /api/fit refitted: $(cat "$work/stats3.json")"
+
 # The exact grid: each rank reads its slab's planes; the reference (the grid's mip) is the one-process
 # image bit for bit, the grid's minip and aip are mpirun vots render's.
 code=$(get "$work/served-ref.png" "render?dataset=$name&$view&mode=reference")
@@ -109,6 +135,8 @@ rank0=$(rank_pid 0) rank1=$(rank_pid 1)
 [[ -n $rank0 && -n $rank1 ]] || fail "cannot find the ranks' processes"
 kill -KILL "$rank1"
 start=$(date +%s)
+# eps 2 % while the ranks hold the fit of 3 %: rank 0 waits under the fit's deadline until rank 1's
+# heartbeat has been silent for 15 s.
 code=$(get "$work/lost.json" "render?dataset=$name&cam=az=60,el=20&size=96x80&eps=2%25")
 seconds=$(($(date +%s) - start))
 [[ $code == 503 ]] && grep -q '"error":"rank 1' "$work/lost.json" ||

@@ -8,6 +8,7 @@
 #include <atomic>
 #include <mutex>
 #include <optional>
+#include <thread>
 
 namespace vots::test {
 namespace {
@@ -28,7 +29,7 @@ public:
         return flat(request.frame.width, request.frame.height);
     }
     std::vector<server::RankTimes> lastTimes() const override {
-        return {{0, 0.0, 1.0, 0.5}, {1, 2.0, 3.0, 4.0}, {2, 0.0, 5.0, 6.0}};
+        return {{0, 0.0, 1.0, 0.5, 100}, {1, 2000.0, 3.0, 4.0, 200}, {2, 0.0, 5.0, 6.0, 300}};
     }
     static render::RgbaImage flat(int width, int height) {
         render::RgbaImage image{width, height, {}};
@@ -92,6 +93,7 @@ TEST(ServerCompositor, FramesGoThroughItUnfittedRefusalsAre409AndALostRankIs503)
     EXPECT_EQ(stats["rankTimes"][1]["rank"], 1);
     EXPECT_EQ(stats["rankTimes"][2]["compositeMs"], 6.0);
     EXPECT_TRUE(stats["fits"].empty()) << "rank 0 fitted the whole volume: " << stats["fits"];
+    EXPECT_EQ(stats["rankTimes"][2]["votCount"], 300);
 
     for (const char* refused : {"/render?dataset=neghip_64x64x64_uint8&size=40x30",
                                 "/render?dataset=HeadMRVolume_48x62x42_uint8&size=40x30&mode=density"}) {
@@ -99,6 +101,37 @@ TEST(ServerCompositor, FramesGoThroughItUnfittedRefusalsAre409AndALostRankIs503)
         ASSERT_TRUE(no);
         EXPECT_EQ(no->status, 409) << refused;
         EXPECT_TRUE(bodyJson(no).contains("error")) << refused;
+    }
+
+    // POST /api/fit: the ranks fit (a one-pixel frame at that eps through the compositor), rank 0 nothing
+    // whole; the job reports all the ranks' Vots and the slowest rank's fit.
+    const auto post =
+        c->Post("/api/fit", R"({"dataset":"HeadMRVolume_48x62x42_uint8","eps":"3%"})", "application/json");
+    ASSERT_TRUE(post);
+    ASSERT_EQ(post->status, 202) << post->body;
+    const std::string jobPath = "/api/jobs/" + std::to_string(bodyJson(post)["job"].get<std::uint64_t>());
+    nlohmann::json job;
+    for (int i = 0; i < 200; ++i) {
+        job = bodyJson(c->Get(jobPath.c_str()));
+        if (job["state"] == "done" || job["state"] == "failed") break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    ASSERT_EQ(job["state"], "done") << job;
+    EXPECT_EQ(job["votCount"], 600);
+    EXPECT_DOUBLE_EQ(job["fitSeconds"].get<double>(), 2.0);
+    {
+        std::lock_guard lock(compositor->mutex);
+        const server::CompositeRequest& asked = *compositor->last;
+        EXPECT_EQ(asked.frame.width * asked.frame.height, 1);
+        EXPECT_FLOAT_EQ(asked.eps, 0.03f * (asked.valueRange[1] - asked.valueRange[0]));
+    }
+    EXPECT_TRUE(bodyJson(c->Get("/api/stats"))["fits"].size() == 1u);
+    for (const char* refused : {R"({"dataset":"neghip_64x64x64_uint8","eps":"3%"})",
+                                R"({"dataset":"HeadMRVolume_48x62x42_uint8","eps":"3%",)"
+                                R"("focus":{"x":20,"y":20,"z":20,"r":5,"eps":1}})"}) {
+        const auto no = c->Post("/api/fit", refused, "application/json");
+        ASSERT_TRUE(no);
+        EXPECT_EQ(no->status, 409) << refused << ": " << no->body;
     }
 
     compositor->lost = true;

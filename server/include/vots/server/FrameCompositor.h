@@ -6,6 +6,7 @@
 #include "vots/render/Image.h"
 
 #include <array>
+#include <cstdint>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -32,9 +33,10 @@ struct CompositeRequest {
 /// One rank's part of the last composited frame.
 struct RankTimes {
     int rank = 0;
-    double fitMs = 0.0;       // fitting its slab for this frame (0 when it held the fit already)
-    double frameMs = 0.0;     // drawing its float frame
-    double compositeMs = 0.0; // on rank 0, from the end of its own frame until this rank's was combined
+    double fitMs = 0.0;         // fitting its slab for this frame (0 when it held the fit already)
+    double frameMs = 0.0;       // drawing its float frame
+    double compositeMs = 0.0;   // on rank 0, from the end of its own frame until this rank's was combined
+    std::uint64_t votCount = 0; // Vots of the rank's slab fit the frame was drawn from (0 for the grid)
 };
 
 /// Thrown by draw() when a rank no longer answers: the frame and every later one are refused (503).
