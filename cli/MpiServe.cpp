@@ -3,9 +3,11 @@
 #include "MpiServe.h"
 
 #include "FrameComposite.h"
+#include "MpiHeartbeat.h"
 #include "MpiPolling.h"
 
 #include "vots/fit/Error.h"
+#include "vots/fit/Volume.h"
 #include "vots/render/DisplayPass.h"
 #include "vots/render/EglContext.h"
 #include "vots/render/GridRenderer.h"
@@ -14,6 +16,7 @@
 
 #include <mpi.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <cstring>
@@ -31,20 +34,19 @@ using Clock = PollClock;
 
 constexpr int COMMAND_TAG = 7101;
 constexpr int REPLY_TAG = 7102;
-constexpr int ALIVE_TAG = 7103; // the other ranks' heartbeats, empty
 // The deadlines: a frame of a held fit, and the fit of a new eps besides.
 constexpr auto FRAME_DEADLINE = std::chrono::seconds(10);
 constexpr auto FIT_DEADLINE = std::chrono::minutes(10);
 constexpr auto RELEASE_DEADLINE = std::chrono::seconds(2);
-// Rank 0 says it is alive this often, and the other ranks leave when it has said nothing for longer than
-// the silence: a rank 0 that died would otherwise leave them waiting for commands, and mpirun with them.
-constexpr auto HEARTBEAT_PERIOD = std::chrono::seconds(2);
+// Rank 0 says it is alive every HEARTBEAT_PERIOD, and the other ranks leave when it has said nothing for
+// longer than the silence: a rank 0 that died would otherwise leave them waiting for commands, and mpirun
+// with them.
 constexpr auto RANK0_SILENCE = std::chrono::seconds(30);
 // The other ranks say so too, from a thread of their own, so that rank 0 tells a rank still fitting (for
 // minutes, under the fit's deadline) from one that has died, and answers 503 soon after the death.
 constexpr auto RANK_SILENCE = std::chrono::seconds(15);
 
-enum class CommandKind : std::int32_t { Quit = 0, Frame = 1, Alive = 2 };
+enum class CommandKind : std::int32_t { Quit = 0, Frame = 1, Alive = 2, Summary = 3 };
 
 /// A command's fixed part; the volume's path follows it. Ranks are the same binary on the same kind of
 /// host, so the frame travels as its bytes.
@@ -98,38 +100,6 @@ SlabFrame slabFrameOf(const ReplyHead& head, const std::vector<char>& bytes) {
     return drawn;
 }
 
-/// Ranks > 0: sends rank 0 an empty ALIVE_TAG message every HEARTBEAT_PERIOD from its own thread, while
-/// the rank's main thread waits, fits or draws; one in flight at a time.
-class HeartbeatToRank0 {
-public:
-    HeartbeatToRank0() : mThread([this] { run(); }) {}
-    ~HeartbeatToRank0() {
-        {
-            std::lock_guard lock(mMutex);
-            mStop = true;
-        }
-        mWake.notify_all();
-        mThread.join();
-    }
-    HeartbeatToRank0(const HeartbeatToRank0&) = delete;
-    HeartbeatToRank0& operator=(const HeartbeatToRank0&) = delete;
-
-private:
-    void run() {
-        std::unique_lock lock(mMutex);
-        while (!mStop) {
-            if (sendDone(mSend)) startSend(mEmpty, 0, ALIVE_TAG, mSend);
-            mWake.wait_for(lock, HEARTBEAT_PERIOD, [this] { return mStop; });
-        }
-    }
-    const std::vector<char> mEmpty;
-    MPI_Request mSend = MPI_REQUEST_NULL;
-    std::mutex mMutex;
-    std::condition_variable mWake;
-    bool mStop = false;
-    std::thread mThread; // last: started once the rest is built
-};
-
 CommandHead aliveCommand() {
     CommandHead alive;
     alive.kind = CommandKind::Alive;
@@ -148,6 +118,37 @@ SlabFrame drawRankPart(SlabDrawer& drawer, const CommandHead& head, const std::s
     SlabFrame drawn = fromGrid ? SlabDrawer::drawGrid(head.frame, grid) : drawer.draw(head.frame, vots);
     *drawMs = msSince(start);
     return drawn;
+}
+
+/// A rank > 0's reply to a Frame or Summary command: its part, or the error that kept it from it.
+std::vector<char> replyTo(const CommandHead& head, const std::string& path, SlabDrawer& drawer,
+                          render::VotRenderer* vots, render::GridRenderer* grid,
+                          const std::string& noRenderer) {
+    ReplyHead reply;
+    std::string error;
+    try {
+        if (head.kind == CommandKind::Summary) {
+            const SlabSummary summary = drawer.summarize(path);
+            reply.ok = 1;
+            return messageOf(reply, &summary, sizeof summary);
+        }
+        if (!vots || !grid) throw std::runtime_error(noRenderer);
+        const SlabFrame drawn = drawRankPart(drawer, head, path, *vots, *grid, &reply.fitMs, &reply.frameMs);
+        reply.fromGrid = drawn.fromGrid ? 1 : 0;
+        reply.votCount = drawn.fromGrid ? 0 : drawer.votCount();
+        reply.width = drawn.frame.width;
+        reply.height = drawn.frame.height;
+        reply.withLengths = drawn.lengths ? 1 : 0;
+        const std::vector<float> floats = floatsOf(drawn);
+        reply.ok = 1;
+        return messageOf(reply, floats.data(), floats.size() * sizeof(float));
+    } catch (const fit::InputError& e) {
+        error = e.what(), reply.errorIsInput = 1;
+    } catch (const std::exception& e) {
+        error = e.what();
+    }
+    reply.ok = 0;
+    return messageOf(reply, error.data(), error.size());
 }
 
 } // namespace
@@ -213,13 +214,44 @@ void MpiFrameCompositor::lose(int rank, const std::string& why) {
     throw server::RanksLost(mLostMessage);
 }
 
+std::vector<MPI_Request> MpiFrameCompositor::sendToRanks(const std::vector<char>& command) {
+    std::vector<MPI_Request> sends(static_cast<std::size_t>(mWorld.size()), MPI_REQUEST_NULL);
+    for (int r = 1; r < mWorld.size(); ++r)
+        if (!startSend(command, r, COMMAND_TAG, sends[static_cast<std::size_t>(r)]))
+            lose(r, "cannot be sent the command");
+    return sends;
+}
+
+std::vector<char> MpiFrameCompositor::replyOf(int r, MPI_Request& send, PollClock::time_point deadline) {
+    const KeepWaiting alive = [this, r] { return heardLately(r); };
+    const std::string silent =
+        "has sent no heartbeat for " + std::to_string(std::chrono::seconds(RANK_SILENCE).count()) + " s";
+    if (!completedBefore(send, deadline, alive))
+        lose(r, heardLately(r) ? "did not take the command in time" : silent);
+    auto reply = receiveBefore(r, REPLY_TAG, deadline, alive);
+    if (!reply) lose(r, heardLately(r) ? "did not answer the frame in time" : silent);
+    return std::move(*reply);
+}
+
+namespace {
+
+/// A rank's error reply as the exception rank 0 answers with (400 for bad input, else 500).
+std::exception_ptr failureOf(int rank, const ReplyHead& head, const std::vector<char>& reply) {
+    const std::string text =
+        "rank " + std::to_string(rank) + ": " + std::string(reply.begin() + sizeof head, reply.end());
+    return head.errorIsInput ? std::make_exception_ptr(fit::InputError(text))
+                             : std::make_exception_ptr(std::runtime_error(text));
+}
+
+} // namespace
+
 render::RgbaImage MpiFrameCompositor::draw(const server::CompositeRequest& request, render::VotRenderer& vots,
                                            render::GridRenderer& grid) {
+    std::lock_guard exchange(mExchangeMutex);
     if (mLostRank.load() >= 0) throw server::RanksLost(mLostMessage);
     const auto start = Clock::now();
     const std::string path = request.volumePath.string();
     CommandHead head{CommandKind::Frame, request.frame, request.eps, request.degree, request.valueRange};
-    const std::vector<char> command = messageOf(head, path.data(), path.size());
     // A new fit, or a first read of the planes for the grid, gets the fit's deadline besides the frame's.
     const bool fromGrid = request.frame.renderer == render::RendererKind::Grid;
     std::string& sentKey = fromGrid ? mSentGridKey : mSentFitKey;
@@ -228,10 +260,7 @@ render::RgbaImage MpiFrameCompositor::draw(const server::CompositeRequest& reque
     sentKey = key;
     const Clock::time_point deadline = start + FRAME_DEADLINE + (refit ? FIT_DEADLINE : Clock::duration{0});
     const int ranks = mWorld.size();
-    std::vector<MPI_Request> sends(static_cast<std::size_t>(ranks), MPI_REQUEST_NULL);
-    for (int r = 1; r < ranks; ++r)
-        if (!startSend(command, r, COMMAND_TAG, sends[static_cast<std::size_t>(r)]))
-            lose(r, "cannot be sent the frame");
+    std::vector<MPI_Request> sends = sendToRanks(messageOf(head, path.data(), path.size()));
 
     // This rank's part, while the others draw theirs; a failure here still takes every reply, so that
     // none is left to be read as the next frame's.
@@ -249,27 +278,17 @@ render::RgbaImage MpiFrameCompositor::draw(const server::CompositeRequest& reque
     for (int r = 1; r < ranks; ++r) {
         server::RankTimes& t = times[static_cast<std::size_t>(r)];
         t.rank = r;
-        const KeepWaiting alive = [this, r] { return heardLately(r); };
-        const std::string silent =
-            "has sent no heartbeat for " + std::to_string(std::chrono::seconds(RANK_SILENCE).count()) + " s";
-        if (!completedBefore(sends[static_cast<std::size_t>(r)], deadline, alive))
-            lose(r, heardLately(r) ? "did not take the frame in time" : silent);
-        const auto reply = receiveBefore(r, REPLY_TAG, deadline, alive);
-        if (!reply) lose(r, heardLately(r) ? "did not answer the frame in time" : silent);
-        const auto replyHead = headOf<ReplyHead>(*reply);
+        const std::vector<char> reply = replyOf(r, sends[static_cast<std::size_t>(r)], deadline);
+        const auto replyHead = headOf<ReplyHead>(reply);
         t.fitMs = replyHead.fitMs;
         t.frameMs = replyHead.frameMs;
         t.votCount = replyHead.votCount;
         if (!replyHead.ok) {
-            if (failure) continue;
-            const std::string text = "rank " + std::to_string(r) + ": " +
-                                     std::string(reply->begin() + sizeof replyHead, reply->end());
-            failure = replyHead.errorIsInput ? std::make_exception_ptr(fit::InputError(text))
-                                             : std::make_exception_ptr(std::runtime_error(text));
+            if (!failure) failure = failureOf(r, replyHead, reply);
             continue;
         }
         try {
-            if (composite) composite->add(slabFrameOf(replyHead, *reply));
+            if (composite) composite->add(slabFrameOf(replyHead, reply));
         } catch (...) { // the other ranks' replies are still taken
             if (!failure) failure = std::current_exception();
         }
@@ -287,6 +306,46 @@ render::RgbaImage MpiFrameCompositor::draw(const server::CompositeRequest& reque
         mTimes = times;
     }
     return render::applyDisplay(frame, render::displayFor(request.frame, request.valueRange));
+}
+
+server::VolumeSummary MpiFrameCompositor::summarize(const std::filesystem::path& volumePath) {
+    std::lock_guard exchange(mExchangeMutex);
+    if (mLostRank.load() >= 0) throw server::RanksLost(mLostMessage);
+    const std::string path = volumePath.string();
+    CommandHead head;
+    head.kind = CommandKind::Summary;
+    // Reading a slab can take as long as fitting it.
+    const Clock::time_point deadline = Clock::now() + FRAME_DEADLINE + FIT_DEADLINE;
+    std::vector<MPI_Request> sends = sendToRanks(messageOf(head, path.data(), path.size()));
+    std::vector<SlabSummary> parts(static_cast<std::size_t>(mWorld.size()));
+    std::exception_ptr failure;
+    try {
+        parts[0] = mDrawer.summarize(path);
+    } catch (...) {
+        failure = std::current_exception();
+    }
+    for (int r = 1; r < mWorld.size(); ++r) {
+        const std::vector<char> reply = replyOf(r, sends[static_cast<std::size_t>(r)], deadline);
+        const auto replyHead = headOf<ReplyHead>(reply);
+        if (!replyHead.ok || reply.size() != sizeof replyHead + sizeof(SlabSummary)) {
+            if (!failure)
+                failure =
+                    replyHead.ok
+                        ? std::make_exception_ptr(std::runtime_error("a rank's summary has the wrong size"))
+                        : failureOf(r, replyHead, reply);
+            continue;
+        }
+        std::memcpy(&parts[static_cast<std::size_t>(r)], reply.data() + sizeof replyHead,
+                    sizeof(SlabSummary));
+    }
+    if (failure) std::rethrow_exception(failure);
+    server::VolumeSummary summary{parts[0].range, parts[0].gridCrc};
+    for (const SlabSummary& part : parts) {
+        summary.range = {std::min(summary.range[0], part.range[0]),
+                         std::max(summary.range[1], part.range[1])};
+        summary.contentCrc = fit::combineCrc(summary.contentCrc, part.crc, part.bytes);
+    }
+    return summary;
 }
 
 std::vector<server::RankTimes> MpiFrameCompositor::lastTimes() const {
@@ -334,28 +393,7 @@ void serveOtherRank(const MpiWorld& world) {
         if (head.kind == CommandKind::Quit) return;
         if (head.kind == CommandKind::Alive) continue;
         const std::string path(command->begin() + sizeof head, command->end());
-        ReplyHead reply;
-        std::vector<float> floats;
-        std::string error;
-        try {
-            if (!vots) throw std::runtime_error(noRenderer);
-            const SlabFrame drawn =
-                drawRankPart(drawer, head, path, *vots, *grid, &reply.fitMs, &reply.frameMs);
-            reply.fromGrid = drawn.fromGrid ? 1 : 0;
-            reply.votCount = drawn.fromGrid ? 0 : drawer.votCount();
-            reply.width = drawn.frame.width;
-            reply.height = drawn.frame.height;
-            reply.withLengths = drawn.lengths ? 1 : 0;
-            floats = floatsOf(drawn);
-            reply.ok = 1;
-        } catch (const fit::InputError& e) {
-            error = e.what(), reply.errorIsInput = 1;
-        } catch (const std::exception& e) {
-            error = e.what();
-        }
-        const std::vector<char> bytes = reply.ok
-                                            ? messageOf(reply, floats.data(), floats.size() * sizeof(float))
-                                            : messageOf(reply, error.data(), error.size());
+        const std::vector<char> bytes = replyTo(head, path, drawer, vots.get(), grid.get(), noRenderer);
         MPI_Request send = MPI_REQUEST_NULL;
         if (!startSend(bytes, 0, REPLY_TAG, send) || !completedBefore(send, Clock::now() + RANK0_SILENCE))
             throw std::runtime_error(self + ": rank 0 did not take the frame within " + silence +

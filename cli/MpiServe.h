@@ -32,19 +32,27 @@ public:
     std::string refusal(const std::string& dataset, const render::FrameRequest& frame) const override;
     render::RgbaImage draw(const server::CompositeRequest& request, render::VotRenderer& vots,
                            render::GridRenderer& grid) override;
+    server::VolumeSummary summarize(const std::filesystem::path& volumePath) override;
     std::vector<server::RankTimes> lastTimes() const override;
     /// Tells the ranks still answering to leave their loop; after the server (its render thread) is gone.
     void releaseRanks();
 
 private:
     [[noreturn]] void lose(int rank, const std::string& why);
+    /// Starts sending `command` to every other rank (one request each, index = rank); loses a rank it
+    /// cannot be sent to.
+    std::vector<MPI_Request> sendToRanks(const std::vector<char>& command);
+    /// Rank r's reply, its command's send being `send`: by `deadline` while r's heartbeat goes on, else r
+    /// is lost.
+    std::vector<char> replyOf(int r, MPI_Request& send, PollClock::time_point deadline);
     void sendHeartbeats();
     void stopHeartbeats();
     const MpiWorld& mWorld;
     const std::string mDataset;
     SlabDrawer mDrawer;
-    std::string mSentFitKey;  // what the other ranks hold fitted, as far as rank 0 has told them
-    std::string mSentGridKey; // the volume whose planes they hold in their grids
+    std::mutex mExchangeMutex; // one command and its replies at a time (frames, summaries)
+    std::string mSentFitKey;   // what the other ranks hold fitted, as far as rank 0 has told them
+    std::string mSentGridKey;  // the volume whose planes they hold in their grids
     std::atomic<int> mLostRank = -1;
     std::string mLostMessage;
     mutable std::mutex mTimesMutex;

@@ -60,6 +60,22 @@ double SlabDrawer::ensureFit(const std::string& volumePath, float eps, int degre
     return msSince(start);
 }
 
+SlabSummary SlabDrawer::summarize(const std::string& volumePath) const {
+    const ZSlab slab = slabOfVolume(volumePath, mRank, mRanks);
+    // Source storage: the planes are read only to be summed up, in their file's type.
+    const fit::VolumeSlab read = loadSlab(volumePath, slab, std::nullopt, fit::SampleStorage::Source, "");
+    const int lastPlane = read.whole.dims[2] - 1;
+    const int owned = slab.empty() ? 0 : slab.end - slab.first + (slab.end == lastPlane ? 1 : 0);
+    const std::uint64_t planeBytes = static_cast<std::uint64_t>(read.whole.dims[0]) *
+                                     static_cast<std::uint64_t>(read.whole.dims[1]) * sizeof(float);
+    SlabSummary summary;
+    summary.range = read.planes.valueRange();
+    summary.gridCrc = read.whole.gridCrc();
+    summary.crc = read.planes.planesCrc(0, owned);
+    summary.bytes = planeBytes * static_cast<std::uint64_t>(owned);
+    return summary;
+}
+
 SlabFrame SlabDrawer::draw(const render::FrameRequest& f, render::VotRenderer& vots) const {
     SlabFrame drawn;
     std::optional<render::CellDomain> domain;

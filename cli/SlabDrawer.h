@@ -8,6 +8,7 @@
 #include "vots/render/Image.h"
 
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -24,6 +25,16 @@ struct SlabFrame {
     render::FloatImage frame;
     std::optional<render::FloatImage> lengths;
     bool fromGrid = false;
+};
+
+/// One rank's reading of its slab of a volume. Each plane is owned by one rank (a slab's cells' first
+/// planes, and the last plane by the slab that ends there), so chaining the ranks' `crc` in rank order from
+/// `gridCrc` with fit::combineCrc gives the volume's fit::Volume::contentCrc.
+struct SlabSummary {
+    std::array<float, 2> range{0.f, 0.f}; // min and max sample of the slab's planes
+    std::uint32_t gridCrc = 0;            // of the whole volume's grid, the same on every rank
+    std::uint32_t crc = 0;                // of the planes this rank owns, as floats
+    std::uint64_t bytes = 0;              // their bytes as floats
 };
 
 /// The fit of a volume's slab as `mpirun vots render VOLUME --eps` makes it (automatic background, cells
@@ -43,6 +54,10 @@ public:
     double ensureGrid(const std::string& volumePath, render::GridRenderer& grid);
     /// The frame's projection of this rank's planes on the exact grid (ensureGrid first).
     static SlabFrame drawGrid(const render::FrameRequest& frame, render::GridRenderer& grid);
+
+    /// This rank's part of what the server knows of a volume (the samples' range, the content CRC), read
+    /// from its slab's planes and not kept; see SlabSummary.
+    SlabSummary summarize(const std::string& volumePath) const;
 
     /// The Vots of the slab fit held (0 before the first).
     std::size_t votCount() const { return mVotCount; }

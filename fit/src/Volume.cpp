@@ -8,6 +8,8 @@
 #include "SampleAccess.h"
 #include "SampleDecode.h"
 
+#include <zlib.h>
+
 #include <algorithm>
 
 namespace vots::fit {
@@ -68,25 +70,51 @@ std::array<float, 2> Volume::valueRange() const {
     });
 }
 
-std::uint32_t Volume::contentCrc() const {
-    std::uint32_t crc = crc32Update(0, dims.data(), sizeof dims);
-    crc = crc32Update(crc, spacing.data(), sizeof spacing);
-    crc = crc32Update(crc, origin.data(), sizeof origin);
-    if (!isCompact()) return crc32Update(crc, values.data(), values.size() * sizeof(float));
-    // Over the samples as floats, a block at a time, so a compact volume has its float twin's CRC
-    // without a float copy of itself.
-    const std::size_t count = heldSamples();
-    return visitSamples(*this, [&](const auto* samples) {
+namespace {
+
+/// `crc` extended by held samples [begin, end) as floats. A compact volume goes a block at a time, so it
+/// has its float twin's CRC without a float copy of itself.
+std::uint32_t samplesCrc(const Volume& volume, std::uint32_t crc, std::size_t begin, std::size_t end) {
+    if (!volume.isCompact())
+        return crc32Update(crc, volume.values.data() + begin, (end - begin) * sizeof(float));
+    return visitSamples(volume, [&](const auto* samples) {
         constexpr std::size_t BLOCK = 4096;
         float block[BLOCK];
-        for (std::size_t first = 0; first < count; first += BLOCK) {
-            const std::size_t n = std::min(BLOCK, count - first);
+        for (std::size_t at = begin; at < end; at += BLOCK) {
+            const std::size_t n = std::min(BLOCK, end - at);
             for (std::size_t i = 0; i < n; ++i)
-                block[i] = sampleAsFloat(samples[first + i]);
+                block[i] = sampleAsFloat(samples[at + i]);
             crc = crc32Update(crc, block, n * sizeof(float));
         }
         return crc;
     });
+}
+
+} // namespace
+
+std::uint32_t Volume::gridCrc() const {
+    std::uint32_t crc = crc32Update(0, dims.data(), sizeof dims);
+    crc = crc32Update(crc, spacing.data(), sizeof spacing);
+    return crc32Update(crc, origin.data(), sizeof origin);
+}
+
+std::uint32_t Volume::planesCrc(int first, int count) const {
+    const std::size_t plane = static_cast<std::size_t>(dims[0]) * static_cast<std::size_t>(dims[1]);
+    if (first < 0 || count < 0 || static_cast<long long>(first) + count > dims[2])
+        throw InputError("planes outside the volume's grid");
+    const std::size_t begin = plane * static_cast<std::size_t>(first);
+    const std::size_t end = begin + plane * static_cast<std::size_t>(count);
+    if (end > heldSamples()) throw InputError("planes outside the samples held");
+    return samplesCrc(*this, 0, begin, end);
+}
+
+std::uint32_t Volume::contentCrc() const {
+    // Every held sample, whatever the dims say: a volume that does not match its grid still gets a key.
+    return samplesCrc(*this, gridCrc(), 0, heldSamples());
+}
+
+std::uint32_t combineCrc(std::uint32_t front, std::uint32_t back, std::uint64_t backBytes) {
+    return static_cast<std::uint32_t>(crc32_combine(front, back, static_cast<z_off_t>(backBytes)));
 }
 
 } // namespace vots::fit

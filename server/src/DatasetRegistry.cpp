@@ -10,6 +10,7 @@
 #include "vots/fit/Fitter.h"
 #include "vots/fit/MemoryBudget.h"
 #include "vots/fit/VolumeLoad.h"
+#include "vots/fit/VolumePlanes.h"
 
 #include <algorithm>
 #include <cctype>
@@ -33,6 +34,15 @@ std::string volumeStem(const fs::path& file) {
     return {};
 }
 
+/// What follows from a volume dataset's value range.
+void describeRange(Dataset& dataset, std::array<float, 2> range) {
+    dataset.range = range;
+    dataset.background = fit::defaultBackground(range);
+    dataset.defaultEps = static_cast<float>(fit::EpsSpec{}.resolve(range[0], range[1]));
+    dataset.isCt = range[0] <= CT_MIN_HU;
+    dataset.presets = windowPresets(range, dataset.isCt);
+}
+
 std::shared_ptr<const Dataset> loadDataset(const std::string& name, const fs::path& path,
                                            const std::string& dicomSeries,
                                            const fit::VolumeHeaderInfo& header) {
@@ -44,13 +54,28 @@ std::shared_ptr<const Dataset> loadDataset(const std::string& name, const fs::pa
     dataset->fitBytes = dataset->loadAndFitBytes > held ? dataset->loadAndFitBytes - held : 0;
     dataset->name = name;
     dataset->path = path;
-    dataset->range = volume->valueRange();
-    dataset->background = fit::defaultBackground(*volume);
+    describeRange(*dataset, volume->valueRange());
     dataset->contentCrc = volume->contentCrc();
-    dataset->defaultEps = static_cast<float>(fit::EpsSpec{}.resolve(dataset->range[0], dataset->range[1]));
-    dataset->isCt = dataset->range[0] <= CT_MIN_HU;
-    dataset->presets = windowPresets(dataset->range, dataset->isCt);
     dataset->volume = std::move(volume);
+    return dataset;
+}
+
+/// Under mpirun: the ranks read the samples, each its slab; this process reads the grid from the first
+/// plane and holds no samples.
+std::shared_ptr<const Dataset> summarizeDataset(const std::string& name, const fs::path& path,
+                                                const std::string& dicomSeries, FrameCompositor& ranks) {
+    if (!dicomSeries.empty())
+        throw fit::InputError(
+            "under mpirun a folder of several DICOM series is not drawn across the ranks yet");
+    const VolumeSummary summary = ranks.summarize(path);
+    auto dataset = std::make_shared<Dataset>();
+    dataset->name = name;
+    dataset->path = path;
+    dataset->samplesOnRanks = true;
+    describeRange(*dataset, summary.range);
+    dataset->contentCrc = summary.contentCrc;
+    dataset->volume = std::make_shared<fit::Volume>(
+        fit::loadVolumePlanes(path.string(), 0, 0, std::nullopt, DATASET_STORAGE).whole);
     return dataset;
 }
 
@@ -208,13 +233,16 @@ std::shared_ptr<const Dataset> DatasetRegistry::find(const std::string& name) {
             // loads but cannot be fitted is of no use. Given back once loaded: the samples are then
             // resident, and each fit job is admitted for its own part (Dataset::fitBytes).
             const MemoryReservation admitted =
-                mMemory.admit(fit::estimateLoadAndFitBytes(*entry->header, DATASET_STORAGE),
+                mMemory.admit(mRanks ? 0 : fit::estimateLoadAndFitBytes(*entry->header, DATASET_STORAGE),
                               "dataset '" + name + "' (" + entry->header->describe() + ")");
-            auto dataset = loadDataset(name, entry->path, entry->dicomSeries, *entry->header);
+            auto dataset = mRanks ? summarizeDataset(name, entry->path, entry->dicomSeries, *mRanks)
+                                  : loadDataset(name, entry->path, entry->dicomSeries, *entry->header);
             std::lock_guard lock(mMutex); // loaded() reads dataset under mMutex
             entry->dataset = std::move(dataset);
         } catch (const HttpError&) {
-            throw;                          // over the memory budget now; not remembered as a load error
+            throw; // over the memory budget now; not remembered as a load error
+        } catch (const RanksLost& e) {
+            throw HttpError(503, e.what()); // logged by the compositor, and so is every later frame
         } catch (const std::exception& e) { // InputError for a malformed file, bad_alloc for a huge one
             entry->loadError = e.what();
             std::cerr << "vots serve: warning: dataset '" << name << "' cannot be loaded: " << e.what()

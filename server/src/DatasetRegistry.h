@@ -9,6 +9,7 @@
 #include "vots/fit/VolumeHeader.h"
 #include "vots/fit/VotSpace.h"
 #include "vots/render/DisplaySettings.h"
+#include "vots/server/FrameCompositor.h"
 
 #include <array>
 #include <filesystem>
@@ -45,6 +46,9 @@ struct Dataset {
     std::map<std::string, render::DisplaySettings> presets; // "bone", "soft", "full" (grey)
     std::uint64_t loadAndFitBytes = 0;                      // fit::estimateLoadAndFitBytes of its header
     std::uint64_t fitBytes = 0; // what one fit needs beyond the loaded volume (admitted per fit job)
+    /// Under mpirun: `volume` is the grid alone (no samples), which stay with the ranks; range and CRC are
+    /// theirs (FrameCompositor::summarize), and every fit happens on them.
+    bool samplesOnRanks = false;
 };
 
 /// How the server holds a study's samples: in the file's 8- or 16-bit type where it has one (a half or a
@@ -72,6 +76,9 @@ std::map<std::string, std::string> dicomDatasetNames(const std::string& folderNa
 class DatasetRegistry {
 public:
     DatasetRegistry(const std::vector<std::filesystem::path>& dataDirs, MemoryAdmission& memory);
+    /// From now on a volume dataset is summarized by the ranks (samplesOnRanks), not loaded here: this
+    /// process holds none of its samples. Call before the first find().
+    void summarizeOnRanks(FrameCompositor* ranks) { mRanks = ranks; }
 
     /// All names found, sorted.
     std::vector<std::string> names() const;
@@ -98,6 +105,7 @@ private:
         std::string loadError;
     };
     MemoryAdmission& mMemory;
+    FrameCompositor* mRanks = nullptr;
     mutable std::mutex mMutex;
     std::map<std::string, std::unique_ptr<Entry>> mEntries;
 };

@@ -114,7 +114,10 @@ FitKey fitKeyFor(const Dataset& dataset, const EpsSpec& eps, int degree) {
 void installDatasetRoutes(Server::Impl& s) {
     s.http.Get("/api/datasets", [&s](const httplib::Request&, httplib::Response& res) {
         nlohmann::json list = nlohmann::json::array();
+        const FrameCompositor* ranks = s.options.compositor.get();
         for (const std::string& name : s.registry.names()) {
+            // Under mpirun only what the ranks draw is offered (and read, by them).
+            if (ranks && !ranks->refusal(name, render::FrameRequest{}).empty()) continue;
             try {
                 list.push_back(datasetJson(*s.registry.find(name))); // loads on first use
             } catch (const HttpError& e) {

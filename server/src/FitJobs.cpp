@@ -66,8 +66,9 @@ std::shared_ptr<FitJob> FitJobs::submit(std::shared_ptr<const Dataset> dataset, 
         if (mStopping) throw HttpError(503, "server is stopping");
         if (const auto it = mActiveByKey.find(text); it != mActiveByKey.end()) return it->second;
     }
-    // Checked here so a bad focus is a 400 for the POST rather than a failed job later.
-    fit::validateFitOptions(*dataset->volume, fitOptionsFor(key));
+    // Checked here so a bad focus is a 400 for the POST rather than a failed job later; samples held by the
+    // ranks are checked there, each rank's error failing the job.
+    if (!dataset->samplesOnRanks) fit::validateFitOptions(*dataset->volume, fitOptionsFor(key));
 
     std::lock_guard lock(mMutex);
     if (const auto it = mActiveByKey.find(text); it != mActiveByKey.end()) return it->second; // raced

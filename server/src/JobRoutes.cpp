@@ -43,14 +43,15 @@ nlohmann::json jobJson(const JobSnapshot& job) {
 void installJobRoutes(Server::Impl& s) {
     s.http.Post("/api/fit", [&s](const httplib::Request& req, httplib::Response& res) {
         const FitParams p = parseFitParams(req.body);
-        const auto dataset = s.registry.find(p.dataset);
-        refuseFitOfVots(*dataset);
         if (const FrameCompositor* compositor = s.options.compositor.get()) {
-            // Under mpirun the fit is the ranks' (FitJobs::fitOnRanksThrough): their dataset, no focus.
-            const std::string refused = compositor->refusal(dataset->name, render::FrameRequest{});
+            // Under mpirun the fit is the ranks' (FitJobs::fitOnRanksThrough): their dataset, no focus;
+            // refused before the ranks read anything of another.
+            const std::string refused = compositor->refusal(p.dataset, render::FrameRequest{});
             if (!refused.empty()) throw HttpError(409, refused);
             if (p.focus) throw HttpError(409, "under mpirun the ranks fit without a focus sphere");
         }
+        const auto dataset = s.registry.find(p.dataset);
+        refuseFitOfVots(*dataset);
         FitKey key = fitKeyFor(*dataset, p.eps, p.degree);
         key.focus = p.focus;
         const auto job = s.fitJobs.submit(dataset, key, req.remote_addr);

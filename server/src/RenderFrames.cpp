@@ -61,14 +61,12 @@ CompositeRequest compositeRequestFor(const Dataset& dataset, float eps, int degr
     return request;
 }
 
-/// Under mpirun: the frame is drawn on every rank from its slab's own fit, so rank 0 fits nothing whole;
-/// what the ranks cannot composite is refused before any work.
-PreparedRender prepareComposite(Server::Impl& s, const Dataset& dataset, PreparedRender prepared) {
+/// Under mpirun: the frame is drawn on every rank from its slab's own fit, so rank 0 fits nothing whole
+/// (what the ranks cannot composite was refused before the dataset was looked up).
+PreparedRender prepareComposite(const Dataset& dataset, PreparedRender prepared) {
     RenderJob& job = prepared.job;
-    const std::string refusal = dataset.kind == DatasetKind::Volume
-                                    ? s.options.compositor->refusal(dataset.name, job.params)
-                                    : "under mpirun a .vots dataset is not drawn across the ranks yet";
-    if (!refusal.empty()) throw HttpError(409, refusal);
+    if (dataset.kind != DatasetKind::Volume)
+        throw HttpError(409, "under mpirun a .vots dataset is not drawn across the ranks yet");
     CompositeRequest request =
         compositeRequestFor(dataset, resolveEps(dataset, job.params.eps), job.params.degree);
     request.frame = job.params;
@@ -85,6 +83,11 @@ PreparedRender prepareRender(Server::Impl& s, const RenderParams& params, const 
     PreparedRender prepared;
     RenderJob& job = prepared.job;
     job.params = params;
+    // Under mpirun what the ranks cannot draw is refused before they read anything of the dataset.
+    if (s.options.compositor) {
+        const std::string refused = s.options.compositor->refusal(params.dataset, params);
+        if (!refused.empty()) throw HttpError(409, refused);
+    }
     const auto dataset = s.registry.find(job.params.dataset);
     refuseWhatVotsCannotDraw(*dataset, job.params); // 409 before any work
     job.volume = dataset->volume;
@@ -94,7 +97,7 @@ PreparedRender prepareRender(Server::Impl& s, const RenderParams& params, const 
     if (!s.renderQueue || !s.renderQueue->hasContext())
         throw HttpError(503, s.renderQueue ? "rendering is unavailable: " + s.renderQueue->contextError()
                                            : "rendering is disabled");
-    if (s.options.compositor) return prepareComposite(s, *dataset, std::move(prepared));
+    if (s.options.compositor) return prepareComposite(*dataset, std::move(prepared));
     if (dataset->kind == DatasetKind::Vots) {
         job.space = dataset->space;
         prepared.drawnFrom = dataset->name + "_vots"; // the file's one Vot-Space, loaded once

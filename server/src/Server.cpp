@@ -64,6 +64,8 @@ Server::Impl::Impl(ServerOptions opts)
       renders(options.maxRendersPerClient, "renders"), guard(options.allowedHosts, options.accessToken) {
     if (options.withRenderer)
         renderQueue = std::make_unique<RenderQueue>(stats, foreground, options.compositor.get());
+    // Under mpirun the samples stay with the ranks, each reading its slab: this process holds none.
+    if (options.compositor) registry.summarizeOnRanks(options.compositor.get());
     if (options.compositor && renderQueue)
         fitJobs.fitOnRanksThrough(
             [this](const Dataset& dataset, const FitKey& key) { return fitOnRanks(*this, dataset, key); });

@@ -1,5 +1,6 @@
 // Source-typed samples: a volume read as int16/uint8 (Volume::compact) fits to exactly the Vots of the
 // same file read as floats, and the brick-counted background mask agrees with counting cell by cell.
+#include "vots/fit/Error.h"
 #include "vots/fit/Fitter.h"
 #include "vots/fit/VolumeLoad.h"
 
@@ -101,6 +102,14 @@ TEST_P(CompactSamples, FitIsTheSameAsFromFloats) {
         ASSERT_EQ(asSource.heldSamples(), asFloat.values.size());
         EXPECT_EQ(asSource.valueRange(), asFloat.valueRange());
         EXPECT_EQ(asSource.contentCrc(), asFloat.contentCrc());
+        // In runs of planes, as ranks holding different slabs give it together (an empty run included).
+        const std::uint64_t planeBytes = std::uint64_t{DIMS[0]} * DIMS[1] * sizeof(float);
+        std::uint32_t chained = asSource.gridCrc();
+        for (const auto& [first, count] : {std::pair{0, 7}, {7, 0}, {7, 20}, {27, 11}})
+            chained = combineCrc(chained, asSource.planesCrc(first, count), planeBytes * count);
+        EXPECT_EQ(chained, asFloat.contentCrc());
+        EXPECT_NE(combineCrc(asSource.gridCrc(), asSource.planesCrc(0, 37), planeBytes * 37), chained);
+        EXPECT_THROW(asSource.planesCrc(30, 9), InputError);
         EXPECT_EQ(asSource.at(35, 22, 19), asFloat.at(35, 22, 19));
         EXPECT_EQ(asSource.at(69, 44, 37), asFloat.at(69, 44, 37));
         // The fast method only: the paper method fits boxes with the same BoxFitter and reads the same

@@ -28,6 +28,11 @@ public:
         last = request;
         return flat(request.frame.width, request.frame.height);
     }
+    server::VolumeSummary summarize(const std::filesystem::path& volumePath) override {
+        std::lock_guard lock(mutex);
+        summarized.push_back(volumePath.filename().string());
+        return {{0.f, 250.f}, 77u};
+    }
     std::vector<server::RankTimes> lastTimes() const override {
         return {{0, 0.0, 1.0, 0.5, 100}, {1, 2000.0, 3.0, 4.0, 200}, {2, 0.0, 5.0, 6.0, 300}};
     }
@@ -41,6 +46,7 @@ public:
     std::atomic<bool> lost{false};
     std::mutex mutex;
     std::optional<server::CompositeRequest> last;
+    std::vector<std::string> summarized; // the volume files summarize() was asked for
 };
 
 std::string pngOf(const render::RgbaImage& image) {
@@ -71,7 +77,9 @@ TEST(ServerCompositor, FramesGoThroughItUnfittedRefusalsAre409AndALostRankIs503)
         EXPECT_EQ(asked.volumePath.filename(), std::string(HEAD_MR) + ".nrrd");
         EXPECT_EQ(asked.frame.width, 40);
         EXPECT_EQ(asked.frame.camera.azimuthDeg, 30.0);
-        EXPECT_LT(asked.valueRange[0], asked.valueRange[1]);
+        // The range is the ranks' (summarize), read once: rank 0 loads no samples.
+        EXPECT_EQ(asked.valueRange, (std::array<float, 2>{0.f, 250.f}));
+        EXPECT_EQ(compositor->summarized, std::vector<std::string>{std::string(HEAD_MR) + ".nrrd"});
         // 2 % of the whole range, in data units, as every rank resolves it.
         EXPECT_FLOAT_EQ(asked.eps, 0.02f * (asked.valueRange[1] - asked.valueRange[0]));
     }
@@ -132,6 +140,18 @@ TEST(ServerCompositor, FramesGoThroughItUnfittedRefusalsAre409AndALostRankIs503)
         const auto no = c->Post("/api/fit", refused, "application/json");
         ASSERT_TRUE(no);
         EXPECT_EQ(no->status, 409) << refused << ": " << no->body;
+    }
+
+    // Only what the ranks draw is listed, its grid read from the file's first plane; other datasets were
+    // refused before the ranks read any of them.
+    const nlohmann::json listed = bodyJson(c->Get("/api/datasets"))["datasets"];
+    ASSERT_EQ(listed.size(), 1u) << listed;
+    EXPECT_EQ(listed[0]["name"], HEAD_MR);
+    EXPECT_EQ(listed[0]["dims"], nlohmann::json::array({48, 62, 42}));
+    EXPECT_EQ(listed[0]["range"], nlohmann::json::array({0.0, 250.0}));
+    {
+        std::lock_guard lock(compositor->mutex);
+        EXPECT_EQ(compositor->summarized.size(), 1u);
     }
 
     compositor->lost = true;

@@ -65,6 +65,15 @@ struct Volume {
     /// CRC-32 of the grid (dims, spacing, origin) and every sample as float, whichever way it is held:
     /// tells a changed file from the one a cached fit was made of.
     std::uint32_t contentCrc() const;
+    /// The part of contentCrc before the samples: of dims, spacing and origin.
+    std::uint32_t gridCrc() const;
+    /// CRC-32 (from 0) of `count` z planes from plane `first` as floats: contentCrc's samples in runs, so
+    /// that processes holding different planes can give the whole volume's CRC together (combineCrc).
+    std::uint32_t planesCrc(int first, int count) const;
 };
+
+/// The CRC-32 of bytes A then B from crc(A), crc(B) and B's length (zlib's crc32_combine): chained from
+/// gridCrc over a volume's planesCrc runs in z order, it is the volume's contentCrc.
+std::uint32_t combineCrc(std::uint32_t front, std::uint32_t back, std::uint64_t backBytes);
 
 } // namespace vots::fit

@@ -39,6 +39,13 @@ struct RankTimes {
     std::uint64_t votCount = 0; // Vots of the rank's slab fit the frame was drawn from (0 for the grid)
 };
 
+/// What the server knows of a volume dataset's samples when they stay with the ranks, each of which reads
+/// its own slab: no process holds the whole volume.
+struct VolumeSummary {
+    std::array<float, 2> range{0.f, 0.f}; // the whole volume's min and max sample
+    std::uint32_t contentCrc = 0;         // fit::Volume::contentCrc of the whole, chained from the ranks'
+};
+
 /// Thrown by draw() when a rank no longer answers: the frame and every later one are refused (503).
 class RanksLost : public std::runtime_error {
 public:
@@ -57,6 +64,9 @@ public:
     /// fit::InputError / std::runtime_error for what a rank could not draw.
     virtual render::RgbaImage draw(const CompositeRequest& request, render::VotRenderer& vots,
                                    render::GridRenderer& grid) = 0;
+    /// Any thread, exclusive with draw(): every rank reads its slab of the volume file and gives its part of
+    /// the summary, which is returned. Throws as draw() does.
+    virtual VolumeSummary summarize(const std::filesystem::path& volumePath) = 0;
     /// The last composited frame's times, in rank order; empty before the first. Thread-safe.
     virtual std::vector<RankTimes> lastTimes() const = 0;
 };
