@@ -25,6 +25,10 @@ public:
     bool distributed() const { return mSize > 1; }
     /// True when mpirun started this process, even as the only rank.
     bool launched() const { return mInitialised; }
+    /// A peer has died: MPI_Finalize would wait for ever on a message still going to it (seen under
+    /// `vots serve`: a heartbeat to a killed rank 0), so the process ends without it; mpirun takes the
+    /// exit as the rank's end.
+    void leaveUnfinalized() { mInitialised = false; }
 
     /// Element-wise maximum (or minimum) of every rank's values onto rank 0's `values` (same length on
     /// every rank); the other ranks' vectors are left as they were.

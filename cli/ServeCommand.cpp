@@ -210,11 +210,14 @@ void addServeCommand(CLI::App& app) {
         "--no-warm-up", args->noWarmUp,
         "Do not fit at half the last eps in idle time (it makes later refits to a smaller eps faster)");
     cmd->callback([args] {
-        const MpiWorld& world = MpiWorld::get();
-        if (world.distributed() && world.rank() != 0)
+        MpiWorld& world = MpiWorld::get();
+        if (!world.distributed() || world.rank() == 0) return runServe(*args);
+        try {
             serveOtherRank(world); // rank 0 alone serves HTTP
-        else
-            runServe(*args);
+        } catch (...) {
+            world.leaveUnfinalized(); // rank 0 is gone, and messages to it may never complete
+            throw;
+        }
     });
 }
 
