@@ -1,0 +1,72 @@
+#!/usr/bin/env bash
+# Each process's memory while `vots serve` draws a study, one process against `mpirun -np N` (issue 23):
+# the first 2 % frame's seconds, then VmRSS and VmHWM of every rank from /proc after it. Under mpirun no
+# rank should hold the whole volume: rank 0 keeps the grid alone, each rank its slab's fit.
+#
+# Usage: bench/mpi_serve_memory.sh VOLUME [RANKS]    VOTS_BUILD=build/release (default)
+# A 512x512x1000 volume: build/release/bench/make_scaled_volume data/cranium.nhdr /tmp/s1000.nhdr \
+#   --size 512x512x1000 --noise 8 --seed 1 (never in the repo). Prints Markdown rows for bench/RESULTS.md.
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+volume=$(realpath "$1")
+ranks=${2:-2}
+vots=$(realpath "${VOTS_BUILD:-build/release}/cli/vots")
+work=$(mktemp -d)
+job=
+cleanup() {
+    [[ -n $job ]] && kill -TERM "$job" 2>/dev/null && wait "$job" 2>/dev/null
+    rm -rf "$work"
+}
+trap cleanup EXIT
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl=self,vader
+mkdir "$work/data"
+ln -s "$volume" "$work/data/"
+if [[ $volume == *.nhdr ]]; then # its data file (or the folder holding it) beside it
+    data_file=$(sed -nE 's/^data file: *//p' "$volume")
+    [[ $data_file == /* ]] || ln -s "$(dirname "$volume")/${data_file%%/*}" "$work/data/"
+fi
+name=$(basename "$volume" | sed -E 's/\.(nrrd|nhdr|nii\.gz|nii|mhd|mha)$//')
+frame="render?dataset=$name&cam=az=30,el=20&size=512x512&eps=2%25"
+
+# KiB of "VmRSS VmHWM" of a process.
+memory_of() { awk '/^VmRSS|^VmHWM/ { v[$1] = $2 } END { print v["VmRSS:"], v["VmHWM:"] }' "/proc/$1/status"; }
+serve_and_measure() { # LABEL COMMAND...: starts the server, draws one frame, prints one row per process
+    local label=$1
+    shift
+    # One process prepares nothing either, so that both first frames load (or summarize) and fit.
+    local prepare=$name
+    [[ $label == one ]] && prepare=
+    "$@" serve --port 0 --data "$work/data" --cache-dir "$work/cache-$label" --prepare "$prepare" --no-warm-up \
+        >"$work/$label.log" 2>&1 &
+    job=$!
+    local url=
+    for _ in $(seq 600); do
+        url=$(sed -nE 's|^vots serve: listening on (http://[^ ]+/)$|\1|p' "$work/$label.log")
+        [[ -n $url ]] && break
+        sleep 0.5
+    done
+    [[ -n $url ]] || { cat "$work/$label.log" >&2; exit 1; }
+    local code seconds
+    read -r code seconds < <(curl -s --max-time 900 -o "$work/$label.png" -w '%{http_code} %{time_total}' "$url$frame")
+    [[ $code == 200 ]] || { echo "$label: /render answered $code: $(head -c 300 "$work/$label.png")" >&2; exit 1; }
+    local pids=$job
+    [[ $label == ranks ]] && pids=$(for p in $(pgrep -P "$job"); do
+        r=$(tr '\0' '\n' <"/proc/$p/environ" | sed -n 's/^OMPI_COMM_WORLD_RANK=//p')
+        echo "$r $p"
+    done | sort -n | cut -d' ' -f2)
+    local r=0
+    for p in $pids; do
+        read -r rss hwm < <(memory_of "$p")
+        echo "| $label | $r | $seconds | $((rss / 1024)) | $((hwm / 1024)) |"
+        r=$((r + 1))
+    done
+    kill -TERM "$job"
+    wait "$job" || true
+    job=
+}
+echo "| serve | rank | first 2 % frame s (512^2) | VmRSS MiB | VmHWM MiB |"
+echo "|---|---|---|---|---|"
+serve_and_measure one "$vots"
+serve_and_measure ranks mpirun --oversubscribe --enable-recovery -np "$ranks" "$vots"
+cmp -s "$work/one.png" "$work/ranks.png" && echo "(the two PNGs are the same bytes)" ||
+    echo "(the PNGs differ: $ranks slabs fit apart, as mpirun vots render draws them)"
