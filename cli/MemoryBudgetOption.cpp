@@ -26,19 +26,24 @@ std::uint64_t resolveMemoryBudget(const std::string& text) {
 
 namespace {
 
-// `header`: what will be held (the whole volume, or one rank's planes).
-void checkFitsBudget(const std::string& path, const fit::VolumeHeaderInfo& header,
-                     const std::string& budgetText, fit::SampleStorage storage) {
+// `header`: what will be held (the whole volume, or one rank's planes). Empty when it fits.
+std::string budgetRefusal(const std::string& path, const fit::VolumeHeaderInfo& header,
+                          const std::string& budgetText, fit::SampleStorage storage) {
     const std::uint64_t budget = resolveMemoryBudget(budgetText);
     const std::uint64_t needed = fit::estimateLoadAndFitBytes(header, storage);
     const std::uint64_t held = fit::residentBytes();
     const std::uint64_t left = budget > held ? budget - held : 0;
-    if (needed <= left) return;
-    throw fit::InputError(path + ": " + header.describe() + " needs about " + fit::formatBytes(needed) +
-                          " of memory to load and fit, more than the memory budget of " +
-                          fit::formatBytes(budget) + (budgetText.empty() ? " (the default)" : "") +
-                          " leaves (" + fit::formatBytes(left) +
-                          "); give a larger --memory-budget or use a smaller volume");
+    if (needed <= left) return {};
+    return path + ": " + header.describe() + " needs about " + fit::formatBytes(needed) +
+           " of memory to load and fit, more than the memory budget of " + fit::formatBytes(budget) +
+           (budgetText.empty() ? " (the default)" : "") + " leaves (" + fit::formatBytes(left) +
+           "); give a larger --memory-budget or use a smaller volume";
+}
+
+void checkFitsBudget(const std::string& path, const fit::VolumeHeaderInfo& header,
+                     const std::string& budgetText, fit::SampleStorage storage) {
+    const std::string refusal = budgetRefusal(path, header, budgetText, storage);
+    if (!refusal.empty()) throw fit::InputError(refusal);
 }
 
 } // namespace
@@ -49,13 +54,20 @@ void checkVolumeFitsBudget(const std::string& path, const std::optional<fit::Raw
     checkFitsBudget(path, fit::volumeHeaderInfo(path, raw, dicomSeries), budgetText, storage);
 }
 
-void checkPlanesFitBudget(const std::string& path, const std::optional<fit::RawLayout>& raw,
-                          const std::string& budgetText, const std::string& dicomSeries, std::uint64_t planes,
-                          fit::SampleStorage storage) {
+std::string planesBudgetRefusal(const std::string& path, const std::optional<fit::RawLayout>& raw,
+                                const std::string& budgetText, const std::string& dicomSeries,
+                                std::uint64_t planes, fit::SampleStorage storage) {
     fit::VolumeHeaderInfo header = fit::volumeHeaderInfo(path, raw, dicomSeries);
     // Otherwise the whole is loaded before its planes are cut: its estimate stays, an upper bound.
     if (fit::readsOnlyPlanes(path, raw)) header.dims[2] = std::min(header.dims[2], planes);
-    checkFitsBudget(path, header, budgetText, storage);
+    return budgetRefusal(path, header, budgetText, storage);
+}
+
+void checkPlanesFitBudget(const std::string& path, const std::optional<fit::RawLayout>& raw,
+                          const std::string& budgetText, const std::string& dicomSeries, std::uint64_t planes,
+                          fit::SampleStorage storage) {
+    const std::string refusal = planesBudgetRefusal(path, raw, budgetText, dicomSeries, planes, storage);
+    if (!refusal.empty()) throw fit::InputError(refusal);
 }
 
 } // namespace vots::cli

@@ -27,6 +27,12 @@ void checkVolumeFitsBudget(const std::string& path, const std::optional<fit::Raw
                            const std::string& budgetText, const std::string& dicomSeries = {},
                            fit::SampleStorage storage = fit::SampleStorage::Float);
 
+/// The refusal checkPlanesFitBudget would throw, or empty when the planes fit; throws InputError for a
+/// malformed header or budget.
+std::string planesBudgetRefusal(const std::string& path, const std::optional<fit::RawLayout>& raw,
+                                const std::string& budgetText, const std::string& dicomSeries,
+                                std::uint64_t planes, fit::SampleStorage storage);
+
 /// The same for one rank under mpirun that loads and fits `planes` z planes: read by offset where the
 /// format allows (fit::readsOnlyPlanes), else the whole volume is read before its planes are cut.
 void checkPlanesFitBudget(const std::string& path, const std::optional<fit::RawLayout>& raw,

@@ -59,10 +59,13 @@ struct CommandHead {
 };
 static_assert(std::is_trivially_copyable_v<CommandHead>, "commands travel as their bytes");
 
+/// What a rank's error was, so that rank 0 answers as if it were its own: 400, 507 or 500.
+enum ErrorKind : std::int32_t { OTHER_ERROR = 0, INPUT_ERROR = 1, OVER_BUDGET = 2 };
+
 /// A reply's fixed part; the error text (ok == 0) or the frame's floats (then the aip's lengths) follow.
 struct ReplyHead {
     std::int32_t ok = 0;
-    std::int32_t errorIsInput = 0; // a fit::InputError: the request's fault, answered 400
+    std::int32_t errorKind = 0; // ErrorKind of the error text that follows (ok == 0)
     std::int32_t width = 0;
     std::int32_t height = 0;
     std::int32_t withLengths = 0;
@@ -143,7 +146,9 @@ std::vector<char> replyTo(const CommandHead& head, const std::string& path, Slab
         reply.ok = 1;
         return messageOf(reply, floats.data(), floats.size() * sizeof(float));
     } catch (const fit::InputError& e) {
-        error = e.what(), reply.errorIsInput = 1;
+        error = e.what(), reply.errorKind = INPUT_ERROR;
+    } catch (const server::RanksOverBudget& e) {
+        error = e.what(), reply.errorKind = OVER_BUDGET;
     } catch (const std::exception& e) {
         error = e.what();
     }
@@ -153,8 +158,9 @@ std::vector<char> replyTo(const CommandHead& head, const std::string& path, Slab
 
 } // namespace
 
-MpiFrameCompositor::MpiFrameCompositor(const MpiWorld& world, std::string dataset)
-    : mWorld(world), mDataset(std::move(dataset)), mDrawer(world.rank(), world.size()),
+MpiFrameCompositor::MpiFrameCompositor(const MpiWorld& world, std::string dataset, std::string memoryBudget)
+    : mWorld(world), mDataset(std::move(dataset)),
+      mDrawer(world.rank(), world.size(), std::move(memoryBudget)),
       mAlive(messageOf(aliveCommand(), nullptr, 0)),
       mAliveSends(static_cast<std::size_t>(world.size()), MPI_REQUEST_NULL),
       mLastHeard(static_cast<std::size_t>(world.size())) {
@@ -239,8 +245,14 @@ namespace {
 std::exception_ptr failureOf(int rank, const ReplyHead& head, const std::vector<char>& reply) {
     const std::string text =
         "rank " + std::to_string(rank) + ": " + std::string(reply.begin() + sizeof head, reply.end());
-    return head.errorIsInput ? std::make_exception_ptr(fit::InputError(text))
-                             : std::make_exception_ptr(std::runtime_error(text));
+    switch (head.errorKind) {
+    case INPUT_ERROR:
+        return std::make_exception_ptr(fit::InputError(text));
+    case OVER_BUDGET:
+        return std::make_exception_ptr(server::RanksOverBudget(text));
+    default:
+        return std::make_exception_ptr(std::runtime_error(text));
+    }
 }
 
 } // namespace
@@ -360,13 +372,16 @@ void MpiFrameCompositor::releaseRanks() {
     const auto deadline = Clock::now() + RELEASE_DEADLINE;
     for (int r = 1; r < mWorld.size(); ++r) {
         if (r == mLostRank.load()) continue;
+        // Waited for: a message still on its way when this process finalizes and exits can be dropped by
+        // Open MPI as from a failed peer (seen: rank 1 then waited out its 30 s of silence).
         MPI_Request send = MPI_REQUEST_NULL;
-        if (startSend(command, r, COMMAND_TAG, send) && !completedBefore(send, deadline))
+        if (!startSend(command, r, COMMAND_TAG, send) || !completedBefore(send, deadline) ||
+            !receiveBefore(r, REPLY_TAG, deadline))
             std::cerr << "vots serve: rank " << r << " did not take the quit\n";
     }
 }
 
-void serveOtherRank(const MpiWorld& world) {
+void serveOtherRank(const MpiWorld& world, const std::string& memoryBudget) {
     // Without a renderer this rank still answers every frame (with the reason), so rank 0 never waits.
     std::unique_ptr<render::EglContext> context;
     std::unique_ptr<render::VotRenderer> vots;
@@ -381,7 +396,7 @@ void serveOtherRank(const MpiWorld& world) {
         noRenderer = std::string("no renderer: ") + e.what();
     }
     const HeartbeatToRank0 heartbeat;
-    SlabDrawer drawer(world.rank(), world.size());
+    SlabDrawer drawer(world.rank(), world.size(), memoryBudget);
     const std::string self =
         "vots serve: rank " + std::to_string(world.rank()) + " of " + std::to_string(world.size());
     const std::string silence = std::to_string(std::chrono::seconds(RANK0_SILENCE).count());
@@ -390,7 +405,12 @@ void serveOtherRank(const MpiWorld& world) {
         if (!command)
             throw std::runtime_error(self + ": rank 0 has sent nothing for " + silence + " s; leaving");
         const auto head = headOf<CommandHead>(*command);
-        if (head.kind == CommandKind::Quit) return;
+        if (head.kind == CommandKind::Quit) { // said back, so that rank 0 finalizes only after it is taken
+            const std::vector<char> taken = messageOf(ReplyHead{}, nullptr, 0);
+            MPI_Request send = MPI_REQUEST_NULL;
+            if (startSend(taken, 0, REPLY_TAG, send)) completedBefore(send, Clock::now() + RELEASE_DEADLINE);
+            return;
+        }
         if (head.kind == CommandKind::Alive) continue;
         const std::string path(command->begin() + sizeof head, command->end());
         const std::vector<char> bytes = replyTo(head, path, drawer, vots.get(), grid.get(), noRenderer);

@@ -26,7 +26,8 @@ namespace vots::cli {
 class MpiFrameCompositor : public server::FrameCompositor {
 public:
     /// Sets MPI_ERRORS_RETURN on the world, so a failing peer gives an error code, not an abort.
-    MpiFrameCompositor(const MpiWorld& world, std::string dataset);
+    /// `memoryBudget`: the --memory-budget text, which each rank's slab is checked against.
+    MpiFrameCompositor(const MpiWorld& world, std::string dataset, std::string memoryBudget);
     ~MpiFrameCompositor() override;
     int ranks() const override { return mWorld.size(); }
     std::string refusal(const std::string& dataset, const render::FrameRequest& frame) const override;
@@ -69,8 +70,9 @@ private:
 
 /// Ranks > 0: fit (or read) and draw this rank's slab for each command from rank 0 and send the float
 /// frame back, until rank 0 says quit; throws std::runtime_error when rank 0 has said nothing (not even
-/// its heartbeat) for 30 s or does not take a frame within that time. A thread sends rank 0 this rank's
-/// heartbeat every 2 s meanwhile, also while it fits. Never serves HTTP.
-void serveOtherRank(const MpiWorld& world);
+/// its heartbeat) for 30 s or does not take a frame within that time. A slab over `memoryBudget` (the
+/// --memory-budget text) is refused before it is read, and rank 0 answers 507. A thread sends rank 0 this
+/// rank's heartbeat every 2 s meanwhile, also while it fits. Never serves HTTP.
+void serveOtherRank(const MpiWorld& world, const std::string& memoryBudget);
 
 } // namespace vots::cli

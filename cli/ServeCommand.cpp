@@ -16,6 +16,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <iostream>
 #include <memory>
 #include <thread>
@@ -70,7 +71,8 @@ void raiseOpenFileLimit() {
 void runServe(const ServeArgs& a) {
     const MpiWorld& world = MpiWorld::get();
     std::shared_ptr<MpiFrameCompositor> compositor;
-    if (world.distributed()) compositor = std::make_shared<MpiFrameCompositor>(world, a.prepare);
+    if (world.distributed())
+        compositor = std::make_shared<MpiFrameCompositor>(world, a.prepare, a.memoryBudget);
     // However rank 0 leaves, the other ranks are let go, after the server (its render thread) is gone.
     struct ReleaseRanks {
         MpiFrameCompositor* compositor;
@@ -146,13 +148,18 @@ void runServe(const ServeArgs& a) {
                   << "  send 'Authorization: Bearer TOKEN', or open the viewer at " << url
                   << "#token=" << options.accessToken << std::endl;
 
-    std::thread listener([&srv] {
+    std::atomic<bool> stopping{false};
+    std::thread listener([&srv, &stopping] {
         srv.listenAfterBind();
-        ::kill(::getpid(), SIGTERM); // listening ended by itself: wake the sigwait below
+        // Listening ended by itself: wake the sigwait below. Not after srv.stop(): nobody waits for the
+        // signal then, and under mpirun Open MPI's threads (started before the mask) would take it and end
+        // the process before it lets the other ranks go.
+        if (!stopping) ::kill(::getpid(), SIGTERM);
     });
     int signal = 0;
     sigwait(&stopSignals, &signal);
     std::cout << "vots serve: stopping" << std::endl;
+    stopping = true;
     srv.stop();
     listener.join();
 }
@@ -213,7 +220,7 @@ void addServeCommand(CLI::App& app) {
         MpiWorld& world = MpiWorld::get();
         if (!world.distributed() || world.rank() == 0) return runServe(*args);
         try {
-            serveOtherRank(world); // rank 0 alone serves HTTP
+            serveOtherRank(world, args->memoryBudget); // rank 0 alone serves HTTP
         } catch (...) {
             world.leaveUnfinalized(); // rank 0 is gone, and messages to it may never complete
             throw;

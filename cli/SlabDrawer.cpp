@@ -2,13 +2,16 @@
 #include "SlabDrawer.h"
 
 #include "DistributedRender.h"
+#include "MemoryBudgetOption.h"
 
 #include "vots/fit/Error.h"
 #include "vots/fit/Fitter.h"
 #include "vots/fit/VolumeHeader.h"
 #include "vots/render/GridRenderer.h"
 #include "vots/render/VotRenderer.h"
+#include "vots/server/FrameCompositor.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstring>
 
@@ -27,6 +30,13 @@ ZSlab slabOfVolume(const std::string& volumePath, int rank, int ranks) {
 
 } // namespace
 
+void SlabDrawer::checkBudget(const std::string& volumePath, ZSlab slab, fit::SampleStorage storage) const {
+    const auto planes = static_cast<std::uint64_t>(std::max(slab.end - slab.first, 0)) + 1;
+    const std::string refusal =
+        planesBudgetRefusal(volumePath, std::nullopt, mMemoryBudget, "", planes, storage);
+    if (!refusal.empty()) throw server::RanksOverBudget(refusal);
+}
+
 std::string SlabDrawer::fitKey(const std::string& volumePath, float eps, int degree) {
     std::uint32_t bits = 0;
     std::memcpy(&bits, &eps, sizeof bits); // the exact eps: a key differs whenever the fit would
@@ -40,6 +50,7 @@ double SlabDrawer::ensureFit(const std::string& volumePath, float eps, int degre
     const auto start = std::chrono::steady_clock::now();
     mKey.clear(); // until the new fit is uploaded, nothing is held
     const ZSlab slab = slabOfVolume(volumePath, mRank, mRanks);
+    checkBudget(volumePath, slab, fit::SampleStorage::Source);
     // In the file's sample type: the same Vots as from floats (fit::SampleStorage), at half or a quarter of
     // the memory while the slab is fitted.
     const fit::VolumeSlab read = loadSlab(volumePath, slab, std::nullopt, fit::SampleStorage::Source, "");
@@ -64,6 +75,7 @@ double SlabDrawer::ensureFit(const std::string& volumePath, float eps, int degre
 
 SlabSummary SlabDrawer::summarize(const std::string& volumePath) const {
     const ZSlab slab = slabOfVolume(volumePath, mRank, mRanks);
+    checkBudget(volumePath, slab, fit::SampleStorage::Source);
     // Source storage: the planes are read only to be summed up, in their file's type.
     const fit::VolumeSlab read = loadSlab(volumePath, slab, std::nullopt, fit::SampleStorage::Source, "");
     const int lastPlane = read.whole.dims[2] - 1;
@@ -96,6 +108,7 @@ double SlabDrawer::ensureGrid(const std::string& volumePath, render::GridRendere
     mGridPath.clear(); // until the new planes are uploaded, nothing is held
     // An empty slab (more ranks than cells) still reads its one plane and draws nothing of its own.
     const ZSlab slab = slabOfVolume(volumePath, mRank, mRanks);
+    checkBudget(volumePath, slab, fit::SampleStorage::Float);
     const fit::VolumeSlab read = loadSlab(volumePath, slab, std::nullopt, fit::SampleStorage::Float, "");
     grid.uploadSlab(read.planes, slab.first, read.whole);
     mGridPath = volumePath;

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 
 namespace vots::render {
 class GridRenderer;
@@ -41,7 +42,10 @@ struct SlabSummary {
 /// certified), kept while the volume, eps and degree stay the same.
 class SlabDrawer {
 public:
-    SlabDrawer(int rank, int ranks) : mRank(rank), mRanks(ranks) {}
+    /// `memoryBudget`: the --memory-budget text (empty: the default), which every read of a slab is
+    /// checked against first (server::RanksOverBudget).
+    SlabDrawer(int rank, int ranks, std::string memoryBudget)
+        : mRank(rank), mRanks(ranks), mMemoryBudget(std::move(memoryBudget)) {}
     /// Reads and fits this rank's planes when they differ from the last call, and uploads the Vots to
     /// `vots`; returns the milliseconds it took (0 when it held the fit). `range` is the whole volume's.
     double ensureFit(const std::string& volumePath, float eps, int degree, std::array<float, 2> range,
@@ -66,8 +70,12 @@ public:
     static std::string fitKey(const std::string& volumePath, float eps, int degree);
 
 private:
+    /// Throws server::RanksOverBudget when reading `slab` of the volume with `storage` (and fitting it)
+    /// would need more than the memory budget leaves.
+    void checkBudget(const std::string& volumePath, ZSlab slab, fit::SampleStorage storage) const;
     int mRank;
     int mRanks;
+    std::string mMemoryBudget;
     std::string mKey;
     ZSlab mSlab;
     std::array<int, 3> mDims{0, 0, 0};

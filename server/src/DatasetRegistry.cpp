@@ -243,6 +243,8 @@ std::shared_ptr<const Dataset> DatasetRegistry::find(const std::string& name) {
             throw; // over the memory budget now; not remembered as a load error
         } catch (const RanksLost& e) {
             throw HttpError(503, e.what()); // logged by the compositor, and so is every later frame
+        } catch (const RanksOverBudget& e) {
+            throw HttpError(507, e.what()); // asked again next time, as a one-process 507 is
         } catch (const std::exception& e) { // InputError for a malformed file, bad_alloc for a huge one
             entry->loadError = e.what();
             std::cerr << "vots serve: warning: dataset '" << name << "' cannot be loaded: " << e.what()

@@ -127,6 +127,8 @@ void RenderQueue::threadMain() {
             outcome = Refusal{e.status(), e.what()};
         } catch (const RanksLost& e) { // logged once by the compositor
             outcome = Refusal{503, e.what()};
+        } catch (const RanksOverBudget& e) {
+            outcome = Refusal{507, e.what()};
         } catch (const fit::InputError& e) {
             outcome = Refusal{400, e.what()};
         } catch (const std::exception& e) {

@@ -6,7 +6,7 @@
 # with both ranks' times; what is not composited (the density) is refused with 409; a rank killed
 # mid-session makes the next /render (one that refits: its deadline is 10 min, the rank's silent heartbeat
 # ends the wait after 15 s) a 503 JSON within 30 s, and every later one; SIGTERM to rank 0 then ends the
-# job cleanly, all of it bounded by timeouts.
+# job cleanly, all of it bounded by timeouts; a slab over the ranks' --memory-budget is a 507.
 # Usage: tests/mpi/mpi_serve.sh VOTS_BINARY VOLUME [OTHER_VOLUME]
 set -euo pipefail
 vots=$1 volume=$2 other=${3:-}
@@ -32,9 +32,9 @@ ln -s "$(realpath "$volume")" "$work/data/$(basename "$volume")"
 name=$(basename "$volume" | sed -E 's/\.(nrrd|nhdr|nii\.gz|nii|mhd|mha)$//')
 
 # --enable-recovery: without it Open MPI ends the whole job, rank 0 too, when one rank dies.
-start_job() {
+start_job() { # [MORE SERVE ARGUMENTS]
     mpirun --oversubscribe --enable-recovery -np 2 "$vots" serve --port 0 --data "$work/data" \
-        --cache-dir "$work/cache" --prepare "$name" >"$work/serve.log" 2>&1 &
+        --cache-dir "$work/cache" --prepare "$name" "$@" >"$work/serve.log" 2>&1 &
     job=$!
     url=
     for _ in $(seq 240); do
@@ -173,4 +173,24 @@ wait "$job" || true
 job=
 left=$(($(date +%s) - start))
 grep -q "rank 1 of 2: rank 0 has sent nothing" "$work/serve.log" || fail "rank 1 did not say why it left"
+# A memory budget too small for a rank's slab: every rank checks its slab's header against it before
+# reading, and rank 0 answers 507 JSON (as one process does for a study over its budget), no OOM.
+start_job --memory-budget 64M
+code=$(get "$work/budget.json" "render?dataset=$name&$view")
+[[ $code == 507 ]] && grep -q 'memory budget' "$work/budget.json" ||
+    fail "a slab over the ranks' memory budget answered $code: $(cat "$work/budget.json")"
+code=$(get "$work/budget.json" "render?dataset=$name&$view")
+[[ $code == 507 ]] || fail "the second request over the budget answered $code"
+# SIGTERM to rank 0 with every rank alive: it lets them go (each says it has taken the quit) and the
+# whole job ends at once with status 0, not after the other ranks' 30 s of silence.
+kill -TERM "$(rank_pid 0)"
+for _ in $(seq 20); do
+    kill -0 "$job" 2>/dev/null || break
+    sleep 0.5
+done
+kill -0 "$job" 2>/dev/null && fail "mpirun still runs 10 s after SIGTERM to rank 0 with every rank alive"
+wait "$job" || fail "mpirun ended with status $? after SIGTERM to rank 0"
+job=
+grep -q "leaving\|did not take the quit" "$work/serve.log" && fail "a rank was not let go"
+
 echo "mpi_serve: OK (503 after $seconds s; with rank 0 killed the job ended after $left s)"

@@ -46,6 +46,13 @@ struct VolumeSummary {
     std::uint32_t contentCrc = 0;         // fit::Volume::contentCrc of the whole, chained from the ranks'
 };
 
+/// Thrown by draw() or summarize() when a rank's slab would need more memory than its --memory-budget
+/// leaves: answered 507, as a study over the one-process budget is, before the rank reads it.
+class RanksOverBudget : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
 /// Thrown by draw() when a rank no longer answers: the frame and every later one are refused (503).
 class RanksLost : public std::runtime_error {
 public:
