@@ -71,7 +71,8 @@ struct ReplyHead {
     std::int32_t withLengths = 0;
     std::int32_t fromGrid = 0;
     std::uint64_t votCount = 0; // of the rank's slab fit (0 for the grid)
-    double fitMs = 0.0;         // or the grid's read of the slab's planes
+    double fitMs = 0.0;         // or the grid's read of the slab's planes (0 when held)
+    double heldFitMs = 0.0;     // what the slab fit the frame was drawn from took
     double frameMs = 0.0;
 };
 static_assert(std::is_trivially_copyable_v<ReplyHead>, "replies travel as their bytes");
@@ -139,6 +140,7 @@ std::vector<char> replyTo(const CommandHead& head, const std::string& path, Slab
         const SlabFrame drawn = drawRankPart(drawer, head, path, *vots, *grid, &reply.fitMs, &reply.frameMs);
         reply.fromGrid = drawn.fromGrid ? 1 : 0;
         reply.votCount = drawn.fromGrid ? 0 : drawer.votCount();
+        reply.heldFitMs = drawn.fromGrid ? 0.0 : drawer.fitMs();
         reply.width = drawn.frame.width;
         reply.height = drawn.frame.height;
         reply.withLengths = drawn.lengths ? 1 : 0;
@@ -282,6 +284,7 @@ render::RgbaImage MpiFrameCompositor::draw(const server::CompositeRequest& reque
     try {
         SlabFrame mine = drawRankPart(mDrawer, head, path, vots, grid, &times[0].fitMs, &times[0].frameMs);
         times[0].votCount = mine.fromGrid ? 0 : mDrawer.votCount();
+        times[0].heldFitMs = mine.fromGrid ? 0.0 : mDrawer.fitMs();
         composite.emplace(request.frame.mode, std::move(mine));
     } catch (...) {
         failure = std::current_exception();
@@ -295,6 +298,7 @@ render::RgbaImage MpiFrameCompositor::draw(const server::CompositeRequest& reque
         t.fitMs = replyHead.fitMs;
         t.frameMs = replyHead.frameMs;
         t.votCount = replyHead.votCount;
+        t.heldFitMs = replyHead.heldFitMs;
         if (!replyHead.ok) {
             if (!failure) failure = failureOf(r, replyHead, reply);
             continue;

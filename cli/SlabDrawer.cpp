@@ -70,7 +70,8 @@ double SlabDrawer::ensureFit(const std::string& volumePath, float eps, int degre
     mSlab = slab;
     mDims = space.dims;
     mKey = key;
-    return msSince(start);
+    mFitMs = msSince(start);
+    return mFitMs;
 }
 
 SlabSummary SlabDrawer::summarize(const std::string& volumePath) const {

@@ -65,6 +65,8 @@ public:
 
     /// The Vots of the slab fit held (0 before the first).
     std::size_t votCount() const { return mVotCount; }
+    /// What that fit took, read and upload included (0 before the first).
+    double fitMs() const { return mFitMs; }
 
     /// The key ensureFit compares.
     static std::string fitKey(const std::string& volumePath, float eps, int degree);
@@ -80,6 +82,7 @@ private:
     ZSlab mSlab;
     std::array<int, 3> mDims{0, 0, 0};
     std::size_t mVotCount = 0;
+    double mFitMs = 0.0;
     std::string mGridPath; // the volume whose planes ensureGrid last uploaded
 };
 

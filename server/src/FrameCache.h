@@ -22,7 +22,8 @@ public:
     struct Frame {
         std::string png;
         std::size_t votCount = 0;
-        double frameMs = 0.0; // render-thread time of the render that made it
+        double frameMs = 0.0;    // render-thread time of the render that made it
+        double fitSeconds = 0.0; // of the fit it was drawn from (under mpirun: the slowest rank's)
     };
     enum class Source {
         Rendered, // made by this call's render()

@@ -131,7 +131,10 @@ std::shared_ptr<const FrameCache::Frame> cachedFrame(Server::Impl& s, const Prep
             const RenderResult result = s.renderQueue->render(std::move(job)); // throws HttpError
             // PNG encoding runs here, on the HTTP thread, in parallel with the next frame.
             const std::vector<std::uint8_t> png = render::encodePng(result.image);
-            return FrameCache::Frame{std::string(png.begin(), png.end()), result.votCount, result.frameMs};
+            const auto& space = prepared.job.space; // job was moved into the queue
+            const double fitSeconds = space ? fitSecondsOf(*space) : result.fitMs / 1000.0;
+            return FrameCache::Frame{std::string(png.begin(), png.end()), result.votCount, result.frameMs,
+                                     fitSeconds};
         },
         source);
 }

@@ -154,7 +154,7 @@ RenderResult RenderQueue::draw(Renderers& r, const RenderJob& job) {
         // Read here, on the render thread, before another frame replaces them.
         for (const RankTimes& t : mCompositor->lastTimes()) {
             result.votCount += static_cast<std::size_t>(t.votCount);
-            result.fitMs = std::max(result.fitMs, t.fitMs);
+            result.fitMs = std::max(result.fitMs, t.heldFitMs);
         }
         result.frameMs =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -42,7 +42,7 @@ struct RenderResult {
     render::RgbaImage image;  // encoded to PNG by the waiting handler, so the render thread only renders
     double frameMs = 0.0;     // render + display pass on the GPU, without PNG encoding
     std::size_t votCount = 0; // Vots in the Vot-Space drawn (0 for reference); under mpirun, all ranks'
-    double fitMs = 0.0;       // under mpirun: the slowest rank's fit for this frame (0 when all held theirs)
+    double fitMs = 0.0; // under mpirun: the slowest rank's fit the frame was drawn from (made now or before)
 };
 
 /// Thread-safe. If no EGL context can be made, every render() gives HttpError 503.

@@ -1,5 +1,4 @@
 // GET /render: parse, find the dataset, wait for its Vot-Space (fitting if needed), render on the GL thread.
-#include "CacheMeta.h"
 #include "HttpError.h"
 #include "HttpJson.h"
 #include "RenderFrames.h"
@@ -47,8 +46,7 @@ void installRenderRoute(Server::Impl& s) {
         res.set_header("X-Vots-Vot-Count", std::to_string(frame->votCount));
         res.set_header("X-Vots-Frame-Ms", formatMs(frame->frameMs));
         res.set_header("X-Vots-Frame-Cache", sourceName(source));
-        res.set_header("X-Vots-Fit-Seconds",
-                       formatMs(prepared.job.space ? fitSecondsOf(*prepared.job.space) : 0.0));
+        res.set_header("X-Vots-Fit-Seconds", formatMs(frame->fitSeconds));
         res.set_header("Cache-Control", "no-cache");
         res.set_content(frame->png, "image/png");
     });

@@ -91,7 +91,7 @@ for _ in range(600):
     if job["state"] in ("done", "failed"):
         break
     time.sleep(0.1)
-assert job["state"] == "done" and job["votCount"] > 0, job
+assert job["state"] == "done" and job["votCount"] > 0 and job["fitSeconds"] > 0, job
 stats = json.load(urllib.request.urlopen(url + "api/stats", timeout=60))
 assert [f["source"] for f in stats["fits"]] == ["ranks"], stats["fits"]
 PY

@@ -34,7 +34,10 @@ public:
         return {{0.f, 250.f}, 77u};
     }
     std::vector<server::RankTimes> lastTimes() const override {
-        return {{0, 0.0, 1.0, 0.5, 100}, {1, 2000.0, 3.0, 4.0, 200}, {2, 0.0, 5.0, 6.0, 300}};
+        // Rank 1 fitted for this frame; all three drew from fits that took 1.5, 2 and 1.2 s.
+        return {{0, 0.0, 1.0, 0.5, 100, 1500.0},
+                {1, 2000.0, 3.0, 4.0, 200, 2000.0},
+                {2, 0.0, 5.0, 6.0, 300, 1200.0}};
     }
     static render::RgbaImage flat(int width, int height) {
         render::RgbaImage image{width, height, {}};

@@ -37,6 +37,7 @@ struct RankTimes {
     double frameMs = 0.0;       // drawing its float frame
     double compositeMs = 0.0;   // on rank 0, from the end of its own frame until this rank's was combined
     std::uint64_t votCount = 0; // Vots of the rank's slab fit the frame was drawn from (0 for the grid)
+    double heldFitMs = 0.0;     // what the fit the frame was drawn from took, whenever it was made
 };
 
 /// What the server knows of a volume dataset's samples when they stay with the ranks, each of which reads
