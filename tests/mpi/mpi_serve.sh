@@ -45,6 +45,13 @@ start_job() { # [MORE SERVE ARGUMENTS]
     done
     fail "no 'listening on' line within 120 s"
 }
+job_ends_within() { # SECONDS WHAT: fails unless mpirun has ended within that time
+    for _ in $(seq $(($1 * 2))); do
+        kill -0 "$job" 2>/dev/null || return 0
+        sleep 0.5
+    done
+    fail "mpirun still runs $1 s $2"
+}
 start_job
 get() { curl -s --max-time 60 -o "$1" -w '%{http_code}' "${url}$2"; }
 view="cam=az=30,el=20&size=96x80&eps=2%25"
@@ -147,11 +154,7 @@ code=$(get "$work/lost.json" "render?dataset=$name&cam=az=90,el=20&size=96x80&ep
 (($(grep -c "rank 1 of 2" "$work/serve.log") == 1)) || fail "the lost rank is not logged once"
 
 kill -TERM "$rank0"
-for _ in $(seq 60); do
-    kill -0 "$job" 2>/dev/null || break
-    sleep 0.5
-done
-kill -0 "$job" 2>/dev/null && fail "mpirun still runs 30 s after SIGTERM to rank 0"
+job_ends_within 30 "after SIGTERM to rank 0"
 wait "$job" || true
 job=
 grep -q "vots serve: stopping" "$work/serve.log" || fail "rank 0 did not stop cleanly"
@@ -164,11 +167,7 @@ rank0=$(rank_pid 0)
 [[ -n $rank0 ]] || fail "cannot find rank 0's process"
 kill -KILL "$rank0"
 start=$(date +%s)
-for _ in $(seq 120); do
-    kill -0 "$job" 2>/dev/null || break
-    sleep 0.5
-done
-kill -0 "$job" 2>/dev/null && fail "mpirun still runs 60 s after rank 0 was killed"
+job_ends_within 60 "after rank 0 was killed"
 wait "$job" || true
 job=
 left=$(($(date +%s) - start))
@@ -184,11 +183,7 @@ code=$(get "$work/budget.json" "render?dataset=$name&$view")
 # SIGTERM to rank 0 with every rank alive: it lets them go (each says it has taken the quit) and the
 # whole job ends at once with status 0, not after the other ranks' 30 s of silence.
 kill -TERM "$(rank_pid 0)"
-for _ in $(seq 20); do
-    kill -0 "$job" 2>/dev/null || break
-    sleep 0.5
-done
-kill -0 "$job" 2>/dev/null && fail "mpirun still runs 10 s after SIGTERM to rank 0 with every rank alive"
+job_ends_within 10 "after SIGTERM to rank 0 with every rank alive"
 wait "$job" || fail "mpirun ended with status $? after SIGTERM to rank 0"
 job=
 grep -q "leaving\|did not take the quit" "$work/serve.log" && fail "a rank was not let go"
