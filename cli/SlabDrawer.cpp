@@ -30,11 +30,14 @@ ZSlab slabOfVolume(const std::string& volumePath, int rank, int ranks) {
 
 } // namespace
 
-void SlabDrawer::checkBudget(const std::string& volumePath, ZSlab slab, fit::SampleStorage storage) const {
+std::pair<ZSlab, fit::VolumeSlab> SlabDrawer::readOwnSlab(const std::string& volumePath,
+                                                          fit::SampleStorage storage) const {
+    const ZSlab slab = slabOfVolume(volumePath, mRank, mRanks);
     const auto planes = static_cast<std::uint64_t>(std::max(slab.end - slab.first, 0)) + 1;
     const std::string refusal =
         planesBudgetRefusal(volumePath, std::nullopt, mMemoryBudget, "", planes, storage);
     if (!refusal.empty()) throw server::RanksOverBudget(refusal);
+    return {slab, loadSlab(volumePath, slab, std::nullopt, storage, "")};
 }
 
 std::string SlabDrawer::fitKey(const std::string& volumePath, float eps, int degree) {
@@ -49,11 +52,9 @@ double SlabDrawer::ensureFit(const std::string& volumePath, float eps, int degre
     if (key == mKey) return 0.0;
     const auto start = std::chrono::steady_clock::now();
     mKey.clear(); // until the new fit is uploaded, nothing is held
-    const ZSlab slab = slabOfVolume(volumePath, mRank, mRanks);
-    checkBudget(volumePath, slab, fit::SampleStorage::Source);
     // In the file's sample type: the same Vots as from floats (fit::SampleStorage), at half or a quarter of
     // the memory while the slab is fitted.
-    const fit::VolumeSlab read = loadSlab(volumePath, slab, std::nullopt, fit::SampleStorage::Source, "");
+    const auto [slab, read] = readOwnSlab(volumePath, fit::SampleStorage::Source);
     fit::FitOptions options;
     options.eps = eps;
     options.degree = degree;
@@ -75,10 +76,8 @@ double SlabDrawer::ensureFit(const std::string& volumePath, float eps, int degre
 }
 
 SlabSummary SlabDrawer::summarize(const std::string& volumePath) const {
-    const ZSlab slab = slabOfVolume(volumePath, mRank, mRanks);
-    checkBudget(volumePath, slab, fit::SampleStorage::Source);
     // Source storage: the planes are read only to be summed up, in their file's type.
-    const fit::VolumeSlab read = loadSlab(volumePath, slab, std::nullopt, fit::SampleStorage::Source, "");
+    const auto [slab, read] = readOwnSlab(volumePath, fit::SampleStorage::Source);
     const int lastPlane = read.whole.dims[2] - 1;
     const int owned = slab.empty() ? 0 : slab.end - slab.first + (slab.end == lastPlane ? 1 : 0);
     const std::uint64_t planeBytes = static_cast<std::uint64_t>(read.whole.dims[0]) *
@@ -108,9 +107,7 @@ double SlabDrawer::ensureGrid(const std::string& volumePath, render::GridRendere
     const auto start = std::chrono::steady_clock::now();
     mGridPath.clear(); // until the new planes are uploaded, nothing is held
     // An empty slab (more ranks than cells) still reads its one plane and draws nothing of its own.
-    const ZSlab slab = slabOfVolume(volumePath, mRank, mRanks);
-    checkBudget(volumePath, slab, fit::SampleStorage::Float);
-    const fit::VolumeSlab read = loadSlab(volumePath, slab, std::nullopt, fit::SampleStorage::Float, "");
+    const auto [slab, read] = readOwnSlab(volumePath, fit::SampleStorage::Float);
     grid.uploadSlab(read.planes, slab.first, read.whole);
     mGridPath = volumePath;
     return msSince(start);

@@ -72,9 +72,10 @@ public:
     static std::string fitKey(const std::string& volumePath, float eps, int degree);
 
 private:
-    /// Throws server::RanksOverBudget when reading `slab` of the volume with `storage` (and fitting it)
-    /// would need more than the memory budget leaves.
-    void checkBudget(const std::string& volumePath, ZSlab slab, fit::SampleStorage storage) const;
+    /// This rank's slab of the volume and its planes read with `storage`; throws server::RanksOverBudget,
+    /// before reading, when they (and their fit) would need more than the memory budget leaves.
+    std::pair<ZSlab, fit::VolumeSlab> readOwnSlab(const std::string& volumePath,
+                                                  fit::SampleStorage storage) const;
     int mRank;
     int mRanks;
     std::string mMemoryBudget;
