@@ -4,14 +4,17 @@
 
 #include "DistributedRender.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace vots::cli {
 
 FrameComposite::FrameComposite(render::RenderMode mode, SlabFrame first)
     : mMode(mode), mFromGrid(first.fromGrid) {
-    if (mode == render::RenderMode::Density)
-        throw std::logic_error("FrameComposite: the density is not composited across ranks here");
+    if (mode == render::RenderMode::Density) {
+        if (!first.densityRange) throw std::logic_error("FrameComposite: a density frame without its range");
+        mDensityRange = first.densityRange;
+    }
     mFrame = std::move(first.frame);
     if (mode == render::RenderMode::Aip && mFromGrid) {
         // Summed in double, as compositeGridOnRoot sums: two ranks' parts round once.
@@ -53,8 +56,13 @@ void FrameComposite::add(const SlabFrame& other) {
         if (!other.lengths) throw std::runtime_error("a rank's aip frame came without its lengths");
         addMeanParts(mSums, other.frame, *other.lengths);
         return;
-    case render::RenderMode::Density:
-        break;
+    case render::RenderMode::Density: {
+        if (!other.densityRange) throw std::runtime_error("a rank's density frame came without its range");
+        combineExtremes(mMode, mFrame.pixels, other.frame.pixels); // the smaller box; +inf where none
+        auto& range = *mDensityRange;
+        range = {std::min(range[0], (*other.densityRange)[0]), std::max(range[1], (*other.densityRange)[1])};
+        return;
+    }
     }
     throw std::logic_error("FrameComposite: unsupported mode");
 }

@@ -7,6 +7,8 @@
 #include "vots/render/Image.h"
 #include "vots/render/RenderMode.h"
 
+#include <array>
+#include <optional>
 #include <vector>
 
 namespace vots::cli {
@@ -14,21 +16,25 @@ namespace vots::cli {
 /// The arithmetic of compositeOnRoot / compositeMeansOnRoot (the same functions): max for mip, min for minip
 /// (a rank's ray that takes nothing, -inf, never wins), per pixel sum(mean x length) / sum(length) for the
 /// aip. Frames of the exact grid (SlabFrame::fromGrid) combine as compositeGridOnRoot's: max, min, sum.
-/// The density is not composited here (its display range is a reduction over the ranks too).
+/// The density is the min of the ranks' smallest boxes (+inf, no box, never wins), shown over the union
+/// of their density ranges.
 class FrameComposite {
 public:
-    /// Starts from rank 0's frame; throws std::logic_error for the density.
+    /// Starts from rank 0's frame; throws std::logic_error for a density frame without its range.
     FrameComposite(render::RenderMode mode, SlabFrame first);
     /// Adds another rank's frame; throws std::runtime_error when its size is not the first's.
     void add(const SlabFrame& other);
     /// The composited frame; the composite is spent.
     render::FloatImage finish();
+    /// The density's display range of every frame added (the union); nullopt for the other modes.
+    std::optional<std::array<float, 2>> densityRange() const { return mDensityRange; }
 
 private:
     render::RenderMode mMode;
     bool mFromGrid;
     render::FloatImage mFrame; // mip, minip (+inf for "nothing yet"): the running max / min
     std::vector<double> mSums; // aip: the integrals, then the lengths, of every pixel (the grid's: the sums)
+    std::optional<std::array<float, 2>> mDensityRange;
 };
 
 } // namespace vots::cli

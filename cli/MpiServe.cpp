@@ -70,9 +70,11 @@ struct ReplyHead {
     std::int32_t height = 0;
     std::int32_t withLengths = 0;
     std::int32_t fromGrid = 0;
-    std::uint64_t votCount = 0; // of the rank's slab fit (0 for the grid)
-    double fitMs = 0.0;         // or the grid's read of the slab's planes (0 when held)
-    double heldFitMs = 0.0;     // what the slab fit the frame was drawn from took
+    std::int32_t withDensityRange = 0;
+    std::array<float, 2> densityRange{0.f, 0.f}; // SlabFrame::densityRange (withDensityRange)
+    std::uint64_t votCount = 0;                  // of the rank's slab fit (0 for the grid)
+    double fitMs = 0.0;                          // or the grid's read of the slab's planes (0 when held)
+    double heldFitMs = 0.0;                      // what the slab fit the frame was drawn from took
     double frameMs = 0.0;
 };
 static_assert(std::is_trivially_copyable_v<ReplyHead>, "replies travel as their bytes");
@@ -99,8 +101,9 @@ SlabFrame slabFrameOf(const ReplyHead& head, const std::vector<char>& bytes) {
                     pixels * sizeof(float));
         return out;
     };
-    SlabFrame drawn{image(0), std::nullopt, head.fromGrid != 0};
+    SlabFrame drawn{image(0), std::nullopt, head.fromGrid != 0, std::nullopt};
     if (head.withLengths) drawn.lengths = image(pixels);
+    if (head.withDensityRange) drawn.densityRange = head.densityRange;
     return drawn;
 }
 
@@ -144,6 +147,8 @@ std::vector<char> replyTo(const CommandHead& head, const std::string& path, Slab
         reply.width = drawn.frame.width;
         reply.height = drawn.frame.height;
         reply.withLengths = drawn.lengths ? 1 : 0;
+        reply.withDensityRange = drawn.densityRange ? 1 : 0;
+        reply.densityRange = drawn.densityRange.value_or(std::array<float, 2>{0.f, 0.f});
         const std::vector<float> floats = floatsOf(drawn);
         reply.ok = 1;
         return messageOf(reply, floats.data(), floats.size() * sizeof(float));
@@ -206,10 +211,9 @@ void MpiFrameCompositor::stopHeartbeats() {
     if (mHeartbeat.joinable()) mHeartbeat.join();
 }
 
-std::string MpiFrameCompositor::refusal(const std::string& dataset, const render::FrameRequest& frame) const {
+std::string MpiFrameCompositor::refusal(const std::string& dataset, const render::FrameRequest&) const {
     if (dataset != mDataset)
         return "under mpirun this server draws only the dataset '" + mDataset + "' (--prepare)";
-    if (frame.mode == render::RenderMode::Density) return "under mpirun the density is not composited yet";
     return "";
 }
 
@@ -321,7 +325,9 @@ render::RgbaImage MpiFrameCompositor::draw(const server::CompositeRequest& reque
         std::lock_guard lock(mTimesMutex);
         mTimes = times;
     }
-    return render::applyDisplay(frame, render::displayFor(request.frame, request.valueRange));
+    // The window of the whole: the volume's range, or for the density the ranks' box sizes.
+    const std::array<float, 2> range = composite->densityRange().value_or(request.valueRange);
+    return render::applyDisplay(frame, render::displayFor(request.frame, range));
 }
 
 server::VolumeSummary MpiFrameCompositor::summarize(const std::filesystem::path& volumePath) {

@@ -105,8 +105,8 @@ void runServe(const ServeArgs& a) {
     options.memoryBudgetBytes = resolveMemoryBudget(a.memoryBudget);
     if (compositor) {
         options.compositor = compositor;
-        // Each rank fits its own slab with the first frame: rank 0 fits nothing whole.
-        options.prepareDataset.clear();
+        // --prepare has each rank fit its own slab at the default eps (rank 0 fits nothing whole); the
+        // warm-up's box cache is a one-process thing, which the ranks do not keep.
         options.warmUpFits = false;
     }
 

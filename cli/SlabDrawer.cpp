@@ -98,6 +98,7 @@ SlabFrame SlabDrawer::draw(const render::FrameRequest& f, render::VotRenderer& v
     drawn.frame = vots.render(f.camera, f.width, f.height, render::RenderOptions{f.mode, f.slab});
     if (f.mode == render::RenderMode::Aip)
         drawn.lengths = vots.rayLengths(f.camera, f.width, f.height, f.slab);
+    if (f.mode == render::RenderMode::Density) drawn.densityRange = vots.densityRange();
     vots.setRayDomain(std::nullopt);
     return drawn;
 }

@@ -26,6 +26,9 @@ struct SlabFrame {
     render::FloatImage frame;
     std::optional<render::FloatImage> lengths;
     bool fromGrid = false;
+    /// The density's display range of this rank's Vots (VotRenderer::densityRange); the whole frame's is
+    /// their union, as under `mpirun vots render`.
+    std::optional<std::array<float, 2>> densityRange;
 };
 
 /// One rank's reading of its slab of a volume. Each plane is owned by one rank (a slab's cells' first

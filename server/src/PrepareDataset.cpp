@@ -16,6 +16,8 @@ void prepareDataset(Server::Impl& s, const std::string& name) {
             const auto fit = s.fitJobs.submit(dataset, key);
             const JobSnapshot done = fit->waitFinished(std::chrono::minutes(10));
             if (done.state != JobState::Done) return; // failed (the job says why) or the server is stopping
+            // Under mpirun the ranks' fit was a composited frame: each holds its slab's Vots uploaded.
+            if (s.options.compositor) return;
             space = fit->space();
         }
         if (!s.renderQueue || !s.renderQueue->hasContext()) return;
