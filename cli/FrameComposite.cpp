@@ -11,10 +11,9 @@ namespace vots::cli {
 
 FrameComposite::FrameComposite(render::RenderMode mode, SlabFrame first)
     : mMode(mode), mFromGrid(first.fromGrid) {
-    if (mode == render::RenderMode::Density) {
-        if (!first.densityRange) throw std::logic_error("FrameComposite: a density frame without its range");
-        mDensityRange = first.densityRange;
-    }
+    if (mode == render::RenderMode::Density && !first.displayRange)
+        throw std::logic_error("FrameComposite: a density frame without its range");
+    mDisplayRange = first.displayRange;
     mFrame = std::move(first.frame);
     if (mode == render::RenderMode::Aip && mFromGrid) {
         // Summed in double, as compositeGridOnRoot sums: two ranks' parts round once.
@@ -33,6 +32,11 @@ void FrameComposite::add(const SlabFrame& other) {
     if (other.frame.width != mFrame.width || other.frame.height != mFrame.height)
         throw std::runtime_error("a rank's frame has another size");
     if (other.fromGrid != mFromGrid) throw std::runtime_error("a rank drew the frame with another renderer");
+    if (other.displayRange.has_value() != mDisplayRange.has_value())
+        throw std::runtime_error("a rank's frame came with another window");
+    if (mDisplayRange)
+        *mDisplayRange = {std::min((*mDisplayRange)[0], (*other.displayRange)[0]),
+                          std::max((*mDisplayRange)[1], (*other.displayRange)[1])};
     switch (mMode) {
     case render::RenderMode::Mip:
         combineExtremes(mMode, mFrame.pixels, other.frame.pixels);
@@ -56,13 +60,9 @@ void FrameComposite::add(const SlabFrame& other) {
         if (!other.lengths) throw std::runtime_error("a rank's aip frame came without its lengths");
         addMeanParts(mSums, other.frame, *other.lengths);
         return;
-    case render::RenderMode::Density: {
-        if (!other.densityRange) throw std::runtime_error("a rank's density frame came without its range");
+    case render::RenderMode::Density:
         combineExtremes(mMode, mFrame.pixels, other.frame.pixels); // the smaller box; +inf where none
-        auto& range = *mDensityRange;
-        range = {std::min(range[0], (*other.densityRange)[0]), std::max(range[1], (*other.densityRange)[1])};
         return;
-    }
     }
     throw std::logic_error("FrameComposite: unsupported mode");
 }

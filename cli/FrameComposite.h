@@ -16,8 +16,8 @@ namespace vots::cli {
 /// The arithmetic of compositeOnRoot / compositeMeansOnRoot (the same functions): max for mip, min for minip
 /// (a rank's ray that takes nothing, -inf, never wins), per pixel sum(mean x length) / sum(length) for the
 /// aip. Frames of the exact grid (SlabFrame::fromGrid) combine as compositeGridOnRoot's: max, min, sum.
-/// The density is the min of the ranks' smallest boxes (+inf, no box, never wins), shown over the union
-/// of their density ranges.
+/// The density is the min of the ranks' smallest boxes (+inf, no box, never wins). Where the ranks give
+/// display ranges (SlabFrame::displayRange: the density, a .vots file) the frame is shown over their union.
 class FrameComposite {
 public:
     /// Starts from rank 0's frame; throws std::logic_error for a density frame without its range.
@@ -26,15 +26,15 @@ public:
     void add(const SlabFrame& other);
     /// The composited frame; the composite is spent.
     render::FloatImage finish();
-    /// The density's display range of every frame added (the union); nullopt for the other modes.
-    std::optional<std::array<float, 2>> densityRange() const { return mDensityRange; }
+    /// The union of the frames' display ranges; nullopt when they gave none (the window is the volume's).
+    std::optional<std::array<float, 2>> displayRange() const { return mDisplayRange; }
 
 private:
     render::RenderMode mMode;
     bool mFromGrid;
     render::FloatImage mFrame; // mip, minip (+inf for "nothing yet"): the running max / min
     std::vector<double> mSums; // aip: the integrals, then the lengths, of every pixel (the grid's: the sums)
-    std::optional<std::array<float, 2>> mDensityRange;
+    std::optional<std::array<float, 2>> mDisplayRange;
 };
 
 } // namespace vots::cli

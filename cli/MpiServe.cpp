@@ -2,6 +2,7 @@
 // rank 0 with point-to-point messages polled against a deadline, so a lost rank is noticed, not waited for.
 #include "MpiServe.h"
 
+#include "DistributedRender.h"
 #include "FrameComposite.h"
 #include "MpiHeartbeat.h"
 #include "MpiPolling.h"
@@ -56,6 +57,7 @@ struct CommandHead {
     float eps = 0.f;
     std::int32_t degree = 3;
     std::array<float, 2> range{0.f, 0.f};
+    std::int32_t votsFile = 0; // the path is a .vots file's (server::CompositeRequest::votsFile)
 };
 static_assert(std::is_trivially_copyable_v<CommandHead>, "commands travel as their bytes");
 
@@ -70,8 +72,8 @@ struct ReplyHead {
     std::int32_t height = 0;
     std::int32_t withLengths = 0;
     std::int32_t fromGrid = 0;
-    std::int32_t withDensityRange = 0;
-    std::array<float, 2> densityRange{0.f, 0.f}; // SlabFrame::densityRange (withDensityRange)
+    std::int32_t withDisplayRange = 0;
+    std::array<float, 2> displayRange{0.f, 0.f}; // SlabFrame::displayRange (withDisplayRange)
     std::uint64_t votCount = 0;                  // of the rank's slab fit (0 for the grid)
     double fitMs = 0.0;                          // or the grid's read of the slab's planes (0 when held)
     double heldFitMs = 0.0;                      // what the slab fit the frame was drawn from took
@@ -103,7 +105,7 @@ SlabFrame slabFrameOf(const ReplyHead& head, const std::vector<char>& bytes) {
     };
     SlabFrame drawn{image(0), std::nullopt, head.fromGrid != 0, std::nullopt};
     if (head.withLengths) drawn.lengths = image(pixels);
-    if (head.withDensityRange) drawn.densityRange = head.densityRange;
+    if (head.withDisplayRange) drawn.displayRange = head.displayRange;
     return drawn;
 }
 
@@ -119,8 +121,10 @@ SlabFrame drawRankPart(SlabDrawer& drawer, const CommandHead& head, const std::s
                        render::VotRenderer& vots, render::GridRenderer& grid, double* prepareMs,
                        double* drawMs) {
     const bool fromGrid = head.frame.renderer == render::RendererKind::Grid;
-    *prepareMs = fromGrid ? drawer.ensureGrid(path, grid)
-                          : drawer.ensureFit(path, head.eps, head.degree, head.range, vots);
+    const bool cutRays = compositesCutRays(head.frame.mode);
+    *prepareMs = fromGrid        ? drawer.ensureGrid(path, grid)
+                 : head.votsFile ? drawer.ensureVotsFile(path, cutRays, vots)
+                                 : drawer.ensureFit(path, head.eps, head.degree, head.range, vots);
     const auto start = Clock::now();
     SlabFrame drawn = fromGrid ? SlabDrawer::drawGrid(head.frame, grid) : drawer.draw(head.frame, vots);
     *drawMs = msSince(start);
@@ -147,8 +151,8 @@ std::vector<char> replyTo(const CommandHead& head, const std::string& path, Slab
         reply.width = drawn.frame.width;
         reply.height = drawn.frame.height;
         reply.withLengths = drawn.lengths ? 1 : 0;
-        reply.withDensityRange = drawn.densityRange ? 1 : 0;
-        reply.densityRange = drawn.densityRange.value_or(std::array<float, 2>{0.f, 0.f});
+        reply.withDisplayRange = drawn.displayRange ? 1 : 0;
+        reply.displayRange = drawn.displayRange.value_or(std::array<float, 2>{0.f, 0.f});
         const std::vector<float> floats = floatsOf(drawn);
         reply.ok = 1;
         return messageOf(reply, floats.data(), floats.size() * sizeof(float));
@@ -269,11 +273,15 @@ render::RgbaImage MpiFrameCompositor::draw(const server::CompositeRequest& reque
     if (mLostRank.load() >= 0) throw server::RanksLost(mLostMessage);
     const auto start = Clock::now();
     const std::string path = request.volumePath.string();
-    CommandHead head{CommandKind::Frame, request.frame, request.eps, request.degree, request.valueRange};
+    CommandHead head{CommandKind::Frame, request.frame,      request.eps,
+                     request.degree,     request.valueRange, request.votsFile ? 1 : 0};
     // A new fit, or a first read of the planes for the grid, gets the fit's deadline besides the frame's.
     const bool fromGrid = request.frame.renderer == render::RendererKind::Grid;
     std::string& sentKey = fromGrid ? mSentGridKey : mSentFitKey;
-    const std::string key = fromGrid ? path : SlabDrawer::fitKey(path, request.eps, request.degree);
+    const std::string key = fromGrid ? path
+                            : request.votsFile
+                                ? SlabDrawer::votsFileKey(path, compositesCutRays(request.frame.mode))
+                                : SlabDrawer::fitKey(path, request.eps, request.degree);
     const bool refit = key != sentKey;
     sentKey = key;
     const Clock::time_point deadline = start + FRAME_DEADLINE + (refit ? FIT_DEADLINE : Clock::duration{0});
@@ -325,8 +333,8 @@ render::RgbaImage MpiFrameCompositor::draw(const server::CompositeRequest& reque
         std::lock_guard lock(mTimesMutex);
         mTimes = times;
     }
-    // The window of the whole: the volume's range, or for the density the ranks' box sizes.
-    const std::array<float, 2> range = composite->densityRange().value_or(request.valueRange);
+    // The window of the whole: the volume's range, or the union of the ranks' (box sizes, a file's Vots).
+    const std::array<float, 2> range = composite->displayRange().value_or(request.valueRange);
     return render::applyDisplay(frame, render::displayFor(request.frame, range));
 }
 

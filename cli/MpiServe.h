@@ -37,6 +37,8 @@ public:
     std::vector<server::RankTimes> lastTimes() const override;
     /// Tells the ranks still answering to leave their loop; after the server (its render thread) is gone.
     void releaseRanks();
+    /// True once a rank has been lost: messages to it (its heartbeat, a command) may never complete.
+    bool lostARank() const { return mLostRank.load() >= 0; }
 
 private:
     [[noreturn]] void lose(int rank, const std::string& why);

@@ -73,11 +73,15 @@ void runServe(const ServeArgs& a) {
     std::shared_ptr<MpiFrameCompositor> compositor;
     if (world.distributed())
         compositor = std::make_shared<MpiFrameCompositor>(world, a.prepare, a.memoryBudget);
-    // However rank 0 leaves, the other ranks are let go, after the server (its render thread) is gone.
+    // However rank 0 leaves, the other ranks are let go, after the server (its render thread) is gone. With
+    // a rank lost, MPI_Finalize could wait for ever on a send still going to it (seen: the job ran on 30 s
+    // after SIGTERM when Open MPI had noticed the death at once), so rank 0 then leaves unfinalized too.
     struct ReleaseRanks {
         MpiFrameCompositor* compositor;
         ~ReleaseRanks() {
-            if (compositor) compositor->releaseRanks();
+            if (!compositor) return;
+            compositor->releaseRanks();
+            if (compositor->lostARank()) MpiWorld::get().leaveUnfinalized();
         }
     } releaseRanks{compositor.get()};
     if (compositor && a.prepare.empty())

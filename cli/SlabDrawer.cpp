@@ -7,8 +7,10 @@
 #include "vots/fit/Error.h"
 #include "vots/fit/Fitter.h"
 #include "vots/fit/VolumeHeader.h"
+#include "vots/fit/VotSpaceFile.h"
 #include "vots/render/GridRenderer.h"
 #include "vots/render/VotRenderer.h"
+#include "vots/server/FitMeta.h"
 #include "vots/server/FrameCompositor.h"
 
 #include <algorithm>
@@ -71,6 +73,33 @@ double SlabDrawer::ensureFit(const std::string& volumePath, float eps, int degre
     mSlab = slab;
     mDims = space.dims;
     mKey = key;
+    mFromFile = false;
+    mFitMs = msSince(start);
+    return mFitMs;
+}
+
+std::string SlabDrawer::votsFileKey(const std::string& votsPath, bool cutRays) {
+    return "file|" + votsPath + (cutRays ? "|cut" : "|whole");
+}
+
+double SlabDrawer::ensureVotsFile(const std::string& votsPath, bool cutRays, render::VotRenderer& vots) {
+    const std::string key = votsFileKey(votsPath, cutRays);
+    if (key == mKey) return 0.0;
+    const auto start = std::chrono::steady_clock::now();
+    mKey.clear(); // until the new Vots are uploaded, nothing is held
+    // The whole file is read and this rank's Vots kept, as `mpirun vots render FILE.vots` does: rank 0's
+    // dataset registry has checked the file's size against the memory budget before any rank read it.
+    fit::VotSpace space = fit::readVotSpaceFile(votsPath);
+    server::restoreMetaFields(space); // the background's fill, which the minip and aip take
+    if (space.dims[2] < 2) throw fit::InputError("a Vot-Space needs at least 2 grid points along z");
+    const ZSlab slab = zSlabOfRank(space.dims[2] - 1, mRank, mRanks);
+    space = votsOfSlab(std::move(space), slab, cutRays);
+    vots.upload(space);
+    mVotCount = space.vots.size();
+    mSlab = slab;
+    mDims = space.dims;
+    mKey = key;
+    mFromFile = true;
     mFitMs = msSince(start);
     return mFitMs;
 }
@@ -98,7 +127,10 @@ SlabFrame SlabDrawer::draw(const render::FrameRequest& f, render::VotRenderer& v
     drawn.frame = vots.render(f.camera, f.width, f.height, render::RenderOptions{f.mode, f.slab});
     if (f.mode == render::RenderMode::Aip)
         drawn.lengths = vots.rayLengths(f.camera, f.width, f.height, f.slab);
-    if (f.mode == render::RenderMode::Density) drawn.densityRange = vots.densityRange();
+    if (f.mode == render::RenderMode::Density)
+        drawn.displayRange = vots.densityRange();
+    else if (mFromFile)
+        drawn.displayRange = vots.valueRange();
     vots.setRayDomain(std::nullopt);
     return drawn;
 }

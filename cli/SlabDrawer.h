@@ -26,9 +26,10 @@ struct SlabFrame {
     render::FloatImage frame;
     std::optional<render::FloatImage> lengths;
     bool fromGrid = false;
-    /// The density's display range of this rank's Vots (VotRenderer::densityRange); the whole frame's is
-    /// their union, as under `mpirun vots render`.
-    std::optional<std::array<float, 2>> densityRange;
+    /// The range this rank's part is shown over when the window is the ranks' union, as under `mpirun vots
+    /// render`: the density's box sizes (VotRenderer::densityRange), or the values of a .vots file's Vots
+    /// (VotRenderer::valueRange); nullopt when the window is the volume's.
+    std::optional<std::array<float, 2>> displayRange;
 };
 
 /// One rank's reading of its slab of a volume. Each plane is owned by one rank (a slab's cells' first
@@ -42,7 +43,7 @@ struct SlabSummary {
 };
 
 /// The fit of a volume's slab as `mpirun vots render VOLUME --eps` makes it (automatic background, cells
-/// certified), kept while the volume, eps and degree stay the same.
+/// certified), kept while the volume, eps and degree stay the same; or the slab's Vots of a .vots file.
 class SlabDrawer {
 public:
     /// `memoryBudget`: the --memory-budget text (empty: the default), which every read of a slab is
@@ -53,6 +54,13 @@ public:
     /// `vots`; returns the milliseconds it took (0 when it held the fit). `range` is the whole volume's.
     double ensureFit(const std::string& volumePath, float eps, int degree, std::array<float, 2> range,
                      render::VotRenderer& vots);
+    /// Reads the .vots file and uploads this rank's Vots of it (votsOfSlab: those whose box starts in its
+    /// slab, or with `cutRays` every one that meets it) when they differ from what `vots` holds; returns the
+    /// milliseconds it took (0 when held).
+    double ensureVotsFile(const std::string& votsPath, bool cutRays, render::VotRenderer& vots);
+    /// The key ensureVotsFile compares.
+    static std::string votsFileKey(const std::string& votsPath, bool cutRays);
+
     /// The frame's projection of this rank's Vots, rays cut to its cells where the composite needs it.
     SlabFrame draw(const render::FrameRequest& frame, render::VotRenderer& vots) const;
 
@@ -82,7 +90,8 @@ private:
     int mRank;
     int mRanks;
     std::string mMemoryBudget;
-    std::string mKey;
+    std::string mKey; // fitKey or votsFileKey of what the VotRenderer holds
+    bool mFromFile = false;
     ZSlab mSlab;
     std::array<int, 3> mDims{0, 0, 0};
     std::size_t mVotCount = 0;

@@ -1,5 +1,6 @@
 // Readies one dataset as the server starts: its volume loaded, its default fit done and uploaded to the
 // renderer, so that the viewer's first image does not wait for them.
+#include "RenderFrames.h"
 #include "ServerImpl.h"
 
 #include <chrono>
@@ -10,6 +11,14 @@ namespace vots::server {
 void prepareDataset(Server::Impl& s, const std::string& name) {
     try {
         const auto dataset = s.registry.find(name);
+        if (s.options.compositor && dataset->kind == DatasetKind::Vots) {
+            // Under mpirun a first frame has every rank read the file and upload its slab's Vots.
+            RenderParams first;
+            first.dataset = name;
+            first.width = first.height = 1;
+            s.renderQueue->render(prepareRender(s, first, "").job);
+            return;
+        }
         std::shared_ptr<const fit::VotSpace> space = dataset->space; // a .vots dataset has it loaded
         if (dataset->kind == DatasetKind::Volume) {
             const FitKey key = fitKeyFor(*dataset, EpsSpec{}, DEFAULT_DEGREE); // the viewer's first fit

@@ -62,11 +62,19 @@ CompositeRequest compositeRequestFor(const Dataset& dataset, float eps, int degr
 }
 
 /// Under mpirun: the frame is drawn on every rank from its slab's own fit, so rank 0 fits nothing whole
-/// (what the ranks cannot composite was refused before the dataset was looked up).
+/// (what the ranks cannot composite was refused before the dataset was looked up); a .vots dataset from
+/// each rank's Vots of the file.
 PreparedRender prepareComposite(const Dataset& dataset, PreparedRender prepared) {
     RenderJob& job = prepared.job;
-    if (dataset.kind != DatasetKind::Volume)
-        throw HttpError(409, "under mpirun a .vots dataset is not drawn across the ranks yet");
+    if (dataset.kind == DatasetKind::Vots) {
+        CompositeRequest request = compositeRequestFor(dataset, dataset.space->eps, dataset.space->degree);
+        request.votsFile = true;
+        request.frame = job.params;
+        job.composite = std::move(request);
+        job.space = dataset.space; // not drawn here: its meta gives the frame's fit time and Vot count
+        prepared.drawnFrom = dataset.name + "_vots|ranks";
+        return prepared;
+    }
     CompositeRequest request =
         compositeRequestFor(dataset, resolveEps(dataset, job.params.eps), job.params.degree);
     request.frame = job.params;

@@ -34,7 +34,8 @@ struct RenderJob {
     // The volume's min and max sample, as the registry keeps it, so that no frame scans the volume;
     // nullopt: the Vot-Space's own range (a .vots dataset, as `vots render FILE.vots` draws it).
     std::optional<std::array<float, 2>> valueRange;
-    // Set when a FrameCompositor draws the frame on every rank (then `space` is null): its request.
+    // Set when a FrameCompositor draws the frame on every rank: its request. `space` is then null, or a
+    // .vots dataset's (only its count and meta are read: the ranks draw their own Vots of the file).
     std::optional<CompositeRequest> composite;
 };
 

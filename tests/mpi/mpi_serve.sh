@@ -11,50 +11,14 @@
 # Usage: tests/mpi/mpi_serve.sh VOTS_BINARY VOLUME [OTHER_VOLUME]
 set -euo pipefail
 vots=$1 volume=$2 other=${3:-}
-work=$(mktemp -d)
-job=
-cleanup() {
-    [[ -n $job ]] && kill -KILL "$job" 2>/dev/null
-    rm -rf "$work"
-}
-trap cleanup EXIT
-# CI runs as root; Open MPI refuses that unless told, and must not look for other hosts.
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl=self,vader
-fail() {
-    echo "mpi_serve: $*" >&2
-    sed 's/^/  serve: /' "$work/serve.log" >&2 || true
-    exit 1
-}
-png_diff() { /usr/bin/python3 "$(dirname "$0")/png_diff.py" "$@"; } # Debian's python3-pil
+source "$(dirname "$0")/serve_job.bash"
 
 mkdir "$work/data"
 ln -s "$(realpath "$volume")" "$work/data/$(basename "$volume")"
 [[ -n $other ]] && ln -s "$(realpath "$other")" "$work/data/$(basename "$other")"
 name=$(basename "$volume" | sed -E 's/\.(nrrd|nhdr|nii\.gz|nii|mhd|mha)$//')
 
-# --enable-recovery: without it Open MPI ends the whole job, rank 0 too, when one rank dies.
-start_job() { # [MORE SERVE ARGUMENTS]
-    mpirun --oversubscribe --enable-recovery -np 2 "$vots" serve --port 0 --data "$work/data" \
-        --cache-dir "$work/cache" --prepare "$name" "$@" >"$work/serve.log" 2>&1 &
-    job=$!
-    url=
-    for _ in $(seq 240); do
-        url=$(sed -nE 's|^vots serve: listening on (http://[^ ]+/)$|\1|p' "$work/serve.log")
-        [[ -n $url ]] && return
-        kill -0 "$job" 2>/dev/null || fail "mpirun ended before listening"
-        sleep 0.5
-    done
-    fail "no 'listening on' line within 120 s"
-}
-job_ends_within() { # SECONDS WHAT: fails unless mpirun has ended within that time
-    for _ in $(seq $(($1 * 2))); do
-        kill -0 "$job" 2>/dev/null || return 0
-        sleep 0.5
-    done
-    fail "mpirun still runs $1 s $2"
-}
-start_job
-get() { curl -s --max-time 60 -o "$1" -w '%{http_code}' "${url}$2"; }
+start_job "$work/data" "$name"
 view="cam=az=30,el=20&size=96x80&eps=2%25"
 render_args=(--cam az=30,el=20 --size 96x80 --eps 2%)
 
@@ -150,13 +114,6 @@ if [[ -n $other ]]; then
     [[ $code == 409 ]] || fail "a second dataset answered $code, not 409"
 fi
 
-rank_pid() {
-    local pid
-    for pid in $(pgrep -P "$job"); do
-        tr '\0' '\n' <"/proc/$pid/environ" 2>/dev/null | grep -qx "OMPI_COMM_WORLD_RANK=$1" && echo "$pid"
-    done
-    return 0
-}
 rank0=$(rank_pid 0) rank1=$(rank_pid 1)
 [[ -n $rank0 && -n $rank1 ]] || fail "cannot find the ranks' processes"
 kill -KILL "$rank1"
@@ -179,7 +136,7 @@ job=
 grep -q "vots serve: stopping" "$work/serve.log" || fail "rank 0 did not stop cleanly"
 
 # Rank 0 killed: rank 1 misses its heartbeat and leaves within the 30 s silence, so mpirun ends.
-start_job
+start_job "$work/data" "$name"
 code=$(get "$work/before.png" "render?dataset=$name&$view")
 [[ $code == 200 ]] || fail "/render of the second job answered $code"
 rank0=$(rank_pid 0)
@@ -193,7 +150,7 @@ left=$(($(date +%s) - start))
 grep -q "rank 1 of 2: rank 0 has sent nothing" "$work/serve.log" || fail "rank 1 did not say why it left"
 # A memory budget too small for a rank's slab: every rank checks its slab's header against it before
 # reading, and rank 0 answers 507 JSON (as one process does for a study over its budget), no OOM.
-start_job --memory-budget 64M
+start_job "$work/data" "$name" --memory-budget 64M
 code=$(get "$work/budget.json" "render?dataset=$name&$view")
 [[ $code == 507 ]] && grep -q 'memory budget' "$work/budget.json" ||
     fail "a slab over the ranks' memory budget answered $code: $(cat "$work/budget.json")"
@@ -201,10 +158,6 @@ code=$(get "$work/budget.json" "render?dataset=$name&$view")
 [[ $code == 507 ]] || fail "the second request over the budget answered $code"
 # SIGTERM to rank 0 with every rank alive: it lets them go (each says it has taken the quit) and the
 # whole job ends at once with status 0, not after the other ranks' 30 s of silence.
-kill -TERM "$(rank_pid 0)"
-job_ends_within 10 "after SIGTERM to rank 0 with every rank alive"
-wait "$job" || fail "mpirun ended with status $? after SIGTERM to rank 0"
-job=
-grep -q "leaving\|did not take the quit" "$work/serve.log" && fail "a rank was not let go"
+stop_job
 
 echo "mpi_serve: OK (503 after $seconds s; with rank 0 killed the job ended after $left s)"

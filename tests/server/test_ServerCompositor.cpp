@@ -2,10 +2,12 @@
 // 409, a lost rank is 503, and /api/stats shows its ranks; a fake compositor stands for the MPI one.
 #include "ServerFixture.h"
 
+#include "vots/fit/VotSpaceFile.h"
 #include "vots/render/Png.h"
 #include "vots/server/FrameCompositor.h"
 
 #include <atomic>
+#include <cstdlib>
 #include <mutex>
 #include <optional>
 #include <thread>
@@ -16,9 +18,10 @@ namespace {
 /// Draws a flat colour, or throws RanksLost once told a rank is gone; keeps the last request.
 class FakeCompositor : public server::FrameCompositor {
 public:
+    explicit FakeCompositor(std::string dataset = HEAD_MR) : drawn(std::move(dataset)) {}
     int ranks() const override { return 3; }
     std::string refusal(const std::string& dataset, const render::FrameRequest& frame) const override {
-        if (dataset != HEAD_MR) return "only " + std::string(HEAD_MR);
+        if (dataset != drawn) return "only " + drawn;
         return frame.mode == render::RenderMode::Density ? "no density" : "";
     }
     render::RgbaImage draw(const server::CompositeRequest& request, render::VotRenderer&,
@@ -46,6 +49,7 @@ public:
         return image;
     }
 
+    const std::string drawn; // the one dataset it draws
     std::atomic<bool> lost{false};
     std::mutex mutex;
     std::optional<server::CompositeRequest> last;
@@ -162,6 +166,48 @@ TEST(ServerCompositor, FramesGoThroughItUnfittedRefusalsAre409AndALostRankIs503)
     ASSERT_TRUE(lost);
     EXPECT_EQ(lost->status, 503);
     EXPECT_EQ(bodyJson(lost)["error"], "rank 2 of 3 did not answer the frame in time");
+}
+
+TEST(ServerCompositor, AVotsDatasetIsDrawnFromTheFileOnEveryRankAndCountedOnce) {
+    ServerWorld world;
+    const std::string head = (world.data() / "head.vots").string();
+    const std::string fit = std::string(VOTS_CLI) + " fit '" + VOTS_SHARED_DATA_DIR + "/" + HEAD_MR +
+                            ".nrrd' -o '" + head + "' --eps 3% 2>/dev/null";
+    ASSERT_EQ(std::system(fit.c_str()), 0) << fit;
+    const fit::VotSpace file = fit::readVotSpaceFile(head);
+    auto compositor = std::make_shared<FakeCompositor>("head");
+    server::ServerOptions options = world.options();
+    options.compositor = compositor;
+    options.warmUpFits = false;
+    LoopbackServer server(options);
+    auto c = server.client();
+
+    const auto res = c->Get("/render?dataset=head&cam=az=30,el=20&size=40x30&mode=minip");
+    ASSERT_TRUE(res);
+    if (res->status == 503) GTEST_SKIP() << "no renderer here: " << res->body;
+    ASSERT_EQ(res->status, 200) << res->body;
+    // The file's Vots, once each, though the fake's ranks say 600 (a box across a slab face is on two).
+    EXPECT_EQ(res->get_header_value("X-Vots-Vot-Count"), std::to_string(file.vots.size()));
+    {
+        std::lock_guard lock(compositor->mutex);
+        ASSERT_TRUE(compositor->last);
+        const server::CompositeRequest& asked = *compositor->last;
+        EXPECT_TRUE(asked.votsFile);
+        EXPECT_EQ(asked.volumePath, head);
+        EXPECT_EQ(asked.eps, file.eps);
+        EXPECT_EQ(asked.frame.mode, render::RenderMode::MinIp);
+        EXPECT_TRUE(compositor->summarized.empty()) << "a .vots dataset has no samples for the ranks to sum";
+    }
+    // What the file cannot give: the grid, another eps, a refit.
+    for (const char* refused :
+         {"/render?dataset=head&size=40x30&renderer=grid", "/render?dataset=head&size=40x30&eps=1%25"}) {
+        const auto no = c->Get(refused);
+        ASSERT_TRUE(no);
+        EXPECT_EQ(no->status, 409) << refused << ": " << no->body;
+    }
+    const auto refit = c->Post("/api/fit", R"({"dataset":"head","eps":"1%"})", "application/json");
+    ASSERT_TRUE(refit);
+    EXPECT_EQ(refit->status, 409) << refit->body;
 }
 
 } // namespace

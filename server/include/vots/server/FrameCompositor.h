@@ -19,15 +19,18 @@ class VotRenderer;
 
 namespace vots::server {
 
-/// One frame of a volume dataset, as every rank draws its part of it: from the Vots of its slab fitted at
-/// `eps`, or from its slab's samples (frame.renderer == Grid; eps and degree unused).
+/// One frame of a dataset, as every rank draws its part of it: from the Vots of its slab fitted at `eps`,
+/// from its slab's samples (frame.renderer == Grid; eps and degree unused), or from its slab's Vots of a
+/// `.vots` file (votsFile; the window is then the union of the ranks' Vot values, as one process takes
+/// the whole Vot-Space's).
 struct CompositeRequest {
     render::FrameRequest frame;
     std::string dataset;
-    std::filesystem::path volumePath;          // the same path on every rank
+    std::filesystem::path volumePath;          // the volume, or the .vots file: the same path on every rank
     std::array<float, 2> valueRange{0.f, 0.f}; // the whole volume's min and max sample
     float eps = 0.f;                           // data units
     int degree = 3;
+    bool votsFile = false;
 };
 
 /// One rank's part of the last composited frame.
