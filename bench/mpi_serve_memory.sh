@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Each process's memory while `vots serve` draws a study, one process against `mpirun -np N` (issue 23):
-# the first 2 % frame's seconds, then VmRSS and VmHWM of every rank from /proc after it. Under mpirun no
+# the seconds from the launch to the first 2 % frame (both --prepare the study: the load or the ranks'
+# summary, the fit and the frame), then VmRSS and VmHWM of every rank from /proc after it. Under mpirun no
 # rank should hold the whole volume: rank 0 keeps the grid alone, each rank its slab's fit.
 #
 # Usage: bench/mpi_serve_memory.sh VOLUME [RANKS]    VOTS_BUILD=build/release (default)
@@ -33,10 +34,9 @@ memory_of() { awk '/^VmRSS|^VmHWM/ { v[$1] = $2 } END { print v["VmRSS:"], v["Vm
 serve_and_measure() { # LABEL COMMAND...: starts the server, draws one frame, prints one row per process
     local label=$1
     shift
-    # One process prepares nothing either, so that both first frames load (or summarize) and fit.
-    local prepare=$name
-    [[ $label == one ]] && prepare=
-    "$@" serve --port 0 --data "$work/data" --cache-dir "$work/cache-$label" --prepare "$prepare" --no-warm-up \
+    local launched
+    launched=$(date +%s.%N)
+    "$@" serve --port 0 --data "$work/data" --cache-dir "$work/cache-$label" --prepare "$name" --no-warm-up \
         >"$work/$label.log" 2>&1 &
     job=$!
     local url=
@@ -47,8 +47,10 @@ serve_and_measure() { # LABEL COMMAND...: starts the server, draws one frame, pr
     done
     [[ -n $url ]] || { cat "$work/$label.log" >&2; exit 1; }
     local code seconds
-    read -r code seconds < <(curl -s --max-time 900 -o "$work/$label.png" -w '%{http_code} %{time_total}' "$url$frame")
+    code=$(curl -s --max-time 900 -o "$work/$label.png" -w '%{http_code}' "$url$frame")
     [[ $code == 200 ]] || { echo "$label: /render answered $code: $(head -c 300 "$work/$label.png")" >&2; exit 1; }
+    seconds=$(/usr/bin/python3 -c "import sys; print(f'{float(sys.argv[2]) - float(sys.argv[1]):.1f}')" \
+        "$launched" "$(date +%s.%N)")
     local pids=$job
     [[ $label == ranks ]] && pids=$(for p in $(pgrep -P "$job"); do
         r=$(tr '\0' '\n' <"/proc/$p/environ" | sed -n 's/^OMPI_COMM_WORLD_RANK=//p')
@@ -64,7 +66,7 @@ serve_and_measure() { # LABEL COMMAND...: starts the server, draws one frame, pr
     wait "$job" || true
     job=
 }
-echo "| serve | rank | first 2 % frame s (512^2) | VmRSS MiB | VmHWM MiB |"
+echo "| serve | rank | launch to first 2 % frame s (512^2) | VmRSS MiB | VmHWM MiB |"
 echo "|---|---|---|---|---|"
 serve_and_measure one "$vots"
 serve_and_measure ranks mpirun --oversubscribe --enable-recovery -np "$ranks" "$vots"
