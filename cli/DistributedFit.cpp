@@ -1,4 +1,4 @@
-// `vots fit` under mpirun: slabs of z cells per rank, and their fits gathered into one Vot-Space on rank 0.
+// `vots fit` under mpirun: slabs of z cells per rank, and what their fits sum up to over the ranks.
 #include "DistributedFit.h"
 
 #include "vots/fit/Error.h"
@@ -22,10 +22,11 @@ ZSlab fitSlabOfRank(const MpiWorld& world, std::uint64_t planesZ) {
     return zSlabOfRank(static_cast<int>(cellsZ), world.rank(), world.size());
 }
 
-void gatherFitOnRoot(const MpiWorld& world, fit::FitResult& result, ZSlab slab, const fit::Volume& whole) {
+std::uint64_t reduceFitOverRanks(const MpiWorld& world, fit::FitResult& result, ZSlab slab,
+                                 const fit::Volume& whole) {
     fit::VotSpace& space = result.space;
     placeSlabFitInGrid(space, slab, whole);
-    space.vots = world.gatherOnRoot(space.vots);
+    const std::uint64_t votCount = world.sumOverRanks(std::vector<std::uint64_t>{space.vots.size()})[0];
     fit::FitStats& s = result.stats;
     const std::vector<std::uint64_t> sums =
         world.sumOverRanks({s.boxFits, s.boxScans, s.cacheHits, s.coveredCells, s.backgroundCells});
@@ -40,6 +41,7 @@ void gatherFitOnRoot(const MpiWorld& world, fit::FitResult& result, ZSlab slab, 
     s.seconds = world.maxOverRanks(s.seconds);
     s.maxError = world.maxOverRanks(s.maxError);
     space.degree = static_cast<int>(world.maxOverRanks(space.degree));
+    return votCount;
 }
 
 std::string metaOfRanks(const std::string& meta, std::array<float, 2> range, int ranks) {

@@ -1,4 +1,4 @@
-// `vots fit` under mpirun: each rank fits the planes of its z slab; rank 0 gathers and writes one file.
+// `vots fit` under mpirun: each rank fits the planes of its z slab; the ranks write one file together.
 #pragma once
 
 #include "MpiWorld.h"
@@ -17,10 +17,11 @@ namespace vots::cli {
 /// ranks than z cells (a rank without a cell would have nothing to fit).
 ZSlab fitSlabOfRank(const MpiWorld& world, std::uint64_t planesZ);
 
-/// Moves every rank's fit of its slab's planes into the grid of `whole` and gathers it onto rank 0 in
-/// rank order: there the result holds every Vot, the highest degree, the summed counters, the largest
-/// error and the longest fit time; elsewhere it is left without Vots. A collective: every rank calls it.
-void gatherFitOnRoot(const MpiWorld& world, fit::FitResult& result, ZSlab slab, const fit::Volume& whole);
+/// Moves this rank's fit of its slab's planes into the grid of `whole` (its Vots stay with it) and gives
+/// every rank the file's view of the whole fit: the highest degree, the summed counters, the background
+/// fill, the largest error and the longest fit time. Returns the Vots of all ranks. A collective.
+std::uint64_t reduceFitOverRanks(const MpiWorld& world, fit::FitResult& result, ZSlab slab,
+                                 const fit::Volume& whole);
 
 /// The meta block of a fit under mpirun: `meta` (built for the whole volume's grid, which holds no
 /// samples) with the whole volume's value range and "ranks": the number of ranks that fitted it.

@@ -7,6 +7,7 @@
 #include "Progress.h"
 #include "RawOptions.h"
 #include "SeriesOption.h"
+#include "VotsFileOnRanks.h"
 
 #include "vots/fit/Error.h"
 #include "vots/fit/Fitter.h"
@@ -115,11 +116,11 @@ fit::FitOptions fitOptionsFor(const FitArgs& a, const CheckedArgs& checked, std:
     return options;
 }
 
-/// Writes the fit of `volume` (whose grid is enough) with its meta block and says so on stdout.
+/// The meta block of the fit of `volume` (whose grid is enough) whose Vots' largest error is `maxError`.
 /// `ranks`: under mpirun, the meta block records them and the whole volume's value range `range`.
-void writeFit(const FitArgs& a, const fit::Volume& volume, const fit::FitOptions& options,
-              fit::FitResult& result, std::optional<int> ranks, std::array<float, 2> range) {
-    const double maxError = server::maxStoredError(result.space);
+std::string fitMetaFor(const FitArgs& a, const fit::Volume& volume, const fit::FitOptions& options,
+                       const fit::FitResult& result, double maxError, std::optional<int> ranks,
+                       std::array<float, 2> range) {
     server::FitProvenance record;
     std::error_code ec;
     const fs::path absolute = fs::absolute(a.input, ec);
@@ -131,11 +132,13 @@ void writeFit(const FitArgs& a, const fit::Volume& volume, const fit::FitOptions
     record.stats = result.stats;
     record.maxError = maxError;
     record.backgroundFill = result.space.backgroundFill;
-    result.space.metaJson = server::buildFitMeta(record);
-    if (ranks) result.space.metaJson = metaOfRanks(result.space.metaJson, range, *ranks);
-    fit::writeVotSpaceFile(a.output, result.space);
+    const std::string meta = server::buildFitMeta(record);
+    return ranks ? metaOfRanks(meta, range, *ranks) : meta;
+}
 
-    const std::size_t count = result.space.vots.size();
+/// Says on stdout what was written: `count` Vots of `result`'s fit of `volume`.
+void reportFit(const FitArgs& a, const fit::Volume& volume, const fit::FitOptions& options,
+               const fit::FitResult& result, std::uint64_t count, double maxError, std::optional<int> ranks) {
     std::cout << "wrote " << a.output << ": " << formatCount(count) << " Vots ("
               << formatNumber(static_cast<double>(count) / static_cast<double>(volume.sampleCount()), 4)
               << " per sample), degree " << result.space.degree << ", max error " << formatNumber(maxError)
@@ -160,11 +163,15 @@ void runFit(const FitArgs& a) {
         options.progress = [&progress](double f, const char* stage) { progress.update(f, stage); };
     fit::FitResult result = fit::fitVotSpace(volume, options);
     progress.finish();
-    writeFit(a, volume, options, result, std::nullopt, range);
+    const double maxError = server::maxStoredError(result.space);
+    result.space.metaJson = fitMetaFor(a, volume, options, result, maxError, std::nullopt, range);
+    fit::writeVotSpaceFile(a.output, result.space);
+    reportFit(a, volume, options, result, result.space.vots.size(), maxError, std::nullopt);
 }
 
 // Under mpirun: each rank reads and fits the planes of its slab with the whole volume's eps and
-// background; rank 0 gathers the Vots and writes the one file. A failure on any rank ends every rank.
+// background; each writes its Vots into the one file, rank 0 its frame. A failure on any rank ends every
+// rank.
 void runFitOnRanks(const MpiWorld& world, const FitArgs& a) {
     CheckedArgs checked;
     ZSlab slab;
@@ -194,11 +201,15 @@ void runFitOnRanks(const MpiWorld& world, const FitArgs& a) {
         progress.finish();
         options.progress = nullptr;
     });
-    read.planes = fit::Volume{}; // the samples are fitted: free them before the gather
-    gatherFitOnRoot(world, result, slab, read.whole);
+    read.planes = fit::Volume{}; // the samples are fitted: free them before the file is written
+    const std::uint64_t count = reduceFitOverRanks(world, result, slab, read.whole);
+    const double maxError = world.maxOverRanks(server::maxStoredError(result.space));
     world.allOrNone([&] {
-        if (world.rank() == 0) writeFit(a, read.whole, options, result, world.size(), range);
+        if (world.rank() == 0)
+            result.space.metaJson = fitMetaFor(a, read.whole, options, result, maxError, world.size(), range);
     });
+    writeVotSpaceOnRanks(world, a.output, result.space);
+    if (world.rank() == 0) reportFit(a, read.whole, options, result, count, maxError, world.size());
 }
 
 void runFitCommand(const FitArgs& a) {

@@ -91,6 +91,21 @@ double MpiWorld::maxOverRanks(double value) const {
     return value;
 }
 
+std::uint64_t MpiWorld::sumBeforeRank(std::uint64_t value) const {
+    std::uint64_t before = 0;
+    if (distributed()) MPI_Exscan(&value, &before, 1, MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
+    return mRank == 0 ? 0 : before; // MPI_Exscan leaves rank 0's result undefined
+}
+
+std::string MpiWorld::broadcastFromRoot(std::string text) const {
+    if (!distributed()) return text;
+    std::uint64_t size = text.size();
+    MPI_Bcast(&size, 1, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+    text.resize(static_cast<std::size_t>(size));
+    MPI_Bcast(text.data(), static_cast<int>(size), MPI_CHAR, 0, MPI_COMM_WORLD);
+    return text;
+}
+
 void MpiWorld::allOrNone(const std::function<void()>& step) const {
     if (!distributed()) return step();
     // The exit codes of main(): 2 bad input, 1 anything else.

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <type_traits>
 #include <vector>
 
@@ -43,6 +44,10 @@ public:
     std::vector<std::uint64_t> sumOverRanks(std::vector<std::uint64_t> values) const;
     double sumOverRanks(double value) const;
     double maxOverRanks(double value) const;
+    /// The sum of `value` over the ranks before this one (0 on rank 0), on every rank.
+    std::uint64_t sumBeforeRank(std::uint64_t value) const;
+    /// Rank 0's `text`, on every rank.
+    std::string broadcastFromRoot(std::string text) const;
 
     /// Runs `step` on every rank, then agrees on how it went, so that no rank waits in a later
     /// collective for one that has left: when it threw on any rank, rank 0 throws the first failing

@@ -1,6 +1,8 @@
 // Vot-Space file v1 (docs/DESIGN.md §8): explicit little-endian packing and full validation; no file I/O.
 #include "vots/fit/VotSpaceFile.h"
 
+#include "vots/fit/Volume.h"
+
 #include "vots/fit/Error.h"
 
 #include "Crc32.h"
@@ -230,11 +232,10 @@ std::uint64_t checkFraming(const std::uint8_t* data, std::size_t size) {
 
 } // namespace
 
-std::vector<std::uint8_t> encodeVotSpace(const VotSpace& space) {
-    validateSpace(space);
-    const std::size_t records = space.vots.size() * VOTS_RECORD_BYTES;
-    std::vector<std::uint8_t> out(VOTS_HEADER_BYTES + records + space.metaJson.size() + CRC_BYTES, 0);
-    std::uint8_t* h = out.data();
+namespace {
+
+/// The 128-byte header of a file of `space`'s fields, `votCount` records and its meta block.
+void encodeHeader(std::uint8_t* h, const VotSpace& space, std::uint64_t votCount) {
     std::memcpy(h + OFF_MAGIC, MAGIC, sizeof MAGIC);
     putU32(h + OFF_VERSION, VOTS_FILE_VERSION);
     putU32(h + OFF_HEADER_BYTES, static_cast<std::uint32_t>(VOTS_HEADER_BYTES));
@@ -247,18 +248,63 @@ std::vector<std::uint8_t> encodeVotSpace(const VotSpace& space) {
     putF32(h + OFF_EPS, space.eps);
     putF32(h + OFF_BACKGROUND, space.background);
     putU32(h + OFF_FLAGS, space.epsVaries ? VotSpace::FLAG_EPS_VARIES : 0u);
-    putU64(h + OFF_VOT_COUNT, space.vots.size());
+    putU64(h + OFF_VOT_COUNT, votCount);
     putU64(h + OFF_META_BYTES, space.metaJson.size());
     // Reserved bytes 104..127 stay zero.
-    std::uint8_t* rec = h + VOTS_HEADER_BYTES;
-    for (const Vot& v : space.vots) {
+}
+
+void encodeVots(std::uint8_t* rec, const std::vector<Vot>& vots) {
+    for (const Vot& v : vots) {
         encodeVot(rec, v);
         rec += VOTS_RECORD_BYTES;
     }
-    if (!space.metaJson.empty()) std::memcpy(rec, space.metaJson.data(), space.metaJson.size());
+}
+
+} // namespace
+
+std::vector<std::uint8_t> encodeVotSpace(const VotSpace& space) {
+    validateSpace(space);
+    const std::size_t records = space.vots.size() * VOTS_RECORD_BYTES;
+    std::vector<std::uint8_t> out(VOTS_HEADER_BYTES + records + space.metaJson.size() + CRC_BYTES, 0);
+    std::uint8_t* h = out.data();
+    encodeHeader(h, space, space.vots.size());
+    encodeVots(h + VOTS_HEADER_BYTES, space.vots);
+    std::uint8_t* meta = h + VOTS_HEADER_BYTES + records;
+    if (!space.metaJson.empty()) std::memcpy(meta, space.metaJson.data(), space.metaJson.size());
     const std::size_t crcAt = out.size() - CRC_BYTES;
     putU32(h + crcAt, crc32Update(0, h, crcAt));
     return out;
+}
+
+VotRecords encodeVotRecords(const VotSpace& space) {
+    validateSpace(space);
+    VotRecords records;
+    records.bytes.assign(space.vots.size() * VOTS_RECORD_BYTES, 0);
+    encodeVots(records.bytes.data(), space.vots);
+    records.crc = crc32Update(0, records.bytes.data(), records.bytes.size());
+    return records;
+}
+
+VotSpaceFrame encodeVotSpaceFrame(const VotSpace& space, const std::vector<VotRecordsPart>& parts) {
+    validateHeaderFields(space);
+    std::uint64_t recordBytes = 0;
+    for (const VotRecordsPart& part : parts) {
+        if (part.bytes % VOTS_RECORD_BYTES != 0)
+            fail("a part of " + std::to_string(part.bytes) + " bytes is not whole records");
+        recordBytes += part.bytes;
+    }
+    VotSpaceFrame frame;
+    frame.header.assign(VOTS_HEADER_BYTES, 0);
+    encodeHeader(frame.header.data(), space, recordBytes / VOTS_RECORD_BYTES);
+    std::uint32_t crc = crc32Update(0, frame.header.data(), frame.header.size());
+    for (const VotRecordsPart& part : parts)
+        crc = combineCrc(crc, part.crc, part.bytes);
+    frame.tail.assign(space.metaJson.begin(), space.metaJson.end());
+    crc = crc32Update(crc, frame.tail.data(), frame.tail.size());
+    frame.tail.resize(frame.tail.size() + CRC_BYTES);
+    putU32(frame.tail.data() + frame.tail.size() - CRC_BYTES, crc);
+    frame.tailAt = VOTS_HEADER_BYTES + recordBytes;
+    return frame;
 }
 
 VotSpace decodeVotSpace(const std::uint8_t* data, std::size_t size) {

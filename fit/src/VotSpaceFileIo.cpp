@@ -93,16 +93,24 @@ void writeVotSpaceFile(const std::string& path, const VotSpace& space,
     // Validates before touching the disk, so an invalid space leaves nothing behind.
     const std::vector<std::uint8_t> bytes = encodeVotSpace(space);
 
-    static std::atomic<unsigned> counter{0};
-    const std::string tmp = path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+    const std::string tmp = votSpaceTemporaryPath(path);
     if (const int err = writeTemp(tmp, bytes, betweenChunks)) {
         ::unlink(tmp.c_str()); // may not exist when open failed; harmless
         failErrno("write", path, err);
     }
+    publishVotSpaceTemporary(tmp, path);
+}
+
+std::string votSpaceTemporaryPath(const std::string& path) {
+    static std::atomic<unsigned> counter{0};
+    return path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+}
+
+void publishVotSpaceTemporary(const std::string& temporary, const std::string& path) {
     // rename(2) replaces the target atomically: readers see the old file or the new one, never a mix.
-    if (::rename(tmp.c_str(), path.c_str()) != 0) {
+    if (::rename(temporary.c_str(), path.c_str()) != 0) {
         const int err = errno;
-        ::unlink(tmp.c_str());
+        ::unlink(temporary.c_str());
         failErrno("write", path, err);
     }
     syncDir(parentDir(path));

@@ -278,5 +278,37 @@ TEST(VotSpaceFile, WriterRejectsWhatTheReaderWould) {
     rejects([](VotSpace& s) { s.metaJson = "\xFF"; });
 }
 
+TEST(VotSpaceFile, PartsWrittenApartAreTheWholeFileByteForByte) {
+    const VotSpace whole = makeSampleSpace(7);
+    // Three writers: the first two Vots, none (a rank without Vots), the other five.
+    std::vector<VotSpace> parts(3, whole);
+    parts[0].vots.assign(whole.vots.begin(), whole.vots.begin() + 2);
+    parts[1].vots.clear();
+    parts[2].vots.assign(whole.vots.begin() + 2, whole.vots.end());
+    Bytes assembled;
+    std::vector<VotRecordsPart> crcs;
+    std::vector<Bytes> records;
+    for (VotSpace& part : parts) {
+        part.metaJson.clear(); // only the frame's writer has the meta block
+        const VotRecords encoded = encodeVotRecords(part);
+        crcs.push_back({encoded.crc, encoded.bytes.size()});
+        records.push_back(encoded.bytes);
+    }
+    const VotSpaceFrame frame = encodeVotSpaceFrame(whole, crcs);
+    EXPECT_EQ(frame.tailAt, H + 7 * R);
+    assembled = frame.header;
+    for (const Bytes& r : records)
+        assembled.insert(assembled.end(), r.begin(), r.end());
+    assembled.insert(assembled.end(), frame.tail.begin(), frame.tail.end());
+    EXPECT_EQ(assembled, encodeVotSpace(whole));
+
+    // A part's records are checked as the whole file's are; a length that is not whole records is refused.
+    VotSpace bad = parts[0];
+    bad.vots[0].box.hi[0] = bad.dims[0];
+    EXPECT_THROW(encodeVotRecords(bad), InputError);
+    crcs[1].bytes = 7;
+    EXPECT_THROW(encodeVotSpaceFrame(whole, crcs), InputError);
+}
+
 } // namespace
 } // namespace vots::fit

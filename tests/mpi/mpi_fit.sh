@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # `mpirun -np N vots fit` on loopback, N = 1, 2, 3, 4 (3 and 4 oversubscribed on 2 cores): each rank
-# reads only its slab of a raw NRRD; the one file rank 0 writes verifies against the volume, records the
-# ranks, is reproducible, with one rank holds the single-process Vots, renders alike in one process and
+# reads only its slab of a raw NRRD; the one file the ranks write verifies against the volume, records the
+# ranks, is reproducible, with one rank holds the single-process Vots, leaves no temporary (the ranks write
+# their records into it with MPI-IO, rank 0 renames it), renders alike in one process and
 # on N ranks; the gzip input (each rank streams its planes alone) gives the same Vots; a DICOM series of
 # the same samples (each rank decodes only its slices) verifies; a focus sphere across the slab border
 # verifies; a failure on one rank ends all (fit and render).
@@ -48,6 +49,8 @@ for n in 1 2 3 4; do
     done
 done
 cmp -s <(vots_body "$work/one.vots") <(vots_body "$work/1.vots") || fail "one rank's Vots differ from one process's"
+leftover=$(find "$work" -name '*.tmp-*')
+[[ -z $leftover ]] || fail "temporaries left behind: $leftover"
 cmp -s <(vots_body "$work/one.vots") <(vots_body "$work/2.vots") && fail "two ranks gave one process's Vots (no split?)"
 
 # Reproducible: the same arguments and N give the same bytes, meta block apart from its fit times.

@@ -20,12 +20,44 @@ std::vector<std::uint8_t> encodeVotSpace(const VotSpace& space);
 /// (magic, version, header size, length/count mismatch, CRC, box outside grid, lo >= hi, non-finite).
 VotSpace decodeVotSpace(const std::uint8_t* data, std::size_t size);
 
+/// A file that several processes write (`mpirun vots fit`): each encodes the records of its own Vots
+/// (encodeVotRecords), one process the frame around them (encodeVotSpaceFrame), and the bytes at their
+/// offsets are those encodeVotSpace gives the whole Vot-Space, its CRC-32 chained from the parts'.
+struct VotRecords {
+    std::vector<std::uint8_t> bytes; // VOTS_RECORD_BYTES per Vot, in the space's order
+    std::uint32_t crc = 0;           // CRC-32 (zlib) of bytes
+};
+/// One process's records as the frame's writer learns of them: their CRC and length.
+struct VotRecordsPart {
+    std::uint32_t crc = 0;
+    std::uint64_t bytes = 0;
+};
+/// The header (at offset 0) and the meta block with the closing CRC (at tailAt) of a file; the parts'
+/// records go between, the first at VOTS_HEADER_BYTES and each next one after the one before.
+struct VotSpaceFrame {
+    std::vector<std::uint8_t> header;
+    std::vector<std::uint8_t> tail;
+    std::uint64_t tailAt = 0;
+};
+/// The records of `space`'s Vots, validated as encodeVotSpace validates them (the header fields too: a
+/// part's degree must not be below its coefficients'). Throws InputError.
+VotRecords encodeVotRecords(const VotSpace& space);
+/// The frame of a file with `space`'s header fields and meta block around `parts` in file order (their
+/// counts summed; `space.vots` is not looked at). Throws InputError for invalid header fields.
+VotSpaceFrame encodeVotSpaceFrame(const VotSpace& space, const std::vector<VotRecordsPart>& parts);
+
 /// Writes to "<path>.tmp-<pid>-<n>" (n counts the process's writes), fsyncs, then renames over path, so a
 /// crash never leaves a half-written file under the real name. Throws InputError when the folder is not
 /// writable. betweenChunks, when given, runs between 1 MiB pieces of the write: there a background writer can
 /// wait while foreground work runs (copying into the page cache costs CPU even at nice 19).
 void writeVotSpaceFile(const std::string& path, const VotSpace& space,
                        const std::function<void()>& betweenChunks = {});
+/// The temporary writeVotSpaceFile writes `path` under first ("<path>.tmp-<pid>-<n>"), for a writer that
+/// fills it otherwise (several processes) and then publishes it.
+std::string votSpaceTemporaryPath(const std::string& path);
+/// Makes a written and synced temporary the file `path`: renames it over path (readers see the old file
+/// or the new one) and syncs the folder; removes the temporary and throws InputError when it cannot.
+void publishVotSpaceTemporary(const std::string& temporary, const std::string& path);
 /// Reads and validates a file; throws InputError with the path in the message.
 VotSpace readVotSpaceFile(const std::string& path);
 
