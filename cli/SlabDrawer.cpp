@@ -68,12 +68,17 @@ double SlabDrawer::ensureFit(const std::string& volumePath, float eps, int degre
         space = fit::fitVotSpace(read.planes, options).space;
     }
     placeSlabFitInGrid(space, slab, read.whole);
+    return hold(space, slab, key, false, start, vots);
+}
+
+double SlabDrawer::hold(const fit::VotSpace& space, ZSlab slab, const std::string& key, bool fromFile,
+                        std::chrono::steady_clock::time_point start, render::VotRenderer& vots) {
     vots.upload(space);
     mVotCount = space.vots.size();
     mSlab = slab;
     mDims = space.dims;
     mKey = key;
-    mFromFile = false;
+    mFromFile = fromFile;
     mFitMs = msSince(start);
     return mFitMs;
 }
@@ -94,14 +99,7 @@ double SlabDrawer::ensureVotsFile(const std::string& votsPath, bool cutRays, ren
     if (space.dims[2] < 2) throw fit::InputError("a Vot-Space needs at least 2 grid points along z");
     const ZSlab slab = zSlabOfRank(space.dims[2] - 1, mRank, mRanks);
     space = votsOfSlab(std::move(space), slab, cutRays);
-    vots.upload(space);
-    mVotCount = space.vots.size();
-    mSlab = slab;
-    mDims = space.dims;
-    mKey = key;
-    mFromFile = true;
-    mFitMs = msSince(start);
-    return mFitMs;
+    return hold(space, slab, key, true, start, vots);
 }
 
 SlabSummary SlabDrawer::summarize(const std::string& volumePath) const {

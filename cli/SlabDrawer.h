@@ -8,6 +8,7 @@
 #include "vots/render/Image.h"
 
 #include <array>
+#include <chrono>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -87,6 +88,10 @@ private:
     /// before reading, when they (and their fit) would need more than the memory budget leaves.
     std::pair<ZSlab, fit::VolumeSlab> readOwnSlab(const std::string& volumePath,
                                                   fit::SampleStorage storage) const;
+    /// Uploads `space` (this rank's Vots of `slab`) and holds it under `key`; returns the milliseconds
+    /// since `start`, which ensureFit and ensureVotsFile report.
+    double hold(const fit::VotSpace& space, ZSlab slab, const std::string& key, bool fromFile,
+                std::chrono::steady_clock::time_point start, render::VotRenderer& vots);
     int mRank;
     int mRanks;
     std::string mMemoryBudget;
