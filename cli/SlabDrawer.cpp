@@ -42,6 +42,18 @@ std::pair<ZSlab, fit::VolumeSlab> SlabDrawer::readOwnSlab(const std::string& vol
     return {slab, loadSlab(volumePath, slab, std::nullopt, storage, "")};
 }
 
+const std::pair<ZSlab, fit::VolumeSlab>& SlabDrawer::heldSlab(const std::string& volumePath) {
+    if (mSamples && volumePath == mSamplesPath) return *mSamples;
+    mBoxCaches.clear(); // bound to the planes about to go
+    mSamples.reset();
+    mSamplesPath.clear();
+    // In the file's sample type: the same Vots as from floats (fit::SampleStorage), at half or a quarter of
+    // the memory.
+    mSamples = readOwnSlab(volumePath, fit::SampleStorage::Source);
+    mSamplesPath = volumePath;
+    return *mSamples;
+}
+
 std::string SlabDrawer::fitKey(const std::string& volumePath, float eps, int degree) {
     std::uint32_t bits = 0;
     std::memcpy(&bits, &eps, sizeof bits); // the exact eps: a key differs whenever the fit would
@@ -54,9 +66,7 @@ double SlabDrawer::ensureFit(const std::string& volumePath, float eps, int degre
     if (key == mKey) return 0.0;
     const auto start = std::chrono::steady_clock::now();
     mKey.clear(); // until the new fit is uploaded, nothing is held
-    // In the file's sample type: the same Vots as from floats (fit::SampleStorage), at half or a quarter of
-    // the memory while the slab is fitted.
-    const auto [slab, read] = readOwnSlab(volumePath, fit::SampleStorage::Source);
+    const auto& [slab, read] = heldSlab(volumePath);
     fit::FitOptions options;
     options.eps = eps;
     options.degree = degree;
@@ -65,7 +75,9 @@ double SlabDrawer::ensureFit(const std::string& volumePath, float eps, int degre
     fit::VotSpace space;
     if (!slab.empty()) {
         fit::validateFitOptions(read.planes, options);
-        space = fit::fitVotSpace(read.planes, options).space;
+        std::unique_ptr<fit::FitCache>& boxCache = mBoxCaches[degree];
+        if (!boxCache) boxCache = std::make_unique<fit::FitCache>();
+        space = fit::fitVotSpace(read.planes, options, boxCache.get()).space;
     }
     placeSlabFitInGrid(space, slab, read.whole);
     return hold(space, slab, key, false, start, vots);
@@ -102,9 +114,9 @@ double SlabDrawer::ensureVotsFile(const std::string& votsPath, bool cutRays, ren
     return hold(space, slab, key, true, start, vots);
 }
 
-SlabSummary SlabDrawer::summarize(const std::string& volumePath) const {
-    // Source storage: the planes are read only to be summed up, in their file's type.
-    const auto [slab, read] = readOwnSlab(volumePath, fit::SampleStorage::Source);
+SlabSummary SlabDrawer::summarize(const std::string& volumePath) {
+    // The planes the fits will take: the first fit reads nothing more.
+    const auto& [slab, read] = heldSlab(volumePath);
     const int lastPlane = read.whole.dims[2] - 1;
     const int owned = slab.empty() ? 0 : slab.end - slab.first + (slab.end == lastPlane ? 1 : 0);
     const std::uint64_t planeBytes = static_cast<std::uint64_t>(read.whole.dims[0]) *

@@ -4,12 +4,16 @@
 
 #include "ZSlab.h"
 
+#include "vots/fit/Fitter.h"
+
 #include "vots/render/FrameRequest.h"
 #include "vots/render/Image.h"
 
 #include <array>
 #include <chrono>
 #include <cstdint>
+#include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -45,6 +49,8 @@ struct SlabSummary {
 
 /// The fit of a volume's slab as `mpirun vots render VOLUME --eps` makes it (automatic background, cells
 /// certified), kept while the volume, eps and degree stay the same; or the slab's Vots of a .vots file.
+/// The slab's samples are read once and kept, with a box cache per degree, as one process keeps a study's:
+/// a refit at a new eps reuses the boxes fitted before.
 class SlabDrawer {
 public:
     /// `memoryBudget`: the --memory-budget text (empty: the default), which every read of a slab is
@@ -73,7 +79,7 @@ public:
 
     /// This rank's part of what the server knows of a volume (the samples' range, the content CRC), read
     /// from its slab's planes and not kept; see SlabSummary.
-    SlabSummary summarize(const std::string& volumePath) const;
+    SlabSummary summarize(const std::string& volumePath);
 
     /// The Vots of the slab fit held (0 before the first).
     std::size_t votCount() const { return mVotCount; }
@@ -84,6 +90,9 @@ public:
     static std::string fitKey(const std::string& volumePath, float eps, int degree);
 
 private:
+    /// This rank's slab of the volume in the file's sample type, read (readOwnSlab) when it is not the
+    /// one held; a new volume drops the box caches of the last.
+    const std::pair<ZSlab, fit::VolumeSlab>& heldSlab(const std::string& volumePath);
     /// This rank's slab of the volume and its planes read with `storage`; throws server::RanksOverBudget,
     /// before reading, when they (and their fit) would need more than the memory budget leaves.
     std::pair<ZSlab, fit::VolumeSlab> readOwnSlab(const std::string& volumePath,
@@ -101,7 +110,10 @@ private:
     std::array<int, 3> mDims{0, 0, 0};
     std::size_t mVotCount = 0;
     double mFitMs = 0.0;
-    std::string mGridPath; // the volume whose planes ensureGrid last uploaded
+    std::string mGridPath;    // the volume whose planes ensureGrid last uploaded
+    std::string mSamplesPath; // the volume heldSlab holds
+    std::optional<std::pair<ZSlab, fit::VolumeSlab>> mSamples;
+    std::map<int, std::unique_ptr<fit::FitCache>> mBoxCaches; // per degree, bound to mSamples' planes
 };
 
 } // namespace vots::cli
