@@ -2,7 +2,8 @@
 # `mpirun -np 2 vots serve` on loopback: rank 0 answers /render with the frame the two ranks composite,
 # the bytes of `mpirun -np 2 vots render` of the same camera and eps (mip, minip with a slab; the aip
 # within one grey level), and the exact grid's frames from the ranks' planes; POST /api/fit has the ranks
-# fit (the next frame at that eps refits nothing); --prepare has the ranks fit the default eps before the
+# refit from their box caches (the next frame at that eps refits nothing and is a fresh fit's bytes);
+# --prepare has the ranks fit the default eps before the
 # first frame; the density is mpirun vots render's; /api/stats says "ranks": 2
 # with both ranks' times; a second dataset is refused with 409; a rank killed
 # mid-session makes the next /render (one that refits: its deadline is 10 min, the rank's silent heartbeat
@@ -85,6 +86,10 @@ code=$(get "$work/served-3.png" "render?dataset=$name&cam=az=30,el=20&size=96x80
 get "$work/stats3.json" "api/stats" >/dev/null
 /usr/bin/python3 -c 'import json, sys; t = json.load(open(sys.argv[1]))["rankTimes"]; assert all(r["fitMs"] == 0 and r["votCount"] > 0 for r in t), t' \
     "$work/stats3.json" || fail "the frame after POST /api/fit refitted: $(cat "$work/stats3.json")"
+# That fit was a refit from each rank's box cache (filled by the 2 % fit): the same Vots as a fresh fit.
+mpirun --oversubscribe -np 2 "$vots" render "$volume" -o "$work/ranks-3.png" --cam az=30,el=20 --size 96x80 \
+    --eps 3% 2>/dev/null
+cmp -s "$work/served-3.png" "$work/ranks-3.png" || fail "the frame of the cached refit differs from a fresh fit's"
 
 # The exact grid: each rank reads its slab's planes; the reference (the grid's mip) is the one-process
 # image bit for bit, the grid's minip and aip are mpirun vots render's.
