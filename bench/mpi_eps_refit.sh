@@ -12,31 +12,11 @@ shift $(($# < 2 ? $# : 2))
 epsList=("$@")
 ((${#epsList[@]})) || epsList=(3% 1.5% 2.5% 1.3% 2%)
 vots=$(realpath "${VOTS_BUILD:-build/release}/cli/vots")
-work=$(mktemp -d)
-job=
-cleanup() {
-    [[ -n $job ]] && kill -TERM "$job" 2>/dev/null && wait "$job" 2>/dev/null
-    rm -rf "$work"
-}
-trap cleanup EXIT
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl=self,vader
-mkdir "$work/data"
-ln -s "$volume" "$work/data/"
-if [[ $volume == *.nhdr ]]; then # its data file beside it
-    data_file=$(sed -nE 's/^data file: *//p' "$volume")
-    [[ $data_file == /* ]] || ln -s "$(dirname "$volume")/${data_file%%/*}" "$work/data/"
-fi
-name=$(basename "$volume" | sed -E 's/\.(nrrd|nhdr|nii\.gz|nii|mhd|mha)$//')
+source bench/serve_bench.bash
 mpirun --oversubscribe --enable-recovery -np "$ranks" "$vots" serve --port 0 --data "$work/data" \
     --cache-dir "$work/cache" --prepare "$name" >"$work/serve.log" 2>&1 &
 job=$!
-url=
-for _ in $(seq 600); do
-    url=$(sed -nE 's|^vots serve: listening on (http://[^ ]+/)$|\1|p' "$work/serve.log")
-    [[ -n $url ]] && break
-    sleep 0.5
-done
-[[ -n $url ]] || { cat "$work/serve.log" >&2; exit 1; }
+url=$(url_of "$work/serve.log")
 /usr/bin/python3 - "$url" "$name" "$ranks" "${epsList[@]}" <<'PY'
 import json, sys, time, urllib.request
 url, name, ranks, eps_list = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4:]

@@ -12,21 +12,7 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 volume=$(realpath "$1")
 ranks=${2:-2}
 vots=$(realpath "${VOTS_BUILD:-build/release}/cli/vots")
-work=$(mktemp -d)
-job=
-cleanup() {
-    [[ -n $job ]] && kill -TERM "$job" 2>/dev/null && wait "$job" 2>/dev/null
-    rm -rf "$work"
-}
-trap cleanup EXIT
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl=self,vader
-mkdir "$work/data"
-ln -s "$volume" "$work/data/"
-if [[ $volume == *.nhdr ]]; then # its data file (or the folder holding it) beside it
-    data_file=$(sed -nE 's/^data file: *//p' "$volume")
-    [[ $data_file == /* ]] || ln -s "$(dirname "$volume")/${data_file%%/*}" "$work/data/"
-fi
-name=$(basename "$volume" | sed -E 's/\.(nrrd|nhdr|nii\.gz|nii|mhd|mha)$//')
+source bench/serve_bench.bash
 frame="render?dataset=$name&cam=az=30,el=20&size=512x512&eps=2%25"
 
 # KiB of "VmRSS VmHWM" of a process.
@@ -39,13 +25,8 @@ serve_and_measure() { # LABEL COMMAND...: starts the server, draws one frame, pr
     "$@" serve --port 0 --data "$work/data" --cache-dir "$work/cache-$label" --prepare "$name" --no-warm-up \
         >"$work/$label.log" 2>&1 &
     job=$!
-    local url=
-    for _ in $(seq 600); do
-        url=$(sed -nE 's|^vots serve: listening on (http://[^ ]+/)$|\1|p' "$work/$label.log")
-        [[ -n $url ]] && break
-        sleep 0.5
-    done
-    [[ -n $url ]] || { cat "$work/$label.log" >&2; exit 1; }
+    local url
+    url=$(url_of "$work/$label.log")
     local code seconds
     code=$(curl -s --max-time 900 -o "$work/$label.png" -w '%{http_code}' "$url$frame")
     [[ $code == 200 ]] || { echo "$label: /render answered $code: $(head -c 300 "$work/$label.png")" >&2; exit 1; }
