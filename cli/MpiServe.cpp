@@ -116,15 +116,17 @@ CommandHead aliveCommand() {
 }
 
 /// What a command asks of one rank: its slab fitted (or its planes read, for the grid) and its frame drawn.
-/// Returns the frame; *prepareMs is the fit's or read's time, *drawMs the frame's.
+/// Returns the frame; *prepareMs is the fit's or read's time, *drawMs the frame's. `fitProgress`: where
+/// the fit reports (rank 0's, for the fit job).
 SlabFrame drawRankPart(SlabDrawer& drawer, const CommandHead& head, const std::string& path,
                        render::VotRenderer& vots, render::GridRenderer& grid, double* prepareMs,
-                       double* drawMs) {
+                       double* drawMs, const SlabDrawer::Progress& fitProgress = {}) {
     const bool fromGrid = head.frame.renderer == render::RendererKind::Grid;
     const bool cutRays = compositesCutRays(head.frame.mode);
-    *prepareMs = fromGrid        ? drawer.ensureGrid(path, grid)
-                 : head.votsFile ? drawer.ensureVotsFile(path, cutRays, vots)
-                                 : drawer.ensureFit(path, head.eps, head.degree, head.range, vots);
+    *prepareMs = fromGrid ? drawer.ensureGrid(path, grid)
+                 : head.votsFile
+                     ? drawer.ensureVotsFile(path, cutRays, vots)
+                     : drawer.ensureFit(path, head.eps, head.degree, head.range, vots, fitProgress);
     const auto start = Clock::now();
     SlabFrame drawn = fromGrid ? SlabDrawer::drawGrid(head.frame, grid) : drawer.draw(head.frame, vots);
     *drawMs = msSince(start);
@@ -294,7 +296,8 @@ render::RgbaImage MpiFrameCompositor::draw(const server::CompositeRequest& reque
     std::optional<FrameComposite> composite;
     std::exception_ptr failure;
     try {
-        SlabFrame mine = drawRankPart(mDrawer, head, path, vots, grid, &times[0].fitMs, &times[0].frameMs);
+        SlabFrame mine = drawRankPart(mDrawer, head, path, vots, grid, &times[0].fitMs, &times[0].frameMs,
+                                      request.fitProgress);
         times[0].votCount = mine.fromGrid ? 0 : mDrawer.votCount();
         times[0].heldFitMs = mine.fromGrid ? 0.0 : mDrawer.fitMs();
         composite.emplace(request.frame.mode, std::move(mine));

@@ -61,7 +61,7 @@ std::string SlabDrawer::fitKey(const std::string& volumePath, float eps, int deg
 }
 
 double SlabDrawer::ensureFit(const std::string& volumePath, float eps, int degree, std::array<float, 2> range,
-                             render::VotRenderer& vots) {
+                             render::VotRenderer& vots, const Progress& progress) {
     const std::string key = fitKey(volumePath, eps, degree);
     if (key == mKey) return 0.0;
     const auto start = std::chrono::steady_clock::now();
@@ -72,6 +72,7 @@ double SlabDrawer::ensureFit(const std::string& volumePath, float eps, int degre
     options.degree = degree;
     options.background = fit::defaultBackground(range);
     options.certify = render::RENDER_FIT_CERTIFY;
+    options.progress = progress;
     fit::VotSpace space;
     if (!slab.empty()) {
         fit::validateFitOptions(read.planes, options);

@@ -12,6 +12,7 @@
 #include <array>
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -57,10 +58,13 @@ public:
     /// checked against first (server::RanksOverBudget).
     SlabDrawer(int rank, int ranks, std::string memoryBudget)
         : mRank(rank), mRanks(ranks), mMemoryBudget(std::move(memoryBudget)) {}
+    /// fit::FitOptions::progress.
+    using Progress = std::function<void(double fraction, const char* stage)>;
     /// Reads and fits this rank's planes when they differ from the last call, and uploads the Vots to
-    /// `vots`; returns the milliseconds it took (0 when it held the fit). `range` is the whole volume's.
+    /// `vots`; returns the milliseconds it took (0 when it held the fit). `range` is the whole volume's;
+    /// the fit reports through `progress` when it is set.
     double ensureFit(const std::string& volumePath, float eps, int degree, std::array<float, 2> range,
-                     render::VotRenderer& vots);
+                     render::VotRenderer& vots, const Progress& progress = {});
     /// Reads the .vots file and uploads this rank's Vots of it (votsOfSlab: those whose box starts in its
     /// slab, or with `cutRays` every one that meets it) when they differ from what `vots` holds; returns the
     /// milliseconds it took (0 when held).

@@ -145,7 +145,9 @@ void FitJobs::run(const Pending& pending) {
     job.setRunning();
     try {
         if (mFitOnRanks) {
-            const FitOnRanks done = mFitOnRanks(*pending.dataset, key);
+            const FitOnRanks done =
+                mFitOnRanks(*pending.dataset, key,
+                            [&job](double fraction, const char* stage) { job.setProgress(fraction, stage); });
             job.finishOnRanks(done.votCount, done.seconds);
             mStats.addFit(recordFor(job.snapshot(), "ranks"));
             return;

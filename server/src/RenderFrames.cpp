@@ -119,12 +119,14 @@ PreparedRender prepareRender(Server::Impl& s, const RenderParams& params, const 
     return prepared;
 }
 
-FitOnRanks fitOnRanks(Server::Impl& s, const Dataset& dataset, const FitKey& key) {
+FitOnRanks fitOnRanks(Server::Impl& s, const Dataset& dataset, const FitKey& key,
+                      const FitProgress& progress) {
     RenderJob job;
     job.params.dataset = dataset.name;
     job.params.width = job.params.height = 1; // the fit is the work: the frame is one pixel
     job.params.degree = key.degree;
     job.composite = compositeRequestFor(dataset, key.eps, key.degree);
+    job.composite->fitProgress = progress; // called while this thread waits for the frame
     const RenderResult drawn = s.renderQueue->render(std::move(job));
     return {drawn.votCount, drawn.fitMs / 1000.0};
 }

@@ -68,7 +68,9 @@ Server::Impl::Impl(ServerOptions opts)
     if (options.compositor) registry.summarizeOnRanks(options.compositor.get());
     if (options.compositor && renderQueue)
         fitJobs.fitOnRanksThrough(
-            [this](const Dataset& dataset, const FitKey& key) { return fitOnRanks(*this, dataset, key); });
+            [this](const Dataset& dataset, const FitKey& key, const FitProgress& progress) {
+                return fitOnRanks(*this, dataset, key, progress);
+            });
     cache.deferDiskWritesWhile([this] { return foreground.busyWithin(DISK_WRITE_QUIET); });
 }
 

@@ -27,6 +27,11 @@ public:
     render::RgbaImage draw(const server::CompositeRequest& request, render::VotRenderer&,
                            render::GridRenderer&) override {
         if (lost) throw server::RanksLost("rank 2 of 3 did not answer the frame in time");
+        if (request.fitProgress) { // as rank 0's slab fit reports; held until the test has seen it
+            request.fitProgress(0.5, "fake fit");
+            for (int i = 0; i < 1000 && !releaseFit; ++i)
+                std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        }
         std::lock_guard lock(mutex);
         last = request;
         return flat(request.frame.width, request.frame.height);
@@ -51,6 +56,7 @@ public:
 
     const std::string drawn; // the one dataset it draws
     std::atomic<bool> lost{false};
+    std::atomic<bool> releaseFit{false}; // lets a fit (a frame with fitProgress) end
     std::mutex mutex;
     std::optional<server::CompositeRequest> last;
     std::vector<std::string> summarized; // the volume files summarize() was asked for
@@ -89,6 +95,7 @@ TEST(ServerCompositor, FramesGoThroughItUnfittedRefusalsAre409AndALostRankIs503)
         EXPECT_EQ(compositor->summarized, std::vector<std::string>{std::string(HEAD_MR) + ".nrrd"});
         // 2 % of the whole range, in data units, as every rank resolves it.
         EXPECT_FLOAT_EQ(asked.eps, 0.02f * (asked.valueRange[1] - asked.valueRange[0]));
+        EXPECT_FALSE(asked.fitProgress) << "a frame is no fit job: nobody follows its progress";
     }
 
     // The exact grid goes through it too, as a grid frame (each rank reads its own planes), cached apart.
@@ -126,6 +133,15 @@ TEST(ServerCompositor, FramesGoThroughItUnfittedRefusalsAre409AndALostRankIs503)
     ASSERT_EQ(post->status, 202) << post->body;
     const std::string jobPath = "/api/jobs/" + std::to_string(bodyJson(post)["job"].get<std::uint64_t>());
     nlohmann::json job;
+    // While the ranks fit, the job shows the progress rank 0's slab fit reports.
+    for (int i = 0; i < 500; ++i) {
+        job = bodyJson(c->Get(jobPath.c_str()));
+        if (job["stage"] == "fake fit") break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    EXPECT_EQ(job["stage"], "fake fit") << job;
+    EXPECT_DOUBLE_EQ(job["progress"].get<double>(), 0.5) << job;
+    compositor->releaseFit = true;
     for (int i = 0; i < 200; ++i) {
         job = bodyJson(c->Get(jobPath.c_str()));
         if (job["state"] == "done" || job["state"] == "failed") break;
@@ -133,6 +149,7 @@ TEST(ServerCompositor, FramesGoThroughItUnfittedRefusalsAre409AndALostRankIs503)
     }
     ASSERT_EQ(job["state"], "done") << job;
     EXPECT_EQ(job["votCount"], 600);
+
     EXPECT_DOUBLE_EQ(job["fitSeconds"].get<double>(), 2.0);
     {
         std::lock_guard lock(compositor->mutex);

@@ -8,6 +8,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -31,6 +32,9 @@ struct CompositeRequest {
     float eps = 0.f;                           // data units
     int degree = 3;
     bool votsFile = false;
+    /// When set, this process's slab fit (if the frame fits) reports its progress through it, standing
+    /// for every rank's, as `mpirun vots fit --progress` does: the fit job's progress in the viewer.
+    std::function<void(double fraction, const char* stage)> fitProgress;
 };
 
 /// One rank's part of the last composited frame.
