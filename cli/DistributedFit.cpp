@@ -26,10 +26,9 @@ std::uint64_t reduceFitOverRanks(const MpiWorld& world, fit::FitResult& result, 
                                  const fit::Volume& whole) {
     fit::VotSpace& space = result.space;
     placeSlabFitInGrid(space, slab, whole);
-    const std::uint64_t votCount = world.sumOverRanks(std::vector<std::uint64_t>{space.vots.size()})[0];
     fit::FitStats& s = result.stats;
-    const std::vector<std::uint64_t> sums =
-        world.sumOverRanks({s.boxFits, s.boxScans, s.cacheHits, s.coveredCells, s.backgroundCells});
+    const std::vector<std::uint64_t> sums = world.sumOverRanks(
+        {s.boxFits, s.boxScans, s.cacheHits, s.coveredCells, s.backgroundCells, space.vots.size()});
     s.boxFits = sums[0];
     s.boxScans = sums[1];
     s.cacheHits = sums[2];
@@ -41,7 +40,7 @@ std::uint64_t reduceFitOverRanks(const MpiWorld& world, fit::FitResult& result, 
     s.seconds = world.maxOverRanks(s.seconds);
     s.maxError = world.maxOverRanks(s.maxError);
     space.degree = static_cast<int>(world.maxOverRanks(space.degree));
-    return votCount;
+    return sums[5];
 }
 
 std::string metaOfRanks(const std::string& meta, std::array<float, 2> range, int ranks) {

@@ -109,8 +109,8 @@ void runServe(const ServeArgs& a) {
     options.memoryBudgetBytes = resolveMemoryBudget(a.memoryBudget);
     if (compositor) {
         options.compositor = compositor;
-        // --prepare has each rank fit its own slab at the default eps (rank 0 fits nothing whole); the
-        // warm-up's box cache is a one-process thing, which the ranks do not keep.
+        // --prepare has each rank fit its own slab at the default eps (rank 0 fits nothing whole). The ranks
+        // refit from box caches of their own, but the eps / 2 warm-up fits are one process's.
         options.warmUpFits = false;
     }
 

@@ -105,14 +105,21 @@ double SlabDrawer::ensureVotsFile(const std::string& votsPath, bool cutRays, ren
     if (key == mKey) return 0.0;
     const auto start = std::chrono::steady_clock::now();
     mKey.clear(); // until the new Vots are uploaded, nothing is held
-    // The whole file is read and this rank's Vots kept, as `mpirun vots render FILE.vots` does: rank 0's
-    // dataset registry has checked the file's size against the memory budget before any rank read it.
-    fit::VotSpace space = fit::readVotSpaceFile(votsPath);
-    server::restoreMetaFields(space); // the background's fill, which the minip and aip take
-    if (space.dims[2] < 2) throw fit::InputError("a Vot-Space needs at least 2 grid points along z");
-    const ZSlab slab = zSlabOfRank(space.dims[2] - 1, mRank, mRanks);
-    space = votsOfSlab(std::move(space), slab, cutRays);
-    return hold(space, slab, key, true, start, vots);
+    if (!mFileVots || votsPath != mFilePath) {
+        mFileVots.reset();
+        // The whole file is read and this rank's Vots kept, as `mpirun vots render FILE.vots` does: rank
+        // 0's dataset registry has checked the file's size against the memory budget before any rank read it.
+        fit::VotSpace space = fit::readVotSpaceFile(votsPath);
+        server::restoreMetaFields(space); // the background's fill, which the minip and aip take
+        if (space.dims[2] < 2) throw fit::InputError("a Vot-Space needs at least 2 grid points along z");
+        const ZSlab slab = zSlabOfRank(space.dims[2] - 1, mRank, mRanks);
+        mFileVots = votsOfSlab(std::move(space), slab, true);
+        mFilePath = votsPath;
+    }
+    const ZSlab slab = zSlabOfRank(mFileVots->dims[2] - 1, mRank, mRanks);
+    // The Vots whose box starts in the slab are among those that meet it: a change of mode reads nothing.
+    if (cutRays) return hold(*mFileVots, slab, key, true, start, vots);
+    return hold(votsOfSlab(*mFileVots, slab, false), slab, key, true, start, vots);
 }
 
 SlabSummary SlabDrawer::summarize(const std::string& volumePath) {

@@ -65,9 +65,9 @@ public:
     /// the fit reports through `progress` when it is set.
     double ensureFit(const std::string& volumePath, float eps, int degree, std::array<float, 2> range,
                      render::VotRenderer& vots, const Progress& progress = {});
-    /// Reads the .vots file and uploads this rank's Vots of it (votsOfSlab: those whose box starts in its
-    /// slab, or with `cutRays` every one that meets it) when they differ from what `vots` holds; returns the
-    /// milliseconds it took (0 when held).
+    /// Uploads this rank's Vots of the .vots file (votsOfSlab: those whose box starts in its slab, or with
+    /// `cutRays` every one that meets it) when they differ from what `vots` holds, reading the file when
+    /// it is not the one kept; returns the milliseconds it took (0 when held).
     double ensureVotsFile(const std::string& votsPath, bool cutRays, render::VotRenderer& vots);
     /// The key ensureVotsFile compares.
     static std::string votsFileKey(const std::string& votsPath, bool cutRays);
@@ -82,7 +82,7 @@ public:
     static SlabFrame drawGrid(const render::FrameRequest& frame, render::GridRenderer& grid);
 
     /// This rank's part of what the server knows of a volume (the samples' range, the content CRC), read
-    /// from its slab's planes and not kept; see SlabSummary.
+    /// from its slab's planes, which it keeps for the fits (heldSlab); see SlabSummary.
     SlabSummary summarize(const std::string& volumePath);
 
     /// The Vots of the slab fit held (0 before the first).
@@ -118,6 +118,8 @@ private:
     std::string mSamplesPath; // the volume heldSlab holds
     std::optional<std::pair<ZSlab, fit::VolumeSlab>> mSamples;
     std::map<int, std::unique_ptr<fit::FitCache>> mBoxCaches; // per degree, bound to mSamples' planes
+    std::string mFilePath;                                    // the .vots file mFileVots was read from
+    std::optional<fit::VotSpace> mFileVots; // its Vots that meet this rank's slab (ensureVotsFile)
 };
 
 } // namespace vots::cli
