@@ -46,10 +46,10 @@ SceneBounds boundsFrom(const std::array<int, 3>& dims, const std::array<double, 
     return b;
 }
 
-void checkRange(const char* name, double value, double lo, double hi) {
-    if (!std::isfinite(value) || value < lo || value > hi)
+void checkRange(const char* name, double value, CameraRange range) {
+    if (!std::isfinite(value) || value < range.lo || value > range.hi)
         throw fit::InputError("camera: " + std::string(name) + " must be a finite number in [" +
-                              std::to_string(lo) + ", " + std::to_string(hi) + "]");
+                              std::to_string(range.lo) + ", " + std::to_string(range.hi) + "]");
 }
 
 } // namespace
@@ -98,12 +98,12 @@ SceneBounds sceneBounds(const fit::Volume& volume) {
 }
 
 void validateCamera(const Camera& c) {
-    checkRange("az", c.azimuthDeg, -360.0, 360.0);
-    checkRange("el", c.elevationDeg, -90.0, 90.0);
-    checkRange("zoom", c.zoom, 0.01, 1000.0);
-    checkRange("pan x", c.panX, -100.0, 100.0);
-    checkRange("pan y", c.panY, -100.0, 100.0);
-    checkRange("fov", c.fovDeg, 1.0, 150.0);
+    checkRange("az", c.azimuthDeg, AZIMUTH_RANGE_DEG);
+    checkRange("el", c.elevationDeg, ELEVATION_RANGE_DEG);
+    checkRange("zoom", c.zoom, ZOOM_RANGE);
+    checkRange("pan x", c.panX, PAN_RANGE);
+    checkRange("pan y", c.panY, PAN_RANGE);
+    checkRange("fov", c.fovDeg, FOV_RANGE_DEG);
 }
 
 CameraMatrices computeCameraMatrices(const Camera& camera, const SceneBounds& bounds, int width, int height) {

@@ -109,7 +109,8 @@ test('the colour bar gives the window\'s ends in HU for CT and no unit for the d
   const view = { window: { level: 40, width: 400 }, colormap: 'hot', mode: 'minip' };
   const bar = colorbarOf(view, CRANIUM);
   assert.deepEqual([bar.low, bar.high, bar.unit], [-160, 240, 'HU']);
-  assert.match(bar.gradient, /#f00 33\.333%/);
+  // 16 evenly spaced stops of the server's table: black, then hot's pure red at a third (entry 85).
+  assert.match(bar.gradient, /^linear-gradient\(to top, #000000, (#[0-9a-f]{6}, ){4}#ff0000, (#[0-9a-f]{6}, ){9}#ffffff\)$/);
   assert.equal(colorbarOf({ ...view, mode: 'density' }, CRANIUM).unit, '');
   assert.equal(colorbarOf(view, { ...CRANIUM, modality: 'other' }).unit, '');
   assert.equal(colorbarOf(view, { ...CRANIUM, modality: 'other', units: 'a.u.' }).unit, 'a.u.');

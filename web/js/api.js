@@ -1,5 +1,6 @@
 // Thin client for the vots HTTP contract (datasets, render, fit jobs); knows no DOM and no UI state.
 import { withToken, withTokenQuery } from './access.js';
+import { DEFAULT_RENDERER } from './contract.js';
 
 // Thrown for every failure the user should see; `superseded`/`aborted` ones are expected and ignored.
 export class ApiError extends Error {
@@ -57,7 +58,7 @@ function viewQuery(p) {
   if (p.degree !== undefined) q.set('degree', String(p.degree));
   q.set('mode', p.mode);
   // Only when not the default, so a view without them asks for exactly what it asked before.
-  if (p.renderer && p.renderer !== 'vots') q.set('renderer', p.renderer);
+  if (p.renderer && p.renderer !== DEFAULT_RENDERER) q.set('renderer', p.renderer);
   if (p.slab) q.set('slab', p.slab);
   q.set('window', `${p.window.level},${p.window.width}`);
   q.set('colormap', p.colormap);

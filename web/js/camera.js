@@ -1,25 +1,12 @@
 // Camera state and its `cam=` text form, plus the trackball maths for orbit/zoom/pan; no DOM, no network.
 
-// Named views of the contract (degrees). Image up follows elevation on the server side.
-export const VIEWS = {
-  anterior: { az: 0, el: 0 },
-  posterior: { az: 180, el: 0 },
-  left: { az: 90, el: 0 },
-  right: { az: -90, el: 0 },
-  superior: { az: 0, el: 90 },
-  inferior: { az: 0, el: -90 },
-};
+import { CAMERA_LIMITS, DEFAULT_CAMERA, PROJECTIONS, VIEWS } from './contract.js';
 
-// Ranges the server accepts; anything outside would be a 400, so clamp before sending.
-export const LIMITS = {
-  az: [-360, 360],
-  el: [-90, 90],
-  zoom: [0.01, 1000],
-  pan: [-100, 100],
-  fov: [1, 150],
-};
-
-export const DEFAULT_CAMERA = Object.freeze({ az: 0, el: 0, zoom: 1, panX: 0, panY: 0, proj: 'ortho', fov: 30 });
+// The named views (degrees; image up follows elevation on the server side), the ranges the server
+// accepts (anything outside would be a 400, so clamp before sending) and the default camera: all
+// generated from the server's C++ (contract.js).
+export { DEFAULT_CAMERA, VIEWS };
+export const LIMITS = CAMERA_LIMITS;
 
 const clamp = (v, [lo, hi]) => Math.min(hi, Math.max(lo, v));
 
@@ -36,15 +23,17 @@ function wrapAz(az) {
   return a;
 }
 
+// A camera the server accepts: what is missing or not a number takes the default, the rest is clamped.
 export function normalize(cam) {
+  const d = DEFAULT_CAMERA;
   return {
-    az: wrapAz(Number.isFinite(cam.az) ? cam.az : 0),
-    el: clamp(Number.isFinite(cam.el) ? cam.el : 0, LIMITS.el),
-    zoom: clamp(Number.isFinite(cam.zoom) && cam.zoom > 0 ? cam.zoom : 1, LIMITS.zoom),
-    panX: clamp(Number.isFinite(cam.panX) ? cam.panX : 0, LIMITS.pan),
-    panY: clamp(Number.isFinite(cam.panY) ? cam.panY : 0, LIMITS.pan),
-    proj: cam.proj === 'persp' ? 'persp' : 'ortho',
-    fov: clamp(Number.isFinite(cam.fov) ? cam.fov : 30, LIMITS.fov),
+    az: wrapAz(Number.isFinite(cam.az) ? cam.az : d.az),
+    el: clamp(Number.isFinite(cam.el) ? cam.el : d.el, LIMITS.el),
+    zoom: clamp(Number.isFinite(cam.zoom) && cam.zoom > 0 ? cam.zoom : d.zoom, LIMITS.zoom),
+    panX: clamp(Number.isFinite(cam.panX) ? cam.panX : d.panX, LIMITS.pan),
+    panY: clamp(Number.isFinite(cam.panY) ? cam.panY : d.panY, LIMITS.pan),
+    proj: Object.values(PROJECTIONS).includes(cam.proj) ? cam.proj : d.proj,
+    fov: clamp(Number.isFinite(cam.fov) ? cam.fov : d.fov, LIMITS.fov),
   };
 }
 
@@ -61,7 +50,8 @@ export function parseCamera(text) {
     const key = part.slice(0, eq).trim();
     const value = part.slice(eq + 1).trim();
     if (key === 'proj') {
-      if (value !== 'ortho' && value !== 'persp') throw new Error(`camera: proj '${value}' is not ortho or persp`);
+      const words = Object.values(PROJECTIONS);
+      if (!words.includes(value)) throw new Error(`camera: proj '${value}' is not ${words.join(' or ')}`);
       cam.proj = value;
     } else if (key === 'pan') {
       const [x, y] = value.split(':').map(Number);

@@ -1,14 +1,15 @@
 // The colour bar beside the image: the colour map as a gradient and the window's ends in data units; no fetches.
 
-// CSS gradient stops that reproduce the server's maps (render/src/Colormap.cpp): grey, hot and bone are
-// piecewise linear with corners at thirds, so these stops are exact; viridis is a spline through its
-// five key colours, drawn here straight between them (the bar is a legend, not a measurement).
-const GRADIENTS = {
-  grey: ['#000', '#fff'],
-  hot: ['#000', '#f00 33.333%', '#ff0 66.667%', '#fff'],
-  bone: ['#000', 'rgb(74 74 106) 33.333%', 'rgb(149 181 181) 66.667%', '#fff'],
-  viridis: ['#440154', '#3b528b', '#21918c', '#5ec962', '#fde725'],
-};
+import { COLORMAP_TABLES, DEFAULT_COLORMAP } from './contract.js';
+
+// Every 17th of a map's 256 colours (the server's tables, generated into contract.js), as evenly spaced
+// CSS gradient stops: grey, hot and bone are linear between corners at entries 85 and 170, which are
+// among them, so those bars are exact; viridis is drawn straight between 16 points of its spline.
+const STOP_EVERY = 17;
+function gradientStops(map) {
+  const table = COLORMAP_TABLES[map] || COLORMAP_TABLES[DEFAULT_COLORMAP];
+  return table.filter((_, i) => i % STOP_EVERY === 0);
+}
 
 // The unit of the values a mode shows: Hounsfield units for CT (or what /api/datasets names), none for
 // the density view, whose values are Vot sizes.
@@ -25,6 +26,6 @@ export function colorbarOf(view, ds) {
     low: level - width / 2,
     high: level + width / 2,
     unit: valueUnit(ds, view.mode),
-    gradient: `linear-gradient(to top, ${(GRADIENTS[view.colormap] || GRADIENTS.grey).join(', ')})`,
+    gradient: `linear-gradient(to top, ${gradientStops(view.colormap).join(', ')})`,
   };
 }

@@ -1,10 +1,23 @@
-// The panel's controls from the view: dataset picker, window presets, window inputs, eps slider, projection, views.
+// The panel's controls from the view: choice lists, dataset picker, window presets, window inputs, eps slider, projection, views.
 import { viewName } from './camera.js';
+import { COLORMAPS, MODES, PROJECTIONS, RENDERERS } from './contract.js';
 import { epsLabel, epsToSlider } from './eps.js';
 import { fmtExact, fmtValue } from './format.js';
 import { syncKindLimits } from './kind.js';
 
 const PRESET_LABELS = { bone: 'Bone', soft: 'Soft tissue', full: 'Full range' };
+const MODE_LABELS = { mip: 'MIP', minip: 'MinIP', aip: 'Average', density: 'Vot density' };
+const RENDERER_LABELS = { vots: 'Vots', grid: 'Grid reference' };
+const COLORMAP_LABELS = { grey: 'Grey', bone: 'Bone', hot: 'Hot', viridis: 'Viridis' };
+
+// The mode, renderer and colour map lists hold the names the server takes (contract.js, generated from its
+// C++); a name without a label here shows as it is.
+export function fillChoices(el) {
+  const fill = (select, names, labels) => select.replaceChildren(...names.map((n) => new Option(labels[n] || n, n)));
+  fill(el.mode, MODES, MODE_LABELS);
+  fill(el.renderer, RENDERERS, RENDERER_LABELS);
+  fill(el.colormap, COLORMAPS, COLORMAP_LABELS);
+}
 
 // A dataset the server's memory budget refuses ("fits": false) is listed, disabled, with the reason.
 export function fillDatasetPicker(select, datasets) {
@@ -58,8 +71,9 @@ export function syncControls(el, ds, view) {
   el.epsSlider.value = String(epsToSlider(ds, view.eps));
   el.epsValue.textContent = epsLabel(ds, view.eps);
   syncKindLimits(el, ds);
-  el.projection.textContent = view.cam.proj === 'persp' ? 'Perspective' : 'Orthographic';
-  el.projection.setAttribute('aria-pressed', String(view.cam.proj === 'persp'));
+  const persp = view.cam.proj === PROJECTIONS.persp;
+  el.projection.textContent = persp ? 'Perspective' : 'Orthographic';
+  el.projection.setAttribute('aria-pressed', String(persp));
   el.projection.dataset.value = view.cam.proj;
   syncViewButtons(el.viewButtons, view.cam);
 }

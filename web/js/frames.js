@@ -1,6 +1,7 @@
 // Frames: the /render request for the view, one in flight at a time, drafts while moving, the shown image.
 import { ApiError, fetchFrame, renderUrl } from './api.js';
 import { formatCamera } from './camera.js';
+import { DEFAULT_RENDERER, GRID_MODES } from './contract.js';
 import { formatSlab } from './slab.js';
 import { fmtExact } from './format.js';
 
@@ -60,9 +61,9 @@ export function createFrames({ viewEl, image, view, banner, showFacts, isMoving,
     };
   }
 
-  // The grid draws every mode but density (Vot sizes), which waits for its Vots.
+  // The grid draws GRID_MODES (not the density, Vot sizes, which waits for its Vots).
   function previewing() {
-    return renderEps === null && previewEps !== null && view.mode !== 'density';
+    return renderEps === null && previewEps !== null && GRID_MODES.includes(view.mode);
   }
 
   function frameUrl(draft) {
@@ -121,7 +122,7 @@ export function createFrames({ viewEl, image, view, banner, showFacts, isMoving,
       image.src = objectUrl;
       image.dataset.quality = draft ? 'draft' : 'full';
       image.dataset.frameUrl = url;
-      image.dataset.renderer = new URLSearchParams(url.split('?')[1]).get('renderer') || 'vots';
+      image.dataset.renderer = new URLSearchParams(url.split('?')[1]).get('renderer') || DEFAULT_RENDERER;
       image.dataset.width = String(probe.naturalWidth);
       image.dataset.height = String(probe.naturalHeight);
       if (shownObjectUrl) URL.revokeObjectURL(shownObjectUrl);

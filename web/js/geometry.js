@@ -1,5 +1,6 @@
 // The volume's box in the world as the server's camera sees it (render/src/Camera.cpp): its extent
 // along the view, and how many mm the image height spans; no DOM, no network.
+import { PROJECTIONS } from './contract.js';
 
 const IDENTITY = [
   [1, 0, 0],
@@ -52,7 +53,7 @@ export function sceneRadius(ds) {
 // centre facing the camera (nearer things look bigger, farther ones smaller).
 export function imageHeightMm(ds, cam) {
   const r = sceneRadius(ds);
-  if (cam.proj !== 'persp') return (2 * r) / cam.zoom;
+  if (cam.proj !== PROJECTIONS.persp) return (2 * r) / cam.zoom;
   const halfFov = ((cam.fov * Math.PI) / 180) / 2;
   return (2 * r) / (cam.zoom * Math.cos(halfFov));
 }

@@ -3,6 +3,7 @@ import { DEFAULT_CAMERA, formatCamera, parseCamera } from './camera.js';
 import { defaultEpsOf, rangeSpan } from './eps.js';
 import { fmtExact } from './format.js';
 import { formatSlab, parseSlab } from './slab.js';
+import { DEFAULT_COLORMAP, DEFAULT_MODE, DEFAULT_RENDERER, LEGACY_MODES, MAX_DEGREE } from './contract.js';
 import { COLORMAPS, MODES, reconcileRenderer, RENDERERS } from './view.js';
 
 const HASH_WRITE_MS = 250; // Chrome throttles replaceState floods, so drags write the hash at most this often
@@ -18,7 +19,7 @@ export function formatHash(view) {
   if (view.eps !== null) parts.push(['eps', view.eps]);
   parts.push(['mode', view.mode]);
   // The defaults (the Vot renderer, the whole ray) stay out of the link, so older links read the same.
-  if (view.renderer === 'grid') parts.push(['renderer', view.renderer]);
+  if (view.renderer !== DEFAULT_RENDERER) parts.push(['renderer', view.renderer]);
   if (view.slab) parts.push(['slab', formatSlab(view.slab)]);
   parts.push(
     ['window', `${fmtExact(view.window.level)},${fmtExact(view.window.width)}`],
@@ -68,15 +69,16 @@ export function parseHash(hash, datasets, current) {
   }
 
   const degree = q.get('degree');
-  // `reference` is what links said before the renderer choice: MIP on the grid.
-  const reference = q.get('mode') === 'reference';
-  const mode = reference ? 'mip' : q.get('mode');
+  // An old link's mode name that also chooses the renderer (`reference`, from before the renderer
+  // choice: MIP on the grid).
+  const legacy = Object.hasOwn(LEGACY_MODES, q.get('mode') ?? '') ? LEGACY_MODES[q.get('mode')] : null;
+  const mode = legacy ? legacy.mode : q.get('mode');
   if (mode !== null && !MODES.includes(mode)) problems.push(`Unknown mode '${mode}'; using MIP.`);
   const rendererText = q.get('renderer');
   if (rendererText !== null && !RENDERERS.includes(rendererText)) {
     problems.push(`Unknown renderer '${rendererText}'; using the Vots.`);
   }
-  const renderer = reference ? 'grid' : RENDERERS.includes(rendererText) ? rendererText : 'vots';
+  const renderer = legacy ? legacy.renderer : RENDERERS.includes(rendererText) ? rendererText : DEFAULT_RENDERER;
   const slab = q.has('slab') ? parseSlab(q.get('slab')) : null;
   if (q.has('slab') && !slab) {
     problems.push(`slab '${q.get('slab')}' is not offset,thickness in mm with thickness > 0; showing the whole volume.`);
@@ -94,12 +96,12 @@ export function parseHash(hash, datasets, current) {
     dataset: ds.name,
     cam,
     eps: eps > 0 ? eps : keptEps,
-    degree: degree !== null && /^[0-3]$/.test(degree) ? Number(degree) : undefined,
-    mode: MODES.includes(mode) ? mode : 'mip',
+    degree: degree !== null && /^\d$/.test(degree) && Number(degree) <= MAX_DEGREE ? Number(degree) : undefined,
+    mode: MODES.includes(mode) ? mode : DEFAULT_MODE,
     renderer,
     slab,
     window: winOk ? { level: win[0], width: win[1] } : { level: Number(ds.window.level), width: Number(ds.window.width) },
-    colormap: COLORMAPS.includes(cmap) ? cmap : 'grey',
+    colormap: COLORMAPS.includes(cmap) ? cmap : DEFAULT_COLORMAP,
   };
   reconcileRenderer(view, 'mode'); // a link asking for density on the grid gets the Vots
   return { view, problems };

@@ -1,13 +1,12 @@
 // Patient-direction letters (L/R/A/P/S/I) for the image edges, from the camera, or grid axes (+x, -y, ...)
 // for a volume whose file gives no orientation; no DOM, no network.
 
+import { PATIENT_LETTERS } from './contract.js';
+
 // The world is patient LPS (+x left, +y posterior, +z superior), the same as the server's camera
-// (render/include/vots/render/Camera.h), whatever order the dataset stores its axes in.
-const LETTERS = [
-  ['L', 'R'],
-  ['P', 'A'],
-  ['S', 'I'],
-];
+// (render/include/vots/render/Camera.h), whatever order the dataset stores its axes in: the letters of
+// +x, +y, +z and of -x, -y, -z come from the server's C++ (contract.js).
+const LETTERS = PATIENT_LETTERS;
 
 // A component below sin(22.5 deg) of the edge direction does not get a letter: "L" up to 22.5 deg off,
 // then "LA" (the larger first) the way radiology viewers label oblique views.

@@ -2,9 +2,10 @@
 import { adoptToken, tokenHashPart } from './access.js';
 import { fetchDatasets } from './api.js';
 import { toView } from './camera.js';
+import { PROJECTIONS } from './contract.js';
 import { createBanner } from './banner.js';
 import { createCine } from './cine.js';
-import { fillDatasetPicker, fillPresets, presetWindow, syncControls, syncViewButtons } from './controls.js';
+import { fillChoices, fillDatasetPicker, fillPresets, presetWindow, syncControls, syncViewButtons } from './controls.js';
 import { syncDownloads } from './downloads.js';
 import { defaultEpsOf, epsLabel, sliderToEps } from './eps.js';
 import { createFits } from './fits.js';
@@ -300,7 +301,7 @@ for (const b of el.viewButtons) {
 
 el.projection.addEventListener('click', () => {
   cine.stop();
-  view.cam = { ...view.cam, proj: view.cam.proj === 'persp' ? 'ortho' : 'persp' };
+  view.cam = { ...view.cam, proj: view.cam.proj === PROJECTIONS.persp ? PROJECTIONS.ortho : PROJECTIONS.persp };
   commit();
 });
 
@@ -321,6 +322,7 @@ window.addEventListener('hashchange', () => {
 // ---------- start ----------
 
 async function start() {
+  fillChoices(el);
   adoptToken(location.hash); // before the first request: a server beyond loopback asks for it
   updateStatus();
   let listed;

@@ -48,6 +48,18 @@ struct Camera {
     friend bool operator==(const Camera&, const Camera&) = default;
 };
 
+/// The inclusive ranges validateCamera accepts (the web viewer clamps to the same ones, generated from
+/// these).
+struct CameraRange {
+    double lo;
+    double hi;
+};
+inline constexpr CameraRange AZIMUTH_RANGE_DEG{-360.0, 360.0};
+inline constexpr CameraRange ELEVATION_RANGE_DEG{-90.0, 90.0};
+inline constexpr CameraRange ZOOM_RANGE{0.01, 1000.0};
+inline constexpr CameraRange PAN_RANGE{-100.0, 100.0}; // both pan x and pan y
+inline constexpr CameraRange FOV_RANGE_DEG{1.0, 150.0};
+
 /// az/el of a preset, everything else default.
 Camera cameraForView(ViewPreset view);
 /// "anterior", "posterior", "left", "right", "superior", "inferior".
