@@ -107,12 +107,11 @@ std::string projectionWord(Projection projection) {
     return text.substr(start, text.find(',', start) - start);
 }
 
-// Whether applyProjection takes this mode with this renderer, or with a slab: the rule the server keeps.
-bool accepts(RenderMode mode, std::optional<std::string_view> renderer,
-             std::optional<std::string_view> slab) {
+// Whether applyProjection takes this mode with this renderer: the rule the server keeps.
+bool accepts(RenderMode mode, std::string_view renderer) {
     FrameRequest frame;
     try {
-        applyProjection(frame, renderModeName(mode), renderer, slab);
+        applyProjection(frame, renderModeName(mode), renderer, std::nullopt);
         return true;
     } catch (const vots::fit::InputError&) {
         return false;
@@ -174,14 +173,11 @@ std::string generate() {
     }
     out << "});\n\n";
 
-    std::vector<RenderMode> gridModes, slabModes;
-    for (RenderMode mode : RENDER_MODES) {
-        if (accepts(mode, rendererName(RendererKind::Grid), std::nullopt)) gridModes.push_back(mode);
-        if (accepts(mode, std::nullopt, "0,1")) slabModes.push_back(mode);
-    }
-    out << "// The modes the grid renderer draws, and those that take a slab (the others answer 400).\n";
-    out << "export const GRID_MODES = Object.freeze(" << nameList(gridModes, renderModeName) << ");\n";
-    out << "export const SLAB_MODES = Object.freeze(" << nameList(slabModes, renderModeName) << ");\n\n";
+    std::vector<RenderMode> gridModes;
+    for (RenderMode mode : RENDER_MODES)
+        if (accepts(mode, rendererName(RendererKind::Grid))) gridModes.push_back(mode);
+    out << "// The modes the grid renderer draws (the others answer 400 there).\n";
+    out << "export const GRID_MODES = Object.freeze(" << nameList(gridModes, renderModeName) << ");\n\n";
 
     out << "// The highest Taylor degree a fit takes (degree=0..MAX_DEGREE).\n";
     out << "export const MAX_DEGREE = " << vots::fit::monomialDegree(vots::fit::MONOMIAL_COUNT - 1) << ";\n";

@@ -15,9 +15,8 @@ export const LEGACY_MODES = Object.freeze({
   reference: Object.freeze({ mode: 'mip', renderer: 'grid' }),
 });
 
-// The modes the grid renderer draws, and those that take a slab (the others answer 400).
+// The modes the grid renderer draws (the others answer 400 there).
 export const GRID_MODES = Object.freeze(['mip', 'minip', 'aip']);
-export const SLAB_MODES = Object.freeze(['mip', 'minip', 'aip']);
 
 // The highest Taylor degree a fit takes (degree=0..MAX_DEGREE).
 export const MAX_DEGREE = 3;

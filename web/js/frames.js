@@ -1,11 +1,11 @@
 // Frames: the /render request for the view, one in flight at a time, drafts while moving, the shown image.
 import { ApiError, fetchFrame, renderUrl } from './api.js';
 import { formatCamera } from './camera.js';
-import { DEFAULT_RENDERER, GRID_MODES } from './contract.js';
+import { DEFAULT_RENDERER, GRID_MODES, MAX_SERVED_SIDE } from './contract.js';
 import { formatSlab } from './slab.js';
 import { fmtExact } from './format.js';
 
-const MAX_FRAME_PX = 2048; // longest side of a requested frame, in device pixels
+const MAX_FRAME_PX = Math.min(2048, MAX_SERVED_SIDE); // longest side of a requested frame, in device pixels
 const DRAFT_DIVISOR = 3; // frames while dragging are this much smaller, scaled up by CSS
 const RESIZE_SETTLE_MS = 100; // a frame for the new view size once resizing pauses this long
 
