@@ -189,8 +189,7 @@ void addServeCommand(CLI::App& app) {
         "--allow-host", args->allowHosts,
         "Host name the server also answers to, as NAME (any port) or NAME:PORT (repeatable; "
         "e.g. a reverse proxy's name). Requests naming other hosts get 421, against DNS rebinding");
-    cmd->add_option("--data", args->data,
-                    "Folder with volumes (repeatable); default ./data and ../shared/data");
+    cmd->add_option("--data", args->data, "Folder with volumes (repeatable); default ./data");
     cmd->add_option("--web", args->web,
                     "Folder with the web viewer; default ./web, else the binary's ../share/vots/web");
     cmd->add_option("--cache-dir", args->cacheDir, "Folder for fitted Vot-Spaces")->capture_default_str();

@@ -8,7 +8,9 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
+#include <glm/matrix.hpp>
 
 #include <cmath>
 #include <string>
@@ -162,6 +164,7 @@ CameraMatrices computeCameraMatrices(const Camera& camera, const SceneBounds& bo
     m.eyeWorld = {eye.x, eye.y, eye.z};
     m.nearWorld = nearPlane;
     m.farWorld = farPlane;
+    m.mirrored = glm::determinant(glm::dmat3(indexToWorld)) < 0.0;
     return m;
 }
 

@@ -110,7 +110,7 @@ void RasterPass::setCommonState(GLuint program, const CameraMatrices& m, int wid
     glBindVertexArray(mVertexArray.get());
     glEnable(GL_CULL_FACE);
     glCullFace(GL_FRONT); // back faces only: one fragment per box and pixel, also from inside a box
-    glFrontFace(GL_CCW);
+    glFrontFace(m.mirrored ? GL_CW : GL_CCW);
     glDisable(GL_DEPTH_TEST);
     glEnable(GL_BLEND);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, INDEX_BUFFER_BINDING, mIndexBuffer.get());

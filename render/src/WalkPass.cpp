@@ -358,7 +358,7 @@ void WalkPass::drawWalk(int walkMode, const CameraMatrices& m, const std::option
     glBindVertexArray(mVertexArray.get());
     glEnable(GL_CULL_FACE);
     glCullFace(GL_FRONT); // back faces: every pixel whose ray meets the box, once, eye inside or not
-    glFrontFace(GL_CCW);
+    glFrontFace(m.mirrored ? GL_CW : GL_CCW);
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_BLEND);
     glDrawArrays(GL_TRIANGLES, 0, 36);

@@ -77,8 +77,7 @@ Server::Impl::Impl(ServerOptions opts)
 std::vector<fs::path> defaultDataDirs() {
     std::vector<fs::path> dirs;
     std::error_code ec;
-    for (const char* dir : {"data", "../shared/data"})
-        if (fs::is_directory(dir, ec)) dirs.emplace_back(dir);
+    if (fs::is_directory("data", ec)) dirs.emplace_back("data");
     return dirs;
 }
 

@@ -7,10 +7,7 @@ set -euo pipefail
 tool="$1"
 vots="$2"
 input="$3"
-if [ ! -f "$input" ]; then
-  echo "make_scaled_volume.sh: skipped, no input $input (scripts/fetch-ct writes data/cranium.nhdr)" >&2
-  exit 77 # ctest's SKIP_RETURN_CODE
-fi
+[ -f "$input" ] || { echo "make_scaled_volume.sh: no input $input (scripts/fetch-ct writes it)" >&2; exit 1; }
 work="$(mktemp -d "${TMPDIR:-/tmp}/vots-scaled-test.XXXXXX")"
 trap 'rm -rf "$work"' EXIT
 fail() {
@@ -27,7 +24,13 @@ field() { sed -n "s/^$1: //p" "$2"; }
 
 # Same physical extent: (points - 1) * spacing of the input, read from its own header.
 read -r -a in_sizes <<<"$(field sizes "$input")"
-read -r -a in_spacings <<<"$(field spacings "$input")"
+# The input's spacings, or the lengths of its space directions (the Cranium's header states its axes).
+in_spacing_text="$(field spacings "$input")"
+if [ -z "$in_spacing_text" ]; then
+  in_spacing_text="$(field 'space directions' "$input" | python3 -c 'import math, re, sys
+print(" ".join(repr(math.hypot(*map(float, v.split(",")))) for v in re.findall(r"\(([^)]*)\)", sys.stdin.read())))')"
+fi
+read -r -a in_spacings <<<"$in_spacing_text"
 read -r -a out_spacings <<<"$(field spacings "$work/a.nhdr")"
 out_sizes=(64 64 20)
 for a in 0 1 2; do

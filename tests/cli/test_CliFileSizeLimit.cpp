@@ -37,8 +37,7 @@ TEST(CliFileSizeLimit, FitReportsFileTooLargeAndLeavesNothing) {
     TempDir dir;
     const std::string out = dir.file("head.vots");
     const std::vector<std::string> args{
-        "fit", std::string(VOTS_SHARED_DATA_DIR) + "/HeadMRVolume_48x62x42_uint8.nrrd", "-o", out, "--eps",
-        "5%"};
+        "fit", std::string(VOTS_TEST_DATA_DIR) + "/mri-brain_33x41x25_int16.nii", "-o", out, "--eps", "5%"};
     const CliResult r = runVotsWithFileSizeLimit(args, 1024); // the file needs tens of KiB
     const std::string what = describe(args, r);
     EXPECT_EQ(r.exitCode, 2) << what; // -1 would mean killed by SIGXFSZ

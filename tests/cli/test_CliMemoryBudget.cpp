@@ -15,7 +15,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const std::string HEAD_MR = std::string(VOTS_SHARED_DATA_DIR) + "/HeadMRVolume_48x62x42_uint8.nrrd";
+const std::string MRI_BRAIN = std::string(VOTS_TEST_DATA_DIR) + "/mri-brain_33x41x25_int16.nii";
 
 /// The names in a folder, to show nothing was added.
 std::set<std::string> namesIn(const fs::path& dir) {
@@ -94,24 +94,24 @@ TEST(CliMemoryBudget, RenderOfAVolumeRefusesAHugeHeaderBeforeLoading) {
 
 TEST(CliMemoryBudget, ASmallVolumeFitsUnderASmallBudgetThatIsBigEnough) {
     TempDir dir;
-    // HeadMR is 125 k uint8 samples: its estimate is the model's fixed part plus half a MB.
-    const std::vector<std::string> fits{"fit", HEAD_MR,           "-o",  dir.file("ok.vots"), "--eps",
+    // The brain MRI is 34 k int16 samples: its estimate is the model's fixed part plus a fraction of a MB.
+    const std::vector<std::string> fits{"fit", MRI_BRAIN,         "-o",  dir.file("ok.vots"), "--eps",
                                         "5%",  "--memory-budget", "400M"};
     const CliResult ok = runVots(fits);
     EXPECT_EQ(ok.exitCode, 0) << describe(fits, ok);
     EXPECT_GT(fs::file_size(dir.file("ok.vots")), 100u);
 
     // The same volume under a budget below its estimate: refused, so the budget is really applied.
-    const std::vector<std::string> tight{"fit", HEAD_MR,           "-o", dir.file("no.vots"), "--eps",
+    const std::vector<std::string> tight{"fit", MRI_BRAIN,         "-o", dir.file("no.vots"), "--eps",
                                          "5%",  "--memory-budget", "64M"};
-    expectBudgetRefusal(tight, runVots(tight), "48x62x42 uint8");
+    expectBudgetRefusal(tight, runVots(tight), "33x41x25 int16");
     EXPECT_FALSE(fs::exists(dir.file("no.vots")));
 }
 
 TEST(CliMemoryBudget, AMalformedBudgetIsABadArgument) {
     TempDir dir;
     for (const char* bad : {"8X", "0", "lots"}) {
-        const std::vector<std::string> args{"fit", HEAD_MR,           "-o", dir.file("x.vots"), "--eps",
+        const std::vector<std::string> args{"fit", MRI_BRAIN,         "-o", dir.file("x.vots"), "--eps",
                                             "5%",  "--memory-budget", bad};
         const CliResult r = runVots(args);
         EXPECT_EQ(r.exitCode, 2) << describe(args, r);

@@ -13,10 +13,10 @@
 namespace vots::test {
 namespace {
 
-const std::string HEAD = std::string(VOTS_SHARED_DATA_DIR) + "/HeadMRVolume_48x62x42_uint8.nrrd";
+const std::string MRI_BRAIN = std::string(VOTS_TEST_DATA_DIR) + "/mri-brain_33x41x25_int16.nii";
 
 std::vector<std::string> fitWith(const std::string& out, std::vector<std::string> extra,
-                                 const std::string& input = HEAD) {
+                                 const std::string& input = MRI_BRAIN) {
     std::vector<std::string> args{"fit", input, "-o", out};
     args.insert(args.end(), extra.begin(), extra.end());
     return args;
@@ -63,7 +63,7 @@ TEST(CliRejects, ArgumentsAreCheckedBeforeTheInputIsRead) {
 TEST(CliRejects, BadProjectionArguments) {
     TempDir dir;
     const auto render = [&](std::vector<std::string> extra) {
-        std::vector<std::string> args{"render", HEAD, "-o", dir.file("out.png")};
+        std::vector<std::string> args{"render", MRI_BRAIN, "-o", dir.file("out.png")};
         args.insert(args.end(), extra.begin(), extra.end());
         return args;
     };
@@ -91,9 +91,9 @@ TEST(CliRejects, BrokenVotsFiles) {
     expectBadInput(dir, {"info", corrupt}, "checksum");
     expectBadInput(dir, {"info", notVots}, "not a Vot-Space file");
     expectBadInput(dir, {"info", dir.file("missing.vots")}, "missing.vots");
-    expectBadInput(dir, {"verify", truncated, HEAD}, "truncated.vots");
-    expectBadInput(dir, {"verify", corrupt, HEAD}, "checksum");
-    expectBadInput(dir, {"verify", dir.file("missing.vots"), HEAD}, "missing.vots");
+    expectBadInput(dir, {"verify", truncated, MRI_BRAIN}, "truncated.vots");
+    expectBadInput(dir, {"verify", corrupt, MRI_BRAIN}, "checksum");
+    expectBadInput(dir, {"verify", dir.file("missing.vots"), MRI_BRAIN}, "missing.vots");
 }
 
 TEST(CliRejects, BadUsage) {
@@ -102,7 +102,7 @@ TEST(CliRejects, BadUsage) {
     expectBadInput(dir, {"frobnicate"}, "frobnicate");
     expectBadInput(dir, {"info"}, "FILE");
     expectBadInput(dir, {"verify", dir.file("a.vots")}, "INPUT");
-    expectBadInput(dir, {"fit", HEAD, "--eps", "2"}, "--output");
+    expectBadInput(dir, {"fit", MRI_BRAIN, "--eps", "2"}, "--output");
 }
 
 } // namespace

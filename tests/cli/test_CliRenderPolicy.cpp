@@ -12,7 +12,7 @@
 namespace vots::test {
 namespace {
 
-const std::string HEAD = std::string(VOTS_SHARED_DATA_DIR) + "/HeadMRVolume_48x62x42_uint8.nrrd";
+const std::string MRI_BRAIN = std::string(VOTS_TEST_DATA_DIR) + "/mri-brain_33x41x25_int16.nii";
 const std::string WARNING =
     "vots: warning: VOTS_WALK_SHADER=sideways is neither fragment nor compute; choosing by renderer";
 
@@ -23,7 +23,7 @@ std::pair<CliResult, std::string> renderWith(const TempDir& dir, const std::stri
         ::unsetenv("VOTS_WALK_SHADER");
     else
         ::setenv("VOTS_WALK_SHADER", shader.c_str(), 1);
-    const CliResult r = runVots({"render", HEAD, "-o", png, "--size", "64x48", "--cam", "az=30,el=20"});
+    const CliResult r = runVots({"render", MRI_BRAIN, "-o", png, "--size", "64x48", "--cam", "az=30,el=20"});
     ::unsetenv("VOTS_WALK_SHADER");
     return {r, slurpText(png)};
 }
@@ -31,8 +31,6 @@ std::pair<CliResult, std::string> renderWith(const TempDir& dir, const std::stri
 TEST(CliRenderPolicy, WalkShaderOverrideKeepsTheImageAndWarnsOnNonsense) {
     TempDir dir;
     const auto [plain, reference] = renderWith(dir, "");
-    if (plain.exitCode != 0 && plain.err.find("EGL") != std::string::npos)
-        GTEST_SKIP() << "no EGL context here: " << plain.err;
     ASSERT_EQ(plain.exitCode, 0) << plain.err;
     ASSERT_FALSE(reference.empty());
     EXPECT_EQ(plain.err.find("VOTS_WALK_SHADER"), std::string::npos) << plain.err;

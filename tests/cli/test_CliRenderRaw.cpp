@@ -1,5 +1,6 @@
 // `vots render` of a headerless raw volume through the --raw-* options it shares with `vots fit`.
 #include "CliRunner.h"
+#include "Int16Bytes.h"
 #include "TempDir.h"
 
 #include "vots/fit/VolumeLoad.h"
@@ -12,7 +13,7 @@
 namespace vots::test {
 namespace {
 
-const std::string HEAD = std::string(VOTS_SHARED_DATA_DIR) + "/HeadMRVolume_48x62x42_uint8.nrrd";
+const std::string MRI_BRAIN = std::string(VOTS_TEST_DATA_DIR) + "/mri-brain_33x41x25_int16.nii";
 
 std::string fileBytes(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
@@ -26,18 +27,15 @@ struct RawHead {
     std::string raw;
     std::string nhdr;
     RawHead() {
-        const fit::Volume volume = fit::loadVolume(HEAD);
-        std::string bytes(volume.values.size(), '\0');
-        for (std::size_t i = 0; i < volume.values.size(); ++i)
-            bytes[i] = static_cast<char>(static_cast<unsigned char>(volume.values[i]));
-        raw = dir.write("head.raw", std::string(16, 'h') + bytes);
+        const fit::Volume volume = fit::loadVolume(MRI_BRAIN);
+        raw = dir.write("head.raw", std::string(16, 'h') + littleEndianInt16Bytes(volume));
         nhdr =
-            dir.write("head.nhdr", "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 48 62 42\n"
+            dir.write("head.nhdr", "NRRD0004\ntype: int16\ndimension: 3\nsizes: 33 41 25\nendian: little\n"
                                    "spacings: 3 2 4\nencoding: raw\nbyte skip: 16\ndata file: head.raw\n\n");
     }
 };
 
-const std::vector<std::string> RAW_ARGS{"--raw-dims",    "48,62,42", "--raw-type",         "uint8",
+const std::vector<std::string> RAW_ARGS{"--raw-dims",    "33,41,25", "--raw-type",         "int16",
                                         "--raw-spacing", "3,2,4",    "--raw-header-bytes", "16"};
 
 TEST(CliRenderRaw, RawInputRendersAsTheSameVolumeWithAHeader) {
@@ -46,13 +44,13 @@ TEST(CliRenderRaw, RawInputRendersAsTheSameVolumeWithAHeader) {
         const std::string fromRaw = head.dir.file(std::string("raw-") + mode + ".png");
         const std::string fromNrrd = head.dir.file(std::string("nrrd-") + mode + ".png");
         std::vector<std::string> rawArgs{"render", head.raw, "-o",    fromRaw, "--size", "64x48",
-                                         "--mode", mode,     "--eps", "12",    "--cam",  "az=30,el=20"};
+                                         "--mode", mode,     "--eps", "1500",  "--cam",  "az=30,el=20"};
         rawArgs.insert(rawArgs.end(), RAW_ARGS.begin(), RAW_ARGS.end());
         const CliResult r = runVots(rawArgs);
         ASSERT_EQ(r.exitCode, 0) << describe(rawArgs, r);
         const std::vector<std::string> nrrdArgs{"render", head.nhdr, "-o",     fromNrrd,
                                                 "--size", "64x48",   "--mode", mode,
-                                                "--eps",  "12",      "--cam",  "az=30,el=20"};
+                                                "--eps",  "1500",    "--cam",  "az=30,el=20"};
         const CliResult n = runVots(nrrdArgs);
         ASSERT_EQ(n.exitCode, 0) << describe(nrrdArgs, n);
         const std::string png = fileBytes(fromRaw);
@@ -64,7 +62,7 @@ TEST(CliRenderRaw, RawInputRendersAsTheSameVolumeWithAHeader) {
 TEST(CliRenderRaw, ARawInputNeedsItsTypeAndDims) {
     RawHead head;
     const std::string out = head.dir.file("out.png");
-    const std::vector<std::string> args{"render", head.raw, "-o", out, "--raw-dims", "48,62,42"};
+    const std::vector<std::string> args{"render", head.raw, "-o", out, "--raw-dims", "33,41,25"};
     const CliResult r = runVots(args);
     EXPECT_EQ(r.exitCode, 2) << describe(args, r);
     EXPECT_NE(r.err.find("--raw-type"), std::string::npos) << r.err;
@@ -74,7 +72,7 @@ TEST(CliRenderRaw, ARawInputNeedsItsTypeAndDims) {
 TEST(CliRenderRaw, RawOptionsWithoutAVolumeForAVotsInputAreRefused) {
     RawHead head;
     const std::string vots = head.dir.file("head.vots");
-    std::vector<std::string> fitArgs{"fit", head.raw, "-o", vots, "--eps", "12"};
+    std::vector<std::string> fitArgs{"fit", head.raw, "-o", vots, "--eps", "1500"};
     fitArgs.insert(fitArgs.end(), RAW_ARGS.begin(), RAW_ARGS.end());
     ASSERT_EQ(runVots(fitArgs).exitCode, 0);
     const std::string out = head.dir.file("out.png");

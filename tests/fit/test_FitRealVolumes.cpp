@@ -1,4 +1,5 @@
-// Both generators on real volumes from ../shared/data: full cover of foreground cells and verify passes.
+// Both generators on the test volumes (scripts/make-test-volumes): full cover of foreground cells and verify
+// passes.
 #include "vots/fit/Fitter.h"
 #include "vots/fit/Verify.h"
 #include "vots/fit/VolumeLoad.h"
@@ -13,7 +14,7 @@ using namespace vots::fit;
 namespace {
 
 Volume loadShared(const std::string& name) {
-    return loadVolume(std::string(VOTS_SHARED_DATA_DIR) + "/" + name);
+    return loadVolume(std::string(VOTS_TEST_DATA_DIR) + "/" + name);
 }
 
 /// A sub-block of a real volume: the paper's seed-every-cell method is too slow for a quick test on
@@ -74,11 +75,11 @@ TEST_P(RealVolume, PaperMethodCoversBlockWithinEps) {
     expectValidFit(block, FitMethod::Fast, GetParam().epsPercent, 3);
 }
 
-INSTANTIATE_TEST_SUITE_P(SharedData, RealVolume,
-                         ::testing::Values(Case{"HeadMRVolume_48x62x42_uint8.nrrd", 2.f},
-                                           Case{"neghip_64x64x64_uint8.nrrd", 2.f},
-                                           Case{"headsq-quarter_64x64x93_int16.nrrd", 2.f},
-                                           Case{"hydrogen-3d-orbital_64x64x64_float32.nrrd", 1.f}),
+INSTANTIATE_TEST_SUITE_P(TestVolumes, RealVolume,
+                         ::testing::Values(Case{"mri-brain_33x41x25_int16.nii", 2.f},
+                                           Case{"blobs_64x64x64_uint8.nrrd", 2.f},
+                                           Case{"cranium-quarter_64x64x108_int16.nrrd", 2.f},
+                                           Case{"orbital_64x64x64_float32.nrrd", 1.f}),
                          [](const auto& testInfo) {
                              std::string name = testInfo.param.file;
                              name = name.substr(0, name.find('_'));
@@ -86,6 +87,6 @@ INSTANTIATE_TEST_SUITE_P(SharedData, RealVolume,
                              return name;
                          });
 
-TEST(RealVolumeFull, PaperMethodCoversWholeHeadMr) {
-    expectValidFit(loadShared("HeadMRVolume_48x62x42_uint8.nrrd"), FitMethod::Paper, 2.f, 3);
+TEST(RealVolumeFull, PaperMethodCoversTheWholeBrainMri) {
+    expectValidFit(loadShared("mri-brain_33x41x25_int16.nii"), FitMethod::Paper, 2.f, 3);
 }

@@ -56,10 +56,10 @@ TEST(VolumeHeader, AgreesWithTheReaderOnEveryFormat) {
     raw.type = ScalarType::Int16;
     expectSameAsLoad(dir.file("d.raw"), raw);
 
-    for (const char* name : {"neghip_64x64x64_uint8.nrrd", "headsq-quarter_64x64x93_int16.nrrd",
-                             "hydrogen-3d-orbital_64x64x64_float32.nrrd"}) {
-        const std::string path = std::string(VOTS_SHARED_DATA_DIR) + "/" + name;
-        if (std::filesystem::exists(path)) expectSameAsLoad(path);
+    for (const char* name : {"blobs_64x64x64_uint8.nrrd", "cranium-quarter_64x64x108_int16.nrrd",
+                             "orbital_64x64x64_float32.nrrd"}) {
+        const std::string path = std::string(VOTS_TEST_DATA_DIR) + "/" + name;
+        expectSameAsLoad(path);
     }
 }
 

@@ -1,4 +1,5 @@
-// Volume input: the shared test volumes, the Cranium CT, and exact round trips of every format we read.
+// Volume input: the test volumes (scripts/make-test-volumes), the Cranium CT, and exact round trips of every
+// format we read.
 #include "vots/fit/Error.h"
 #include "vots/fit/PatientAxes.h"
 #include "vots/fit/VolumeLoad.h"
@@ -8,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -19,8 +21,8 @@ using vots::test::FIXTURE_DIMS;
 using vots::test::niftiHeader;
 using vots::test::TempDir;
 
-std::string sharedData(const std::string& name) {
-    return std::string(VOTS_SHARED_DATA_DIR) + "/" + name;
+std::string testData(const std::string& name) {
+    return std::string(VOTS_TEST_DATA_DIR) + "/" + name;
 }
 
 double meanOf(const Volume& volume) {
@@ -30,7 +32,7 @@ double meanOf(const Volume& volume) {
     return sum / static_cast<double>(volume.values.size());
 }
 
-// Coarse histogram as data/README.md lists it: 16 equal bins from min to max, max in the last bin.
+// Coarse histogram: 16 equal bins from min to max, max in the last bin.
 std::vector<long> histogram16(const Volume& volume) {
     const auto [lo, hi] = volume.valueRange();
     std::vector<long> bins(16, 0);
@@ -59,127 +61,100 @@ const ScalarType ALL_TYPES[] = {ScalarType::UInt8,   ScalarType::Int8,   ScalarT
                                 ScalarType::Int16,   ScalarType::UInt32, ScalarType::Int32,
                                 ScalarType::Float32, ScalarType::Float64};
 
-struct SharedVolume {
+struct TestVolume {
     const char* file;
     std::array<int, 3> dims;
     ScalarType type;
     std::array<double, 3> spacing;
+    std::array<double, 3> origin;
     float min, max;
-    double mean, meanTolerance; // README rounds the mean
+    double mean;
     std::vector<long> histogram;
 };
 
-const std::vector<SharedVolume>& sharedVolumes() {
-    static const std::vector<SharedVolume> table = {
-        {"neghip_64x64x64_uint8.nrrd",
+// The volumes scripts/make-test-volumes writes, as measured from its files (the generated ones also by
+// construction: the blobs' peak is 255, the orbital's density 0 at the nucleus and just under 1 at its
+// lobes' grid points).
+const std::vector<TestVolume>& testVolumes() {
+    static const std::vector<TestVolume> table = {
+        {"blobs_64x64x64_uint8.nrrd",
          {64, 64, 64},
          ScalarType::UInt8,
          {1, 1, 1},
+         {0, 0, 0},
          0,
          255,
-         18.40,
-         0.006,
-         {202885, 19591, 10545, 6301, 4379, 3288, 2674, 1839, 1526, 1339, 1055, 802, 734, 588, 508, 4090}},
-        {"ironProt_68x68x68_uint8.nrrd",
-         {68, 68, 68},
-         ScalarType::UInt8,
-         {1, 1, 1},
-         0,
-         255,
-         13.14,
-         0.006,
-         {266516, 13761, 8106, 5605, 4049, 3030, 2292, 1735, 1301, 1039, 842, 672, 618, 564, 452, 3850}},
-        {"hydrogen-3d-orbital_64x64x64_float32.nrrd",
+         9.5882,
+         {221671, 15903, 8424, 4808, 3454, 2275, 1706, 1270, 873, 710, 444, 217, 138, 128, 90, 33}},
+        {"orbital_64x64x64_float32.nrrd",
          {64, 64, 64},
          ScalarType::Float32,
          {1, 1, 1},
+         {0, 0, 0},
          0.0f,
-         1.0f,
-         0.0185,
-         0.00006,
-         {242768, 8832, 4360, 2408, 1296, 528, 480, 288, 272, 232, 152, 160, 80, 120, 72, 96}},
-        {"headsq-quarter_64x64x93_int16.nrrd",
-         {64, 64, 93},
+         0.9966160655021667f,
+         0.12602,
+         {123240, 43520, 36824, 29968, 5312, 4112, 3432, 3016, 2528, 2184, 1904, 1800, 1624, 1248, 912, 520}},
+        {"mri-brain_33x41x25_int16.nii",
+         {33, 41, 25},
          ScalarType::Int16,
-         {3.2, 3.2, 1.5},
-         0,
-         3926,
-         507.69,
-         0.006,
-         {227408, 8343, 5452, 17505, 91818, 8417, 7093, 5459, 4678, 3356, 1026, 126, 109, 77, 49, 12}},
-        {"HeadMRVolume_48x62x42_uint8.nrrd",
-         {48, 62, 42},
-         ScalarType::UInt8,
-         {4, 4, 4},
-         0,
-         255,
-         24.47,
-         0.006,
-         {76698, 12414, 8223, 10864, 6421, 4344, 2289, 1351, 843, 524, 281, 154, 123, 153, 152, 158}},
-        {"avg152T1-RL_91x109x91_uint8.nrrd",
-         {91, 109, 91},
-         ScalarType::UInt8,
          {2, 2, 2},
-         0,
-         255,
-         82.90,
-         0.006,
-         {341860, 54726, 36610, 36405, 33843, 34246, 36185, 43904, 52241, 88134, 36835, 17276, 7421, 741, 373,
-          81829}},
-        {"embryo_256x256x256_uint8.nrrd",
-         {256, 256, 256},
-         ScalarType::UInt8,
-         {1, 1, 1},
-         0,
-         197,
-         3.80,
-         0.006,
-         {15691247, 203857, 143149, 149327, 146096, 143013, 139136, 88285, 44292, 19422, 6367, 2048, 720, 192,
-          42, 23}},
-        {"lobster_approx-zfp8_301x324x56_uint8.nrrd",
-         {301, 324, 56},
-         ScalarType::UInt8,
-         {1, 1, 1.4},
-         0,
-         255,
-         13.14,
-         0.006,
-         {4028359, 1124419, 66502, 46172, 36310, 28661, 23729, 23687, 49328, 27849, 3174, 1240, 709, 468, 400,
-          337}},
+         {-32, 40, -16}, // the qform's offset (32, -40, -16) in RAS, in LPS
+         -610,
+         30393,
+         8401.0667,
+         {388, 939, 2714, 5336, 8445, 11996, 3812, 163, 8, 5, 3, 3, 3, 4, 2, 4}},
+        {"cranium-quarter_64x64x108_int16.nrrd",
+         {64, 64, 108},
+         ScalarType::Int16,
+         {3.8281248, 3.8281248, 1.5},
+         {0, 0, 0},
+         -1024,
+         2621,
+         -585.9243,
+         {265623, 22382, 6159, 7493, 104989, 9392, 6577, 7558, 7494, 3692, 886, 78, 27, 9, 7, 2}},
     };
     return table;
 }
 
-TEST(SharedData, AllEightMatchTheReadmeTable) {
-    for (const SharedVolume& row : sharedVolumes()) {
+TEST(TestVolumes, EachMatchesItsMeasuredShapeAndValues) {
+    for (const TestVolume& row : testVolumes()) {
         SCOPED_TRACE(row.file);
-        const Volume volume = loadVolume(sharedData(row.file));
+        const Volume volume = loadVolume(testData(row.file));
         EXPECT_EQ(volume.dims, row.dims);
         EXPECT_EQ(volume.sourceType, row.type);
-        for (int a = 0; a < 3; ++a)
+        for (int a = 0; a < 3; ++a) {
             EXPECT_DOUBLE_EQ(volume.spacing[a], row.spacing[a]);
-        EXPECT_EQ(volume.origin, (std::array<double, 3>{0, 0, 0}));
+            EXPECT_NEAR(volume.origin[a], row.origin[a], 1e-9);
+        }
         EXPECT_EQ(volume.name, std::filesystem::path(row.file).stem().string());
         ASSERT_EQ(volume.values.size(), volume.sampleCount());
         const auto [lo, hi] = volume.valueRange();
         EXPECT_EQ(lo, row.min);
         EXPECT_EQ(hi, row.max);
-        EXPECT_NEAR(meanOf(volume), row.mean, row.meanTolerance);
+        EXPECT_NEAR(meanOf(volume), row.mean, 1e-4);
         EXPECT_EQ(histogram16(volume), row.histogram);
     }
 }
 
-TEST(SharedData, NrrdLoaderAndDispatchAgree) {
-    const Volume direct = loadNrrd(sharedData("headsq-quarter_64x64x93_int16.nrrd"));
-    const Volume dispatched = loadVolume(sharedData("headsq-quarter_64x64x93_int16.nrrd"));
+TEST(TestVolumes, TheBlobsPeakOnceAtTheFirstCentre) {
+    const Volume blobs = loadVolume(testData("blobs_64x64x64_uint8.nrrd"));
+    EXPECT_EQ(blobs.at(40, 24, 32), 255.f);
+    EXPECT_EQ(std::count(blobs.values.begin(), blobs.values.end(), 255.f), 1);
+    EXPECT_EQ(blobs.at(0, 0, 0), 0.f);
+}
+
+TEST(TestVolumes, NrrdLoaderAndDispatchAgree) {
+    const Volume direct = loadNrrd(testData("cranium-quarter_64x64x108_int16.nrrd"));
+    const Volume dispatched = loadVolume(testData("cranium-quarter_64x64x108_int16.nrrd"));
     EXPECT_EQ(direct.values, dispatched.values);
     // x runs fastest: the sample at (x, y, z) is values[x + 64 * (y + 64 * z)].
     EXPECT_EQ(direct.at(10, 20, 30), direct.values[10 + 64 * (20 + 64 * 30)]);
 }
 
-TEST(SharedData, ContentCrcChangesWithAnySampleOrTheGrid) {
-    const Volume a = loadVolume(sharedData("headsq-quarter_64x64x93_int16.nrrd"));
-    Volume b = loadVolume(sharedData("headsq-quarter_64x64x93_int16.nrrd"));
+TEST(TestVolumes, ContentCrcChangesWithAnySampleOrTheGrid) {
+    const Volume a = loadVolume(testData("cranium-quarter_64x64x108_int16.nrrd"));
+    Volume b = loadVolume(testData("cranium-quarter_64x64x108_int16.nrrd"));
     EXPECT_EQ(a.contentCrc(), b.contentCrc()); // loading twice gives the same fingerprint
     b.values[12345] += 1.f;
     EXPECT_NE(a.contentCrc(), b.contentCrc());
@@ -189,9 +164,12 @@ TEST(SharedData, ContentCrcChangesWithAnySampleOrTheGrid) {
 }
 
 TEST(CraniumCt, FetchedHeaderLoadsTheCt) {
-    const std::string header = std::string(VOTS_SOURCE_DIR) + "/data/cranium.nhdr";
-    if (!std::filesystem::exists(header)) GTEST_SKIP() << "run scripts/fetch-ct to get " << header;
-    const Volume volume = loadVolume(header);
+    const Volume volume = loadVolume(VOTS_CRANIUM_HEADER); // scripts/fetch-ct writes it
+    // The grid runs to the patient's left, anterior and superior (scripts/fetch-ct says why).
+    ASSERT_TRUE(volume.orientationKnown);
+    EXPECT_EQ(patientDirectionName(volume.patientAxes[0]), "L");
+    EXPECT_EQ(patientDirectionName(volume.patientAxes[1]), "A");
+    EXPECT_EQ(patientDirectionName(volume.patientAxes[2]), "S");
     EXPECT_EQ(volume.dims, (std::array<int, 3>{256, 256, 108}));
     EXPECT_EQ(volume.sourceType, ScalarType::Int16);
     EXPECT_NEAR(volume.spacing[0], 0.9570312, 1e-9);

@@ -73,10 +73,10 @@ for i, cam in enumerate(["anterior", "az=30,el=20", "az=-45.5,el=89,zoom=2.5,pan
 
 # /render queries and /api/fit bodies (the hostile .http requests of tests/server are added by make-corpus).
 for i, query in enumerate([
-        "dataset=neghip_64x64x64_uint8&cam=az=30,el=20&size=256x256&eps=2%25&mode=mip&window=120,200&colormap=hot&client=tab1",
+        "dataset=blobs_64x64x64_uint8&cam=az=30,el=20&size=256x256&eps=2%25&mode=mip&window=120,200&colormap=hot&client=tab1",
         "dataset=cranium&cam=az%3D30%2Cel%3D20&size=512x512&eps=2%&window=300,1500&_=169",
         "dataset=x&eps=20&degree=0&mode=density&colormap=viridis",
         "dataset=x&mode=reference&size=1x4096&window=-1e3,2.5e3&colormap=bone",
-        '{"dataset":"neghip_64x64x64_uint8","eps":"3%","degree":3,"focus":{"x":32,"y":32,"z":32,"r":8,"eps":1}}',
+        '{"dataset":"blobs_64x64x64_uint8","eps":"3%","degree":3,"focus":{"x":32,"y":32,"z":32,"r":8,"eps":1}}',
         '{"dataset":"x","eps":7.5}']):
     put("fuzz_render_query", "query%d.txt" % i, query)

@@ -22,25 +22,27 @@ done
     targets=(fuzz_votspace_reader fuzz_nrrd fuzz_nifti fuzz_metaimage fuzz_dicom fuzz_camera fuzz_render_query)
 
 fuzz=build/fuzz
-shared=../shared/data
+volumes=$fuzz/volumes
 mkdir -p "$fuzz"/{logs,corpus,artifacts}
+scripts/make-test-volumes "$volumes"
 
-# Larger seeds than the committed ones: small real volumes, .vots files fitted from them, hostile queries.
+# Larger seeds than the committed ones: the small test volumes (scripts/make-test-volumes), .vots files
+# fitted from the brain MRI, hostile queries.
 seed_extra() {
     local target=$1 dir=$fuzz/corpus/$1
     mkdir -p "$dir"
     case "$target" in
     fuzz_nrrd)
-        for f in HeadMRVolume_48x62x42_uint8 ironProt_68x68x68_uint8 neghip_64x64x64_uint8; do
-            [[ -f $shared/$f.nrrd ]] && cp -f "$shared/$f.nrrd" "$dir/"
-        done ;;
+        cp -f "$volumes"/{mri-brain_33x41x25_int16,blobs_64x64x64_uint8,orbital_64x64x64_float32}.nrrd "$dir/" ;;
+    fuzz_nifti)
+        cp -f "$volumes/mri-brain_33x41x25_int16.nii" "$dir/" ;;
     fuzz_votspace_reader)
         local vots=${VOTS_BIN:-}
         [[ -n $vots ]] || for b in build/rel/cli/vots build/asan/cli/vots; do [[ -x $b ]] && vots=$b && break; done
-        if [[ -n $vots && -f $shared/HeadMRVolume_48x62x42_uint8.nrrd ]]; then
+        if [[ -n $vots ]]; then
             for args in "--eps 10% --degree 3" "--eps 5% --degree 1" "--eps 20% --degree 0"; do
                 name=head_$(echo "$args" | tr -cd 'a-z0-9').vots
-                [[ -f $dir/$name ]] || ASAN_OPTIONS=detect_leaks=0 $vots fit "$shared/HeadMRVolume_48x62x42_uint8.nrrd" \
+                [[ -f $dir/$name ]] || ASAN_OPTIONS=detect_leaks=0 $vots fit "$volumes/mri-brain_33x41x25_int16.nrrd" \
                     -o "$dir/$name" $args >/dev/null || true
             done
         fi ;;

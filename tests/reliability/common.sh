@@ -2,7 +2,7 @@
 # Sourced, not run. Sets VOTS (the binary) and uses SERVER_PID / SERVER_PORT for the server it started.
 
 VOTS=${VOTS_BIN:-build/rel/cli/vots}
-SHARED_DATA=${VOTS_SHARED_DATA:-../shared/data}
+CRANIUM=${VOTS_CRANIUM:-data/cranium.nhdr} # scripts/fetch-ct writes it
 
 build_rel() {
     [[ -n ${VOTS_BIN:-} ]] && return 0
@@ -36,14 +36,25 @@ rss_kib() {
     sed -n 's/^VmRSS:[[:space:]]*\([0-9]*\) kB/\1/p' "/proc/$1/status"
 }
 
-# serve_hostile_load_volumes WORK: starts `vots serve` on HeadMR and the embryo from $SHARED_DATA (links in
+# serve_volumes DATA: DATA gets the small real brain MRI (dataset mri-brain_33x41x25_int16, written by
+# scripts/make-test-volumes beside DATA) and the Cranium CT (dataset cranium, a header whose data file is
+# $CRANIUM's, whose fit takes seconds).
+serve_volumes() {
+    local data=$1
+    mkdir -p "$data" "$data.volumes"
+    scripts/make-test-volumes "$data.volumes"
+    ln -s "$(realpath "$data.volumes/mri-brain_33x41x25_int16.nii")" "$data/"
+    [[ -f $CRANIUM ]] || { echo "no $CRANIUM: run scripts/fetch-ct"; return 1; }
+    local samples
+    samples=$(realpath "$(dirname "$CRANIUM")/$(sed -n 's/^data file: //p' "$CRANIUM")")
+    sed "s|^data file: .*|data file: $samples|" "$CRANIUM" >"$data/cranium.nhdr"
+}
+
+# serve_hostile_load_volumes WORK: starts `vots serve` on the brain MRI and the Cranium (serve_volumes
 # WORK/data, cache in WORK/cache, no warm-up), as the hostile and soak runs load it.
 serve_hostile_load_volumes() {
     local work=$1
-    mkdir -p "$work/data"
-    for name in HeadMRVolume_48x62x42_uint8 embryo_256x256x256_uint8; do
-        ln -s "$(realpath "$SHARED_DATA/$name.nrrd")" "$work/data/"
-    done
+    serve_volumes "$work/data"
     start_server "$work/server.log" --data "$work/data" --cache-dir "$work/cache" --no-warm-up
     echo "server pid $SERVER_PID, $(grep -m1 renderer "$work/server.log" | sed 's/^ *//')"
 }

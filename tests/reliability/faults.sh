@@ -10,11 +10,8 @@ build_rel
 
 work=$(mktemp -d)
 trap 'stop_server; rm -rf "$work"' EXIT
-mkdir -p "$work/data"
-# A volume whose fit takes seconds (the kill lands mid-fit: embryo at 2 % takes ~3.5 s on 2 cores) and a
-# small one for the rest.
-ln -s "$(realpath "$SHARED_DATA/embryo_256x256x256_uint8.nrrd")" "$work/data/"
-ln -s "$(realpath "$SHARED_DATA/HeadMRVolume_48x62x42_uint8.nrrd")" "$work/data/"
+# A volume whose fit takes seconds (the kill lands mid-fit: the Cranium at 2 %) and a small one for the rest.
+serve_volumes "$work/data"
 failures=0
 report() { # report PASS|FAIL "fault" "outcome"
     echo "$1 $2: $3"
@@ -47,13 +44,13 @@ log_line() { # log_line FILE PATTERN -> the first matching line, waiting up to 3
 }
 render_ok() { # render_ok [SOURCE_ADDRESS] -> HTTP status of a small /render
     curl -s -o /dev/null -w '%{http_code}' --interface "${1:-127.0.0.1}" \
-        "http://127.0.0.1:$SERVER_PORT/render?dataset=HeadMRVolume_48x62x42_uint8&size=64x64&eps=5%25"
+        "http://127.0.0.1:$SERVER_PORT/render?dataset=mri-brain_33x41x25_int16&size=64x64&eps=5%25"
 }
 
 # 1. kill -9 in the middle of a fit, then restart on the same cache folder.
 cache=$work/cache
 start_server "$work/s1.log" --data "$work/data" --cache-dir "$cache"
-job=$(fit embryo_256x256x256_uint8 2%)
+job=$(fit cranium 2%)
 id=$(echo "$job" | job_id)
 key=$(echo "$job" | sed -n 's/.*"key":"\([^"]*\)".*/\1/p')
 for _ in $(seq 1 100); do [[ $(job_state "$id") == running ]] && break; sleep 0.1; done
@@ -68,9 +65,9 @@ dead=$(sh -c 'echo $$')
 echo half >"$cache/$key.vots.tmp-$dead-0"
 printf 'VOTS\x01' >"$cache/$key.vots"
 start_server "$work/s2.log" --data "$work/data" --cache-dir "$cache"
-id=$(fit embryo_256x256x256_uint8 2% | job_id)
+id=$(fit cranium 2% | job_id)
 state=$(wait_job "$id")
-# A fit is announced before its disk write, so give the write (a ~130 MB file) up to 60 s to replace the
+# A fit is announced before its disk write, so give the write (tens of MB) up to 60 s to replace the
 # corrupt file under the key's name.
 for _ in $(seq 1 120); do
     temps=$(find "$cache" -name '*.tmp-*' | wc -l)
@@ -102,7 +99,7 @@ else
     start_server "$work/s3.log" --data "$work/data" --cache-dir "$full"
     ulimit -f unlimited 2>/dev/null || true
 fi
-id=$(fit HeadMRVolume_48x62x42_uint8 1% | job_id)
+id=$(fit mri-brain_33x41x25_int16 1% | job_id)
 state=$(wait_job "$id")
 status=$(render_ok)
 warning=$(log_line "$work/s3.log" 'warning: cache folder')
@@ -118,7 +115,7 @@ umount "$full" 2>/dev/null || true
 # 3. An unusable cache folder (a path below a regular file: root ignores permission bits).
 touch "$work/afile"
 start_server "$work/s4.log" --data "$work/data" --cache-dir "$work/afile/cache"
-id=$(fit HeadMRVolume_48x62x42_uint8 1% | job_id)
+id=$(fit mri-brain_33x41x25_int16 1% | job_id)
 state=$(wait_job "$id")
 status=$(render_ok)
 warning=$(log_line "$work/s4.log" 'warning: cache folder')
@@ -131,7 +128,7 @@ fi
 # 4. Clients that send a /render request and close at once, while another client keeps rendering. The
 # other client has an address of its own (127.0.0.2): the closers' 127.0.0.1 may have only 4 renders in
 # progress, the rest of its requests are refused (429) before any work, which is the fairness rule.
-q="/render?dataset=HeadMRVolume_48x62x42_uint8&size=256x256&eps=5%25&cam=az%3D"
+q="/render?dataset=mri-brain_33x41x25_int16&size=256x256&eps=5%25&cam=az%3D"
 (for i in $(seq 1 100); do
     exec 3<>/dev/tcp/127.0.0.1/"$SERVER_PORT"
     # Its own name: any other Host is refused (421) before a frame would be rendered.

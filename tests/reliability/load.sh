@@ -22,12 +22,11 @@ build_rel
 
 work=$(mktemp -d)
 trap 'stop_server; rm -rf "$work"' EXIT
-mkdir -p "$work/data"
-ln -s "$(realpath "$SHARED_DATA/HeadMRVolume_48x62x42_uint8.nrrd")" "$work/data/"
+serve_volumes "$work/data"
 # Every wrk connection comes from 127.0.0.1: without --renders-per-client 0 all but 4 would be 429.
 start_server "$work/server.log" --data "$work/data" --cache-dir "$work/cache" --renders-per-client 0
 base=http://127.0.0.1:$SERVER_PORT
-render="$base/render?dataset=HeadMRVolume_48x62x42_uint8&size=256x256&eps=2%25"
+render="$base/render?dataset=mri-brain_33x41x25_int16&size=256x256&eps=2%25"
 
 # Warm up: the first /render fits the Vot-Space; the load then measures serving, not fitting.
 curl -sf -o /dev/null "$render" && curl -sf -o /dev/null "$base/api/datasets"

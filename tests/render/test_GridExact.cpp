@@ -76,7 +76,7 @@ TEST(GridExact, ModesAreTheExactMaxMinAndMeanAlongRays) {
 TEST(GridExact, MinBelowMeanBelowMaxOnRealCt) {
     test::glContext();
     const fit::Volume volume =
-        fit::loadVolume(std::string(VOTS_SHARED_DATA_DIR) + "/headsq-quarter_64x64x93_int16.nrrd");
+        fit::loadVolume(std::string(VOTS_TEST_DATA_DIR) + "/cranium-quarter_64x64x108_int16.nrrd");
     GridRenderer grid;
     grid.upload(volume);
     const auto range = grid.valueRange();

@@ -23,11 +23,12 @@ struct Fitted {
     float eps = 0.f;
 };
 
-// headsq-quarter: a CT head, 64x64x93 int16, spacing 3.2 x 3.2 x 1.5 mm (anisotropic).
+// The Cranium CT at a quarter of its in-plane resolution: 64x64x108 int16, 3.83 x 3.83 x 1.5 mm
+// (anisotropic).
 const Fitted& headCt() {
     static const Fitted fitted = [] {
         Fitted f;
-        f.volume = fit::loadVolume(std::string(VOTS_SHARED_DATA_DIR) + "/headsq-quarter_64x64x93_int16.nrrd");
+        f.volume = fit::loadVolume(std::string(VOTS_TEST_DATA_DIR) + "/cranium-quarter_64x64x108_int16.nrrd");
         const auto range = f.volume.valueRange();
         fit::FitOptions options;
         options.eps = 0.01f * (range[1] - range[0]);
@@ -81,9 +82,9 @@ TEST(RealVolume, VotMipMatchesReferenceWithinEps) {
         std::cout << text << ": " << compared << " pixels, " << 100.0 * within / compared << " % within eps "
                   << f.eps << " + " << allowance << ", worst " << worst << " (outside: " << above
                   << " above, " << below << " below the reference)\n";
-        test::saveForInspection(a, std::string("headsq_vot_") +
+        test::saveForInspection(a, std::string("cranium_quarter_vot_") +
                                        (text[0] == 'a' && text[1] == 'z' ? "oblique" : text));
-        test::saveForInspection(b, std::string("headsq_ref_") +
+        test::saveForInspection(b, std::string("cranium_quarter_ref_") +
                                        (text[0] == 'a' && text[1] == 'z' ? "oblique" : text));
     }
 }

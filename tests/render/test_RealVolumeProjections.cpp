@@ -29,7 +29,7 @@ struct Fitted {
 const Fitted& cranium() {
     static const Fitted fitted = [] {
         Fitted f;
-        f.volume = fit::loadVolume(std::string(VOTS_SOURCE_DIR) + "/data/cranium.nhdr");
+        f.volume = fit::loadVolume(VOTS_CRANIUM_HEADER);
         const auto range = f.volume.valueRange();
         fit::FitOptions options;
         options.eps = 0.02f * (range[1] - range[0]);
@@ -66,8 +66,10 @@ TEST(RealVolumeProjections, VotsMatchTheExactGridInEveryModeWithAndWithoutASlab)
     // Beyond eps: float evaluation and the 16-bit higher terms of the walk records (well under a grey
     // level of this range), nothing for interpolation: the grid is exact.
     const double allowance = 1e-3 * (f.volume.valueRange()[1] - f.volume.valueRange()[0]);
+    // The slab lies 25 mm behind the centre as the camera sees it: through the back of the skull.
     for (const char* cam : {"anterior", "az=30,el=20"})
-        for (const std::optional<Slab>& slab : {std::optional<Slab>{}, std::optional<Slab>{Slab{25.0, 30.0}}})
+        for (const std::optional<Slab>& slab :
+             {std::optional<Slab>{}, std::optional<Slab>{Slab{-25.0, 30.0}}})
             for (RenderMode mode : {RenderMode::Mip, RenderMode::MinIp, RenderMode::Aip}) {
                 const Camera camera = parseCamera(cam);
                 const RenderOptions options{mode, slab};

@@ -34,12 +34,12 @@ constexpr const char* VIEWS[] = {"anterior", "az=30,el=20,zoom=1.2",
                                  "az=-50,el=-30,zoom=1.4,proj=persp,fov=40",
                                  "az=20,el=10,zoom=8,proj=persp,fov=60"};
 
-// headsq-quarter fitted with the default (fast) method: disjoint boxes, so Walk applies.
+// The quarter Cranium CT fitted with the default (fast) method: disjoint boxes, so Walk applies.
 const fit::VotSpace& headFast(float* epsOut) {
     static float eps = 0;
     static const fit::VotSpace space = [] {
         const fit::Volume volume =
-            fit::loadVolume(std::string(VOTS_SHARED_DATA_DIR) + "/headsq-quarter_64x64x93_int16.nrrd");
+            fit::loadVolume(std::string(VOTS_TEST_DATA_DIR) + "/cranium-quarter_64x64x108_int16.nrrd");
         const auto range = volume.valueRange();
         fit::FitOptions options;
         options.eps = 0.02f * (range[1] - range[0]);

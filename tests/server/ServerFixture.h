@@ -17,8 +17,12 @@
 
 namespace vots::test {
 
-inline constexpr const char* NEGHIP = "neghip_64x64x64_uint8";
-inline constexpr const char* HEAD_MR = "HeadMRVolume_48x62x42_uint8";
+// The two datasets of every test world, from scripts/make-test-volumes: generated Gaussian blobs (uint8,
+// 0..255, index space) and a real brain MRI (int16 NIfTI with its patient axes).
+inline constexpr const char* BLOBS = "blobs_64x64x64_uint8";
+inline constexpr const char* BLOBS_FILE = "blobs_64x64x64_uint8.nrrd";
+inline constexpr const char* MRI_BRAIN = "mri-brain_33x41x25_int16";
+inline constexpr const char* MRI_BRAIN_FILE = "mri-brain_33x41x25_int16.nii";
 
 /// Owns the folders; makeServer() starts a server over them with the given tweaks.
 class ServerWorld {
@@ -27,9 +31,8 @@ public:
         namespace fs = std::filesystem;
         fs::create_directories(data());
         fs::create_directories(web() / "js");
-        for (const char* name : {NEGHIP, HEAD_MR})
-            fs::create_symlink(fs::path(VOTS_SHARED_DATA_DIR) / (std::string(name) + ".nrrd"),
-                               data() / (std::string(name) + ".nrrd"));
+        for (const char* file : {BLOBS_FILE, MRI_BRAIN_FILE})
+            fs::create_symlink(fs::path(VOTS_TEST_DATA_DIR) / file, data() / file);
         mDir.write("web/index.html", "<!doctype html><title>Vots</title>");
         mDir.write("web/js/app.js", "console.log('vots');");
         mDir.write("web/style.css", "body{}");

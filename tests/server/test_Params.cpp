@@ -43,7 +43,7 @@ TEST(Params, DefaultsMatchTheContract) {
 }
 
 TEST(Params, ParsesEveryField) {
-    const RenderParams p = parseRenderParams({{"dataset", "neghip_64x64x64_uint8"},
+    const RenderParams p = parseRenderParams({{"dataset", "blobs_64x64x64_uint8"},
                                               {"cam", "az=30,el=20"},
                                               {"size", "128x64"},
                                               {"eps", "12.5"},

@@ -137,7 +137,7 @@ TEST(ServeCommandAccess, ATokenFileIsRequiredOnLoopbackTooAndNeverLogged) {
     const std::string q = "token=" + token;
     for (const std::string& path :
          std::vector<std::string>{"/api/datasets?" + q, "/render?dataset=nope&" + q, "/render?cam=bad&" + q,
-                                  "/render?dataset=" + std::string(NEGHIP) + "&size=0x0&" + q,
+                                  "/render?dataset=" + std::string(BLOBS) + "&size=0x0&" + q,
                                   "/api/jobs/999?" + q, "/api/nothing?" + q, "/missing.html?" + q}) {
         const auto res = c->Get(path.c_str(), {{"Authorization", "Bearer " + token}});
         ASSERT_TRUE(res) << path;

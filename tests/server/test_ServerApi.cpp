@@ -18,20 +18,20 @@ TEST_F(ServerApi, ListsDatasetsWithGridRangeAndPresets) {
     EXPECT_EQ(res->get_header_value("Content-Type"), "application/json");
     const auto json = bodyJson(res);
     ASSERT_EQ(json["datasets"].size(), 2u);
-    const auto& head = json["datasets"][0]; // sorted by name: HeadMR... < neghip...
-    EXPECT_EQ(head["name"], HEAD_MR);
-    EXPECT_EQ(head["dims"], nlohmann::json::array({48, 62, 42}));
-    EXPECT_EQ(head["modality"], "other");
-    const auto& neghip = json["datasets"][1];
-    EXPECT_EQ(neghip["name"], NEGHIP);
-    EXPECT_EQ(neghip["range"], nlohmann::json::array({0.0, 255.0}));
-    EXPECT_FLOAT_EQ(neghip["defaultEps"].get<float>(), 5.1f);
-    EXPECT_FLOAT_EQ(neghip["background"].get<float>(), 2.55f);
-    EXPECT_FLOAT_EQ(neghip["window"]["level"].get<float>(), 127.5f);
-    EXPECT_FLOAT_EQ(neghip["window"]["width"].get<float>(), 255.f);
+    const auto& brain = json["datasets"][1]; // sorted by name: blobs... < mri-brain...
+    EXPECT_EQ(brain["name"], MRI_BRAIN);
+    EXPECT_EQ(brain["dims"], nlohmann::json::array({33, 41, 25}));
+    EXPECT_EQ(brain["modality"], "other");
+    const auto& blobs = json["datasets"][0];
+    EXPECT_EQ(blobs["name"], BLOBS);
+    EXPECT_EQ(blobs["range"], nlohmann::json::array({0.0, 255.0}));
+    EXPECT_FLOAT_EQ(blobs["defaultEps"].get<float>(), 5.1f);
+    EXPECT_FLOAT_EQ(blobs["background"].get<float>(), 2.55f);
+    EXPECT_FLOAT_EQ(blobs["window"]["level"].get<float>(), 127.5f);
+    EXPECT_FLOAT_EQ(blobs["window"]["width"].get<float>(), 255.f);
     for (const char* preset : {"bone", "soft", "full"}) {
-        ASSERT_TRUE(neghip["presets"].contains(preset)) << preset;
-        EXPECT_GT(neghip["presets"][preset]["width"].get<float>(), 0.f);
+        ASSERT_TRUE(blobs["presets"].contains(preset)) << preset;
+        EXPECT_GT(blobs["presets"][preset]["width"].get<float>(), 0.f);
     }
 }
 
@@ -70,8 +70,8 @@ TEST_F(ServerApi, UnknownApiPathIsJson404) {
 
 TEST_F(ServerApi, FitJobRunsFromPostToSseDone) {
     auto c = client();
-    const auto post = c->Post(
-        "/api/fit", R"({"dataset":"HeadMRVolume_48x62x42_uint8","eps":"3%","degree":2})", "application/json");
+    const auto post = c->Post("/api/fit", R"({"dataset":"mri-brain_33x41x25_int16","eps":"3%","degree":2})",
+                              "application/json");
     ASSERT_TRUE(post);
     ASSERT_EQ(post->status, 202) << post->body;
     const auto job = bodyJson(post);
@@ -104,9 +104,8 @@ TEST_F(ServerApi, FitJobRunsFromPostToSseDone) {
     EXPECT_TRUE(polled["error"].is_null());
 
     // The same key again reuses the fitted Vot-Space: done at once, same Vot count.
-    const auto again =
-        bodyJson(c->Post("/api/fit", R"({"dataset":"HeadMRVolume_48x62x42_uint8","eps":"3%","degree":2})",
-                         "application/json"));
+    const auto again = bodyJson(c->Post(
+        "/api/fit", R"({"dataset":"mri-brain_33x41x25_int16","eps":"3%","degree":2})", "application/json"));
     EXPECT_EQ(again["state"], "done");
     EXPECT_EQ(again["votCount"], data["votCount"]);
 }
@@ -115,7 +114,7 @@ TEST_F(ServerApi, FocusFitCompletes) {
     auto c = client();
     const auto post = c->Post(
         "/api/fit",
-        R"({"dataset":"HeadMRVolume_48x62x42_uint8","eps":20,"focus":{"x":24,"y":30,"z":20,"r":8,"eps":5}})",
+        R"({"dataset":"mri-brain_33x41x25_int16","eps":2480,"focus":{"x":16,"y":20,"z":12,"r":8,"eps":620}})",
         "application/json");
     ASSERT_TRUE(post);
     ASSERT_EQ(post->status, 202) << post->body;
@@ -126,7 +125,7 @@ TEST_F(ServerApi, FocusFitCompletes) {
 
 TEST_F(ServerApi, StatsReportFramesFitsAndCaches) {
     auto c = client();
-    const auto png = c->Get("/render?dataset=HeadMRVolume_48x62x42_uint8&size=64x64&eps=4%25");
+    const auto png = c->Get("/render?dataset=mri-brain_33x41x25_int16&size=64x64&eps=4%25");
     ASSERT_TRUE(png);
     ASSERT_EQ(png->status, 200) << png->body;
     auto stats = bodyJson(c->Get("/api/stats"));
@@ -162,7 +161,7 @@ TEST(ServerLimits, TooManyFitJobsGive429) {
     int refused = 0;
     for (int i = 1; i <= 6; ++i) { // tight eps: each fit takes a while, so the queue fills
         const std::string body =
-            std::string(R"({"dataset":"neghip_64x64x64_uint8","eps":)") + std::to_string(0.1 * i) + "}";
+            std::string(R"({"dataset":"blobs_64x64x64_uint8","eps":)") + std::to_string(0.1 * i) + "}";
         const auto res = c->Post("/api/fit", body, "application/json");
         ASSERT_TRUE(res);
         if (res->status == 202) ++accepted;
@@ -177,7 +176,7 @@ TEST(ServerLimits, TooManyFitJobsGive429) {
 
 TEST(ServerCache, DiskCacheServesARestartedServer) {
     ServerWorld world;
-    const std::string query = "/render?dataset=HeadMRVolume_48x62x42_uint8&size=64x64&eps=6%25";
+    const std::string query = "/render?dataset=mri-brain_33x41x25_int16&size=64x64&eps=6%25";
     std::string first;
     {
         LoopbackServer server(world.options());
@@ -206,7 +205,7 @@ TEST(ServerCache, UnwritableCacheFolderKeepsServing) {
     LoopbackServer server(options);
     auto c = server.client();
     const auto post =
-        c->Post("/api/fit", R"({"dataset":"HeadMRVolume_48x62x42_uint8","eps":"5%"})", "application/json");
+        c->Post("/api/fit", R"({"dataset":"mri-brain_33x41x25_int16","eps":"5%"})", "application/json");
     ASSERT_TRUE(post);
     ASSERT_EQ(post->status, 202);
     const auto stats = bodyJson(c->Get("/api/stats"));
@@ -222,10 +221,10 @@ TEST(ServerNoRenderer, ApiWorksAndRenderIs503) {
     const auto list = c->Get("/api/datasets");
     ASSERT_TRUE(list);
     EXPECT_EQ(list->status, 200);
-    const auto res = c->Get("/render?dataset=neghip_64x64x64_uint8&size=32x32");
+    const auto res = c->Get("/render?dataset=blobs_64x64x64_uint8&size=32x32");
     ASSERT_TRUE(res);
     EXPECT_EQ(res->status, 503);
-    EXPECT_TRUE(bodyJson(res).contains("error"));
+    EXPECT_EQ(bodyJson(res)["error"], "rendering is disabled");
 }
 
 } // namespace

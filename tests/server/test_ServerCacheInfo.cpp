@@ -29,7 +29,7 @@ TEST(ServerCacheInfo, InfoOfACacheFileShowsItsFitTimeAndKey) {
     LoopbackServer server(options);
     auto c = server.client();
     const auto posted = bodyJson(
-        c->Post("/api/fit", R"({"dataset":"HeadMRVolume_48x62x42_uint8","eps":"5%"})", "application/json"));
+        c->Post("/api/fit", R"({"dataset":"mri-brain_33x41x25_int16","eps":"5%"})", "application/json"));
     const auto job = waitForJob(*c, posted);
     ASSERT_EQ(job["state"], "done") << job.dump();
     // The file is written after the fit is announced, at low priority.

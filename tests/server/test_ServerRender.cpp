@@ -1,7 +1,6 @@
-// GET /render over loopback: same bytes as `vots render`, headers, concurrent clients, superseded frames.
+// GET /render over loopback: same bytes as `vots render`, headers, concurrent clients (superseded frames:
+// test_ServerSupersede.cpp).
 #include "ServerFixture.h"
-
-#include "vots/render/EglContext.h"
 
 #include <chrono>
 #include <cstdlib>
@@ -18,10 +17,10 @@ namespace {
 class ServerRender : public SharedServerTest {
 protected:
     /// Runs the real CLI and returns the PNG bytes it wrote.
-    static std::string cliRender(const std::string& dataset, const std::string& args) {
+    static std::string cliRender(const std::string& file, const std::string& args) {
         const std::string out = world().dir().file("cli-" + std::to_string(sCount++) + ".png");
-        const std::string command = std::string(VOTS_CLI) + " render '" + VOTS_SHARED_DATA_DIR + "/" +
-                                    dataset + ".nrrd' -o '" + out + "' " + args + " 2>/dev/null";
+        const std::string command = std::string(VOTS_CLI) + " render '" + VOTS_TEST_DATA_DIR + "/" + file +
+                                    "' -o '" + out + "' " + args + " 2>/dev/null";
         EXPECT_EQ(std::system(command.c_str()), 0) << command;
         std::ifstream in(out, std::ios::binary);
         std::ostringstream bytes;
@@ -39,49 +38,48 @@ protected:
 };
 
 TEST_F(ServerRender, MipMatchesCliBytes) {
-    const std::string png =
-        serverRender("dataset=neghip_64x64x64_uint8&cam=az=30,el=20&size=128x96&eps=2%25");
-    EXPECT_EQ(png, cliRender(NEGHIP, "--cam az=30,el=20 --size 128x96 --eps 2%"));
+    const std::string png = serverRender("dataset=blobs_64x64x64_uint8&cam=az=30,el=20&size=128x96&eps=2%25");
+    EXPECT_EQ(png, cliRender(BLOBS_FILE, "--cam az=30,el=20 --size 128x96 --eps 2%"));
 }
 
 TEST_F(ServerRender, WindowColormapAndDegreeMatchCliBytes) {
-    const std::string png = serverRender("dataset=HeadMRVolume_48x62x42_uint8&cam=view%3Dleft&size=96x96&eps="
+    const std::string png = serverRender("dataset=mri-brain_33x41x25_int16&cam=view%3Dleft&size=96x96&eps="
                                          "8&degree=2&window=100,150&colormap=hot");
     EXPECT_EQ(png,
-              cliRender(HEAD_MR,
+              cliRender(MRI_BRAIN_FILE,
                         "--cam view=left --size 96x96 --eps 8 --degree 2 --window 100,150 --colormap hot"));
 }
 
 TEST_F(ServerRender, ProjectionsAndSlabsMatchCliBytesAndAreCachedApart) {
-    const std::string base = "dataset=neghip_64x64x64_uint8&cam=az=30,el=20&size=80x80&eps=2%25";
+    const std::string base = "dataset=blobs_64x64x64_uint8&cam=az=30,el=20&size=80x80&eps=2%25";
     const std::string minip = serverRender(base + "&mode=minip");
     const std::string aip = serverRender(base + "&mode=aip");
     const std::string slab = serverRender(base + "&mode=aip&slab=5,12");
-    EXPECT_EQ(minip, cliRender(NEGHIP, "--cam az=30,el=20 --size 80x80 --eps 2% --mode minip"));
-    EXPECT_EQ(aip, cliRender(NEGHIP, "--cam az=30,el=20 --size 80x80 --eps 2% --mode aip"));
-    EXPECT_EQ(slab, cliRender(NEGHIP, "--cam az=30,el=20 --size 80x80 --eps 2% --mode aip --slab 5,12"));
+    EXPECT_EQ(minip, cliRender(BLOBS_FILE, "--cam az=30,el=20 --size 80x80 --eps 2% --mode minip"));
+    EXPECT_EQ(aip, cliRender(BLOBS_FILE, "--cam az=30,el=20 --size 80x80 --eps 2% --mode aip"));
+    EXPECT_EQ(slab, cliRender(BLOBS_FILE, "--cam az=30,el=20 --size 80x80 --eps 2% --mode aip --slab 5,12"));
     EXPECT_NE(minip, aip);
     EXPECT_NE(aip, slab);
     EXPECT_NE(serverRender(base), minip); // mip, not a cached minip
 }
 
 TEST_F(ServerRender, DensityAndReferenceMatchCliBytes) {
-    EXPECT_EQ(serverRender("dataset=neghip_64x64x64_uint8&size=80x80&eps=3%25&mode=density"),
-              cliRender(NEGHIP, "--size 80x80 --eps 3% --mode density"));
+    EXPECT_EQ(serverRender("dataset=blobs_64x64x64_uint8&size=80x80&eps=3%25&mode=density"),
+              cliRender(BLOBS_FILE, "--size 80x80 --eps 3% --mode density"));
     EXPECT_EQ(
-        serverRender("dataset=neghip_64x64x64_uint8&cam=az=-40,el=10,zoom=1.5&size=80x80&mode=reference"),
-        cliRender(NEGHIP, "--cam az=-40,el=10,zoom=1.5 --size 80x80 --mode reference"));
+        serverRender("dataset=blobs_64x64x64_uint8&cam=az=-40,el=10,zoom=1.5&size=80x80&mode=reference"),
+        cliRender(BLOBS_FILE, "--cam az=-40,el=10,zoom=1.5 --size 80x80 --mode reference"));
 }
 
 TEST_F(ServerRender, RefitAtNewEpsThroughBoxCacheMatchesCliBytes) {
     // The first fit fills the per-(dataset, degree) box cache; the second reuses it and must not differ.
-    serverRender("dataset=neghip_64x64x64_uint8&size=32x32&eps=7%25");
-    EXPECT_EQ(serverRender("dataset=neghip_64x64x64_uint8&size=64x64&eps=4%25&cam=superior"),
-              cliRender(NEGHIP, "--size 64x64 --eps 4% --cam superior"));
+    serverRender("dataset=blobs_64x64x64_uint8&size=32x32&eps=7%25");
+    EXPECT_EQ(serverRender("dataset=blobs_64x64x64_uint8&size=64x64&eps=4%25&cam=superior"),
+              cliRender(BLOBS_FILE, "--size 64x64 --eps 4% --cam superior"));
 }
 
 TEST_F(ServerRender, SameUrlSameBytesAndHeaders) {
-    const std::string query = "/render?dataset=neghip_64x64x64_uint8&size=64x64&cam=az=33";
+    const std::string query = "/render?dataset=blobs_64x64x64_uint8&size=64x64&cam=az=33";
     auto c = client();
     const auto a = c->Get(query.c_str());
     const auto b = c->Get(query.c_str());
@@ -102,7 +100,7 @@ TEST_F(ServerRender, WithoutFrameCacheTheSameUrlRendersAgainToTheSameBytes) {
     options.frameCacheBytes = 0;
     options.cacheDir.clear();
     const LoopbackServer uncached(options);
-    const std::string query = "/render?dataset=neghip_64x64x64_uint8&size=48x40&cam=az=-70,el=35";
+    const std::string query = "/render?dataset=blobs_64x64x64_uint8&size=48x40&cam=az=-70,el=35";
     const auto a = uncached.client()->Get(query.c_str());
     const auto b = uncached.client()->Get(query.c_str());
     ASSERT_TRUE(a && b);
@@ -114,7 +112,7 @@ TEST_F(ServerRender, WithoutFrameCacheTheSameUrlRendersAgainToTheSameBytes) {
 }
 
 TEST_F(ServerRender, FrameCacheTellsWindowsApartToTheLastBit) {
-    const std::string base = "/render?dataset=neghip_64x64x64_uint8&size=40x40&cam=az=-5&window=100";
+    const std::string base = "/render?dataset=blobs_64x64x64_uint8&size=40x40&cam=az=-5&window=100";
     auto c = client();
     const auto a = c->Get((base + ",50").c_str());
     const auto b = c->Get((base + ".0001,50").c_str()); // the same to 3 decimals, another float
@@ -127,8 +125,8 @@ TEST_F(ServerRender, FrameCacheTellsWindowsApartToTheLastBit) {
 }
 
 TEST_F(ServerRender, IdenticalRequestsAtOnceRenderOnce) {
-    const std::string query = "/render?dataset=neghip_64x64x64_uint8&size=96x96&cam=az=71,el=-12";
-    serverRender("dataset=neghip_64x64x64_uint8&size=8x8"); // fitted already
+    const std::string query = "/render?dataset=blobs_64x64x64_uint8&size=96x96&cam=az=71,el=-12";
+    serverRender("dataset=blobs_64x64x64_uint8&size=8x8"); // fitted already
     const auto before = bodyJson(client()->Get("/api/stats"))["frameCache"];
     std::vector<std::future<std::string>> fetches;
     for (int i = 0; i < 4; ++i)
@@ -150,8 +148,8 @@ TEST_F(ServerRender, IdenticalRequestsAtOnceRenderOnce) {
 }
 
 TEST_F(ServerRender, TwoClientsAtOnceGetTheirOwnImages) {
-    const std::string left = "/render?dataset=neghip_64x64x64_uint8&size=64x64&cam=left&client=a";
-    const std::string right = "/render?dataset=neghip_64x64x64_uint8&size=64x64&cam=right&client=b";
+    const std::string left = "/render?dataset=blobs_64x64x64_uint8&size=64x64&cam=left&client=a";
+    const std::string right = "/render?dataset=blobs_64x64x64_uint8&size=64x64&cam=right&client=b";
     auto fetch = [](const std::string& path) {
         const auto res = client()->Get(path.c_str());
         return res && res->status == 200 ? res->body : std::string("failed");
@@ -163,49 +161,6 @@ TEST_F(ServerRender, TwoClientsAtOnceGetTheirOwnImages) {
     EXPECT_EQ(pngA, fetch(left));
     EXPECT_EQ(pngB, fetch(right));
     EXPECT_NE(pngA, pngB);
-}
-
-TEST_F(ServerRender, NewerFrameFromSameClientSupersedesWaitingOne) {
-    serverRender("dataset=neghip_64x64x64_uint8&size=16x16"); // fitted, so the next requests queue at once
-    // Occupy the render thread with a large reference frame, then queue two frames from one client.
-    auto busy = std::async(std::launch::async, [] {
-        return client()->Get(
-            "/render?dataset=neghip_64x64x64_uint8&mode=reference&size=2048x2048&client=busy");
-    });
-    auto waitForQueue = [](int n) {
-        for (int i = 0; i < 2000; ++i) {
-            const auto stats = bodyJson(client()->Get("/api/stats"));
-            if (stats["renderer"]["waiting"].get<int>() >= n) return true;
-            std::this_thread::sleep_for(std::chrono::milliseconds(2));
-        }
-        return false;
-    };
-    std::this_thread::sleep_for(std::chrono::milliseconds(200)); // the idle render thread has taken it
-    auto older = std::async(std::launch::async, [] {
-        return client()->Get("/render?dataset=neghip_64x64x64_uint8&size=64x64&cam=az=10&client=viewer");
-    });
-    if (!waitForQueue(1)) { // on a fast GPU the busy frame may be over already: nothing to supersede
-        busy.get();
-        older.get();
-        GTEST_SKIP() << "the busy frame finished before a second frame could queue behind it";
-    }
-    auto newer = std::async(std::launch::async, [] {
-        return client()->Get("/render?dataset=neghip_64x64x64_uint8&size=64x64&cam=az=20&client=viewer");
-    });
-    const auto oldRes = older.get();
-    const auto newRes = newer.get();
-    const auto busyRes = busy.get();
-    ASSERT_TRUE(oldRes && newRes && busyRes);
-    EXPECT_EQ(busyRes->status, 200);
-    const std::string renderer = bodyJson(client()->Get("/api/stats"))["renderer"]["name"];
-    if (oldRes->status == 200 && !render::EglContext::isSoftwareRenderer(renderer))
-        // A fast GPU finishes the busy frame before the newer one arrives, so the render thread takes
-        // the older frame; llvmpipe needs far longer for the busy frame.
-        GTEST_SKIP() << renderer << " finished the busy frame before the newer frame could queue";
-    EXPECT_EQ(oldRes->status, 409);
-    EXPECT_EQ(bodyJson(oldRes)["error"], "superseded");
-    EXPECT_EQ(newRes->status, 200);
-    EXPECT_GE(bodyJson(client()->Get("/api/stats"))["frames"]["superseded"].get<int>(), 1);
 }
 
 } // namespace

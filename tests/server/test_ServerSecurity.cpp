@@ -18,7 +18,7 @@ server::ServerOptions quietOptions(const ServerWorld& world) {
 }
 
 std::string fitBody() {
-    return nlohmann::json{{"dataset", NEGHIP}, {"eps", 9}}.dump();
+    return nlohmann::json{{"dataset", BLOBS}, {"eps", 9}}.dump();
 }
 
 void expectJsonError(const httplib::Result& res, int status, const std::string& what) {
@@ -110,7 +110,7 @@ TEST(ServerSecurity, TokenIsRequiredOnTheApiButNotForTheViewerFiles) {
     auto c = server.client();
     const std::string bearer = std::string("Bearer ") + TOKEN;
     for (const char* path : {"/api/datasets", "/api/stats", "/api/jobs/1", "/api/jobs/1/events",
-                             "/render?dataset=neghip_64x64x64_uint8"}) {
+                             "/render?dataset=blobs_64x64x64_uint8"}) {
         SCOPED_TRACE(path);
         const auto missing = c->Get(path);
         expectJsonError(missing, 401, "no token");
@@ -135,9 +135,10 @@ TEST(ServerSecurity, TokenIsRequiredOnTheApiButNotForTheViewerFiles) {
     ASSERT_TRUE(query);
     EXPECT_EQ(query->status, 200);
     // token= is no unknown /render parameter: this server has no renderer, so the answer is its 503.
-    const auto render = c->Get((std::string("/render?dataset=") + NEGHIP + "&token=" + TOKEN).c_str());
+    const auto render = c->Get((std::string("/render?dataset=") + BLOBS + "&token=" + TOKEN).c_str());
     ASSERT_TRUE(render);
     EXPECT_EQ(render->status, 503) << render->body;
+    EXPECT_EQ(bodyJson(render)["error"], "rendering is disabled");
     const auto fit = c->Post("/api/fit", {{"Authorization", bearer}}, fitBody(), "application/json");
     ASSERT_TRUE(fit);
     EXPECT_EQ(fit->status, 202);

@@ -21,10 +21,10 @@ protected:
     static void SetUpTestSuite() {
         sWorld = new ServerWorld();
         const std::string head = (sWorld->data() / "head.vots").string();
-        const std::string fit = std::string(VOTS_CLI) + " fit '" + VOTS_SHARED_DATA_DIR + "/" + HEAD_MR +
-                                ".nrrd' -o '" + head + "' --eps 3% --degree 2 2>/dev/null";
+        const std::string fit = std::string(VOTS_CLI) + " fit '" + VOTS_TEST_DATA_DIR + "/" + MRI_BRAIN_FILE +
+                                "' -o '" + head + "' --eps 3% --degree 2 2>/dev/null";
         ASSERT_EQ(std::system(fit.c_str()), 0) << fit;
-        std::filesystem::copy_file(head, sWorld->data() / (std::string(NEGHIP) + ".vots"));
+        std::filesystem::copy_file(head, sWorld->data() / (std::string(BLOBS) + ".vots"));
         sWorld->dir().write("data/broken.vots", "VOTS but not a Vot-Space");
         sVotCount = fit::readVotSpaceFile(head).vots.size();
         sServer = new LoopbackServer(sWorld->options());
@@ -83,11 +83,11 @@ TEST_F(ServerVotsDataset, ListedWithItsKindAndTheFilesEps) {
     EXPECT_FLOAT_EQ(head["defaultEps"].get<float>(), space.eps);
     EXPECT_EQ(head["votCount"].get<std::size_t>(), space.vots.size());
     EXPECT_EQ(head["dims"], nlohmann::json(space.dims));
-    // The MRI's value range as the fit saw it (uint8 head: starts at 0), from the file's meta block.
-    EXPECT_EQ(head["range"][0].get<float>(), 0.f);
-    EXPECT_GT(head["range"][1].get<float>(), 100.f);
+    // The MRI's value range as the fit saw it (its int16 samples: -610 to 30393), from the file's meta block.
+    EXPECT_EQ(head["range"][0].get<float>(), -610.f);
+    EXPECT_EQ(head["range"][1].get<float>(), 30393.f);
 
-    const auto volume = listed(NEGHIP);
+    const auto volume = listed(BLOBS);
     ASSERT_TRUE(volume.is_object());
     EXPECT_EQ(volume["kind"], "volume") << "a volume wins over a .vots file of the same name";
     EXPECT_EQ(volume["dims"], nlohmann::json({64, 64, 64}));
@@ -101,8 +101,8 @@ TEST_F(ServerVotsDataset, RenderEqualsTheCliOnTheFileByteForByte) {
               cliRender("--view anterior --size 64x64 --mode density --colormap hot"));
     // The file's own eps, as the viewer sends it back from /api/datasets, is no refit.
     const std::string eps = listed("head")["eps"].dump();
-    EXPECT_EQ(serverRender("dataset=head&cam=az=-40,el=10&size=72x72&window=60,120&eps=" + eps),
-              cliRender("--cam az=-40,el=10 --size 72x72 --window 60,120"));
+    EXPECT_EQ(serverRender("dataset=head&cam=az=-40,el=10&size=72x72&window=8000,16000&eps=" + eps),
+              cliRender("--cam az=-40,el=10 --size 72x72 --window 8000,16000"));
 }
 
 TEST_F(ServerVotsDataset, ReferenceAndAnotherEpsAnswer409WithTheReason) {
@@ -122,7 +122,7 @@ TEST_F(ServerVotsDataset, ReferenceAndAnotherEpsAnswer409WithTheReason) {
 
     // A volume keeps both.
     const auto volume =
-        client()->Get((std::string("/render?dataset=") + NEGHIP + "&size=32x32&mode=reference").c_str());
+        client()->Get((std::string("/render?dataset=") + BLOBS + "&size=32x32&mode=reference").c_str());
     ASSERT_TRUE(volume);
     EXPECT_EQ(volume->status, 200);
 }

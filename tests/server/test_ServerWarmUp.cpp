@@ -35,7 +35,7 @@ TEST(ServerWarmUp, AnIdleServerFitsHalfTheLastEps) {
     options.withRenderer = false;
     LoopbackServer server(options);
     auto c = server.client();
-    const auto job = waitForJob(*c, postFit(*c, HEAD_MR, "\"8%\""));
+    const auto job = waitForJob(*c, postFit(*c, MRI_BRAIN, "\"8%\""));
     ASSERT_EQ(job["state"], "done") << job.dump();
     const auto warm = waitForWarmUps(*c, [](const nlohmann::json& w) { return w["finished"] == 1; });
     EXPECT_EQ(warm["started"], 1) << warm.dump();
@@ -46,7 +46,7 @@ TEST(ServerWarmUp, AnIdleServerFitsHalfTheLastEps) {
     // round waits for its warm-up to have started and finished before the next fit.
     const std::pair<const char*, int> rounds[] = {{"\"4%\"", 2}, {"\"2%\"", 3}, {"\"1%\"", 3}};
     for (const auto& [eps, started] : rounds) {
-        ASSERT_EQ(waitForJob(*c, postFit(*c, HEAD_MR, eps))["state"], "done");
+        ASSERT_EQ(waitForJob(*c, postFit(*c, MRI_BRAIN, eps))["state"], "done");
         waitForWarmUps(*c, [started = started](const nlohmann::json& w) {
             return w["started"] == started && !w["running"].get<bool>();
         });
@@ -87,7 +87,7 @@ TEST(ServerWarmUp, NoneWhenTurnedOff) {
     options.warmUpFits = false;
     LoopbackServer server(options);
     auto c = server.client();
-    ASSERT_EQ(waitForJob(*c, postFit(*c, HEAD_MR, "\"8%\""))["state"], "done");
+    ASSERT_EQ(waitForJob(*c, postFit(*c, MRI_BRAIN, "\"8%\""))["state"], "done");
     std::this_thread::sleep_for(300ms);
     EXPECT_EQ(bodyJson(c->Get("/api/stats"))["warmUps"]["started"], 0);
 }

@@ -49,7 +49,7 @@ std::shared_ptr<const fit::VotSpace> spaceWith(std::size_t vots, const FitKey& k
 }
 
 TEST(FitKey, TextIsExactAndFileSafe) {
-    FitKey a{"neghip", 5.1f, 3, 2.55f, std::nullopt};
+    FitKey a{"blobs", 5.1f, 3, 2.55f, std::nullopt};
     FitKey b = a;
     b.eps = std::nextafter(5.1f, 6.f);
     EXPECT_NE(a.text(), b.text());

@@ -14,7 +14,7 @@ const { roundDown125, scaleBarOf } = m['scalebar.js'];
 const { colorbarOf } = m['colorbar.js'];
 const { edgeLabels } = m['orientation.js'];
 
-// The Cranium's grid as /api/datasets gives it (no orientation in its file).
+// The Cranium's grid as /api/datasets would give it without its patient axes (index space).
 const CRANIUM = {
   name: 'cranium', modality: 'CT', range: [-1024, 2986], defaultEps: 80, dims: [256, 256, 108],
   spacing: [0.9570312, 0.9570312, 1.5], orientation: null, window: { level: 981, width: 4010 }, presets: {},

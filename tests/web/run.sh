@@ -3,15 +3,17 @@
 #
 # Usage: tests/web/run.sh [--bin PATH] [--data DIR] [--port N] [spec.mjs ...]
 # Env:   VOTS_BIN (default build/release/cli/vots, else the first build/*/cli/vots),
-#        VOTS_SHARED_DATA (default ../shared/data next to the checkout), VOTS_WEB_PORT,
-#        CHROMIUM (default /usr/bin/chromium), VOTS_TEST_DATASET, VOTS_URL (skip starting a server).
+#        VOTS_TEST_DATA (default: a temporary folder with the index-space volumes of
+#        scripts/make-test-volumes: the brain MRI as NRRD, the blobs and the orbital), VOTS_WEB_PORT,
+#        CHROMIUM (default /usr/bin/chromium), VOTS_TEST_DATASET, VOTS_URL (a server to test instead of
+#        starting one; token.spec.mjs then fails, as it needs run.sh to start its own).
 set -euo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 repo="$(cd "$here/../.." && pwd)"
 
 bin="${VOTS_BIN:-}"
-data="${VOTS_SHARED_DATA:-$repo/../shared/data}"
+data="${VOTS_TEST_DATA:-}"
 port="${VOTS_WEB_PORT:-}"
 specs=()
 while [ $# -gt 0 ]; do
@@ -19,7 +21,7 @@ while [ $# -gt 0 ]; do
     --bin) bin="$2"; shift 2 ;;
     --data) data="$2"; shift 2 ;;
     --port) port="$2"; shift 2 ;;
-    -h|--help) sed -n '2,8p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,9p' "$0"; exit 0 ;;
     *) specs+=("$1"); shift ;;
   esac
 done
@@ -49,9 +51,11 @@ stop_server() {
   fi
 }
 cache_dir=""
+volumes_dir=""
 cleanup() {
   stop_server
   if [ -n "$cache_dir" ]; then rm -rf "$cache_dir"; fi
+  if [ -n "$volumes_dir" ]; then rm -rf "$volumes_dir"; fi
 }
 trap cleanup EXIT INT TERM
 
@@ -69,8 +73,18 @@ if [ -z "${VOTS_URL:-}" ]; then
     echo "run.sh: no vots binary (set VOTS_BIN or build build/release/cli/vots)" >&2
     exit 2
   fi
+  if [ -z "$data" ]; then
+    # The specs open the small brain MRI (support/browser.mjs) and need it in index space: the NRRD form.
+    volumes_dir="$(mktemp -d "${TMPDIR:-/tmp}/vots-web-data.XXXXXX")"
+    "$repo/scripts/make-test-volumes" "$volumes_dir/all"
+    data="$volumes_dir/data"
+    mkdir "$data"
+    for name in mri-brain_33x41x25_int16.nrrd blobs_64x64x64_uint8.nrrd orbital_64x64x64_float32.nrrd; do
+      ln -s "$volumes_dir/all/$name" "$data/$name"
+    done
+  fi
   if [ ! -d "$data" ]; then
-    echo "run.sh: no data folder at $data (set VOTS_SHARED_DATA or pass --data)" >&2
+    echo "run.sh: no data folder at $data (set VOTS_TEST_DATA or pass --data)" >&2
     exit 2
   fi
 

@@ -70,7 +70,8 @@ export async function withPage(t, fn) {
   }
 }
 
-// The dataset the specs use: VOTS_TEST_DATASET, else the small MRI head, else the fewest voxels.
+// The dataset the specs use: VOTS_TEST_DATASET, else the small brain MRI (run.sh serves it in index
+// space), else the fewest voxels.
 export async function pickDataset() {
   const res = await fetch(`${BASE_URL}/api/datasets`);
   // Datasets over the server's memory budget ("fits": false) cannot be opened.
@@ -82,8 +83,8 @@ export async function pickDataset() {
     if (!d) throw new Error(`VOTS_TEST_DATASET '${wanted}' is not served`);
     return d;
   }
-  const head = datasets.find((x) => /HeadMRVolume/i.test(x.name));
-  if (head) return head;
+  const brain = datasets.find((x) => x.name === 'mri-brain_33x41x25_int16');
+  if (brain) return brain;
   const voxels = (d) => d.dims[0] * d.dims[1] * d.dims[2];
   return [...datasets].sort((a, b) => voxels(a) - voxels(b))[0];
 }

@@ -88,6 +88,9 @@ struct CameraMatrices {
     std::array<double, 3> eyeWorld{};     // eye position (perspective) or a point behind the view (ortho)
     double nearWorld = 0.0;               // near plane distance from the eye, world units
     double farWorld = 0.0;
+    // The grid's axes form a left-handed set in world space (patient axes such as left-anterior-superior):
+    // a box's faces then wind the other way on screen, so its back faces are the clockwise ones.
+    bool mirrored = false;
 };
 
 /// Throws vots::fit::InputError for an invalid camera or image size.

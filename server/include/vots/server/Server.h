@@ -46,7 +46,8 @@ struct ServerOptions {
     std::shared_ptr<FrameCompositor> compositor;
 };
 
-/// The folders `vots serve` uses when none are given: ./data and ../shared/data when present.
+/// The folders `vots serve` uses when none are given: ./data (where scripts/fetch-ct puts the Cranium)
+/// when present.
 std::vector<std::filesystem::path> defaultDataDirs();
 /// ./web when present, else ../share/vots/web beside the executable when present (installed, or the
 /// build tree's link to the source's web/), else empty.
