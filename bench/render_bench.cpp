@@ -19,6 +19,7 @@
 #include "vots/render/CameraText.h"
 #include "vots/render/DisplayPass.h"
 #include "vots/render/EglContext.h"
+#include "vots/render/FrameRequest.h"
 #include "vots/render/GridRenderer.h"
 #include "vots/render/Png.h"
 #include "vots/render/VotRenderer.h"
@@ -122,10 +123,8 @@ int main(int argc, char** argv) {
                 space = vots::fit::readVotSpaceFile(votsPath);
                 eps = space.eps;
             } else {
-                vots::fit::FitOptions options;
-                options.eps = static_cast<float>(eps);
-                options.degree = degree;
-                options.background = vots::fit::defaultBackground(volume);
+                const vots::fit::FitOptions options = vots::render::renderFitOptions(
+                    static_cast<float>(eps), degree, vots::fit::defaultBackground(volume));
                 const auto t0 = Clock::now();
                 space = vots::fit::fitVotSpace(volume, options).space;
                 fitSeconds = std::chrono::duration<double>(Clock::now() - t0).count();

@@ -10,11 +10,11 @@
 #include "VotsFileOnRanks.h"
 
 #include "vots/fit/Error.h"
+#include "vots/fit/FitMeta.h"
 #include "vots/fit/Fitter.h"
 #include "vots/fit/VolumeHeader.h"
 #include "vots/fit/VolumeLoad.h"
 #include "vots/fit/VotSpaceFile.h"
-#include "vots/server/FitMeta.h"
 
 #include <CLI/CLI.hpp>
 
@@ -121,7 +121,7 @@ fit::FitOptions fitOptionsFor(const FitArgs& a, const CheckedArgs& checked, std:
 std::string fitMetaFor(const FitArgs& a, const fit::Volume& volume, const fit::FitOptions& options,
                        const fit::FitResult& result, double maxError, std::optional<int> ranks,
                        std::array<float, 2> range) {
-    server::FitProvenance record;
+    fit::FitProvenance record;
     std::error_code ec;
     const fs::path absolute = fs::absolute(a.input, ec);
     record.sourcePath = ec ? a.input : absolute.lexically_normal().string();
@@ -132,7 +132,7 @@ std::string fitMetaFor(const FitArgs& a, const fit::Volume& volume, const fit::F
     record.stats = result.stats;
     record.maxError = maxError;
     record.backgroundFill = result.space.backgroundFill;
-    const std::string meta = server::buildFitMeta(record);
+    const std::string meta = fit::buildFitMeta(record);
     return ranks ? metaOfRanks(meta, range, *ranks) : meta;
 }
 
@@ -163,7 +163,7 @@ void runFit(const FitArgs& a) {
         options.progress = [&progress](double f, const char* stage) { progress.update(f, stage); };
     fit::FitResult result = fit::fitVotSpace(volume, options);
     progress.finish();
-    const double maxError = server::maxStoredError(result.space);
+    const double maxError = fit::maxStoredError(result.space);
     result.space.metaJson = fitMetaFor(a, volume, options, result, maxError, std::nullopt, range);
     fit::writeVotSpaceFile(a.output, result.space);
     reportFit(a, volume, options, result, result.space.vots.size(), maxError, std::nullopt);
@@ -203,7 +203,7 @@ void runFitOnRanks(const MpiWorld& world, const FitArgs& a) {
     });
     read.planes = fit::Volume{}; // the samples are fitted: free them before the file is written
     const std::uint64_t count = reduceFitOverRanks(world, result, slab, read.whole);
-    const double maxError = world.maxOverRanks(server::maxStoredError(result.space));
+    const double maxError = world.maxOverRanks(fit::maxStoredError(result.space));
     world.allOrNone([&] {
         if (world.rank() == 0)
             result.space.metaJson = fitMetaFor(a, read.whole, options, result, maxError, world.size(), range);

@@ -5,6 +5,7 @@
 
 #include "vots/fit/DicomSeries.h"
 #include "vots/fit/Error.h"
+#include "vots/fit/VotSpaceFile.h"
 #include "vots/render/CameraText.h"
 #include "vots/render/Turntable.h"
 #include "vots/render/WebmWriter.h"
@@ -94,7 +95,7 @@ bool isVotsFile(const std::string& path) {
     if (!in) throw fit::InputError("cannot open '" + path + "'");
     char magic[4] = {};
     in.read(magic, 4);
-    return in.gcount() == 4 && std::string(magic, 4) == "VOTS";
+    return in.gcount() == 4 && std::string_view(magic, 4) == fit::VOTS_MAGIC;
 }
 
 namespace {
@@ -111,13 +112,11 @@ std::optional<float> resolveBackground(const std::string& text, std::array<float
 // percent of it, its background): the volume itself, or under mpirun one rank's slab of it.
 fit::FitResult fitForRender(const fit::Volume& volume, std::array<float, 2> range, const RenderArgs& a,
                             const CheckedArgs& c) {
-    fit::FitOptions options;
-    options.eps = static_cast<float>(c.eps.resolve(range[0], range[1]));
-    if (!(options.eps > 0))
-        throw fit::InputError("--eps " + a.eps + " is 0 for this volume; give it in data units");
-    options.degree = a.degree;
-    options.background = resolveBackground(a.background, range);
-    options.certify = a.certify == "samples" ? fit::Certify::Samples : fit::Certify::Cells;
+    const auto eps = static_cast<float>(c.eps.resolve(range[0], range[1]));
+    if (!(eps > 0)) throw fit::InputError("--eps " + a.eps + " is 0 for this volume; give it in data units");
+    const fit::FitOptions options =
+        render::renderFitOptions(eps, a.degree, resolveBackground(a.background, range),
+                                 a.certify == "samples" ? fit::Certify::Samples : fit::Certify::Cells);
     fit::validateFitOptions(volume, options);
     return fit::fitVotSpace(volume, options);
 }

@@ -23,7 +23,6 @@
 #include "vots/render/Turntable.h"
 #include "vots/render/VotRenderer.h"
 #include "vots/render/WebmWriter.h"
-#include "vots/server/FitMeta.h"
 #include "vots/server/RenderPolicy.h"
 
 #include <CLI/CLI.hpp>
@@ -42,7 +41,6 @@ void runRender(const RenderArgs& a) {
     std::optional<fit::VotSpace> space;
     if (inputIsVots) {
         space = fit::readVotSpaceFile(a.input);
-        server::restoreMetaFields(*space);
         if (!a.volume.empty()) {
             checkVolumeFitsBudget(a.volume, c.raw, a.memoryBudget, a.series);
             volume = fit::loadVolume(a.volume, c.raw, fit::SampleStorage::Float, a.series);

@@ -14,7 +14,6 @@
 #include "vots/render/GridRenderer.h"
 #include "vots/render/Png.h"
 #include "vots/render/VotRenderer.h"
-#include "vots/server/FitMeta.h"
 #include "vots/server/RenderPolicy.h"
 
 #include <memory>
@@ -60,7 +59,6 @@ void readRankInput(const MpiWorld& world, const RenderArgs& a, RankInput& in) {
             in.slab = slabOfVolume(world, a.volume, a, in.c);
         } else {
             in.space = fit::readVotSpaceFile(a.input);
-            server::restoreMetaFields(in.space);
             in.slab = zSlabOfRank(in.space.dims[2] - 1, world.rank(), world.size());
             in.space = votsOfSlab(std::move(in.space), in.slab, compositesCutRays(in.c.frame.mode));
         }

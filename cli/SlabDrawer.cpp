@@ -10,7 +10,6 @@
 #include "vots/fit/VotSpaceFile.h"
 #include "vots/render/GridRenderer.h"
 #include "vots/render/VotRenderer.h"
-#include "vots/server/FitMeta.h"
 #include "vots/server/FrameCompositor.h"
 
 #include <algorithm>
@@ -110,7 +109,6 @@ double SlabDrawer::ensureVotsFile(const std::string& votsPath, bool cutRays, ren
         // The whole file is read and this rank's Vots kept, as `mpirun vots render FILE.vots` does: rank
         // 0's dataset registry has checked the file's size against the memory budget before any rank read it.
         fit::VotSpace space = fit::readVotSpaceFile(votsPath);
-        server::restoreMetaFields(space); // the background's fill, which the minip and aip take
         if (space.dims[2] < 2) throw fit::InputError("a Vot-Space needs at least 2 grid points along z");
         const ZSlab slab = zSlabOfRank(space.dims[2] - 1, mRank, mRanks);
         mFileVots = votsOfSlab(std::move(space), slab, true);

@@ -1,8 +1,8 @@
 // Turntable output of `vots render`: the -o pattern, folder checks, and all-or-nothing writes.
 #include "TurntableOutput.h"
 
+#include "vots/fit/AtomicFile.h"
 #include "vots/fit/Error.h"
-#include "vots/render/AtomicFile.h"
 #include "vots/render/Png.h"
 #include "vots/render/Turntable.h"
 #include "vots/render/WebmWriter.h"
@@ -57,24 +57,20 @@ namespace {
 class PendingFrames {
 public:
     ~PendingFrames() {
-        for (const std::string& path : mFinal)
-            std::remove(render::temporaryNameFor(path).c_str());
+        for (const auto& [temporary, path] : mFrames)
+            std::remove(temporary.c_str());
     }
     void add(const std::string& path, const render::RgbaImage& image) {
-        mFinal.push_back(path); // before the write: a half-written temporary is removed too
-        render::writeFileAtomically(render::temporaryNameFor(path), render::encodePng(image));
+        mFrames.emplace_back(fit::writeTemporaryFor(path, render::encodePng(image)), path);
     }
     void commit() {
-        for (const std::string& path : mFinal) {
-            std::error_code ec;
-            std::filesystem::rename(render::temporaryNameFor(path), path, ec);
-            if (ec) throw fit::InputError("cannot write " + path + ": " + ec.message());
-        }
-        mFinal.clear();
+        for (const auto& [temporary, path] : mFrames)
+            fit::publishTemporary(temporary, path);
+        mFrames.clear();
     }
 
 private:
-    std::vector<std::string> mFinal;
+    std::vector<std::pair<std::string, std::string>> mFrames; // {temporary, final path}
 };
 
 } // namespace
@@ -164,7 +160,7 @@ void TurntableWriter::finish() {
     State& s = *mState;
     s.writes.finish();
     if (s.video)
-        render::writeFileAtomically(s.output.path, s.video->finish());
+        fit::writeFileAtomically(s.output.path, s.video->finish());
     else
         s.pending.commit();
 }

@@ -1,6 +1,7 @@
 // writeVotSpaceOnRanks: the ranks' records written in place with MPI-IO, framed and published by rank 0.
 #include "VotsFileOnRanks.h"
 
+#include "vots/fit/AtomicFile.h"
 #include "vots/fit/Error.h"
 #include "vots/fit/VotSpaceFile.h"
 
@@ -53,7 +54,7 @@ void writeVotSpaceOnRanks(const MpiWorld& world, const std::string& path, const 
     world.allOrNone([&] {
         if (world.rank() != 0) return;
         frame = fit::encodeVotSpaceFrame(mine, parts);
-        temporary = fit::votSpaceTemporaryPath(path);
+        temporary = fit::uniqueTemporaryPath(path);
     });
     temporary = world.broadcastFromRoot(temporary);
     const auto removeTemporary = [&] {
@@ -89,7 +90,7 @@ void writeVotSpaceOnRanks(const MpiWorld& world, const std::string& path, const 
         throw;
     }
     world.allOrNone([&] {
-        if (world.rank() == 0) fit::publishVotSpaceTemporary(temporary, path);
+        if (world.rank() == 0) fit::publishTemporary(temporary, path);
     });
 }
 

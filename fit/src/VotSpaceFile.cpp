@@ -4,6 +4,7 @@
 #include "vots/fit/Volume.h"
 
 #include "vots/fit/Error.h"
+#include "vots/fit/FitMeta.h"
 
 #include "Crc32.h"
 
@@ -41,7 +42,6 @@ constexpr std::size_t REC_P = 24;   // f32[3], expansion point, grid index space
 constexpr std::size_t REC_ERR = 36; // f32, max |residual| at the box's grid samples
 constexpr std::size_t REC_C = 40;   // f32[20], Taylor coefficients, canonical order (docs/DESIGN.md §1)
 
-constexpr char MAGIC[4] = {'V', 'O', 'T', 'S'};
 constexpr std::uint32_t KNOWN_FLAGS = VotSpace::FLAG_EPS_VARIES;
 
 static_assert(OFF_RESERVED + 24 == VOTS_HEADER_BYTES);
@@ -207,7 +207,7 @@ Vot decodeVot(const std::uint8_t* rec) {
 // Magic, version, header size, and that vot_count and meta_bytes add up to the file length.
 // Returns the meta block size. Guards against overflow from absurd counts.
 std::uint64_t checkFraming(const std::uint8_t* data, std::size_t size) {
-    if (size < sizeof MAGIC || std::memcmp(data + OFF_MAGIC, MAGIC, sizeof MAGIC) != 0)
+    if (size < VOTS_MAGIC.size() || std::memcmp(data + OFF_MAGIC, VOTS_MAGIC.data(), VOTS_MAGIC.size()) != 0)
         fail("not a Vot-Space file (the first 4 bytes are not \"VOTS\")");
     if (size < VOTS_HEADER_BYTES + CRC_BYTES)
         fail("file is " + std::to_string(size) + " bytes, shorter than the " +
@@ -236,7 +236,7 @@ namespace {
 
 /// The 128-byte header of a file of `space`'s fields, `votCount` records and its meta block.
 void encodeHeader(std::uint8_t* h, const VotSpace& space, std::uint64_t votCount) {
-    std::memcpy(h + OFF_MAGIC, MAGIC, sizeof MAGIC);
+    std::memcpy(h + OFF_MAGIC, VOTS_MAGIC.data(), VOTS_MAGIC.size());
     putU32(h + OFF_VERSION, VOTS_FILE_VERSION);
     putU32(h + OFF_HEADER_BYTES, static_cast<std::uint32_t>(VOTS_HEADER_BYTES));
     for (int a = 0; a < 3; ++a) {
@@ -345,6 +345,14 @@ VotSpace decodeVotSpace(const std::uint8_t* data, std::size_t size) {
         s.vots.push_back(decodeVot(data + VOTS_HEADER_BYTES + i * VOTS_RECORD_BYTES));
         validateVot(s, s.vots.back(), i);
     }
+    // The fields a file keeps in its meta block rather than its header, restored here so that no reader
+    // can forget them: without a valid source.patient_axes the grid is unoriented (the six views are index
+    // directions); without a valid background_fill omitted cells count as the threshold, as they did in
+    // files written before the key.
+    const FitMetaView kept = readFitMeta(s.metaJson);
+    s.orientationKnown = kept.patientAxes.has_value();
+    s.patientAxes = kept.patientAxes.value_or(IDENTITY_PATIENT_AXES);
+    s.backgroundFill = kept.backgroundFill;
     return s;
 }
 

@@ -3,8 +3,8 @@
 
 #include "Shaders.h"
 
+#include "vots/fit/Error.h"
 #include "vots/render/DisplayPass.h"
-#include "vots/render/Error.h"
 
 #include <algorithm>
 
@@ -23,14 +23,14 @@ DisplayPass::DisplayPass()
 
 RgbaImage DisplayPass::apply(GLuint floatTexture, int width, int height, const DisplaySettings& settings) {
     checkImageSize(width, height);
-    if (!(settings.width > 0.f)) throw RenderError("display window width must be > 0");
+    if (!(settings.width > 0.f)) throw fit::GraphicsError("display window width must be > 0");
     if (width != mWidth || height != mHeight || !mFramebuffer.get()) {
         mTarget = createTexture(GL_TEXTURE_2D);
         glTextureStorage2D(mTarget.get(), 1, GL_RGBA8, width, height);
         mFramebuffer = createFramebuffer();
         glNamedFramebufferTexture(mFramebuffer.get(), GL_COLOR_ATTACHMENT0, mTarget.get(), 0);
         if (glCheckNamedFramebufferStatus(mFramebuffer.get(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-            throw RenderError("RGBA8 framebuffer incomplete");
+            throw fit::GraphicsError("RGBA8 framebuffer incomplete");
         mWidth = width;
         mHeight = height;
     }
@@ -67,7 +67,7 @@ RgbaImage DisplayPass::apply(GLuint floatTexture, int width, int height, const D
 RgbaImage applyDisplay(const FloatImage& image, const DisplaySettings& display) {
     checkImageSize(image.width, image.height);
     if (image.pixels.size() != static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height))
-        throw RenderError("float image has the wrong number of pixels");
+        throw fit::GraphicsError("float image has the wrong number of pixels");
     GlTexture texture = createTexture(GL_TEXTURE_2D);
     glTextureStorage2D(texture.get(), 1, GL_R32F, image.width, image.height);
     // Images are top row first; GL textures start at the bottom row.

@@ -1,7 +1,7 @@
 // EGL display/context creation: device platform first, then Mesa surfaceless; one stderr log line.
 #include "vots/render/EglContext.h"
 
-#include "vots/render/Error.h"
+#include "vots/fit/Error.h"
 
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
@@ -176,7 +176,7 @@ std::unique_ptr<EglContext> EglContext::create(std::string* error) {
 std::unique_ptr<EglContext> EglContext::createOrThrow() {
     std::string error;
     auto context = create(&error);
-    if (!context) throw RenderError(error);
+    if (!context) throw fit::GraphicsError(error);
     return context;
 }
 
@@ -190,7 +190,7 @@ EglContext::~EglContext() {
 
 void EglContext::makeCurrent() {
     if (!eglMakeCurrent(mHandles->display, EGL_NO_SURFACE, EGL_NO_SURFACE, mHandles->context))
-        throw RenderError("eglMakeCurrent: " + eglErrorName(eglGetError()));
+        throw fit::GraphicsError("eglMakeCurrent: " + eglErrorName(eglGetError()));
 }
 
 bool EglContext::isSoftware() const {

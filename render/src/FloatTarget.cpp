@@ -1,7 +1,7 @@
 // R32F render target: allocation, clearing and top-first readback.
 #include "FloatTarget.h"
 
-#include "vots/render/Error.h"
+#include "vots/fit/Error.h"
 
 #include <algorithm>
 
@@ -17,7 +17,7 @@ void FloatTarget::bind(int width, int height) {
         mFramebuffer = createFramebuffer();
         glNamedFramebufferTexture(mFramebuffer.get(), GL_COLOR_ATTACHMENT0, mTexture.get(), 0);
         if (glCheckNamedFramebufferStatus(mFramebuffer.get(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-            throw RenderError("R32F framebuffer incomplete");
+            throw fit::GraphicsError("R32F framebuffer incomplete");
         mWidth = width;
         mHeight = height;
     }

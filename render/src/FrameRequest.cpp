@@ -19,6 +19,16 @@ std::optional<int> parsePlainInt(std::string_view text) {
     return value;
 }
 
+fit::FitOptions renderFitOptions(float eps, int degree, std::optional<float> background,
+                                 fit::Certify certify) {
+    fit::FitOptions options;
+    options.eps = eps;
+    options.degree = degree;
+    options.background = background;
+    options.certify = certify;
+    return options;
+}
+
 SizeParse parseFrameSize(std::string_view text, int maxSide) {
     SizeParse size;
     const auto x = text.find('x');

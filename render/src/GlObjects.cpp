@@ -1,7 +1,7 @@
 // GL object creation/deletion and shader program building with readable errors.
 #include "GlObjects.h"
 
-#include "vots/render/Error.h"
+#include "vots/fit/Error.h"
 
 #include <vector>
 
@@ -57,11 +57,11 @@ GLuint compile(GLenum stage, const char* source, const char* label) {
         std::vector<char> log(static_cast<std::size_t>(std::max(length, 1)));
         glGetShaderInfoLog(shader, length, nullptr, log.data());
         glDeleteShader(shader);
-        throw RenderError(std::string("shader ") + label +
-                          (stage == GL_VERTEX_SHADER    ? " (vertex)"
-                           : stage == GL_COMPUTE_SHADER ? " (compute)"
-                                                        : " (fragment)") +
-                          " does not compile: " + log.data());
+        throw fit::GraphicsError(std::string("shader ") + label +
+                                 (stage == GL_VERTEX_SHADER    ? " (vertex)"
+                                  : stage == GL_COMPUTE_SHADER ? " (compute)"
+                                                               : " (fragment)") +
+                                 " does not compile: " + log.data());
     }
     return shader;
 }
@@ -81,7 +81,7 @@ GlProgram link(const std::vector<GLuint>& shaders, const char* label) {
         glGetProgramiv(program.get(), GL_INFO_LOG_LENGTH, &length);
         std::vector<char> log(static_cast<std::size_t>(std::max(length, 1)));
         glGetProgramInfoLog(program.get(), length, nullptr, log.data());
-        throw RenderError(std::string("program ") + label + " does not link: " + log.data());
+        throw fit::GraphicsError(std::string("program ") + label + " does not link: " + log.data());
     }
     return program;
 }
@@ -113,7 +113,7 @@ void setMatrixUniform(GLuint program, const char* name, const std::array<double,
 void checkGl(const char* step) {
     const GLenum error = glGetError();
     if (error != GL_NO_ERROR)
-        throw RenderError(std::string("OpenGL error ") + std::to_string(error) + " in " + step);
+        throw fit::GraphicsError(std::string("OpenGL error ") + std::to_string(error) + " in " + step);
 }
 
 } // namespace vots::render

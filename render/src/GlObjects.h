@@ -50,7 +50,7 @@ GlTexture createTexture(GLenum target);
 GlFramebuffer createFramebuffer();
 GlVertexArray createVertexArray();
 
-/// Compiles and links; throws RenderError with the info log (and which shader) on failure.
+/// Compiles and links; throws fit::GraphicsError with the info log (and which shader) on failure.
 GlProgram buildProgram(const char* vertexSource, const char* fragmentSource, const char* label);
 /// The same for a compute shader alone.
 GlProgram buildComputeProgram(const char* computeSource, const char* label);
@@ -58,7 +58,7 @@ GlProgram buildComputeProgram(const char* computeSource, const char* label);
 /// Uploads a column-major double matrix as a float mat4 uniform.
 void setMatrixUniform(GLuint program, const char* name, const std::array<double, 16>& matrix);
 
-/// Throws RenderError when glGetError reports something (names the step).
+/// Throws fit::GraphicsError when glGetError reports something (names the step).
 void checkGl(const char* step);
 
 } // namespace vots::render

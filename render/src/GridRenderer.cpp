@@ -10,7 +10,6 @@
 
 #include "vots/fit/Error.h"
 #include "vots/fit/Volume.h"
-#include "vots/render/Error.h"
 
 #include <algorithm>
 #include <chrono>
@@ -129,7 +128,7 @@ struct GridRenderer::Impl {
     }
 
     void draw(const Camera& camera, int width, int height, const RenderOptions& options) {
-        if (!hasData) throw RenderError("GridRenderer: render() before upload()");
+        if (!hasData) throw fit::GraphicsError("GridRenderer: render() before upload()");
         const CameraMatrices m = computeCameraMatrices(camera, bounds, width, height);
         const auto t0 = FrameClock::now();
         stats = FrameStats{};

@@ -7,8 +7,8 @@
 // smaller (bench/RESULTS.md, "PNG encoding", has the figures).
 #include "vots/render/Png.h"
 
+#include "vots/fit/AtomicFile.h"
 #include "vots/fit/Error.h"
-#include "vots/render/AtomicFile.h"
 
 #include <libdeflate.h>
 
@@ -91,7 +91,7 @@ std::vector<std::uint8_t> encodePng(const RgbaImage& image) {
 }
 
 void writePng(const std::string& path, const RgbaImage& image) {
-    writeFileAtomically(path, encodePng(image));
+    fit::writeFileAtomically(path, encodePng(image));
 }
 
 } // namespace vots::render

@@ -6,7 +6,7 @@
 #include "Shaders.h"
 #include "SlabClip.h"
 
-#include "vots/render/Error.h"
+#include "vots/fit/Error.h"
 
 #include <algorithm>
 #include <cmath>
@@ -71,7 +71,7 @@ void RasterPass::upload(std::size_t votCount) {
     const std::size_t alignRecords = std::max<std::size_t>(
         1, static_cast<std::size_t>(std::max(alignment, textureAlignment)) / sizeof(GpuVot));
     chunk -= chunk % alignRecords;
-    if (chunk == 0) throw RenderError("GL shader storage blocks are too small for one Vot");
+    if (chunk == 0) throw fit::GraphicsError("GL shader storage blocks are too small for one Vot");
     mChunkRecords = chunk;
 
     mVotBuffer.reset();

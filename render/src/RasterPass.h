@@ -28,7 +28,7 @@ public:
     RasterPass& operator=(const RasterPass&) = delete;
 
     /// Sizes the chunks a draw binds for `votCount` records (GL_MAX_SHADER_STORAGE_BLOCK_SIZE and the
-    /// texture-buffer limit) and drops the last Vot-Space's records; throws RenderError when not one
+    /// texture-buffer limit) and drops the last Vot-Space's records; throws fit::GraphicsError when not one
     /// record fits a chunk.
     void upload(std::size_t votCount);
     /// MIP (culled unless `culling` is off or the space is small; clipped to the slab if there is one)

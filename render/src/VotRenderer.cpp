@@ -13,7 +13,6 @@
 
 #include "vots/fit/Error.h"
 #include "vots/fit/VotSpace.h"
-#include "vots/render/Error.h"
 #include "vots/render/GpuLayout.h"
 
 #include <algorithm>
@@ -49,7 +48,7 @@ struct VotRenderer::Impl {
         const RenderMode mode = options.mode;
         if (mode == RenderMode::Density && options.slab)
             throw fit::InputError("density shows the smallest Vot along each whole ray; it takes no slab");
-        if (!hasData) throw RenderError("VotRenderer: render() before upload()");
+        if (!hasData) throw fit::GraphicsError("VotRenderer: render() before upload()");
         const CameraMatrices m = computeCameraMatrices(camera, bounds, width, height);
         const auto t0 = FrameClock::now();
         stats = FrameStats{};
@@ -91,7 +90,7 @@ const std::optional<CellDomain>& VotRenderer::rayDomain() const {
 FloatImage VotRenderer::rayLengths(const Camera& camera, int width, int height,
                                    const std::optional<Slab>& slab) {
     Impl& d = *mImpl;
-    if (!d.hasData) throw RenderError("VotRenderer: rayLengths() before upload()");
+    if (!d.hasData) throw fit::GraphicsError("VotRenderer: rayLengths() before upload()");
     if (!d.walk.walkable())
         throw fit::InputError(
             "ray lengths are the walk's: this Vot-Space can only be drawn as mip or density");

@@ -9,8 +9,8 @@
 #include "SlabClip.h"
 #include "WalkRecord.h"
 
+#include "vots/fit/Error.h"
 #include "vots/render/EglContext.h"
-#include "vots/render/Error.h"
 
 #include <algorithm>
 #include <bit>
@@ -99,7 +99,7 @@ void WalkPass::useShader(Shader shader) {
             program(true);
             mShader = shader;
             return;
-        } catch (const RenderError& e) {
+        } catch (const fit::GraphicsError& e) {
             std::cerr << "vots: warning: the compute walk does not build here, using the fragment walk: "
                       << e.what() << "\n";
         }
@@ -223,7 +223,7 @@ void WalkPass::upload(std::optional<Grid>&& walk, const std::vector<GpuVot>& vot
     auto* mapped = static_cast<std::uint32_t*>(
         glMapNamedBufferRange(mWalkRecordBuffer.get(), 0, static_cast<GLsizeiptr>(entries * recordBytes),
                               GL_MAP_WRITE_BIT | GL_MAP_INVALIDATE_BUFFER_BIT));
-    if (!mapped) throw RenderError("VotRenderer: could not map the walk records for writing");
+    if (!mapped) throw fit::GraphicsError("VotRenderer: could not map the walk records for writing");
     parallelChunks(entries, [&](std::size_t first, std::size_t last) {
         for (std::size_t i = first; i < last; ++i) {
             std::uint32_t* out = mapped + i * WALK_RECORD_WORDS;

@@ -1,7 +1,7 @@
 // CacheMeta: the server's use of fit's meta schema, with the FitKey text as the cache key.
 #include "CacheMeta.h"
 
-#include "vots/server/FitMeta.h"
+#include "vots/fit/FitMeta.h"
 
 #include <filesystem>
 
@@ -9,25 +9,25 @@ namespace vots::server {
 
 std::string cacheMetaFor(const FitKey& key, const Dataset& dataset, const fit::FitStats& stats,
                          const fit::VotSpace& space) {
-    FitProvenance fit;
+    fit::FitProvenance provenance;
     std::error_code ec;
     const auto absolute = std::filesystem::absolute(dataset.path, ec);
-    fit.sourcePath = ec ? dataset.path.string() : absolute.lexically_normal().string();
-    fit.volume = dataset.volume.get();
-    fit.options = fitOptionsFor(key);
-    fit.stats = stats;
-    fit.maxError = maxStoredError(space);
-    fit.cacheKey = key.text();
-    fit.backgroundFill = space.backgroundFill;
-    return buildFitMeta(fit);
+    provenance.sourcePath = ec ? dataset.path.string() : absolute.lexically_normal().string();
+    provenance.volume = dataset.volume.get();
+    provenance.options = fitOptionsFor(key);
+    provenance.stats = stats;
+    provenance.maxError = fit::maxStoredError(space);
+    provenance.cacheKey = key.text();
+    provenance.backgroundFill = space.backgroundFill;
+    return fit::buildFitMeta(provenance);
 }
 
 bool carriesKey(const fit::VotSpace& space, const std::string& keyText) {
-    return readFitMeta(space.metaJson).cacheKey == keyText;
+    return fit::readFitMeta(space.metaJson).cacheKey == keyText;
 }
 
 double fitSecondsOf(const fit::VotSpace& space) {
-    return readFitMeta(space.metaJson).fitSeconds.value_or(0.0);
+    return fit::readFitMeta(space.metaJson).fitSeconds.value_or(0.0);
 }
 
 } // namespace vots::server

@@ -5,6 +5,7 @@
 #include "DatasetRegistryVots.h"
 
 #include "HttpError.h"
+#include "HttpJson.h"
 #include "Params.h"
 #include "vots/fit/Error.h"
 #include "vots/fit/Fitter.h"
@@ -194,6 +195,16 @@ std::vector<std::string> DatasetRegistry::names() const {
     return out;
 }
 
+void DatasetRegistry::rememberLoadFailure(Entry& entry, const std::string& name) {
+    HttpFailure failure = classifyFailure(std::current_exception());
+    // Over the memory budget, out of memory or ranks lost: asked again next time, as the client may.
+    if (isRetryable(failure.status)) throw HttpError(failure.status, failure.message);
+    // The file's own fault (malformed, unreadable): every later request gets the same 500.
+    std::cerr << "vots serve: warning: dataset '" << name << "' cannot be loaded: " << failure.message
+              << "\n";
+    entry.loadError = std::move(failure.message);
+}
+
 std::shared_ptr<const Dataset> DatasetRegistry::find(const std::string& name) {
     if (!isDatasetName(name))
         throw HttpError(400, "dataset must be a plain name of letters, digits, '_' and '-'");
@@ -214,12 +225,8 @@ std::shared_ptr<const Dataset> DatasetRegistry::find(const std::string& name) {
             auto dataset = loadVotsDataset(name, entry->path);
             std::lock_guard lock(mMutex); // loaded() reads dataset under mMutex
             entry->dataset = std::move(dataset);
-        } catch (const HttpError&) {
-            throw; // over the memory budget now; not remembered as a load error
-        } catch (const std::exception& e) {
-            entry->loadError = e.what();
-            std::cerr << "vots serve: warning: dataset '" << name << "' cannot be loaded: " << e.what()
-                      << "\n";
+        } catch (...) {
+            rememberLoadFailure(*entry, name);
         }
     }
     if (!entry->dataset && entry->loadError.empty()) {
@@ -239,16 +246,8 @@ std::shared_ptr<const Dataset> DatasetRegistry::find(const std::string& name) {
                                   : loadDataset(name, entry->path, entry->dicomSeries, *entry->header);
             std::lock_guard lock(mMutex); // loaded() reads dataset under mMutex
             entry->dataset = std::move(dataset);
-        } catch (const HttpError&) {
-            throw; // over the memory budget now; not remembered as a load error
-        } catch (const RanksLost& e) {
-            throw HttpError(503, e.what()); // logged by the compositor, and so is every later frame
-        } catch (const RanksOverBudget& e) {
-            throw HttpError(507, e.what()); // asked again next time, as a one-process 507 is
-        } catch (const std::exception& e) { // InputError for a malformed file, bad_alloc for a huge one
-            entry->loadError = e.what();
-            std::cerr << "vots serve: warning: dataset '" << name << "' cannot be loaded: " << e.what()
-                      << "\n";
+        } catch (...) {
+            rememberLoadFailure(*entry, name);
         }
     }
     if (!entry->dataset) throw HttpError(500, "dataset '" + name + "' cannot be loaded: " + entry->loadError);

@@ -104,6 +104,9 @@ private:
         std::optional<fit::VolumeHeaderInfo> header; // read before loading; written under mMutex
         std::string loadError;
     };
+    /// In a catch block of a load: passes on a failure the client may retry (classifyFailure: 503, 507),
+    /// remembers any other as the file's, so that every later request is answered 500 with it.
+    static void rememberLoadFailure(Entry& entry, const std::string& name);
     MemoryAdmission& mMemory;
     FrameCompositor* mRanks = nullptr;
     mutable std::mutex mMutex;

@@ -2,7 +2,6 @@
 #include "DatasetRegistryVots.h"
 
 #include "vots/fit/VotSpaceFile.h"
-#include "vots/server/FitMeta.h"
 
 #include <nlohmann/json.hpp>
 
@@ -65,7 +64,6 @@ std::uint64_t estimateVotsLoadBytes(std::uint64_t fileBytes) {
 
 std::shared_ptr<const Dataset> loadVotsDataset(const std::string& name, const fs::path& path) {
     auto space = std::make_shared<fit::VotSpace>(fit::readVotSpaceFile(path.string()));
-    restoreMetaFields(*space); // as `vots render FILE.vots` does: the six views are patient directions
     auto dataset = std::make_shared<Dataset>();
     dataset->name = name;
     dataset->path = path;

@@ -41,12 +41,8 @@ std::string FitKey::text() const {
 }
 
 fit::FitOptions fitOptionsFor(const FitKey& key) {
-    fit::FitOptions options;
-    options.eps = key.eps;
-    options.degree = key.degree;
-    options.background = key.background;
+    fit::FitOptions options = render::renderFitOptions(key.eps, key.degree, key.background);
     options.focus = key.focus;
-    options.certify = render::RENDER_FIT_CERTIFY;
     return options;
 }
 

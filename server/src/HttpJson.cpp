@@ -3,8 +3,10 @@
 
 #include "HttpError.h"
 #include "vots/fit/Error.h"
+#include "vots/server/FrameCompositor.h"
 
 #include <iostream>
+#include <new>
 
 namespace vots::server {
 
@@ -41,21 +43,42 @@ std::string statusText(int status) {
     }
 }
 
-void sendException(httplib::Response& res, std::exception_ptr error) {
+HttpFailure classifyFailure(std::exception_ptr error) {
     try {
         std::rethrow_exception(error);
     } catch (const HttpError& e) {
-        sendError(res, e.status(), e.what());
+        return {e.status(), e.what()};
     } catch (const fit::InputError& e) {
-        sendError(res, 400, e.what());
+        return {400, e.what()};
+    } catch (const RanksOverBudget& e) {
+        return {507, e.what()};
+    } catch (const RanksLost& e) { // logged once by the compositor
+        return {503, e.what()};
     } catch (const std::bad_alloc&) {
-        sendError(res, 503, "out of memory");
+        return {503, "out of memory"};
     } catch (const std::exception& e) {
-        std::cerr << "vots serve: internal error: " << e.what() << "\n";
-        sendError(res, 500, std::string("internal error: ") + e.what());
+        return {500, e.what()};
     } catch (...) {
-        sendError(res, 500, "internal error");
+        return {500, "unknown exception"};
     }
+}
+
+HttpFailure httpFailureOf(std::exception_ptr error, std::string_view unexpected) {
+    HttpFailure failure = classifyFailure(error);
+    if (failure.status == 500) {
+        std::cerr << "vots serve: " << unexpected << ": " << failure.message << "\n";
+        failure.message = std::string(unexpected) + ": " + failure.message;
+    }
+    return failure;
+}
+
+bool isRetryable(int status) {
+    return status == 503 || status == 507;
+}
+
+void sendException(httplib::Response& res, std::exception_ptr error) {
+    const HttpFailure failure = httpFailureOf(error);
+    sendError(res, failure.status, failure.message);
 }
 
 } // namespace vots::server

@@ -87,6 +87,11 @@ QueryParams parseQueryString(std::string_view query) {
     return params;
 }
 
+QueryParams targetQueryParams(std::string_view target) {
+    const auto question = target.find('?');
+    return question == std::string_view::npos ? QueryParams{} : parseQueryString(target.substr(question + 1));
+}
+
 bool isDatasetName(std::string_view name) {
     if (name.empty() || name.size() > 128) return false;
     for (const char c : name) {

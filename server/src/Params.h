@@ -42,6 +42,9 @@ struct FitParams {
 /// percent-decodes ('+' is a space; a '%' not followed by two hex digits stays as it is, so "eps=2%"
 /// works unencoded). httplib's own parser keeps only the text after the last '=', which breaks cam=.
 QueryParams parseQueryString(std::string_view query);
+/// The parameters of a request target ("/render?a=1"): parseQueryString of what follows its first '?';
+/// none when it has no '?'.
+QueryParams targetQueryParams(std::string_view target);
 
 /// True for names made of [A-Za-z0-9_-] only, 1..128 characters (never a path).
 bool isDatasetName(std::string_view name);

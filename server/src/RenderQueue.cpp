@@ -3,10 +3,10 @@
 
 #include "ForegroundActivity.h"
 #include "HttpError.h"
+#include "HttpJson.h"
 #include "ServerStats.h"
 #include "vots/fit/Error.h"
 #include "vots/render/EglContext.h"
-#include "vots/render/Error.h"
 #include "vots/render/FrameRequest.h"
 #include "vots/render/GridRenderer.h"
 #include "vots/render/Png.h"
@@ -123,17 +123,9 @@ void RenderQueue::threadMain() {
         Outcome outcome;
         try {
             outcome = draw(renderers, item.job);
-        } catch (const HttpError& e) {
-            outcome = Refusal{e.status(), e.what()};
-        } catch (const RanksLost& e) { // logged once by the compositor
-            outcome = Refusal{503, e.what()};
-        } catch (const RanksOverBudget& e) {
-            outcome = Refusal{507, e.what()};
-        } catch (const fit::InputError& e) {
-            outcome = Refusal{400, e.what()};
-        } catch (const std::exception& e) {
-            std::cerr << "vots serve: render failed: " << e.what() << "\n";
-            outcome = Refusal{500, std::string("render failed: ") + e.what()};
+        } catch (...) {
+            HttpFailure failure = httpFailureOf(std::current_exception(), "render failed");
+            outcome = Refusal{failure.status, std::move(failure.message)};
         }
         item.promise.set_value(std::move(outcome));
     }

@@ -33,11 +33,7 @@ void installRenderRoute(Server::Impl& s) {
     s.http.Get("/render", [&s](const httplib::Request& req, httplib::Response& res) {
         // Held until the answer is made: one client cannot fill the render queue for everyone.
         const ClientQuota::Ticket place = s.renders.enter(req.remote_addr);
-        const auto question = req.target.find('?');
-        const std::string_view query = question == std::string::npos
-                                           ? std::string_view()
-                                           : std::string_view(req.target).substr(question + 1);
-        const RenderParams params = parseRenderParams(parseQueryString(query));
+        const RenderParams params = parseRenderParams(targetQueryParams(req.target));
         const PreparedRender prepared = prepareRender(s, params, req.remote_addr);
 
         FrameCache::Source source = FrameCache::Source::Rendered;

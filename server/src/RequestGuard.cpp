@@ -35,9 +35,7 @@ std::string presentedToken(const httplib::Request& req) {
             return std::string(trimmed(std::string_view(value).substr(7)));
         return {}; // another scheme: no token
     }
-    const auto question = req.target.find('?');
-    if (question == std::string::npos) return {};
-    const QueryParams query = parseQueryString(std::string_view(req.target).substr(question + 1));
+    const QueryParams query = targetQueryParams(req.target);
     const auto it = query.find("token");
     return it == query.end() ? std::string() : it->second;
 }

@@ -53,11 +53,7 @@ void installTurntableRoute(Server::Impl& s) {
         // One place of the client's /render quota for the whole turn; its frames queue one at a time,
         // so other clients' frames are drawn in between.
         const ClientQuota::Ticket place = s.renders.enter(req.remote_addr);
-        const auto question = req.target.find('?');
-        const std::string_view query = question == std::string::npos
-                                           ? std::string_view()
-                                           : std::string_view(req.target).substr(question + 1);
-        const TurntableRequest turn = parseTurntableRequest(parseQueryString(query));
+        const TurntableRequest turn = parseTurntableRequest(targetQueryParams(req.target));
         const PreparedRender prepared = prepareRender(s, turn.first, req.remote_addr);
 
         render::WebmWriter video(turn.first.width, turn.first.height);

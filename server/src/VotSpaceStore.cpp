@@ -5,7 +5,6 @@
 #include "StaleTemporaries.h"
 
 #include "vots/fit/VotSpaceFile.h"
-#include "vots/server/FitMeta.h"
 
 #include <unistd.h>
 
@@ -55,7 +54,6 @@ std::shared_ptr<const fit::VotSpace> VotSpaceStore::read(const FitKey& key) cons
     try {
         fit::VotSpace space = fit::readVotSpaceFile(file.string());
         if (!carriesKey(space, key.text())) return nullptr; // a stranger's file under our name: refit
-        restoreMetaFields(space);
         fs::last_write_time(file, fs::file_time_type::clock::now(), ec); // used: last to be trimmed
         return std::make_shared<const fit::VotSpace>(std::move(space));
     } catch (const std::exception& e) { // truncated or corrupt file: refit and overwrite it

@@ -27,6 +27,15 @@ TEST(Params, QueryStringSplitsAtFirstEqualsAndDecodes) {
     EXPECT_EQ(q.find("flag")->second, "");
 }
 
+TEST(Params, TargetQueryIsWhatFollowsTheFirstQuestionMark) {
+    const auto q = targetQueryParams("/render?dataset=a&cam=az=30?x");
+    ASSERT_EQ(q.size(), 2u);
+    EXPECT_EQ(q.find("dataset")->second, "a");
+    EXPECT_EQ(q.find("cam")->second, "az=30?x");
+    EXPECT_TRUE(targetQueryParams("/render").empty());
+    EXPECT_TRUE(targetQueryParams("/render?").empty());
+}
+
 TEST(Params, DefaultsMatchTheContract) {
     const RenderParams p = parseRenderParams({{"dataset", "cranium"}});
     EXPECT_EQ(p.camera, render::cameraForView(render::ViewPreset::Anterior));

@@ -16,7 +16,7 @@ struct VotSpace {
     std::array<double, 3> origin{0.0, 0.0, 0.0};  // world position of grid point (0,0,0)
     std::array<double, 3> spacing{1.0, 1.0, 1.0}; // world distance between grid points
     /// The source volume's grid directions in patient space (Volume::patientAxes). Not in the binary
-    /// header: a file keeps them in its meta block (server/FitMeta.h reads them back into these fields).
+    /// header: a file keeps them in its meta block (FitMeta.h), which decodeVotSpace reads back into them.
     std::array<std::array<double, 3>, 3> patientAxes{{{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}}};
     bool orientationKnown = false;
     int degree = 3;         // highest degree of any nonzero stored coefficient

@@ -6,10 +6,13 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace vots::fit {
 
+/// The first 4 bytes of every Vot-Space file: what tells a .vots file from a volume.
+inline constexpr std::string_view VOTS_MAGIC = "VOTS";
 inline constexpr std::uint32_t VOTS_FILE_VERSION = 1;
 inline constexpr std::size_t VOTS_HEADER_BYTES = 128;
 inline constexpr std::size_t VOTS_RECORD_BYTES = 120;
@@ -18,6 +21,7 @@ inline constexpr std::size_t VOTS_RECORD_BYTES = 120;
 std::vector<std::uint8_t> encodeVotSpace(const VotSpace& space);
 /// Parses and validates v1 bytes; throws InputError naming the first problem found
 /// (magic, version, header size, length/count mismatch, CRC, box outside grid, lo >= hi, non-finite).
+/// The fields kept in the meta block (patientAxes, orientationKnown, backgroundFill) are restored from it.
 VotSpace decodeVotSpace(const std::uint8_t* data, std::size_t size);
 
 /// A file that several processes write (`mpirun vots fit`): each encodes the records of its own Vots
@@ -46,18 +50,12 @@ VotRecords encodeVotRecords(const VotSpace& space);
 /// counts summed; `space.vots` is not looked at). Throws InputError for invalid header fields.
 VotSpaceFrame encodeVotSpaceFrame(const VotSpace& space, const std::vector<VotRecordsPart>& parts);
 
-/// Writes to "<path>.tmp-<pid>-<n>" (n counts the process's writes), fsyncs, then renames over path, so a
-/// crash never leaves a half-written file under the real name. Throws InputError when the folder is not
-/// writable. betweenChunks, when given, runs between 1 MiB pieces of the write: there a background writer can
-/// wait while foreground work runs (copying into the page cache costs CPU even at nice 19).
+/// Writes the file atomically (writeFileAtomically, AtomicFile.h): a crash never leaves a half-written file
+/// under the real name. Throws InputError when the folder is not writable. betweenChunks, when given, runs
+/// between 1 MiB pieces of the write. A file several processes write (`mpirun vots fit`) goes through
+/// uniqueTemporaryPath and publishTemporary (AtomicFile.h) instead.
 void writeVotSpaceFile(const std::string& path, const VotSpace& space,
                        const std::function<void()>& betweenChunks = {});
-/// The temporary writeVotSpaceFile writes `path` under first ("<path>.tmp-<pid>-<n>"), for a writer that
-/// fills it otherwise (several processes) and then publishes it.
-std::string votSpaceTemporaryPath(const std::string& path);
-/// Makes a written and synced temporary the file `path`: renames it over path (readers see the old file
-/// or the new one) and syncs the folder; removes the temporary and throws InputError when it cannot.
-void publishVotSpaceTemporary(const std::string& temporary, const std::string& path);
 /// Reads and validates a file; throws InputError with the path in the message.
 VotSpace readVotSpaceFile(const std::string& path);
 

@@ -15,7 +15,7 @@ public:
     /// platform and renderer and returns a current context; on failure returns null and, when
     /// error is given, a one-line reason for every platform tried.
     static std::unique_ptr<EglContext> create(std::string* error = nullptr);
-    /// As create(), but throws RenderError with the reason.
+    /// As create(), but throws fit::GraphicsError with the reason.
     static std::unique_ptr<EglContext> createOrThrow();
 
     ~EglContext();

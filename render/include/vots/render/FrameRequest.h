@@ -27,6 +27,12 @@ inline constexpr int MAX_SERVED_SIDE = 4096;
 /// samples, so the bound must hold there too (docs/DESIGN.md §3).
 inline constexpr fit::Certify RENDER_FIT_CERTIFY = fit::Certify::Cells;
 
+/// The options of a fit made to be rendered, built here for the server, `vots render` and the benchmarks:
+/// eps in data units, the degree, the background threshold (nullopt: every cell is fitted) and what the
+/// bound is certified on. Progress, cancel, focus and threads are left for the caller.
+fit::FitOptions renderFitOptions(float eps, int degree, std::optional<float> background,
+                                 fit::Certify certify = RENDER_FIT_CERTIFY);
+
 struct FrameRequest {
     Camera camera = cameraForView(ViewPreset::Anterior);
     int width = DEFAULT_FRAME_SIDE;

@@ -10,15 +10,15 @@
 #include <optional>
 #include <string>
 
-namespace vots::server {
+namespace vots::fit {
 
 /// Everything recorded about one fit.
 struct FitProvenance {
     std::string sourcePath; // the volume file, absolute
-    const fit::Volume* volume = nullptr;
-    std::string epsText;     // as the person typed it ("2%" or "20"); empty: none typed (null in the block)
-    fit::FitOptions options; // resolved (eps in data units, background value); progress and cancel unused
-    fit::FitStats stats;
+    const Volume* volume = nullptr;
+    std::string epsText; // as the person typed it ("2%" or "20"); empty: none typed (null in the block)
+    FitOptions options;  // resolved (eps in data units, background value); progress and cancel unused
+    FitStats stats;
     double maxError = 0.0; // max of the stored Vots' err
     std::string cacheKey;  // the server's key for the fit (its cache files carry it); empty: no key
     std::optional<float> backgroundFill; // VotSpace::backgroundFill; absent: no key in the block
@@ -34,24 +34,17 @@ struct FitMetaView {
     std::optional<int> requestedDegree;
     std::optional<double> fitSeconds;          // also read from the server's earlier cache blocks
     std::optional<std::uint64_t> coveredCells; // non-background cells
-    std::optional<fit::FocusRegion> focus;
+    std::optional<FocusRegion> focus;
     std::optional<std::string> sourcePath;
     std::optional<std::string> method;
     std::optional<std::string> cacheKey;
-    std::optional<fit::PatientAxes> patientAxes; // source.patient_axes: the grid's directions in LPS
-    std::optional<float> backgroundFill;         // background_fill: what omitted cells stand for
+    std::optional<PatientAxes> patientAxes; // source.patient_axes: the grid's directions in LPS
+    std::optional<float> backgroundFill;    // background_fill: what omitted cells stand for
 };
 
 FitMetaView readFitMeta(const std::string& metaJson);
 
-/// Sets the fields a .vots file keeps in its meta block rather than its header: patientAxes and
-/// orientationKnown (the identity and false without a valid source.patient_axes: files written before
-/// the key, or of unoriented volumes) and backgroundFill (absent without a valid background_fill, so files
-/// written before the key count their omitted cells as the threshold, as they always did). Every reader
-/// of a file calls it.
-void restoreMetaFields(fit::VotSpace& space);
-
 /// The largest error bound stored in the Vots (0 for none).
-double maxStoredError(const fit::VotSpace& space);
+double maxStoredError(const VotSpace& space);
 
-} // namespace vots::server
+} // namespace vots::fit

@@ -1,5 +1,5 @@
-// The meta block's background fill: written by buildFitMeta, kept through a .vots file, absent in old files.
-#include "vots/server/FitMeta.h"
+// The meta block's fields: written by buildFitMeta, restored by every .vots read, absent in old files.
+#include "vots/fit/FitMeta.h"
 
 #include "vots/fit/VotSpaceFile.h"
 
@@ -10,7 +10,7 @@
 
 #include <cmath>
 
-namespace vots::server {
+namespace vots::fit {
 namespace {
 
 fit::Volume smallVolume() {
@@ -21,10 +21,9 @@ fit::Volume smallVolume() {
     return volume;
 }
 
-// A Vot-Space with a -983.9 threshold whose meta block records `fill`, written to a file and read back
-// as every reader of a file reads it.
-fit::VotSpace throughAFile(std::optional<float> fill) {
-    const fit::Volume volume = smallVolume();
+// A Vot-Space with a -983.9 threshold whose meta block records `fill` (and the volume's orientation),
+// written to a file and read back.
+fit::VotSpace throughAFile(std::optional<float> fill, const fit::Volume& volume = smallVolume()) {
     FitProvenance record;
     record.sourcePath = "/data/small.nrrd";
     record.volume = &volume;
@@ -38,10 +37,7 @@ fit::VotSpace throughAFile(std::optional<float> fill) {
     const test::TempDir dir;
     const std::string path = dir.file("small.vots");
     fit::writeVotSpaceFile(path, space);
-    fit::VotSpace read = fit::readVotSpaceFile(path);
-    EXPECT_FALSE(read.backgroundFill) << "the binary header has no fill; only the meta block does";
-    restoreMetaFields(read);
-    return read;
+    return fit::readVotSpaceFile(path); // the header has neither fill nor axes: the meta block has them
 }
 
 TEST(FitMeta, TheBackgroundFillSurvivesAFileBitForBit) {
@@ -60,22 +56,36 @@ TEST(FitMeta, AFitThatOmittedNothingWritesNoFillAndCountsTheThreshold) {
     EXPECT_EQ(read.omittedCellValue(), -983.9f);
 }
 
+TEST(FitMeta, AFileReadBackKnowsItsPatientAxes) {
+    fit::Volume volume = smallVolume();
+    volume.orientationKnown = true;
+    volume.patientAxes = {{{-1.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, {0.0, -1.0, 0.0}}}; // a sagittal-ish grid
+    const fit::VotSpace read = throughAFile(std::nullopt, volume);
+    EXPECT_TRUE(read.orientationKnown);
+    EXPECT_EQ(read.patientAxes, volume.patientAxes);
+    const fit::VotSpace unoriented = throughAFile(std::nullopt);
+    EXPECT_FALSE(unoriented.orientationKnown);
+    EXPECT_EQ(unoriented.patientAxes, fit::IDENTITY_PATIENT_AXES);
+}
+
 TEST(FitMeta, OldOrForeignBlocksGiveNoFill) {
     // Files from before the key, and keys that are not a finite float, fall back to the threshold.
     for (const char* meta : {"{}", "not json", R"({"background_fill": null})",
                              R"({"background_fill": "-1000"})", R"({"background_fill": [1]})",
                              R"({"background_fill": 1e300})", R"({"fit": {"background_fill": 3}})"}) {
         fit::VotSpace space;
+        space.dims = {2, 2, 2};
         space.background = -983.9f;
         space.backgroundFill = 5.f; // whatever it held before: the block decides
         space.metaJson = meta;
-        restoreMetaFields(space);
-        EXPECT_FALSE(space.backgroundFill) << meta;
-        EXPECT_EQ(space.omittedCellValue(), -983.9f) << meta;
-        EXPECT_FALSE(space.orientationKnown) << meta;
+        const std::vector<std::uint8_t> bytes = encodeVotSpace(space);
+        const fit::VotSpace read = decodeVotSpace(bytes.data(), bytes.size());
+        EXPECT_FALSE(read.backgroundFill) << meta;
+        EXPECT_EQ(read.omittedCellValue(), -983.9f) << meta;
+        EXPECT_FALSE(read.orientationKnown) << meta;
     }
     EXPECT_EQ(readFitMeta(R"({"background_fill": -1000})").backgroundFill, -1000.f);
 }
 
 } // namespace
-} // namespace vots::server
+} // namespace vots::fit

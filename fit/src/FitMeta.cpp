@@ -1,5 +1,5 @@
 // Writes and reads the meta JSON block of .vots files; the key names live only here.
-#include "vots/server/FitMeta.h"
+#include "vots/fit/FitMeta.h"
 
 #include "vots/fit/PatientAxes.h"
 #include "vots/fit/VotSpace.h"
@@ -14,7 +14,7 @@
 #define VOTS_VERSION "unknown"
 #endif
 
-namespace vots::server {
+namespace vots::fit {
 namespace {
 
 using json = nlohmann::ordered_json;
@@ -24,11 +24,11 @@ json finiteOrNull(double v) {
     return std::isfinite(v) ? json(v) : json(nullptr);
 }
 
-const char* methodName(fit::FitMethod m) {
-    return m == fit::FitMethod::Paper ? "paper" : "fast";
+const char* methodName(FitMethod m) {
+    return m == FitMethod::Paper ? "paper" : "fast";
 }
-const char* certifyName(fit::Certify c) {
-    return c == fit::Certify::Cells ? "cells" : "samples";
+const char* certifyName(Certify c) {
+    return c == Certify::Cells ? "cells" : "samples";
 }
 
 template <class T> std::optional<T> field(const json& j, const json::json_pointer& ptr) {
@@ -46,11 +46,11 @@ template <class T> std::optional<T> field(const json& j, const json::json_pointe
 
 // Three rows of three finite numbers spanning space, else nullopt (a foreign or damaged block renders as
 // a file without orientation would).
-std::optional<fit::PatientAxes> patientAxesField(const json& j, const json::json_pointer& ptr) {
+std::optional<PatientAxes> patientAxesField(const json& j, const json::json_pointer& ptr) {
     if (!j.contains(ptr)) return std::nullopt;
     const json& rows = j.at(ptr);
     if (!rows.is_array() || rows.size() != 3) return std::nullopt;
-    fit::PatientAxes axes{};
+    PatientAxes axes{};
     for (std::size_t a = 0; a < 3; ++a) {
         if (!rows[a].is_array() || rows[a].size() != 3) return std::nullopt;
         for (std::size_t c = 0; c < 3; ++c) {
@@ -58,21 +58,21 @@ std::optional<fit::PatientAxes> patientAxesField(const json& j, const json::json
             axes[a][c] = rows[a][c].get<double>();
         }
     }
-    return fit::normalizedPatientAxes(axes);
+    return normalizedPatientAxes(axes);
 }
 
 } // namespace
 
 std::string buildFitMeta(const FitProvenance& r) {
-    const fit::Volume& vol = *r.volume;
+    const Volume& vol = *r.volume;
     const auto range = vol.valueRange();
-    const fit::FitOptions& o = r.options;
+    const FitOptions& o = r.options;
     json focus = nullptr;
     if (o.focus)
         focus = {{"center_index", o.focus->centerIndex},
                  {"radius", o.focus->radius},
                  {"eps_focus", o.focus->epsFocus}};
-    const fit::FitStats& s = r.stats;
+    const FitStats& s = r.stats;
     json meta = {
         {"software", {{"name", "vots"}, {"version", VOTS_VERSION}}},
         {"source",
@@ -134,7 +134,7 @@ FitMetaView readFitMeta(const std::string& metaJson) {
     const auto epsFocus = field<double>(j, json::json_pointer("/fit/focus/eps_focus"));
     const json::json_pointer centre("/fit/focus/center_index");
     if (radius && epsFocus && j.contains(centre) && j.at(centre).is_array() && j.at(centre).size() == 3) {
-        fit::FocusRegion f;
+        FocusRegion f;
         for (std::size_t a = 0; a < 3; ++a) {
             if (!j.at(centre)[a].is_number()) return view;
             f.centerIndex[a] = j.at(centre)[a].get<double>();
@@ -146,18 +146,11 @@ FitMetaView readFitMeta(const std::string& metaJson) {
     return view;
 }
 
-void restoreMetaFields(fit::VotSpace& space) {
-    const FitMetaView meta = readFitMeta(space.metaJson);
-    space.orientationKnown = meta.patientAxes.has_value();
-    space.patientAxes = meta.patientAxes.value_or(fit::IDENTITY_PATIENT_AXES);
-    space.backgroundFill = meta.backgroundFill;
-}
-
-double maxStoredError(const fit::VotSpace& space) {
+double maxStoredError(const VotSpace& space) {
     double maxError = 0.0;
-    for (const fit::Vot& v : space.vots)
+    for (const Vot& v : space.vots)
         maxError = std::max(maxError, double{v.err});
     return maxError;
 }
 
-} // namespace vots::server
+} // namespace vots::fit
