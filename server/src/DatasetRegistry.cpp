@@ -63,11 +63,11 @@ std::shared_ptr<const Dataset> loadDataset(const std::string& name, const fs::pa
 /// Under mpirun: the ranks read the samples, each its slab; this process reads the grid from the first
 /// plane and holds no samples.
 std::shared_ptr<const Dataset> summarizeDataset(const std::string& name, const fs::path& path,
-                                                const std::string& dicomSeries, FrameCompositor& ranks) {
+                                                const std::string& dicomSeries, dist::FrameRanks& ranks) {
     if (!dicomSeries.empty())
         throw fit::InputError(
             "under mpirun a folder of several DICOM series is not drawn across the ranks yet");
-    const VolumeSummary summary = ranks.summarize(path);
+    const dist::VolumeSummary summary = ranks.summarize(path);
     auto dataset = std::make_shared<Dataset>();
     dataset->name = name;
     dataset->path = path;
@@ -241,9 +241,9 @@ std::shared_ptr<const Dataset> DatasetRegistry::find(const std::string& name) {
             entry->dataset = std::move(dataset);
         } catch (const HttpError&) {
             throw; // over the memory budget now; not remembered as a load error
-        } catch (const RanksLost& e) {
-            throw HttpError(503, e.what()); // logged by the compositor, and so is every later frame
-        } catch (const RanksOverBudget& e) {
+        } catch (const dist::RanksLost& e) {
+            throw HttpError(503, e.what()); // logged by the ranks' port, and so is every later frame
+        } catch (const dist::RanksOverBudget& e) {
             throw HttpError(507, e.what()); // asked again next time, as a one-process 507 is
         } catch (const std::exception& e) { // InputError for a malformed file, bad_alloc for a huge one
             entry->loadError = e.what();
