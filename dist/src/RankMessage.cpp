@@ -13,8 +13,8 @@ MessageHead headOf(const std::vector<char>& bytes) {
                              ": start the same vots on every rank");
     const std::uint64_t expected = sizeof head + head.bodyBytes + head.tailBytes;
     if (head.bodyBytes > bytes.size() || head.tailBytes > bytes.size() || expected != bytes.size())
-        throw BadRankMessage("a rank's message has " + std::to_string(bytes.size()) + " bytes, its head says " +
-                             std::to_string(expected));
+        throw BadRankMessage("a rank's message has " + std::to_string(bytes.size()) +
+                             " bytes, its head says " + std::to_string(expected));
     return head;
 }
 
@@ -27,8 +27,8 @@ std::string tailOf(const std::vector<char>& bytes) {
 std::vector<float> floatTailOf(const std::vector<char>& bytes, std::size_t count) {
     const MessageHead head = headOf(bytes);
     if (head.tailBytes != count * sizeof(float))
-        throw BadRankMessage("a rank's frame has " + std::to_string(head.tailBytes) + " bytes of pixels, not " +
-                             std::to_string(count * sizeof(float)));
+        throw BadRankMessage("a rank's frame has " + std::to_string(head.tailBytes) +
+                             " bytes of pixels, not " + std::to_string(count * sizeof(float)));
     std::vector<float> floats(count);
     if (count) std::memcpy(floats.data(), bytes.data() + sizeof head + head.bodyBytes, count * sizeof(float));
     return floats;

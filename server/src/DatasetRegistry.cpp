@@ -60,8 +60,8 @@ std::shared_ptr<const Dataset> loadDataset(const std::string& name, const fs::pa
     return dataset;
 }
 
-/// Under mpirun: the ranks read the samples, each its slab; this process reads the grid from the first
-/// plane and holds no samples.
+/// Under mpirun: the ranks read the samples, each its z cells' planes; this process reads the grid from the
+/// first plane and holds no samples.
 std::shared_ptr<const Dataset> summarizeDataset(const std::string& name, const fs::path& path,
                                                 const std::string& dicomSeries, dist::FrameRanks& ranks) {
     if (!dicomSeries.empty())

@@ -12,7 +12,7 @@ void prepareDataset(Server::Impl& s, const std::string& name) {
     try {
         const auto dataset = s.registry.find(name);
         if (s.options.ranks && dataset->kind == DatasetKind::Vots) {
-            // Under mpirun a first frame has every rank read the file and upload its slab's Vots.
+            // Under mpirun a first frame has every rank read the file and upload its Vots of it.
             RenderParams first;
             first.dataset = name;
             first.width = first.height = 1;

@@ -15,8 +15,8 @@ inline constexpr int AIR_STEP_PLANES = 40;
 
 /// Writes the volume as attached raw NRRD (64 x 64 x 40, unit spacing) to `path`.
 inline void writeAirStepVolume(const std::string& path) {
-    std::string header = "NRRD0004\ntype: int16\ndimension: 3\nsizes: " + std::to_string(AIR_STEP_SIDE) + " " +
-                         std::to_string(AIR_STEP_SIDE) + " " + std::to_string(AIR_STEP_PLANES) +
+    std::string header = "NRRD0004\ntype: int16\ndimension: 3\nsizes: " + std::to_string(AIR_STEP_SIDE) +
+                         " " + std::to_string(AIR_STEP_SIDE) + " " + std::to_string(AIR_STEP_PLANES) +
                          "\nspacings: 1 1 1\nendian: little\nencoding: raw\n\n";
     std::vector<std::int16_t> samples;
     samples.reserve(static_cast<std::size_t>(AIR_STEP_SIDE * AIR_STEP_SIDE * AIR_STEP_PLANES));

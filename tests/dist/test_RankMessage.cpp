@@ -74,7 +74,8 @@ TEST(Failure, EachKindHasOneExitCodeAndCrossesRanksAsItself) {
     EXPECT_EQ(dist::exitCodeOf(dist::FailureKind::Internal), dist::EXIT_FAILED);
     for (const auto& failure : {input, budget, other}) {
         const auto kind = dist::failureKindOf(failure);
-        const auto again = dist::failureOf(dist::failureKindFromWire(static_cast<std::int32_t>(kind)), "rank 1: x");
+        const auto again =
+            dist::failureOf(dist::failureKindFromWire(static_cast<std::int32_t>(kind)), "rank 1: x");
         EXPECT_EQ(dist::failureKindOf(again), kind);
         EXPECT_EQ(dist::failureTextOf(again), "rank 1: x");
     }

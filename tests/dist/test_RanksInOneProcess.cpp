@@ -119,13 +119,13 @@ TEST_F(RanksInOneProcess, CompositeTheFrameOfTheUnionOfTheirFitsWithTheWholeVolu
         // The volume tells the fills apart: the lowest rank's own air is not the whole's.
         EXPECT_NE(dist::wholeVolumeFill({sums.front()}), fill) << count << " ranks";
         for (int r = 0; r < count; ++r)
-            ranks.parts[static_cast<std::size_t>(r)]->uploadFit(path, EPS, DEGREE, fill,
-                                                               *ranks.renderers[static_cast<std::size_t>(r)]);
+            ranks.parts[static_cast<std::size_t>(r)]->uploadFit(
+                path, EPS, DEGREE, fill, *ranks.renderers[static_cast<std::size_t>(r)]);
 
         render::VotRenderer one;
         one.upload(unionOfRankFits(path, count, range, fill));
-        for (const render::RenderMode mode : {render::RenderMode::Mip, render::RenderMode::MinIp,
-                                              render::RenderMode::Aip}) {
+        for (const render::RenderMode mode :
+             {render::RenderMode::Mip, render::RenderMode::MinIp, render::RenderMode::Aip}) {
             frame.mode = mode;
             const render::FloatImage expected = one.render(frame.camera, frame.width, frame.height, mode);
             const render::FloatImage got = composited(ranks, frame);
@@ -156,7 +156,8 @@ TEST_F(RanksInOneProcess, EachRanksOwnFillWouldChangeTheMinipOfThisVolume) {
 
     Ranks whole = fitOnRanks(path, 2, range);
     Ranks own = fitOnRanks(path, 2, range);
-    const std::optional<float> fill = dist::wholeVolumeFill({whole.fits[0].background, whole.fits[1].background});
+    const std::optional<float> fill =
+        dist::wholeVolumeFill({whole.fits[0].background, whole.fits[1].background});
     for (std::size_t r = 0; r < 2; ++r) {
         whole.parts[r]->uploadFit(path, EPS, DEGREE, fill, *whole.renderers[r]);
         own.parts[r]->uploadFit(path, EPS, DEGREE, dist::wholeVolumeFill({own.fits[r].background}),

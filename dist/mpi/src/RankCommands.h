@@ -61,8 +61,8 @@ struct DrawnBody {
     std::int32_t withDisplayRange = 0;
     std::array<float, 2> displayRange{0.f, 0.f}; // RankFrame::displayRange (withDisplayRange)
     std::uint64_t votCount = 0;                  // of the Vots drawn (0 for the grid)
-    double readMs = 0.0;                         // a read of the grid's planes or of a .vots file (0 when held)
-    double heldFitMs = 0.0;                      // what the fit the frame was drawn from took
+    double readMs = 0.0;    // a read of the grid's planes or of a .vots file (0 when held)
+    double heldFitMs = 0.0; // what the fit the frame was drawn from took
     double frameMs = 0.0;
 };
 
