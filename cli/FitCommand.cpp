@@ -1,13 +1,14 @@
-// `vots fit`: volume -> Vot-Space file, arguments checked before loading; under mpirun, one slab per rank.
+// `vots fit`: volume -> Vot-Space file, arguments checked before loading; under mpirun, z cells per rank.
 #include "Args.h"
 #include "Commands.h"
-#include "DistributedFit.h"
 #include "MemoryBudgetOption.h"
-#include "MpiWorld.h"
-#include "Progress.h"
+#include "ProgressLine.h"
 #include "RawOptions.h"
 #include "SeriesOption.h"
-#include "VotsFileOnRanks.h"
+
+#include "vots/dist/mpi/DistributedFit.h"
+#include "vots/dist/mpi/MpiWorld.h"
+#include "vots/dist/mpi/VotsFileOnRanks.h"
 
 #include "vots/fit/Error.h"
 #include "vots/fit/FitMeta.h"
@@ -17,6 +18,7 @@
 #include "vots/fit/VotSpaceFile.h"
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include <unistd.h>
 
@@ -116,6 +118,16 @@ fit::FitOptions fitOptionsFor(const FitArgs& a, const CheckedArgs& checked, std:
     return options;
 }
 
+/// The meta block of a fit under mpirun: `meta` (built for the whole volume's grid, which holds no
+/// samples) with the whole volume's value range and "ranks": the number of ranks that fitted it.
+std::string metaOfRanks(const std::string& meta, std::array<float, 2> range, int ranks) {
+    // Ordered: the keys stay where buildFitMeta put them, "ranks" comes last.
+    nlohmann::ordered_json j = nlohmann::ordered_json::parse(meta);
+    j["source"]["value_range"] = {range[0], range[1]};
+    j["ranks"] = ranks;
+    return j.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
+}
+
 /// The meta block of the fit of `volume` (whose grid is enough) whose Vots' largest error is `maxError`.
 /// `ranks`: under mpirun, the meta block records them and the whole volume's value range `range`.
 std::string fitMetaFor(const FitArgs& a, const fit::Volume& volume, const fit::FitOptions& options,
@@ -158,7 +170,7 @@ void runFit(const FitArgs& a) {
     fit::FitOptions options = fitOptionsFor(a, checked, range);
     fit::validateFitOptions(volume, options);
 
-    Progress progress(a.progress);
+    ProgressLine progress(a.progress);
     if (a.progress)
         options.progress = [&progress](double f, const char* stage) { progress.update(f, stage); };
     fit::FitResult result = fit::fitVotSpace(volume, options);
@@ -169,32 +181,32 @@ void runFit(const FitArgs& a) {
     reportFit(a, volume, options, result, result.space.vots.size(), maxError, std::nullopt);
 }
 
-// Under mpirun: each rank reads and fits the planes of its slab with the whole volume's eps and
+// Under mpirun: each rank reads and fits the planes of its z cells with the whole volume's eps and
 // background; each writes its Vots into the one file, rank 0 its frame. A failure on any rank ends every
 // rank.
-void runFitOnRanks(const MpiWorld& world, const FitArgs& a) {
+void runFitOnRanks(const dist::MpiWorld& world, const FitArgs& a) {
     CheckedArgs checked;
-    ZSlab slab;
+    dist::RankCells cells;
     fit::VolumeSlab read;
     world.allOrNone([&] {
         checked = checkArgs(a);
         if (world.rank() == 0) checkOutput(a);
-        slab = fitSlabOfRank(world, fit::volumeHeaderInfo(a.input, checked.raw, a.series).dims[2]);
-        const auto planes = static_cast<std::uint64_t>(slab.end - slab.first + 1);
+        cells = dist::fitCellsOfRank(world, fit::volumeHeaderInfo(a.input, checked.raw, a.series).dims[2]);
+        const auto planes = static_cast<std::uint64_t>(cells.end - cells.first + 1);
         checkPlanesFitBudget(a.input, checked.raw, a.memoryBudget, a.series, planes,
                              fit::SampleStorage::Source);
-        read = loadSlab(a.input, slab, checked.raw, fit::SampleStorage::Source, a.series);
+        read = dist::loadPlanesOfCells(a.input, cells, checked.raw, fit::SampleStorage::Source, a.series);
     });
-    // The whole volume's range: the union of the slabs', which cover every plane.
+    // The whole volume's range: the union of the ranks' planes', which cover every plane.
     const std::array<float, 2> range = world.unionOfRanges(read.planes.valueRange());
     fit::FitOptions options;
     fit::FitResult result;
     world.allOrNone([&] {
         options = fitOptionsFor(a, checked, range);
-        // The focus is named in the whole volume's index space; each rank's field is moved into its slab.
-        options.slabOf = fit::SlabOfGrid{slab.first, read.whole.dims};
+        // The focus is named in the whole volume's index space; each rank's field is moved into its planes.
+        options.slabOf = fit::SlabOfGrid{cells.first, read.whole.dims};
         fit::validateFitOptions(read.planes, options);
-        Progress progress(a.progress && world.rank() == 0); // rank 0's slab stands for the others
+        ProgressLine progress(a.progress && world.rank() == 0); // rank 0's fit stands for the others
         if (a.progress && world.rank() == 0)
             options.progress = [&progress](double f, const char* stage) { progress.update(f, stage); };
         result = fit::fitVotSpace(read.planes, options);
@@ -202,18 +214,18 @@ void runFitOnRanks(const MpiWorld& world, const FitArgs& a) {
         options.progress = nullptr;
     });
     read.planes = fit::Volume{}; // the samples are fitted: free them before the file is written
-    const std::uint64_t count = reduceFitOverRanks(world, result, slab, read.whole);
+    const std::uint64_t count = dist::reduceFitOverRanks(world, result, cells, read.whole);
     const double maxError = world.maxOverRanks(fit::maxStoredError(result.space));
     world.allOrNone([&] {
         if (world.rank() == 0)
             result.space.metaJson = fitMetaFor(a, read.whole, options, result, maxError, world.size(), range);
     });
-    writeVotSpaceOnRanks(world, a.output, result.space);
+    dist::writeVotSpaceOnRanks(world, a.output, result.space);
     if (world.rank() == 0) reportFit(a, read.whole, options, result, count, maxError, world.size());
 }
 
 void runFitCommand(const FitArgs& a) {
-    const MpiWorld& world = MpiWorld::get();
+    const dist::MpiWorld& world = dist::MpiWorld::get();
     if (world.launched())
         runFitOnRanks(world, a);
     else

@@ -90,7 +90,7 @@ json toJson(const std::string& path, const fit::VotSpace& s, const fit::FitMetaV
     };
 }
 
-// "ranks" of a file `vots fit` wrote under mpirun (DistributedFit.h); nullopt for any other file.
+// "ranks" of a file `vots fit` wrote under mpirun (FitCommand.cpp's metaOfRanks); nullopt for any other file.
 std::optional<long long> ranksOf(const std::string& metaJson) {
     const json j = json::parse(metaJson, nullptr, /*allow_exceptions=*/false);
     if (!j.is_object() || !j.contains("ranks") || !j["ranks"].is_number_integer()) return std::nullopt;

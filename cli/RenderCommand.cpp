@@ -2,15 +2,15 @@
 // process or (RenderOnRanks.cpp) across the ranks of mpirun.
 #include "Args.h"
 #include "Commands.h"
-#include "DistributedRender.h"
 #include "MemoryBudgetOption.h"
-#include "MpiWorld.h"
 #include "RawOptions.h"
 #include "RenderArgs.h"
 #include "RenderOnRanks.h"
 #include "SeriesOption.h"
 #include "TurntableOutput.h"
 
+#include "vots/dist/mpi/CollectiveComposite.h"
+#include "vots/dist/mpi/MpiWorld.h"
 #include "vots/fit/Error.h"
 #include "vots/fit/Fitter.h"
 #include "vots/fit/VolumeLoad.h"
@@ -82,12 +82,14 @@ void runRender(const RenderArgs& a) {
     }
     const auto start = std::chrono::steady_clock::now();
     const render::RgbaImage image = draw(c.frame); // with the display pass: one process composites nothing
-    if (a.times) reportFrameTimes(MpiWorld::get(), slowestRankMillisSince(MpiWorld::get(), start), 0.0);
+    if (a.times)
+        dist::reportFrameTimes(dist::MpiWorld::get(),
+                               dist::slowestRankMillisSince(dist::MpiWorld::get(), start), 0.0);
     render::writePng(a.output, image);
 }
 
 void runRenderCommand(const RenderArgs& a) {
-    const MpiWorld& world = MpiWorld::get();
+    const dist::MpiWorld& world = dist::MpiWorld::get();
     if (world.distributed())
         runRenderOnRanks(world, a);
     else

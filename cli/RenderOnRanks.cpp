@@ -1,11 +1,13 @@
-// `vots render` under mpirun: every rank reads and draws its z slab; rank 0 writes the composited frames.
+// `vots render` under mpirun: every rank reads and draws its z cells; rank 0 writes the composited frames.
 #include "RenderOnRanks.h"
 
-#include "DistributedRender.h"
 #include "MemoryBudgetOption.h"
 #include "TurntableOutput.h"
-#include "ZSlab.h"
 
+#include "vots/dist/CompositeOp.h"
+#include "vots/dist/RankCells.h"
+#include "vots/dist/WholeFill.h"
+#include "vots/dist/mpi/CollectiveComposite.h"
 #include "vots/fit/Error.h"
 #include "vots/fit/VolumeHeader.h"
 #include "vots/fit/VotSpaceFile.h"
@@ -22,24 +24,24 @@
 namespace vots::cli {
 namespace {
 
-// What this rank draws from: the Vots of its slab (read from the .vots file, or fitted from its planes),
+using dist::MpiWorld;
+using dist::RankCells;
+
+// What this rank draws from: the Vots of its cells (read from the .vots file, or fitted from its planes),
 // or with the grid renderer its planes themselves.
 struct RankInput {
     CheckedArgs c;
-    ZSlab slab;
+    RankCells cells;
     fit::VotSpace space;
-    std::optional<fit::VolumeSlab> read; // the volume's planes of this slab, when there is a volume
+    std::optional<fit::VolumeSlab> read; // the volume's planes of these cells, when there is a volume
     bool fitHere = false;
     bool grid = false;
 };
 
-// The slab of a volume file's z cells this rank takes.
-ZSlab slabOfVolume(const MpiWorld& world, const std::string& path, const RenderArgs& a,
-                   const CheckedArgs& c) {
-    const auto planesZ = fit::volumeHeaderInfo(path, c.raw, a.series).dims[2];
-    if (planesZ < 2)
-        throw fit::InputError("volume needs at least 2 grid points along every axis to form a cell");
-    return zSlabOfRank(static_cast<int>(planesZ) - 1, world.rank(), world.size());
+// The z cells of a volume file this rank takes.
+RankCells cellsOfVolume(const MpiWorld& world, const std::string& path, const RenderArgs& a,
+                        const CheckedArgs& c) {
+    return dist::cellsOfRankInVolume(path, world.rank(), world.size(), c.raw, a.series);
 }
 
 // The arguments' checks and this rank's reads; a step of allOrNone (no collective inside).
@@ -56,42 +58,42 @@ void readRankInput(const MpiWorld& world, const RenderArgs& a, RankInput& in) {
                 throw fit::InputError(
                     "--renderer grid (or --mode reference) on a .vots file needs the volume: add "
                     "--volume PATH");
-            in.slab = slabOfVolume(world, a.volume, a, in.c);
+            in.cells = cellsOfVolume(world, a.volume, a, in.c);
         } else {
             in.space = fit::readVotSpaceFile(a.input);
-            in.slab = zSlabOfRank(in.space.dims[2] - 1, world.rank(), world.size());
-            in.space = votsOfSlab(std::move(in.space), in.slab, compositesCutRays(in.c.frame.mode));
+            in.cells = dist::cellsOfRank(in.space.dims[2] - 1, world.rank(), world.size());
+            in.space =
+                dist::votsOfCells(std::move(in.space), in.cells, dist::compositesCutRays(in.c.frame.mode));
         }
     } else {
         if (!a.volume.empty())
             throw fit::InputError("--volume is only for .vots input; INPUT is already a volume");
         volumePath = a.input;
-        in.slab = slabOfVolume(world, a.input, a, in.c);
+        in.cells = cellsOfVolume(world, a.input, a, in.c);
         in.fitHere = !in.grid;
     }
     if (volumePath.empty()) return;
-    // An empty slab (more ranks than cells) still reads its one plane: its range counts alike.
+    // An empty range of cells (more ranks than cells) still reads its one plane: its range counts alike.
     checkPlanesFitBudget(volumePath, in.c.raw, a.memoryBudget, a.series,
-                         static_cast<std::uint64_t>(in.slab.end - in.slab.first + 1));
-    in.read = loadSlab(volumePath, in.slab, in.c.raw, fit::SampleStorage::Float, a.series);
+                         static_cast<std::uint64_t>(in.cells.end - in.cells.first + 1));
+    in.read = dist::loadPlanesOfCells(volumePath, in.cells, in.c.raw, fit::SampleStorage::Float, a.series);
 }
 
-// Fits this rank's planes with the options of the whole volume and places the Vots in its grid; the
-// fill of the whole volume, as `vots fit` under mpirun gives it, from the sums over the ranks.
-void fitRankSlab(const MpiWorld& world, const RenderArgs& a, RankInput& in, std::array<float, 2> range) {
-    fit::FitStats slabStats; // of this rank's fit: its background cells count towards the whole's fill
+// Fits this rank's planes with the options of the whole volume and places the Vots in its grid, with the
+// whole volume's fill (dist::wholeVolumeFill, as every distributed fit and frame takes it).
+void fitRankCells(const MpiWorld& world, const RenderArgs& a, RankInput& in, std::array<float, 2> range) {
+    fit::FitStats cellsStats; // of this rank's fit: its background cells count towards the whole's fill
     world.allOrNone([&] {
-        if (!in.slab.empty()) {
+        if (!in.cells.empty()) {
             fit::FitResult fitted = fitForRender(in.read->planes, range, a, in.c);
-            slabStats = fitted.stats;
+            cellsStats = fitted.stats;
             in.space = std::move(fitted.space);
         }
-        placeSlabFitInGrid(in.space, in.slab, in.read->whole);
+        dist::placeCellsFitInGrid(in.space, in.cells, in.read->whole);
         in.read.reset(); // the samples are fitted; only the range is needed from here on
     });
-    slabStats.backgroundCells = world.sumOverRanks(std::vector<std::uint64_t>{slabStats.backgroundCells})[0];
-    slabStats.backgroundValueSum = world.sumOverRanks(slabStats.backgroundValueSum);
-    in.space.backgroundFill = fit::backgroundFillOf(slabStats);
+    in.space.backgroundFill =
+        dist::wholeVolumeFill(world.gatherOnEveryRank(dist::backgroundSumsOf(cellsStats)));
 }
 
 // This rank's renderer: its Vots (rays cut to its cells where the composite needs it), or its planes.
@@ -119,15 +121,11 @@ render::FloatImage compositedFrame(const MpiWorld& world, const render::FrameReq
         if (f.mode == render::RenderMode::Aip)
             lengths = d.vots->rayLengths(f.camera, f.width, f.height, f.slab);
     });
-    const double renderMs = times ? slowestRankMillisSince(world, start) : 0.0;
+    const double renderMs = times ? dist::slowestRankMillisSince(world, start) : 0.0;
     start = std::chrono::steady_clock::now();
-    if (d.grid)
-        compositeGridOnRoot(world, f.mode, frame);
-    else if (lengths)
-        compositeMeansOnRoot(world, frame, *lengths);
-    else
-        compositeOnRoot(world, f.mode, frame);
-    if (times) reportFrameTimes(world, renderMs, slowestRankMillisSince(world, start));
+    const auto source = d.grid ? dist::RankSource::Grid : dist::RankSource::Vots;
+    dist::compositeOnRoot(world, dist::compositeOpFor(f.mode, source), frame, lengths);
+    if (times) dist::reportFrameTimes(world, renderMs, dist::slowestRankMillisSince(world, start));
     return frame;
 }
 
@@ -139,7 +137,7 @@ void runRenderOnRanks(const MpiWorld& world, const RenderArgs& a) {
     const CheckedArgs& c = in.c;
     std::optional<std::array<float, 2>> volumeRange;
     if (in.read) volumeRange = world.unionOfRanges(in.read->planes.valueRange());
-    if (in.fitHere) fitRankSlab(world, a, in, *volumeRange);
+    if (in.fitHere) fitRankCells(world, a, in, *volumeRange);
 
     std::unique_ptr<render::EglContext> context;
     RankDrawer drawer;
@@ -147,7 +145,7 @@ void runRenderOnRanks(const MpiWorld& world, const RenderArgs& a) {
     world.allOrNone([&] {
         context = render::EglContext::createOrThrow();
         if (in.grid) {
-            drawer.grid.emplace().uploadSlab(in.read->planes, in.slab.first, in.read->whole);
+            drawer.grid.emplace().uploadSlab(in.read->planes, in.cells.first, in.read->whole);
             in.read.reset(); // the samples are in the textures
         } else {
             drawer.vots.emplace();
@@ -156,7 +154,8 @@ void runRenderOnRanks(const MpiWorld& world, const RenderArgs& a) {
         }
         if (c.turntable && world.rank() == 0) writer.emplace(*c.turntable, c.frame.width, c.frame.height);
     });
-    if (!in.grid && compositesCutRays(c.frame.mode)) drawer.domain = cellDomainOfSlab(in.slab, in.space.dims);
+    if (!in.grid && dist::compositesCutRays(c.frame.mode))
+        drawer.domain = dist::cutRayDomainOf(in.cells, in.space.dims);
 
     // The display window of the whole: the volume's range (or the Vots', or their sizes for the density).
     std::array<float, 2> range{0.f, 0.f};

@@ -1,12 +1,14 @@
 // `vots serve`: options -> vots::server::Server, then serve until SIGINT/SIGTERM; no HTTP logic here.
 #include "Commands.h"
 #include "MemoryBudgetOption.h"
-#include "MpiServe.h"
-#include "MpiWorld.h"
 
+#include "vots/dist/mpi/MpiFrameRanks.h"
+#include "vots/dist/mpi/MpiWorld.h"
 #include "vots/fit/Error.h"
 #include "vots/fit/MemoryBudget.h"
+#include "vots/fit/VotSpaceFile.h"
 #include "vots/server/Exposure.h"
+#include "vots/server/RenderPolicy.h"
 #include "vots/server/Server.h"
 
 #include <CLI/CLI.hpp>
@@ -68,23 +70,33 @@ void raiseOpenFileLimit() {
                   << "; connections beyond the current limit will wait to be accepted\n";
 }
 
+/// What every rank's part takes from the server and the options: the memory budget's check of its
+/// planes, and the .vots reader that restores the meta block's fields.
+dist::RankSetup rankSetupOf(const ServeArgs& a) {
+    dist::RankSetup setup;
+    setup.planesOverBudget = [budget = a.memoryBudget](const std::string& path, std::uint64_t planes,
+                                                       fit::SampleStorage storage) {
+        return planesBudgetRefusal(path, std::nullopt, budget, "", planes, storage);
+    };
+    return setup;
+}
+
 void runServe(const ServeArgs& a) {
-    const MpiWorld& world = MpiWorld::get();
-    std::shared_ptr<MpiFrameCompositor> compositor;
-    if (world.distributed())
-        compositor = std::make_shared<MpiFrameCompositor>(world, a.prepare, a.memoryBudget);
+    const dist::MpiWorld& world = dist::MpiWorld::get();
+    std::shared_ptr<dist::MpiFrameRanks> ranks;
+    if (world.distributed()) ranks = std::make_shared<dist::MpiFrameRanks>(world, a.prepare, rankSetupOf(a));
     // However rank 0 leaves, the other ranks are let go, after the server (its render thread) is gone. With
-    // a rank lost, MPI_Finalize could wait for ever on a send still going to it (seen: the job ran on 30 s
+    // a rank lost, finalizing MPI could wait for ever on a send still going to it (seen: the job ran on 30 s
     // after SIGTERM when Open MPI had noticed the death at once), so rank 0 then leaves unfinalized too.
     struct ReleaseRanks {
-        MpiFrameCompositor* compositor;
+        dist::MpiFrameRanks* ranks;
         ~ReleaseRanks() {
-            if (!compositor) return;
-            compositor->releaseRanks();
-            if (compositor->lostARank()) MpiWorld::get().leaveUnfinalized();
+            if (!ranks) return;
+            ranks->releaseRanks();
+            if (ranks->lostARank()) dist::MpiWorld::get().leaveUnfinalized();
         }
-    } releaseRanks{compositor.get()};
-    if (compositor && a.prepare.empty())
+    } releaseRanks{ranks.get()};
+    if (ranks && a.prepare.empty())
         throw fit::InputError("under mpirun, vots serve draws one dataset across the ranks: name it with "
                               "--prepare DATASET");
     raiseOpenFileLimit();
@@ -107,9 +119,9 @@ void runServe(const ServeArgs& a) {
     if (!a.tokenFile.empty()) options.accessToken = server::readAccessTokenFile(a.tokenFile);
     if (generatedToken) options.accessToken = server::generateAccessToken();
     options.memoryBudgetBytes = resolveMemoryBudget(a.memoryBudget);
-    if (compositor) {
-        options.compositor = compositor;
-        // --prepare has each rank fit its own slab at the default eps (rank 0 fits nothing whole). The ranks
+    if (ranks) {
+        options.ranks = ranks;
+        // --prepare has each rank fit its own cells at the default eps (rank 0 fits nothing whole). The ranks
         // refit from box caches of their own, but the eps / 2 warm-up fits are one process's.
         options.warmUpFits = false;
     }
@@ -143,9 +155,9 @@ void runServe(const ServeArgs& a) {
               << "  memory budget: " << fit::formatBytes(srv.memoryBudget())
               << (a.memoryBudget.empty() ? " (default: 80 % of the memory available)" : "") << "\n"
               << "  " << srv.rendererSummary() << "\n";
-    if (compositor)
+    if (ranks)
         std::cout << "  ranks: " << world.size() << ", each frame of '" << a.prepare
-                  << "' drawn from every rank's z slab and composited here\n";
+                  << "' drawn from every rank's z cells and composited here\n";
     std::cout << std::flush;
     if (generatedToken)
         std::cerr << "vots serve: access token: " << options.accessToken << "\n"
@@ -220,10 +232,12 @@ void addServeCommand(CLI::App& app) {
         "--no-warm-up", args->noWarmUp,
         "Do not fit at half the last eps in idle time (it makes later refits to a smaller eps faster)");
     cmd->callback([args] {
-        MpiWorld& world = MpiWorld::get();
+        dist::MpiWorld& world = dist::MpiWorld::get();
         if (!world.distributed() || world.rank() == 0) return runServe(*args);
         try {
-            serveOtherRank(world, args->memoryBudget); // rank 0 alone serves HTTP
+            // Rank 0 alone serves HTTP.
+            dist::serveOtherRank(world, rankSetupOf(*args),
+                                 [](render::VotRenderer& vots) { server::applyRenderPolicy(vots); });
         } catch (...) {
             world.leaveUnfinalized(); // rank 0 is gone, and messages to it may never complete
             throw;

@@ -2,7 +2,8 @@
 #include "Args.h"
 #include "Commands.h"
 
-#include "vots/fit/Error.h"
+#include "vots/dist/Failure.h"
+#include "vots/dist/mpi/MpiWorld.h"
 
 #include <CLI/CLI.hpp>
 
@@ -16,9 +17,7 @@
 
 namespace {
 
-// Exit codes: 0 success, 1 a check failed (verify) or an internal error, 2 bad input or usage.
-constexpr int EXIT_FAILED = 1;
-constexpr int EXIT_BAD_INPUT = 2;
+using vots::dist::EXIT_BAD_INPUT;
 
 int fail(int code, const std::string& message) {
     std::cerr << "vots: error: " << vots::cli::oneLine(message) << std::endl;
@@ -66,14 +65,14 @@ int main(int argc, char** argv) {
         return app.exit(e);
     } catch (const CLI::RuntimeError& e) {
         return e.get_exit_code(); // the command has already reported
+    } catch (const vots::dist::ReportedOnRank0& e) {
+        return e.exitCode(); // under mpirun rank 0 has reported the failure
     } catch (const CLI::ParseError& e) {
         return fail(EXIT_BAD_INPUT, e.what());
-    } catch (const vots::fit::InputError& e) {
-        return fail(EXIT_BAD_INPUT, e.what());
-    } catch (const std::bad_alloc&) {
-        return fail(EXIT_FAILED, "out of memory");
-    } catch (const std::exception& e) {
-        return fail(EXIT_FAILED, e.what());
+    } catch (...) {
+        const std::exception_ptr failure = std::current_exception();
+        return fail(vots::dist::exitCodeOf(vots::dist::failureKindOf(failure)),
+                    vots::dist::failureTextOf(failure));
     }
     return 0;
 }

@@ -61,14 +61,14 @@ std::shared_ptr<const Dataset> loadDataset(const std::string& name, const fs::pa
     return dataset;
 }
 
-/// Under mpirun: the ranks read the samples, each its slab; this process reads the grid from the first
-/// plane and holds no samples.
+/// Under mpirun: the ranks read the samples, each its z cells' planes; this process reads the grid from the
+/// first plane and holds no samples.
 std::shared_ptr<const Dataset> summarizeDataset(const std::string& name, const fs::path& path,
-                                                const std::string& dicomSeries, FrameCompositor& ranks) {
+                                                const std::string& dicomSeries, dist::FrameRanks& ranks) {
     if (!dicomSeries.empty())
         throw fit::InputError(
             "under mpirun a folder of several DICOM series is not drawn across the ranks yet");
-    const VolumeSummary summary = ranks.summarize(path);
+    const dist::VolumeSummary summary = ranks.summarize(path);
     auto dataset = std::make_shared<Dataset>();
     dataset->name = name;
     dataset->path = path;

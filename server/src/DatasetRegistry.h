@@ -4,12 +4,12 @@
 
 #include "MemoryAdmission.h"
 
+#include "vots/dist/FrameRanks.h"
 #include "vots/fit/DicomSeries.h"
 #include "vots/fit/Volume.h"
 #include "vots/fit/VolumeHeader.h"
 #include "vots/fit/VotSpace.h"
 #include "vots/render/DisplaySettings.h"
-#include "vots/server/FrameCompositor.h"
 
 #include <array>
 #include <filesystem>
@@ -47,7 +47,7 @@ struct Dataset {
     std::uint64_t loadAndFitBytes = 0;                      // fit::estimateLoadAndFitBytes of its header
     std::uint64_t fitBytes = 0; // what one fit needs beyond the loaded volume (admitted per fit job)
     /// Under mpirun: `volume` is the grid alone (no samples), which stay with the ranks; range and CRC are
-    /// theirs (FrameCompositor::summarize), and every fit happens on them.
+    /// theirs (dist::FrameRanks::summarize), and every fit happens on them.
     bool samplesOnRanks = false;
 };
 
@@ -78,7 +78,7 @@ public:
     DatasetRegistry(const std::vector<std::filesystem::path>& dataDirs, MemoryAdmission& memory);
     /// From now on a volume dataset is summarized by the ranks (samplesOnRanks), not loaded here: this
     /// process holds none of its samples. Call before the first find().
-    void summarizeOnRanks(FrameCompositor* ranks) { mRanks = ranks; }
+    void summarizeOnRanks(dist::FrameRanks* ranks) { mRanks = ranks; }
 
     /// All names found, sorted.
     std::vector<std::string> names() const;
@@ -108,7 +108,7 @@ private:
     /// remembers any other as the file's, so that every later request is answered 500 with it.
     static void rememberLoadFailure(Entry& entry, const std::string& name);
     MemoryAdmission& mMemory;
-    FrameCompositor* mRanks = nullptr;
+    dist::FrameRanks* mRanks = nullptr;
     mutable std::mutex mMutex;
     std::map<std::string, std::unique_ptr<Entry>> mEntries;
 };

@@ -114,7 +114,7 @@ FitKey fitKeyFor(const Dataset& dataset, const EpsSpec& eps, int degree) {
 void installDatasetRoutes(Server::Impl& s) {
     s.http.Get("/api/datasets", [&s](const httplib::Request&, httplib::Response& res) {
         nlohmann::json list = nlohmann::json::array();
-        const FrameCompositor* ranks = s.options.compositor.get();
+        const dist::FrameRanks* ranks = s.options.ranks.get();
         for (const std::string& name : s.registry.names()) {
             // Under mpirun only what the ranks draw is offered (and read, by them).
             if (ranks && !ranks->refusal(name, render::FrameRequest{}).empty()) continue;

@@ -35,7 +35,7 @@ struct FitJobLimits {
     bool warmUp = true;    // fit eps / 2 into the box cache while idle (WarmUpFits)
 };
 
-/// What a fit made by other processes gave (`vots serve` under mpirun): the Vots of all the ranks' slabs
+/// What a fit made by other processes gave (`vots serve` under mpirun): the Vots of all the ranks' cells
 /// and the slowest rank's seconds. The Vot-Space itself stays with the ranks.
 struct FitOnRanks {
     std::size_t votCount = 0;
@@ -67,7 +67,7 @@ public:
     WarmUpSummary warmUps() const { return mWarmUps.summary(); }
     /// Refuses new jobs (503), fails queued ones and cancels running fits; idempotent.
     void shutdown();
-    /// Under mpirun: every fit is made by the ranks, each of its slab, through `fit` (which waits for
+    /// Under mpirun: every fit is made by the ranks, each of its z cells, through `fit` (which waits for
     /// them), instead of here. Set before the first submit.
     void fitOnRanksThrough(std::function<FitOnRanks(const Dataset&, const FitKey&, const FitProgress&)> fit) {
         mFitOnRanks = std::move(fit);

@@ -2,8 +2,8 @@
 #include "HttpJson.h"
 
 #include "HttpError.h"
+#include "vots/dist/Failure.h"
 #include "vots/fit/Error.h"
-#include "vots/server/FrameCompositor.h"
 
 #include <iostream>
 #include <new>
@@ -50,9 +50,9 @@ HttpFailure classifyFailure(std::exception_ptr error) {
         return {e.status(), e.what()};
     } catch (const fit::InputError& e) {
         return {400, e.what()};
-    } catch (const RanksOverBudget& e) {
+    } catch (const dist::RanksOverBudget& e) {
         return {507, e.what()};
-    } catch (const RanksLost& e) { // logged once by the compositor
+    } catch (const dist::RanksLost& e) { // logged once by the ranks' port
         return {503, e.what()};
     } catch (const std::bad_alloc&) {
         return {503, "out of memory"};

@@ -26,8 +26,8 @@ struct HttpFailure {
 /// dataset registry; the message is the exception's own (what()):
 ///   HttpError         its own status
 ///   fit::InputError   400  the request (or a file it names) cannot be accepted
-///   RanksOverBudget   507  a rank's slab is over its memory budget now
-///   RanksLost         503  a rank stopped answering
+///   dist::RanksOverBudget 507  a rank's z cells are over its memory budget now
+///   dist::RanksLost   503  a rank stopped answering
 ///   std::bad_alloc    503  "out of memory" now; the client may try again
 ///   anything else     500
 HttpFailure classifyFailure(std::exception_ptr error);

@@ -3,7 +3,7 @@
 #include "HttpJson.h"
 #include "ServerImpl.h"
 
-#include "vots/server/FrameCompositor.h"
+#include "vots/dist/FrameRanks.h"
 
 #include <chrono>
 
@@ -43,10 +43,10 @@ nlohmann::json jobJson(const JobSnapshot& job) {
 void installJobRoutes(Server::Impl& s) {
     s.http.Post("/api/fit", [&s](const httplib::Request& req, httplib::Response& res) {
         const FitParams p = parseFitParams(req.body);
-        if (const FrameCompositor* compositor = s.options.compositor.get()) {
+        if (const dist::FrameRanks* ranks = s.options.ranks.get()) {
             // Under mpirun the fit is the ranks' (FitJobs::fitOnRanksThrough): their dataset, no focus;
             // refused before the ranks read anything of another.
-            const std::string refused = compositor->refusal(p.dataset, render::FrameRequest{});
+            const std::string refused = ranks->refusal(p.dataset, render::FrameRequest{});
             if (!refused.empty()) throw HttpError(409, refused);
             if (p.focus) throw HttpError(409, "under mpirun the ranks fit without a focus sphere");
         }

@@ -11,8 +11,8 @@ namespace vots::server {
 void prepareDataset(Server::Impl& s, const std::string& name) {
     try {
         const auto dataset = s.registry.find(name);
-        if (s.options.compositor && dataset->kind == DatasetKind::Vots) {
-            // Under mpirun a first frame has every rank read the file and upload its slab's Vots.
+        if (s.options.ranks && dataset->kind == DatasetKind::Vots) {
+            // Under mpirun a first frame has every rank read the file and upload its Vots of it.
             RenderParams first;
             first.dataset = name;
             first.width = first.height = 1;
@@ -25,8 +25,8 @@ void prepareDataset(Server::Impl& s, const std::string& name) {
             const auto fit = s.fitJobs.submit(dataset, key);
             const JobSnapshot done = fit->waitFinished(std::chrono::minutes(10));
             if (done.state != JobState::Done) return; // failed (the job says why) or the server is stopping
-            // Under mpirun the ranks' fit was a composited frame: each holds its slab's Vots uploaded.
-            if (s.options.compositor) return;
+            // Under mpirun the ranks hold their fit; the first frame uploads it.
+            if (s.options.ranks) return;
             space = fit->space();
         }
         if (!s.renderQueue || !s.renderQueue->hasContext()) return;

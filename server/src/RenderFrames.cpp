@@ -51,8 +51,8 @@ std::shared_ptr<const fit::VotSpace> spaceFor(Server::Impl& s, const std::shared
     throw HttpError(503, "the fit finished but newer fits have pushed it out of memory; try again");
 }
 
-CompositeRequest compositeRequestFor(const Dataset& dataset, float eps, int degree) {
-    CompositeRequest request;
+dist::FitRequest fitRequestFor(const Dataset& dataset, float eps, int degree) {
+    dist::FitRequest request;
     request.dataset = dataset.name;
     request.volumePath = dataset.path;
     request.valueRange = dataset.range;
@@ -61,24 +61,25 @@ CompositeRequest compositeRequestFor(const Dataset& dataset, float eps, int degr
     return request;
 }
 
-/// Under mpirun: the frame is drawn on every rank from its slab's own fit, so rank 0 fits nothing whole
+/// Under mpirun: the frame is drawn on every rank from its cells' own fit, so rank 0 fits nothing whole
 /// (what the ranks cannot composite was refused before the dataset was looked up); a .vots dataset from
 /// each rank's Vots of the file.
-PreparedRender prepareComposite(const Dataset& dataset, PreparedRender prepared) {
+PreparedRender prepareOnRanks(const Dataset& dataset, PreparedRender prepared) {
     RenderJob& job = prepared.job;
     if (dataset.kind == DatasetKind::Vots) {
-        CompositeRequest request = compositeRequestFor(dataset, dataset.space->eps, dataset.space->degree);
+        dist::DrawRequest request;
+        request.fit = fitRequestFor(dataset, dataset.space->eps, dataset.space->degree);
         request.votsFile = true;
         request.frame = job.params;
-        job.composite = std::move(request);
+        job.onRanks = std::move(request);
         job.space = dataset.space; // not drawn here: its meta gives the frame's fit time and Vot count
         prepared.drawnFrom = dataset.name + "_vots|ranks";
         return prepared;
     }
-    CompositeRequest request =
-        compositeRequestFor(dataset, resolveEps(dataset, job.params.eps), job.params.degree);
+    dist::DrawRequest request;
+    request.fit = fitRequestFor(dataset, resolveEps(dataset, job.params.eps), job.params.degree);
     request.frame = job.params;
-    job.composite = std::move(request);
+    job.onRanks = std::move(request);
     prepared.drawnFrom = job.params.renderer == render::RendererKind::Grid
                              ? dataset.name + "_v" + std::to_string(dataset.contentCrc) + "|ranks"
                              : fitKeyFor(dataset, job.params.eps, job.params.degree).text() + "|ranks";
@@ -92,8 +93,8 @@ PreparedRender prepareRender(Server::Impl& s, const RenderParams& params, const 
     RenderJob& job = prepared.job;
     job.params = params;
     // Under mpirun what the ranks cannot draw is refused before they read anything of the dataset.
-    if (s.options.compositor) {
-        const std::string refused = s.options.compositor->refusal(params.dataset, params);
+    if (s.options.ranks) {
+        const std::string refused = s.options.ranks->refusal(params.dataset, params);
         if (!refused.empty()) throw HttpError(409, refused);
     }
     const auto dataset = s.registry.find(job.params.dataset);
@@ -105,7 +106,7 @@ PreparedRender prepareRender(Server::Impl& s, const RenderParams& params, const 
     if (!s.renderQueue || !s.renderQueue->hasContext())
         throw HttpError(503, s.renderQueue ? "rendering is unavailable: " + s.renderQueue->contextError()
                                            : "rendering is disabled");
-    if (s.options.compositor) return prepareComposite(*dataset, std::move(prepared));
+    if (s.options.ranks) return prepareOnRanks(*dataset, std::move(prepared));
     if (dataset->kind == DatasetKind::Vots) {
         job.space = dataset->space;
         prepared.drawnFrom = dataset->name + "_vots"; // the file's one Vot-Space, loaded once
@@ -121,14 +122,8 @@ PreparedRender prepareRender(Server::Impl& s, const RenderParams& params, const 
 
 FitOnRanks fitOnRanks(Server::Impl& s, const Dataset& dataset, const FitKey& key,
                       const FitProgress& progress) {
-    RenderJob job;
-    job.params.dataset = dataset.name;
-    job.params.width = job.params.height = 1; // the fit is the work: the frame is one pixel
-    job.params.degree = key.degree;
-    job.composite = compositeRequestFor(dataset, key.eps, key.degree);
-    job.composite->fitProgress = progress; // called while this thread waits for the frame
-    const RenderResult drawn = s.renderQueue->render(std::move(job));
-    return {drawn.votCount, drawn.fitMs / 1000.0};
+    const dist::RanksFit done = s.options.ranks->fit(fitRequestFor(dataset, key.eps, key.degree), progress);
+    return {static_cast<std::size_t>(done.votCount), done.seconds};
 }
 
 std::shared_ptr<const FrameCache::Frame> cachedFrame(Server::Impl& s, const PreparedRender& prepared,

@@ -22,9 +22,9 @@ struct PreparedRender {
 /// or while the fit still runs, 500 when it failed. `client` is the fit job's owner.
 PreparedRender prepareRender(Server::Impl& s, const RenderParams& params, const std::string& client);
 
-/// Under mpirun: the ranks fit their slabs at the key's eps (a one-pixel frame through the render queue,
-/// which the next frames at that eps find held); this process's slab fit reports through `progress`.
-/// Throws HttpError from the queue.
+/// Under mpirun: the ranks fit their cells at the key's eps (dist::FrameRanks::fit), which the next
+/// frames at that eps find held; this process's fit reports through `progress`. Throws what the port
+/// throws (dist::RanksLost, dist::RanksOverBudget, fit::InputError).
 FitOnRanks fitOnRanks(Server::Impl& s, const Dataset& dataset, const FitKey& key,
                       const FitProgress& progress);
 

@@ -30,9 +30,9 @@ struct RenderQueue::Renderers {
     std::shared_ptr<const fit::Volume> uploadedVolume;
 };
 
-RenderQueue::RenderQueue(ServerStats& stats, ForegroundActivity& foreground, FrameCompositor* compositor,
+RenderQueue::RenderQueue(ServerStats& stats, ForegroundActivity& foreground, dist::FrameRanks* ranks,
                          std::size_t maxWaiting)
-    : mStats(stats), mForeground(foreground), mCompositor(compositor), mMaxWaiting(maxWaiting) {
+    : mStats(stats), mForeground(foreground), mRanks(ranks), mMaxWaiting(maxWaiting) {
     mThread = std::thread([this] { threadMain(); });
     std::unique_lock lock(mMutex);
     mWake.wait(lock, [this] { return mReady; });
@@ -136,19 +136,22 @@ RenderResult RenderQueue::draw(Renderers& r, const RenderJob& job) {
     RenderResult result;
     const ForegroundMark mark(mForeground, Foreground::Frame); // warm-ups and cache files wait meanwhile
     const auto start = std::chrono::steady_clock::now();
-    if (job.composite) {
-        if (!mCompositor) throw std::logic_error("a composite frame on a queue without a compositor");
-        CompositeRequest request = *job.composite;
+    if (job.onRanks) {
+        if (!mRanks) throw std::logic_error("a frame on the ranks on a queue without them");
+        dist::DrawRequest request = *job.onRanks;
         request.frame = p;
-        r.uploadedSpace = nullptr; // the compositor uploads its own slab's Vots and samples
+        r.uploadedSpace = nullptr; // the ranks' port uploads this rank's own Vots and samples
         r.uploadedVolume = nullptr;
-        result.image = mCompositor->draw(request, *r.vots, *r.grid);
+        const dist::ComposedFrame composed = mRanks->draw(request, *r.vots, *r.grid);
+        // Shown as one process shows its frame: the renderer's own display pass over the same range.
+        result.image = r.vots->display(composed.image, render::displayFor(p, composed.displayRange));
         // Read here, on the render thread, before another frame replaces them.
-        for (const RankTimes& t : mCompositor->lastTimes()) {
+        for (const dist::RankTimes& t : mRanks->lastTimes()) {
             result.votCount += static_cast<std::size_t>(t.votCount);
             result.fitMs = std::max(result.fitMs, t.heldFitMs);
         }
-        // A file's Vot crossing a slab face is drawn by both ranks (minip, aip) but is one Vot.
+        // A file's Vot crossing the face between two ranks' cells is drawn by both (minip, aip) but is one
+        // Vot.
         if (job.space) result.votCount = job.space->vots.size();
         result.frameMs =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -2,10 +2,10 @@
 #pragma once
 
 #include "Params.h"
+#include "vots/dist/FrameRanks.h"
 #include "vots/fit/Volume.h"
 #include "vots/fit/VotSpace.h"
 #include "vots/render/Image.h"
-#include "vots/server/FrameCompositor.h"
 
 #include <array>
 #include <condition_variable>
@@ -34,9 +34,9 @@ struct RenderJob {
     // The volume's min and max sample, as the registry keeps it, so that no frame scans the volume;
     // nullopt: the Vot-Space's own range (a .vots dataset, as `vots render FILE.vots` draws it).
     std::optional<std::array<float, 2>> valueRange;
-    // Set when a FrameCompositor draws the frame on every rank: its request. `space` is then null, or a
-    // .vots dataset's (only its count and meta are read: the ranks draw their own Vots of the file).
-    std::optional<CompositeRequest> composite;
+    // Set when the ranks draw the frame (dist::FrameRanks): its request. `space` is then null, or a .vots
+    // dataset's (only its count and meta are read: the ranks draw their own Vots of the file).
+    std::optional<dist::DrawRequest> onRanks;
 };
 
 struct RenderResult {
@@ -49,9 +49,9 @@ struct RenderResult {
 /// Thread-safe. If no EGL context can be made, every render() gives HttpError 503.
 class RenderQueue {
 public:
-    /// Starts the thread and waits until it has (or has failed to get) a context. Jobs with a composite
-    /// request are drawn through `compositor`, which must then outlive the queue.
-    RenderQueue(ServerStats& stats, ForegroundActivity& foreground, FrameCompositor* compositor = nullptr,
+    /// Starts the thread and waits until it has (or has failed to get) a context. Jobs drawn on the ranks
+    /// go through `ranks`, which must then outlive the queue.
+    RenderQueue(ServerStats& stats, ForegroundActivity& foreground, dist::FrameRanks* ranks = nullptr,
                 std::size_t maxWaiting = 64);
     ~RenderQueue(); // answers waiting jobs with 503 and joins
 
@@ -91,7 +91,7 @@ private:
 
     ServerStats& mStats;
     ForegroundActivity& mForeground;
-    FrameCompositor* const mCompositor;
+    dist::FrameRanks* const mRanks;
     const std::size_t mMaxWaiting;
     mutable std::mutex mMutex;
     std::condition_variable mWake;

@@ -63,10 +63,10 @@ Server::Impl::Impl(ServerOptions opts)
       fitJobs(cache, stats, foreground, memory, limitsFrom(options)), frames(options.frameCacheBytes),
       renders(options.maxRendersPerClient, "renders"), guard(options.allowedHosts, options.accessToken) {
     if (options.withRenderer)
-        renderQueue = std::make_unique<RenderQueue>(stats, foreground, options.compositor.get());
+        renderQueue = std::make_unique<RenderQueue>(stats, foreground, options.ranks.get());
     // Under mpirun the samples stay with the ranks, each reading its slab: this process holds none.
-    if (options.compositor) registry.summarizeOnRanks(options.compositor.get());
-    if (options.compositor && renderQueue)
+    if (options.ranks) registry.summarizeOnRanks(options.ranks.get());
+    if (options.ranks && renderQueue)
         fitJobs.fitOnRanksThrough(
             [this](const Dataset& dataset, const FitKey& key, const FitProgress& progress) {
                 return fitOnRanks(*this, dataset, key, progress);

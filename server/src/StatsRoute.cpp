@@ -2,7 +2,7 @@
 // hold.
 #include "HttpJson.h"
 #include "ServerImpl.h"
-#include "vots/server/FrameCompositor.h"
+#include "vots/dist/FrameRanks.h"
 
 namespace vots::server {
 
@@ -40,17 +40,17 @@ void installStatsRoute(Server::Impl& s) {
                                    {"error", queue ? queue->contextError() : "renderer disabled"},
                                    {"waiting", queue ? queue->waiting() : 0}};
         // Under mpirun: the ranks and their parts of the last composited frame.
-        const FrameCompositor* compositor = s.options.compositor.get();
+        const dist::FrameRanks* ranks = s.options.ranks.get();
         nlohmann::json rankTimes = nlohmann::json::array();
-        if (compositor)
-            for (const RankTimes& t : compositor->lastTimes())
+        if (ranks)
+            for (const dist::RankTimes& t : ranks->lastTimes())
                 rankTimes.push_back({{"rank", t.rank},
                                      {"fitMs", t.fitMs},
                                      {"frameMs", t.frameMs},
                                      {"compositeMs", t.compositeMs},
                                      {"votCount", t.votCount}});
         sendJson(res, 200,
-                 {{"ranks", compositor ? compositor->ranks() : 1},
+                 {{"ranks", ranks ? ranks->ranks() : 1},
                   {"rankTimes", rankTimes},
                   {"frames",
                    {{"count", frames.frames},

@@ -2,8 +2,8 @@
 #include "HttpError.h"
 #include "HttpJson.h"
 
+#include "vots/dist/Failure.h"
 #include "vots/fit/Error.h"
-#include "vots/server/FrameCompositor.h"
 
 #include <gtest/gtest.h>
 
@@ -20,8 +20,8 @@ template <class E> HttpFailure failureOf(const E& error) {
 TEST(HttpFailure, EachKindOfFailureHasOneStatus) {
     EXPECT_EQ(failureOf(HttpError(409, "superseded")).status, 409);
     EXPECT_EQ(failureOf(fit::InputError("bad camera")).status, 400);
-    EXPECT_EQ(failureOf(RanksOverBudget("slab over budget")).status, 507);
-    EXPECT_EQ(failureOf(RanksLost("rank 1 lost")).status, 503);
+    EXPECT_EQ(failureOf(dist::RanksOverBudget("slab over budget")).status, 507);
+    EXPECT_EQ(failureOf(dist::RanksLost("rank 1 lost")).status, 503);
     EXPECT_EQ(failureOf(std::bad_alloc()).status, 503);
     EXPECT_EQ(failureOf(fit::GraphicsError("shader does not compile")).status, 500);
     EXPECT_EQ(failureOf(std::logic_error("bug")).status, 500);
@@ -38,8 +38,8 @@ TEST(HttpFailure, MessagesAreTheFailuresOwnAndOnlyUnexpectedOnesArePrefixed) {
 
 TEST(HttpFailure, OnlyRefusalsForNowAreRetryable) {
     EXPECT_TRUE(isRetryable(failureOf(std::bad_alloc()).status));
-    EXPECT_TRUE(isRetryable(failureOf(RanksOverBudget("x")).status));
-    EXPECT_TRUE(isRetryable(failureOf(RanksLost("x")).status));
+    EXPECT_TRUE(isRetryable(failureOf(dist::RanksOverBudget("x")).status));
+    EXPECT_TRUE(isRetryable(failureOf(dist::RanksLost("x")).status));
     EXPECT_FALSE(isRetryable(failureOf(fit::InputError("x")).status));
     EXPECT_FALSE(isRetryable(failureOf(std::runtime_error("x")).status));
 }

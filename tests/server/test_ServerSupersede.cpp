@@ -1,7 +1,7 @@
 // A newer frame from one client supersedes its frame still waiting for the render thread, held busy here.
 #include "ServerFixture.h"
 
-#include "vots/server/FrameCompositor.h"
+#include "vots/dist/FrameRanks.h"
 
 #include <chrono>
 #include <condition_variable>
@@ -14,14 +14,14 @@
 namespace vots::test {
 namespace {
 
-/// Draws flat frames through the compositor hook, so that the test decides when the render thread is
-/// free: the first frame holds it until release(). Records the width of every frame it drew.
-class HoldingCompositor : public server::FrameCompositor {
+/// Draws flat frames through the ranks' port, so that the test decides when the render thread is free:
+/// the first frame holds it until release(). Records the width of every frame it drew.
+class HoldingRanks : public dist::FrameRanks {
 public:
     int ranks() const override { return 1; }
     std::string refusal(const std::string&, const render::FrameRequest&) const override { return ""; }
-    render::RgbaImage draw(const server::CompositeRequest& request, render::VotRenderer&,
-                           render::GridRenderer&) override {
+    dist::ComposedFrame draw(const dist::DrawRequest& request, render::VotRenderer&,
+                             render::GridRenderer&) override {
         std::unique_lock lock(mMutex);
         mDrawnWidths.push_back(request.frame.width);
         if (mDrawnWidths.size() == 1) {
@@ -29,12 +29,12 @@ public:
             mChanged.notify_all();
             mChanged.wait(lock, [this] { return mReleased; });
         }
-        render::RgbaImage image{request.frame.width, request.frame.height, {}};
-        image.pixels.assign(static_cast<std::size_t>(4 * image.width * image.height), 255);
-        return image;
+        const std::size_t pixels = static_cast<std::size_t>(request.frame.width * request.frame.height);
+        return {{request.frame.width, request.frame.height, std::vector<float>(pixels, 255.f)}, {0.f, 255.f}};
     }
-    server::VolumeSummary summarize(const std::filesystem::path&) override { return {{0.f, 255.f}, 1u}; }
-    std::vector<server::RankTimes> lastTimes() const override { return {}; }
+    dist::RanksFit fit(const dist::FitRequest&, const dist::FitProgress&) override { return {1, 0.0}; }
+    dist::VolumeSummary summarize(const std::filesystem::path&) override { return {{0.f, 255.f}, 1u}; }
+    std::vector<dist::RankTimes> lastTimes() const override { return {}; }
 
     /// Waits (a minute at most) until the render thread is inside the first frame.
     bool waitUntilHolding() {
@@ -61,24 +61,24 @@ private:
 
 /// Releases the held frame however the test ends, so that the server can stop.
 struct ReleaseOnExit {
-    HoldingCompositor& compositor;
-    ~ReleaseOnExit() { compositor.release(); }
+    HoldingRanks& ranks;
+    ~ReleaseOnExit() { ranks.release(); }
 };
 
 TEST(ServerSupersede, NewerFrameFromSameClientSupersedesWaitingOne) {
     ServerWorld world;
     auto options = world.options();
-    auto compositor = std::make_shared<HoldingCompositor>();
-    options.compositor = compositor;
+    auto ranks = std::make_shared<HoldingRanks>();
+    options.ranks = ranks;
     options.warmUpFits = false;
     LoopbackServer server(options);
-    const ReleaseOnExit releaseOnExit{*compositor};
+    const ReleaseOnExit releaseOnExit{*ranks};
     const auto get = [&server](const std::string& target) { return server.client()->Get(target.c_str()); };
     const std::string frame = std::string("/render?dataset=") + BLOBS + "&eps=5%25";
 
     // The render thread takes the first frame and stays in it until released.
     auto busy = std::async(std::launch::async, get, frame + "&size=48x48&client=busy");
-    ASSERT_TRUE(compositor->waitUntilHolding());
+    ASSERT_TRUE(ranks->waitUntilHolding());
     auto older = std::async(std::launch::async, get, frame + "&size=32x32&cam=az=10&client=viewer");
     bool queued = false; // the older frame waits behind the held one: nothing else can take it
     for (int i = 0; i < 3000 && !queued; ++i) {
@@ -93,15 +93,15 @@ TEST(ServerSupersede, NewerFrameFromSameClientSupersedesWaitingOne) {
     ASSERT_TRUE(oldRes);
     EXPECT_EQ(oldRes->status, 409);
     EXPECT_EQ(bodyJson(oldRes)["error"], "superseded");
-    EXPECT_EQ(compositor->drawnWidths(), std::vector<int>{48});
+    EXPECT_EQ(ranks->drawnWidths(), std::vector<int>{48});
 
-    compositor->release();
+    ranks->release();
     const auto newRes = newer.get();
     const auto busyRes = busy.get();
     ASSERT_TRUE(newRes && busyRes);
     EXPECT_EQ(busyRes->status, 200) << busyRes->body;
     EXPECT_EQ(newRes->status, 200) << newRes->body;
-    EXPECT_EQ(compositor->drawnWidths(), (std::vector<int>{48, 40})) << "the superseded frame was drawn";
+    EXPECT_EQ(ranks->drawnWidths(), (std::vector<int>{48, 40})) << "the superseded frame was drawn";
     EXPECT_EQ(bodyJson(server.client()->Get("/api/stats"))["frames"]["superseded"].get<int>(), 1);
 }
 

@@ -8,9 +8,11 @@
 #include <string>
 #include <vector>
 
-namespace vots::server {
+namespace vots::dist {
+class FrameRanks;
+}
 
-class FrameCompositor;
+namespace vots::server {
 
 struct ServerOptions {
     std::vector<std::filesystem::path> dataDirs;            // searched in order for volumes
@@ -41,9 +43,9 @@ struct ServerOptions {
     // process's resident memory: never an allocation the kernel kills the server for. 0: the default,
     // fit::defaultMemoryBudget() (80 % of the memory available at start).
     std::uint64_t memoryBudgetBytes = 0;
-    // Under mpirun (cli/MpiServe): frames of Vots are drawn through it on every rank and composited;
-    // what it refuses is answered 409. Null: frames are drawn here alone.
-    std::shared_ptr<FrameCompositor> compositor;
+    // Under mpirun (dist/mpi's MpiFrameRanks): frames and fits are made through it on every rank, the
+    // frames composited; what it refuses is answered 409. Null: frames are drawn here alone.
+    std::shared_ptr<dist::FrameRanks> ranks;
 };
 
 /// The folders `vots serve` uses when none are given: ./data (where scripts/fetch-ct puts the Cranium)
