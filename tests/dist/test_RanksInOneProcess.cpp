@@ -3,12 +3,14 @@
 #include "AirStepVolume.h"
 #include "TempDir.h"
 
+#include "vots/dist/CompositeOp.h"
 #include "vots/dist/FrameComposite.h"
 #include "vots/dist/RankPart.h"
 #include "vots/dist/WholeFill.h"
 
 #include "vots/fit/Fitter.h"
 #include "vots/fit/VolumeLoad.h"
+#include "vots/fit/VotSpaceFile.h"
 #include "vots/render/EglContext.h"
 #include "vots/render/VotRenderer.h"
 
@@ -165,6 +167,46 @@ TEST_F(RanksInOneProcess, EachRanksOwnFillWouldChangeTheMinipOfThisVolume) {
     }
     EXPECT_NE(composited(own, frame).pixels, composited(whole, frame).pixels)
         << "a volume whose ranks' air differs shows the fill each rank draws with";
+}
+
+TEST_F(RanksInOneProcess, DrawAVotsFileAsOneProcessDrawsIt) {
+    ASSERT_TRUE(context) << "the ranks' parts draw with a headless EGL context: " << contextError;
+    TempDir dir;
+    const std::string volume = dir.file("air-step.nrrd");
+    writeAirStepVolume(volume);
+    fit::FitOptions options;
+    options.eps = EPS;
+    options.certify = render::RENDER_FIT_CERTIFY;
+    const fit::Volume whole = fit::loadVolume(volume);
+    options.background = fit::defaultBackground(whole.valueRange());
+    const fit::VotSpace space = fit::fitVotSpace(whole, options).space; // boxes across the ranks' faces
+    const std::string file = dir.file("air-step.vots");
+    fit::writeVotSpaceFile(file, space);
+    dist::RankSetup setup;
+    setup.readVotsFile = [fill = space.backgroundFill](const std::string& path) {
+        fit::VotSpace read = fit::readVotSpaceFile(path);
+        read.backgroundFill = fill; // as the meta block restores it
+        return read;
+    };
+    render::VotRenderer one;
+    one.upload(space);
+    render::FrameRequest frame;
+    frame.camera = render::cameraForView(render::ViewPreset::Left);
+    frame.width = frame.height = 96;
+    for (const render::RenderMode mode : {render::RenderMode::Mip, render::RenderMode::Density}) {
+        frame.mode = mode;
+        Ranks ranks;
+        for (int r = 0; r < 3; ++r) {
+            ranks.parts.push_back(std::make_unique<dist::RankPart>(r, 3, setup));
+            ranks.renderers.push_back(std::make_unique<render::VotRenderer>());
+            ranks.parts.back()->ensureVotsFile(file, dist::compositesCutRays(mode), *ranks.renderers.back());
+        }
+        // Each Vot is drawn by the one rank whose cells its box starts in: the max (the smallest box) over
+        // the ranks is the whole file's, bit for bit.
+        EXPECT_EQ(composited(ranks, frame).pixels,
+                  one.render(frame.camera, frame.width, frame.height, mode).pixels)
+            << render::renderModeName(mode);
+    }
 }
 
 } // namespace
