@@ -95,22 +95,26 @@ class RanksInOneProcess : public ::testing::Test {
 protected:
     static void SetUpTestSuite() { context = render::EglContext::create(&contextError); }
     static void TearDownTestSuite() { context.reset(); }
+    /// The air-step volume written to the test's folder, its value range, and the anterior 128x128 frame.
+    void SetUp() override {
+        ASSERT_TRUE(context) << "the ranks' parts draw with a headless EGL context: " << contextError;
+        path = dir.file("air-step.nrrd");
+        writeAirStepVolume(path);
+        range = fit::loadVolume(path).valueRange();
+        frame.camera = render::cameraForView(render::ViewPreset::Anterior);
+        frame.width = frame.height = 128;
+    }
     static std::unique_ptr<render::EglContext> context;
     static std::string contextError;
+    TempDir dir;
+    std::string path;
+    std::array<float, 2> range{0.f, 0.f};
+    render::FrameRequest frame;
 };
 std::unique_ptr<render::EglContext> RanksInOneProcess::context;
 std::string RanksInOneProcess::contextError;
 
 TEST_F(RanksInOneProcess, CompositeTheFrameOfTheUnionOfTheirFitsWithTheWholeVolumesFill) {
-    ASSERT_TRUE(context) << "the ranks' parts draw with a headless EGL context: " << contextError;
-    TempDir dir;
-    const std::string path = dir.file("air-step.nrrd");
-    writeAirStepVolume(path);
-    const std::array<float, 2> range = fit::loadVolume(path).valueRange();
-    render::FrameRequest frame;
-    frame.camera = render::cameraForView(render::ViewPreset::Anterior);
-    frame.width = frame.height = 128;
-
     for (const int count : {2, 3}) {
         Ranks ranks = fitOnRanks(path, count, range);
         std::vector<dist::BackgroundSums> sums;
@@ -146,14 +150,6 @@ TEST_F(RanksInOneProcess, CompositeTheFrameOfTheUnionOfTheirFitsWithTheWholeVolu
 }
 
 TEST_F(RanksInOneProcess, EachRanksOwnFillWouldChangeTheMinipOfThisVolume) {
-    ASSERT_TRUE(context) << "the ranks' parts draw with a headless EGL context: " << contextError;
-    TempDir dir;
-    const std::string path = dir.file("air-step.nrrd");
-    writeAirStepVolume(path);
-    const std::array<float, 2> range = fit::loadVolume(path).valueRange();
-    render::FrameRequest frame;
-    frame.camera = render::cameraForView(render::ViewPreset::Anterior);
-    frame.width = frame.height = 128;
     frame.mode = render::RenderMode::MinIp;
 
     Ranks whole = fitOnRanks(path, 2, range);
@@ -170,29 +166,23 @@ TEST_F(RanksInOneProcess, EachRanksOwnFillWouldChangeTheMinipOfThisVolume) {
 }
 
 TEST_F(RanksInOneProcess, DrawAVotsFileAsOneProcessDrawsIt) {
-    ASSERT_TRUE(context) << "the ranks' parts draw with a headless EGL context: " << contextError;
-    TempDir dir;
-    const std::string volume = dir.file("air-step.nrrd");
-    writeAirStepVolume(volume);
     fit::FitOptions options;
     options.eps = EPS;
     options.certify = render::RENDER_FIT_CERTIFY;
-    const fit::Volume whole = fit::loadVolume(volume);
-    options.background = fit::defaultBackground(whole.valueRange());
+    const fit::Volume whole = fit::loadVolume(path);
+    options.background = fit::defaultBackground(range);
     const fit::VotSpace space = fit::fitVotSpace(whole, options).space; // boxes across the ranks' faces
     const std::string file = dir.file("air-step.vots");
     fit::writeVotSpaceFile(file, space);
     dist::RankSetup setup;
-    setup.readVotsFile = [fill = space.backgroundFill](const std::string& path) {
-        fit::VotSpace read = fit::readVotSpaceFile(path);
+    setup.readVotsFile = [fill = space.backgroundFill](const std::string& votsPath) {
+        fit::VotSpace read = fit::readVotSpaceFile(votsPath);
         read.backgroundFill = fill; // as the meta block restores it
         return read;
     };
     render::VotRenderer one;
     one.upload(space);
-    render::FrameRequest frame;
     frame.camera = render::cameraForView(render::ViewPreset::Left);
-    frame.width = frame.height = 96;
     for (const render::RenderMode mode : {render::RenderMode::Mip, render::RenderMode::Density}) {
         frame.mode = mode;
         Ranks ranks;
