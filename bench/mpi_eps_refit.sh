@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The viewer's eps slider under `mpirun -np N vots serve`: after --prepare's 2 % fit, POST /api/fit at each
-# eps in turn and time the job (its fitSeconds: the slowest rank's slab fit) and the request to its end.
+# eps in turn and time the job (its fitSeconds: the slowest rank's fit of its cells) and the request to its end.
 #
 # Usage: bench/mpi_eps_refit.sh VOLUME [RANKS] [EPS...]    VOTS_BUILD=build/release (default)
 # Default eps: 3% 1.5% 2.5% 1.3% 2%. Prints Markdown rows for bench/RESULTS.md.

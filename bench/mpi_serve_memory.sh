@@ -2,7 +2,7 @@
 # Each process's memory while `vots serve` draws a study, one process against `mpirun -np N` (issue 23):
 # the seconds from the launch to the first 2 % frame (both --prepare the study: the load or the ranks'
 # summary, the fit and the frame), then VmRSS and VmHWM of every rank from /proc after it. Under mpirun no
-# rank should hold the whole volume: rank 0 keeps the grid alone, each rank its slab's fit.
+# rank should hold the whole volume: rank 0 keeps the grid alone, each rank its cells' fit.
 #
 # Usage: bench/mpi_serve_memory.sh VOLUME [RANKS]    VOTS_BUILD=build/release (default)
 # A 512x512x1000 volume: build/release/bench/make_scaled_volume data/cranium.nhdr /tmp/s1000.nhdr \
@@ -52,4 +52,4 @@ echo "|---|---|---|---|---|"
 serve_and_measure one "$vots"
 serve_and_measure ranks mpirun --oversubscribe --enable-recovery -np "$ranks" "$vots"
 cmp -s "$work/one.png" "$work/ranks.png" && echo "(the two PNGs are the same bytes)" ||
-    echo "(the PNGs differ: $ranks slabs fit apart, as mpirun vots render draws them)"
+    echo "(the PNGs differ: $ranks ranks' cells fit apart, as mpirun vots render draws them)"

@@ -64,12 +64,13 @@ RgbaImage DisplayPass::apply(GLuint floatTexture, int width, int height, const D
     return image;
 }
 
-RgbaImage applyDisplay(const FloatImage& image, const DisplaySettings& display) {
+void checkFloatImage(const FloatImage& image) {
     checkImageSize(image.width, image.height);
     if (image.pixels.size() != static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height))
         throw fit::GraphicsError("float image has the wrong number of pixels");
-    GlTexture texture = createTexture(GL_TEXTURE_2D);
-    glTextureStorage2D(texture.get(), 1, GL_R32F, image.width, image.height);
+}
+
+void writeFloatImage(GLuint texture, const FloatImage& image) {
     // Images are top row first; GL textures start at the bottom row.
     std::vector<float> flipped(image.pixels.size());
     const std::size_t row = static_cast<std::size_t>(image.width);
@@ -77,7 +78,14 @@ RgbaImage applyDisplay(const FloatImage& image, const DisplaySettings& display) 
         std::copy_n(image.pixels.begin() + static_cast<std::ptrdiff_t>(y * row), row,
                     flipped.begin() + static_cast<std::ptrdiff_t>((image.height - 1 - y) * row));
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glTextureSubImage2D(texture.get(), 0, 0, 0, image.width, image.height, GL_RED, GL_FLOAT, flipped.data());
+    glTextureSubImage2D(texture, 0, 0, 0, image.width, image.height, GL_RED, GL_FLOAT, flipped.data());
+}
+
+RgbaImage applyDisplay(const FloatImage& image, const DisplaySettings& display) {
+    checkFloatImage(image);
+    GlTexture texture = createTexture(GL_TEXTURE_2D);
+    glTextureStorage2D(texture.get(), 1, GL_R32F, image.width, image.height);
+    writeFloatImage(texture.get(), image);
     DisplayPass pass;
     return pass.apply(texture.get(), image.width, image.height, display);
 }

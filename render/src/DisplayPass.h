@@ -26,4 +26,9 @@ private:
     int mHeight = 0;
 };
 
+/// Throws RenderError unless `image` has a valid size and width x height pixels.
+void checkFloatImage(const FloatImage& image);
+/// Writes `image` (top row first) into an R32F texture of its size.
+void writeFloatImage(GLuint texture, const FloatImage& image);
+
 } // namespace vots::render

@@ -220,19 +220,9 @@ FloatImage VotRenderer::render(const Camera& camera, int width, int height, cons
 }
 
 RgbaImage VotRenderer::display(const FloatImage& image, const DisplaySettings& display) {
-    checkImageSize(image.width, image.height);
-    if (image.pixels.size() != static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height))
-        throw fit::GraphicsError("float image has the wrong number of pixels");
+    checkFloatImage(image);
     mImpl->target.bind(image.width, image.height);
-    // Images are top row first; GL textures start at the bottom row.
-    std::vector<float> flipped(image.pixels.size());
-    const std::size_t row = static_cast<std::size_t>(image.width);
-    for (int y = 0; y < image.height; ++y)
-        std::copy_n(image.pixels.begin() + static_cast<std::ptrdiff_t>(y * row), row,
-                    flipped.begin() + static_cast<std::ptrdiff_t>((image.height - 1 - y) * row));
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glTextureSubImage2D(mImpl->target.texture(), 0, 0, 0, image.width, image.height, GL_RED, GL_FLOAT,
-                        flipped.data());
+    writeFloatImage(mImpl->target.texture(), image);
     return readDisplayedFrame(mImpl->display, mImpl->target, display, mImpl->stats);
 }
 

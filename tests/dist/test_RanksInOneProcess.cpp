@@ -3,12 +3,14 @@
 #include "AirStepVolume.h"
 #include "TempDir.h"
 
+#include "vots/dist/CompositeOp.h"
 #include "vots/dist/FrameComposite.h"
 #include "vots/dist/RankPart.h"
 #include "vots/dist/WholeFill.h"
 
 #include "vots/fit/Fitter.h"
 #include "vots/fit/VolumeLoad.h"
+#include "vots/fit/VotSpaceFile.h"
 #include "vots/render/EglContext.h"
 #include "vots/render/VotRenderer.h"
 
@@ -93,22 +95,26 @@ class RanksInOneProcess : public ::testing::Test {
 protected:
     static void SetUpTestSuite() { context = render::EglContext::create(&contextError); }
     static void TearDownTestSuite() { context.reset(); }
+    /// The air-step volume written to the test's folder, its value range, and the anterior 128x128 frame.
+    void SetUp() override {
+        ASSERT_TRUE(context) << "the ranks' parts draw with a headless EGL context: " << contextError;
+        path = dir.file("air-step.nrrd");
+        writeAirStepVolume(path);
+        range = fit::loadVolume(path).valueRange();
+        frame.camera = render::cameraForView(render::ViewPreset::Anterior);
+        frame.width = frame.height = 128;
+    }
     static std::unique_ptr<render::EglContext> context;
     static std::string contextError;
+    TempDir dir;
+    std::string path;
+    std::array<float, 2> range{0.f, 0.f};
+    render::FrameRequest frame;
 };
 std::unique_ptr<render::EglContext> RanksInOneProcess::context;
 std::string RanksInOneProcess::contextError;
 
 TEST_F(RanksInOneProcess, CompositeTheFrameOfTheUnionOfTheirFitsWithTheWholeVolumesFill) {
-    ASSERT_TRUE(context) << "the ranks' parts draw with a headless EGL context: " << contextError;
-    TempDir dir;
-    const std::string path = dir.file("air-step.nrrd");
-    writeAirStepVolume(path);
-    const std::array<float, 2> range = fit::loadVolume(path).valueRange();
-    render::FrameRequest frame;
-    frame.camera = render::cameraForView(render::ViewPreset::Anterior);
-    frame.width = frame.height = 128;
-
     for (const int count : {2, 3}) {
         Ranks ranks = fitOnRanks(path, count, range);
         std::vector<dist::BackgroundSums> sums;
@@ -144,14 +150,6 @@ TEST_F(RanksInOneProcess, CompositeTheFrameOfTheUnionOfTheirFitsWithTheWholeVolu
 }
 
 TEST_F(RanksInOneProcess, EachRanksOwnFillWouldChangeTheMinipOfThisVolume) {
-    ASSERT_TRUE(context) << "the ranks' parts draw with a headless EGL context: " << contextError;
-    TempDir dir;
-    const std::string path = dir.file("air-step.nrrd");
-    writeAirStepVolume(path);
-    const std::array<float, 2> range = fit::loadVolume(path).valueRange();
-    render::FrameRequest frame;
-    frame.camera = render::cameraForView(render::ViewPreset::Anterior);
-    frame.width = frame.height = 128;
     frame.mode = render::RenderMode::MinIp;
 
     Ranks whole = fitOnRanks(path, 2, range);
@@ -165,6 +163,40 @@ TEST_F(RanksInOneProcess, EachRanksOwnFillWouldChangeTheMinipOfThisVolume) {
     }
     EXPECT_NE(composited(own, frame).pixels, composited(whole, frame).pixels)
         << "a volume whose ranks' air differs shows the fill each rank draws with";
+}
+
+TEST_F(RanksInOneProcess, DrawAVotsFileAsOneProcessDrawsIt) {
+    fit::FitOptions options;
+    options.eps = EPS;
+    options.certify = render::RENDER_FIT_CERTIFY;
+    const fit::Volume whole = fit::loadVolume(path);
+    options.background = fit::defaultBackground(range);
+    const fit::VotSpace space = fit::fitVotSpace(whole, options).space; // boxes across the ranks' faces
+    const std::string file = dir.file("air-step.vots");
+    fit::writeVotSpaceFile(file, space);
+    dist::RankSetup setup;
+    setup.readVotsFile = [fill = space.backgroundFill](const std::string& votsPath) {
+        fit::VotSpace read = fit::readVotSpaceFile(votsPath);
+        read.backgroundFill = fill; // as the meta block restores it
+        return read;
+    };
+    render::VotRenderer one;
+    one.upload(space);
+    frame.camera = render::cameraForView(render::ViewPreset::Left);
+    for (const render::RenderMode mode : {render::RenderMode::Mip, render::RenderMode::Density}) {
+        frame.mode = mode;
+        Ranks ranks;
+        for (int r = 0; r < 3; ++r) {
+            ranks.parts.push_back(std::make_unique<dist::RankPart>(r, 3, setup));
+            ranks.renderers.push_back(std::make_unique<render::VotRenderer>());
+            ranks.parts.back()->ensureVotsFile(file, dist::compositesCutRays(mode), *ranks.renderers.back());
+        }
+        // Each Vot is drawn by the one rank whose cells its box starts in: the max (the smallest box) over
+        // the ranks is the whole file's, bit for bit.
+        EXPECT_EQ(composited(ranks, frame).pixels,
+                  one.render(frame.camera, frame.width, frame.height, mode).pixels)
+            << render::renderModeName(mode);
+    }
 }
 
 } // namespace

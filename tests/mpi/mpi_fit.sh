@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # `mpirun -np N vots fit` on loopback, N = 1, 2, 3, 4 (3 and 4 oversubscribed on 2 cores): each rank
-# reads only its slab of a raw NRRD; the one file the ranks write verifies against the volume, records the
+# reads only its z cells' planes of a raw NRRD; the one file the ranks write verifies against the volume, records the
 # ranks, is reproducible, with one rank holds the single-process Vots, leaves no temporary (the ranks write
 # their records into it with MPI-IO, rank 0 renames it), renders alike in one process and
 # on N ranks; the gzip input (each rank streams its planes alone) gives the same Vots; a DICOM series of
-# the same samples (each rank decodes only its slices) verifies; a focus sphere across the slab border
+# the same samples (each rank decodes only its slices) verifies; a focus sphere across the border of two ranks' cells
 # verifies; a failure on one rank ends all (fit and render).
 # Usage: tests/mpi/mpi_fit.sh VOTS_BINARY GZIP_NRRD_VOLUME VOTS_WRITE_DICOM_BINARY
 set -euo pipefail
@@ -59,7 +59,7 @@ cmp -s <(vots_body "$work/2.vots") <(vots_body "$work/2b.vots") || fail "two run
 no_times() { "$vots" info --json "$1" | sed -E 's/"(fit_)?seconds":[^,}]*//g; s/"file":"[^"]*"//'; }
 [[ $(no_times "$work/2.vots") == "$(no_times "$work/2b.vots")" ]] || fail "two runs on 2 ranks: meta blocks differ"
 
-# A focus sphere across the slab border, named in the whole volume's index space: every rank holds its
+# A focus sphere across the border of two ranks' cells, named in the whole volume's index space: every rank holds its
 # samples to the focus's eps (vots verify rebuilds the field from the meta block), and the file records
 # the focus as one process's does.
 focus_args=(--eps 4% --focus 24,31,20,8 --eps-focus 1 --threads 1)
@@ -76,7 +76,7 @@ votsOf() { "$vots" info "$1" | awk '$1 == "Vots" { gsub(",", "", $2); print $2; 
 mpi 2 "$vots" fit "$volume" -o "$work/outside.vots" --eps 4% --focus 24,31,60,8 --eps-focus 1 >/dev/null 2>&1 &&
     fail "2 ranks: a focus centre outside the volume was accepted"
 
-# Each rank inflates the gzip file up to its last plane and keeps its planes: the same slabs, so the same Vots.
+# Each rank inflates the gzip file up to its last plane and keeps its planes: the same cells, so the same Vots.
 mpi 2 "$vots" fit "$gzipped" -o "$work/gz.vots" "${fit_args[@]}" >/dev/null
 cmp -s <(vots_body "$work/2.vots") <(vots_body "$work/gz.vots") || fail "gzip and raw input differ on 2 ranks"
 
@@ -114,7 +114,7 @@ timeout 120 mpirun --oversubscribe -np 2 "$vots" fit "$work/nan.nrrd" -o "$work/
 ((status == 2)) || fail "a NaN on rank 1: exit $status, not 2: $(cat "$work/err")"
 grep -q "vots: error: rank 1: .*not finite" "$work/err" || fail "a NaN on rank 1: no clear message: $(cat "$work/err")"
 [[ ! -e $work/nan.vots ]] || fail "a failed fit wrote its output"
-status=0 # `vots render VOLUME` reads its slabs alike
+status=0 # `vots render VOLUME` reads its ranks' planes alike
 timeout 120 mpirun --oversubscribe -np 2 "$vots" render "$work/nan.nrrd" -o "$work/nan.png" --eps 0.1 \
     --size 32x32 >/dev/null 2>"$work/err" || status=$?
 ((status == 2)) || fail "render, a NaN on rank 1: exit $status, not 2: $(cat "$work/err")"

@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
-# `mpirun -np N vots render` on loopback: the ranks' slabs composited by MAX give the single-process
+# `mpirun -np N vots render` on loopback: the ranks' z cells composited by MAX give the single-process
 # bytes of the same Vot-Space for N = 1, 2, 3, 4 (3 and 4 oversubscribed on 2 cores); MinIP and the
-# average, each rank's rays cut to its slab of cells, give the same bytes twice and the single-process
-# image within one grey level; fitting per slab is reproducible and with one rank is the single-process
+# average, each rank's rays cut to its z cells, give the same bytes twice and the single-process
+# image within one grey level; fitting per rank's cells is reproducible and with one rank is the single-process
 # fit; turntables of N ranks are the single-process frames; the exact grid renderer draws each rank's
-# slab; a failing rank ends every rank with exit 2.
+# planes; a failing rank ends every rank with exit 2.
 # Usage: tests/mpi/mpi_render.sh VOTS_BINARY VOLUME
 set -euo pipefail
 vots=$1 volume=$2
@@ -33,7 +33,7 @@ for run in a b; do
 done
 cmp -s "$work/fit-2a.png" "$work/fit-2b.png" || fail "two ranks' fits differ between runs"
 
-# MinIP and the average: the composite rounds differently from one process (a Vot cut by a slab face is
+# MinIP and the average: the composite rounds differently from one process (a Vot cut by a face between ranks' cells is
 # expanded from the face; the mean's integrals are summed per rank), by far less than a grey level in the
 # float frame, so a PNG pixel may differ by one level where the float lies on a rounding edge.
 png_diff() { /usr/bin/python3 "$(dirname "$0")/png_diff.py" "$@"; } # Debian's python3-pil
@@ -52,12 +52,12 @@ for projection in "--mode minip" "--mode aip" "--mode aip --slab 5,20" "--mode m
         ((worst <= tolerance)) || fail "$projection on $n ranks differs from one process by $worst grey levels"
     done
 done
-# A file fitted on the same 3 slabs has no box across their faces: every Vot is drawn on one rank, whole,
+# A file fitted on the same 3 ranks' cells has no box across their faces: every Vot is drawn on one rank, whole,
 # and the MinIP is the single-process one byte for byte.
 mpi 3 "$vots" fit "$volume" -o "$work/v3.vots" --eps 2% --certify cells >/dev/null 2>&1
 "$vots" render "$work/v3.vots" -o "$work/one-v3-minip.png" --mode minip "${view[@]}" 2>/dev/null
 mpi 3 "$vots" render "$work/v3.vots" -o "$work/3-v3-minip.png" --mode minip "${view[@]}" 2>/dev/null
-cmp -s "$work/one-v3-minip.png" "$work/3-v3-minip.png" || fail "minip of a 3-slab fit on 3 ranks differs from one process"
+cmp -s "$work/one-v3-minip.png" "$work/3-v3-minip.png" || fail "minip of a 3-rank fit on 3 ranks differs from one process"
 for run in a b; do
     mpi 3 "$vots" render "$volume" -o "$work/fit-minip-3$run.png" --mode minip --eps 2% "${view[@]}" 2>/dev/null
 done
@@ -78,8 +78,8 @@ for run in a b; do
 done
 cmp -s "$work/turn-fit-a.webm" "$work/turn-fit-b.webm" || fail "a turntable WebM fitted on 2 ranks differs between runs"
 
-# The exact grid: each rank draws its slab's planes with cut rays; max, min or sum over the ranks. One rank
-# is the single-process image byte for byte; more ranks cut the rays at the slab faces (a few ulps).
+# The exact grid: each rank draws its cells' planes with cut rays; max, min or sum over the ranks. One rank
+# is the single-process image byte for byte; more ranks cut the rays at the faces between their cells (a few ulps).
 for mode in mip minip aip; do
     "$vots" render "$volume" -o "$work/grid-one-$mode.png" --renderer grid --mode "$mode" "${view[@]}" 2>/dev/null
     for n in 1 2 3 4; do

@@ -8,7 +8,7 @@
 # with both ranks' times; a second dataset is refused with 409; a rank killed
 # mid-session makes the next /render (one that refits: its deadline is 10 min, the rank's silent heartbeat
 # ends the wait after 15 s) a 503 JSON within 30 s, and every later one; SIGTERM to rank 0 then ends the
-# job cleanly, all of it bounded by timeouts; a slab over the ranks' --memory-budget is a 507.
+# job cleanly, all of it bounded by timeouts; a rank's planes over its --memory-budget are a 507.
 # Usage: tests/mpi/mpi_serve.sh VOTS_BINARY VOLUME [OTHER_VOLUME]
 set -euo pipefail
 vots=$1 volume=$2 other=${3:-}
@@ -64,7 +64,7 @@ assert [t["rank"] for t in times] == [0, 1], times
 assert all(t["frameMs"] > 0 for t in times), times
 PY
 
-# POST /api/fit (the viewer's eps slider): the ranks fit their slabs, rank 0 nothing whole; the next
+# POST /api/fit (the viewer's eps slider): the ranks fit their z cells, rank 0 nothing whole; the next
 # frame at that eps finds every rank's fit held.
 /usr/bin/python3 - "$url" "$name" <<'PY' || fail "POST /api/fit under mpirun failed"
 import json, sys, time, urllib.request
@@ -91,7 +91,7 @@ mpirun --oversubscribe -np 2 "$vots" render "$volume" -o "$work/ranks-3.png" --c
     --eps 3% 2>/dev/null
 cmp -s "$work/served-3.png" "$work/ranks-3.png" || fail "the frame of the cached refit differs from a fresh fit's"
 
-# The exact grid: each rank reads its slab's planes; the reference (the grid's mip) is the one-process
+# The exact grid: each rank reads its cells' planes; the reference (the grid's mip) is the one-process
 # image bit for bit, the grid's minip and aip are mpirun vots render's.
 code=$(get "$work/served-ref.png" "render?dataset=$name&$view&mode=reference")
 [[ $code == 200 ]] || fail "/render mode=reference answered $code: $(cat "$work/served-ref.png")"
@@ -153,12 +153,12 @@ wait "$job" || true
 job=
 left=$(($(date +%s) - start))
 grep -q "rank 1 of 2: rank 0 has sent nothing" "$work/serve.log" || fail "rank 1 did not say why it left"
-# A memory budget too small for a rank's slab: every rank checks its slab's header against it before
+# A memory budget too small for a rank's planes: every rank checks its planes' size against it before
 # reading, and rank 0 answers 507 JSON (as one process does for a study over its budget), no OOM.
 start_job "$work/data" "$name" --memory-budget 64M
 code=$(get "$work/budget.json" "render?dataset=$name&$view")
 [[ $code == 507 ]] && grep -q 'memory budget' "$work/budget.json" ||
-    fail "a slab over the ranks' memory budget answered $code: $(cat "$work/budget.json")"
+    fail "a rank's planes over its memory budget answered $code: $(cat "$work/budget.json")"
 code=$(get "$work/budget.json" "render?dataset=$name&$view")
 [[ $code == 507 ]] || fail "the second request over the budget answered $code"
 # SIGTERM to rank 0 with every rank alive: it lets them go (each says it has taken the quit) and the

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# `mpirun -np 2 vots serve` of a .vots dataset: each rank reads the file and draws its slab's Vots; the
+# `mpirun -np 2 vots serve` of a .vots dataset: each rank reads the file and draws its cells' Vots; the
 # served mip is the one-process `vots render FILE.vots` byte for byte, minip (with a slab) and the
 # density are `mpirun -np 2 vots render`'s bytes, the aip within one grey level; the frame counts every
 # Vot of the file once; another eps and the grid are refused with 409; SIGTERM to rank 0 ends the job
@@ -40,7 +40,7 @@ import json, sys
 stats, count = json.load(open(sys.argv[1])), int(sys.argv[2])
 times = stats["rankTimes"]
 assert stats["ranks"] == 2 and [t["rank"] for t in times] == [0, 1], times
-# For the mip each Vot is drawn by the one rank whose slab its box starts in.
+# For the mip each Vot is drawn by the one rank whose cells its box starts in.
 assert count > 0 and sum(t["votCount"] for t in times) == count and all(t["votCount"] > 0 for t in times), times
 PY
 
