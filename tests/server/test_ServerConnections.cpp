@@ -18,7 +18,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using std::chrono::milliseconds;
 
-/// A fit of neghip tight enough to run for many seconds on a shared 2-core machine (cancelled when the
+/// A fit of the blobs tight enough to run for many seconds on a shared 2-core machine (cancelled when the
 /// server stops), so the watchers and renders waiting on it stay open for the whole test.
 std::string slowFitBody(double eps) {
     return std::string(R"({"dataset":")") + BLOBS + R"(","eps":)" + std::to_string(eps) + "}";
