@@ -8,6 +8,7 @@
 #include "vots/dist/RankPart.h"
 #include "vots/dist/WholeFill.h"
 
+#include "vots/fit/FitMeta.h"
 #include "vots/fit/Fitter.h"
 #include "vots/fit/VolumeLoad.h"
 #include "vots/fit/VotSpaceFile.h"
@@ -171,15 +172,19 @@ TEST_F(RanksInOneProcess, DrawAVotsFileAsOneProcessDrawsIt) {
     options.certify = render::RENDER_FIT_CERTIFY;
     const fit::Volume whole = fit::loadVolume(path);
     options.background = fit::defaultBackground(range);
-    const fit::VotSpace space = fit::fitVotSpace(whole, options).space; // boxes across the ranks' faces
+    fit::FitResult fitted = fit::fitVotSpace(whole, options); // boxes across the ranks' faces
+    fit::VotSpace& space = fitted.space;
+    // The meta block as `vots fit` writes it: each rank's reader restores the fill from it.
+    fit::FitProvenance provenance;
+    provenance.volume = &whole;
+    provenance.options = options;
+    provenance.stats = fitted.stats;
+    provenance.backgroundFill = space.backgroundFill;
+    space.metaJson = fit::buildFitMeta(provenance);
     const std::string file = dir.file("air-step.vots");
     fit::writeVotSpaceFile(file, space);
-    dist::RankSetup setup;
-    setup.readVotsFile = [fill = space.backgroundFill](const std::string& votsPath) {
-        fit::VotSpace read = fit::readVotSpaceFile(votsPath);
-        read.backgroundFill = fill; // as the meta block restores it
-        return read;
-    };
+    ASSERT_EQ(fit::readVotSpaceFile(file).backgroundFill, space.backgroundFill);
+    const dist::RankSetup setup;
     render::VotRenderer one;
     one.upload(space);
     frame.camera = render::cameraForView(render::ViewPreset::Left);
