@@ -120,7 +120,7 @@ PreparedRender prepareRender(Server::Impl& s, const RenderParams& params, const 
 }
 
 FitOnRanks fitOnRanks(Server::Impl& s, const Dataset& dataset, const FitKey& key,
-                      const FitProgress& progress) {
+                      const fit::FitProgress& progress) {
     RenderJob job;
     job.params.dataset = dataset.name;
     job.params.width = job.params.height = 1; // the fit is the work: the frame is one pixel
