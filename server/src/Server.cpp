@@ -1,9 +1,9 @@
 // Server: wires the parts together, installs the routes and the guards every request passes through.
 #include "vots/server/Server.h"
 
-#include "routes/HttpJson.h"
-#include "frames/RenderFrames.h"
 #include "ServerImpl.h"
+#include "frames/RenderFrames.h"
+#include "routes/HttpJson.h"
 #include "routes/StaticFiles.h"
 
 #include "vots/fit/MemoryBudget.h"

@@ -1,18 +1,18 @@
 // Server internals shared by the route files: the parts a request touches, in construction order.
 #pragma once
 
+#include "ServerStats.h"
 #include "connection/ClientQuota.h"
+#include "connection/GatedHttpServer.h"
 #include "datasets/DatasetRegistry.h"
+#include "datasets/MemoryAdmission.h"
 #include "fits/FitJobs.h"
+#include "fits/VotSpaceCache.h"
 #include "frames/ForegroundActivity.h"
 #include "frames/FrameCache.h"
-#include "connection/GatedHttpServer.h"
-#include "datasets/MemoryAdmission.h"
-#include "routes/Params.h"
 #include "frames/RenderQueue.h"
+#include "routes/Params.h"
 #include "security/RequestGuard.h"
-#include "ServerStats.h"
-#include "fits/VotSpaceCache.h"
 #include "vots/server/Server.h"
 
 #include <httplib.h>

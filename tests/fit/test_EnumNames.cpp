@@ -40,11 +40,13 @@ TEST(EnumNames, AnUnknownNameIsAnInputErrorListingTheNames) {
         parseScalarType("quaternion");
         FAIL() << "no error";
     } catch (const InputError& e) {
-        EXPECT_STREQ(e.what(),
-                     "unknown sample type 'quaternion' (known: uint8, int8, uint16, int16, uint32, int32, float32, "
-                     "float64)");
+        EXPECT_STREQ(
+            e.what(),
+            "unknown sample type 'quaternion' (known: uint8, int8, uint16, int16, uint32, int32, float32, "
+            "float64)");
     }
-    EXPECT_EQ(parseScalarType("  Unsigned   Short "), ScalarType::UInt16) << "header text is normalised first";
+    EXPECT_EQ(parseScalarType("  Unsigned   Short "), ScalarType::UInt16)
+        << "header text is normalised first";
 }
 
 } // namespace

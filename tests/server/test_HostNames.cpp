@@ -1,7 +1,7 @@
 // HostNames, Origin matching, the constant-time token comparison and the token file's rules.
+#include "TempDir.h"
 #include "security/HostNames.h"
 #include "security/RequestGuard.h"
-#include "TempDir.h"
 #include "vots/fit/Error.h"
 #include "vots/server/Exposure.h"
 

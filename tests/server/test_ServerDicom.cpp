@@ -1,7 +1,7 @@
 // DICOM series folders as server datasets over loopback: named after the folder (and series), rendered.
-#include "datasets/DatasetRegistry.h"
 #include "SampleVolume.h"
 #include "ServerFixture.h"
+#include "datasets/DatasetRegistry.h"
 #include "dicom/DicomSeriesWriter.h"
 
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
 // The start-up dataset (`vots serve --prepare`), readied as the server starts: its volume loaded, its
 // default fit done and uploaded to the renderer, so that the viewer's first image does not wait for them.
-#include "frames/RenderFrames.h"
 #include "ServerImpl.h"
+#include "frames/RenderFrames.h"
 
 #include <chrono>
 #include <iostream>

@@ -1,11 +1,11 @@
 // FitJobs: a bounded queue of fits served by a fixed set of worker threads; results go to the cache.
 #include "fits/FitJobs.h"
 
-#include "fits/CacheMeta.h"
-#include "frames/ForegroundActivity.h"
 #include "HttpError.h"
 #include "ServerStats.h"
+#include "fits/CacheMeta.h"
 #include "fits/VotSpaceCache.h"
+#include "frames/ForegroundActivity.h"
 
 #include "vots/fit/Error.h"
 

@@ -1,12 +1,12 @@
 // Fit jobs on worker threads: bounded queue, at most N running, one job per FitKey, results to the cache.
 #pragma once
 
-#include "fits/BoxCaches.h"
 #include "connection/ClientQuota.h"
 #include "datasets/DatasetRegistry.h"
+#include "datasets/MemoryAdmission.h"
+#include "fits/BoxCaches.h"
 #include "fits/FitJob.h"
 #include "fits/FitKey.h"
-#include "datasets/MemoryAdmission.h"
 #include "fits/WarmUpFits.h"
 
 #include <atomic>

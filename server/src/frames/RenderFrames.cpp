@@ -2,8 +2,8 @@
 // routes.
 #include "frames/RenderFrames.h"
 
-#include "fits/CacheMeta.h"
 #include "HttpError.h"
+#include "fits/CacheMeta.h"
 #include "vots/render/CameraText.h"
 #include "vots/render/Colormap.h"
 #include "vots/render/Png.h"

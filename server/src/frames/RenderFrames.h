@@ -2,9 +2,9 @@
 // queue.
 #pragma once
 
+#include "ServerImpl.h"
 #include "frames/FrameCache.h"
 #include "frames/RenderQueue.h"
-#include "ServerImpl.h"
 
 #include <memory>
 #include <string>

@@ -1,10 +1,10 @@
 // RenderQueue: the render thread owns the GL context; a newer frame of a client replaces its waiting one.
 #include "frames/RenderQueue.h"
 
-#include "frames/ForegroundActivity.h"
 #include "HttpError.h"
-#include "routes/HttpJson.h"
 #include "ServerStats.h"
+#include "frames/ForegroundActivity.h"
+#include "routes/HttpJson.h"
 #include "vots/fit/Error.h"
 #include "vots/render/EglContext.h"
 #include "vots/render/FrameRequest.h"

@@ -1,8 +1,8 @@
 // GET /api/datasets: every volume and .vots file in the data folders with its kind, grid, value range,
 // windows and defaults; what a .vots dataset cannot do.
 #include "HttpError.h"
-#include "routes/HttpJson.h"
 #include "ServerImpl.h"
+#include "routes/HttpJson.h"
 
 #include "vots/fit/MemoryBudget.h"
 #include "vots/fit/PatientAxes.h"

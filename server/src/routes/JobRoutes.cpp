@@ -1,7 +1,7 @@
 // POST /api/fit, GET /api/jobs/{id} and its Server-Sent Events stream of progress.
 #include "HttpError.h"
-#include "routes/HttpJson.h"
 #include "ServerImpl.h"
+#include "routes/HttpJson.h"
 
 #include "vots/dist/FrameRanks.h"
 

@@ -1,8 +1,8 @@
 // GET /render: parse, find the dataset, wait for its Vot-Space (fitting if needed), render on the GL thread.
 #include "HttpError.h"
-#include "routes/HttpJson.h"
-#include "frames/RenderFrames.h"
 #include "ServerImpl.h"
+#include "frames/RenderFrames.h"
+#include "routes/HttpJson.h"
 
 #include <cstdio>
 

@@ -1,6 +1,6 @@
 // Serving the viewer's files from the web folder (called from the pre-routing step for non-API paths).
-#include "routes/HttpJson.h"
 #include "ServerImpl.h"
+#include "routes/HttpJson.h"
 #include "routes/StaticFiles.h"
 
 #include <fstream>

@@ -1,7 +1,7 @@
 // GET /api/stats: frame times, recent fits with their Vot counts, fit jobs, connections, and what the caches
 // hold.
-#include "routes/HttpJson.h"
 #include "ServerImpl.h"
+#include "routes/HttpJson.h"
 #include "vots/dist/FrameRanks.h"
 
 namespace vots::server {

@@ -1,8 +1,8 @@
 // GET /turntable: the /render parameters plus frames=N -> a VP9 WebM turn, its frames through the frame
 // cache.
 #include "HttpError.h"
-#include "frames/RenderFrames.h"
 #include "ServerImpl.h"
+#include "frames/RenderFrames.h"
 #include "vots/render/Png.h"
 #include "vots/render/Turntable.h"
 #include "vots/render/WebmWriter.h"
