@@ -111,8 +111,8 @@ fit::FitOptions fitOptionsFor(const FitArgs& a, const CheckedArgs& checked, std:
     options.eps = static_cast<float>(eps);
     options.degree = a.degree;
     options.background = resolveBackground(a.background, range);
-    options.method = a.method == "paper" ? fit::FitMethod::Paper : fit::FitMethod::Fast;
-    options.certify = a.certify == "cells" ? fit::Certify::Cells : fit::Certify::Samples;
+    options.method = fit::parseName<fit::FitMethod>(a.method);
+    options.certify = fit::parseName<fit::Certify>(a.certify);
     options.focus = checked.focus;
     options.threads = a.threads;
     return options;

@@ -19,10 +19,6 @@ std::string sizeText(int width, int height) {
     return std::to_string(width) + "x" + std::to_string(height);
 }
 
-std::string certifyName(fit::Certify certify) {
-    return certify == fit::Certify::Cells ? "cells" : "samples";
-}
-
 namespace {
 
 /// The turntable's options, checked with the output folders before any load or fit.
@@ -114,9 +110,8 @@ fit::FitResult fitForRender(const fit::Volume& volume, std::array<float, 2> rang
                             const CheckedArgs& c) {
     const auto eps = static_cast<float>(c.eps.resolve(range[0], range[1]));
     if (!(eps > 0)) throw fit::InputError("--eps " + a.eps + " is 0 for this volume; give it in data units");
-    const fit::FitOptions options =
-        render::renderFitOptions(eps, a.degree, resolveBackground(a.background, range),
-                                 a.certify == "samples" ? fit::Certify::Samples : fit::Certify::Cells);
+    const fit::FitOptions options = render::renderFitOptions(
+        eps, a.degree, resolveBackground(a.background, range), fit::parseName<fit::Certify>(a.certify));
     fit::validateFitOptions(volume, options);
     return fit::fitVotSpace(volume, options);
 }

@@ -18,7 +18,6 @@
 namespace vots::cli {
 
 std::string sizeText(int width, int height);
-std::string certifyName(fit::Certify certify);
 
 struct RenderArgs {
     std::string input;
@@ -34,7 +33,7 @@ struct RenderArgs {
     std::string eps = formatNumber(fit::DEFAULT_EPS_PERCENT) + "%";
     int degree = 3;
     std::string background = "auto";
-    std::string certify = certifyName(render::RENDER_FIT_CERTIFY);
+    std::string certify{fit::nameOf(render::RENDER_FIT_CERTIFY)};
     std::string volume;
     std::string memoryBudget;     // empty: the default
     std::string series;           // DICOM SeriesInstanceUID; empty: the folder's only series

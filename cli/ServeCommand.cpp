@@ -109,7 +109,7 @@ void runServe(const ServeArgs& a) {
     options.frameCacheBytes = static_cast<std::size_t>(a.frameCacheMb) << 20;
     options.diskCacheBytes = static_cast<std::uint64_t>(a.cacheDirGb) << 30;
     options.warmUpFits = !a.noWarmUp;
-    options.prepareDataset = a.prepare;
+    options.startupDataset = a.prepare;
     options.allowedHosts = a.allowHosts;
     options.maxRendersPerClient = a.rendersPerClient;
     options.maxFitsPerClient = a.fitsPerClient;

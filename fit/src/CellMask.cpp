@@ -1,4 +1,4 @@
-// Background classification of cells and brick-level counting (docs/DESIGN.md §4 "Background").
+// Background classification of cells and word-level counting (docs/DESIGN.md §4 "Background").
 #include "CellMask.h"
 
 #include "SampleAccess.h"
@@ -9,9 +9,9 @@
 namespace vots::fit {
 namespace {
 
-constexpr int B = CellMask::BRICK_CELLS;
+constexpr int B = CellMask::WORD_CELLS;
 
-// Bits of a brick word whose coordinate along `axis` lies in [first, end) (0 <= first < end <= 4).
+// Bits of a mask word whose coordinate along `axis` lies in [first, end) (0 <= first < end <= 4).
 std::uint64_t axisMask(int axis, int first, int end) {
     std::uint64_t mask = 0;
     for (unsigned bit = 0; bit < 64; ++bit) {
@@ -105,12 +105,12 @@ double markForeground(const T* values, const std::array<int, 3>& dims, std::opti
 CellMask::CellMask(const Volume& volume, std::optional<float> background) {
     for (int a = 0; a < 3; ++a) {
         mCells[a] = std::max(volume.dims[a] - 1, 0);
-        mBrickDims[a] = (mCells[a] + B - 1) / B;
+        mWordDims[a] = (mCells[a] + B - 1) / B;
     }
-    mBricks.assign(static_cast<std::size_t>(mBrickDims[0]) * mBrickDims[1] * mBrickDims[2], 0);
+    mWords.assign(static_cast<std::size_t>(mWordDims[0]) * mWordDims[1] * mWordDims[2], 0);
     if (totalCells() > 0) {
         auto setRow = [&](int j, int k, const std::uint8_t* isBackgroundRow) {
-            std::uint64_t* words = mBricks.data() + brickIndex(0, j >> 2, k >> 2);
+            std::uint64_t* words = mWords.data() + wordIndex(0, j >> 2, k >> 2);
             const unsigned rowBits = static_cast<unsigned>((j & 3) << 2 | (k & 3) << 4);
             for (int i = 0; i < mCells[0]; ++i)
                 words[i >> 2] |= std::uint64_t{isBackgroundRow[i] ? 0u : 1u} << (rowBits | (i & 3));
@@ -119,17 +119,17 @@ CellMask::CellMask(const Volume& volume, std::optional<float> background) {
             mBackgroundValueSum = markForeground(values, volume.dims, background, mCells, setRow);
         });
     }
-    // The 3D prefix sum over bricks as three 1D passes (x, then y, then z), each over whole rows.
-    const std::size_t px = static_cast<std::size_t>(mBrickDims[0]) + 1,
-                      py = static_cast<std::size_t>(mBrickDims[1]) + 1,
-                      pz = static_cast<std::size_t>(mBrickDims[2]) + 1;
-    mBrickPrefix.assign(px * py * pz, 0);
-    auto row = [&](std::size_t j, std::size_t k) { return mBrickPrefix.data() + px * (j + py * k); };
-    for (int k = 1; k <= mBrickDims[2]; ++k)
-        for (int j = 1; j <= mBrickDims[1]; ++j) {
+    // The 3D prefix sum over words as three 1D passes (x, then y, then z), each over whole rows.
+    const std::size_t px = static_cast<std::size_t>(mWordDims[0]) + 1,
+                      py = static_cast<std::size_t>(mWordDims[1]) + 1,
+                      pz = static_cast<std::size_t>(mWordDims[2]) + 1;
+    mWordPrefix.assign(px * py * pz, 0);
+    auto row = [&](std::size_t j, std::size_t k) { return mWordPrefix.data() + px * (j + py * k); };
+    for (int k = 1; k <= mWordDims[2]; ++k)
+        for (int j = 1; j <= mWordDims[1]; ++j) {
             std::uint32_t* out = row(static_cast<std::size_t>(j), static_cast<std::size_t>(k));
-            const std::uint64_t* words = mBricks.data() + brickIndex(0, j - 1, k - 1);
-            for (int i = 1; i <= mBrickDims[0]; ++i)
+            const std::uint64_t* words = mWords.data() + wordIndex(0, j - 1, k - 1);
+            for (int i = 1; i <= mWordDims[0]; ++i)
                 out[i] = out[i - 1] + static_cast<std::uint32_t>(std::popcount(words[i - 1]));
         }
     for (std::size_t k = 1; k < pz; ++k)
@@ -148,16 +148,16 @@ CellMask::CellMask(const Volume& volume, std::optional<float> background) {
         }
 }
 
-std::int64_t CellMask::brickPrefix(int bx, int by, int bz) const {
-    const std::size_t px = static_cast<std::size_t>(mBrickDims[0]) + 1,
-                      py = static_cast<std::size_t>(mBrickDims[1]) + 1;
-    return mBrickPrefix[static_cast<std::size_t>(bx) +
-                        px * (static_cast<std::size_t>(by) + py * static_cast<std::size_t>(bz))];
+std::int64_t CellMask::wordPrefix(int bx, int by, int bz) const {
+    const std::size_t px = static_cast<std::size_t>(mWordDims[0]) + 1,
+                      py = static_cast<std::size_t>(mWordDims[1]) + 1;
+    return mWordPrefix[static_cast<std::size_t>(bx) +
+                       px * (static_cast<std::size_t>(by) + py * static_cast<std::size_t>(bz))];
 }
 
 std::int64_t CellMask::countCells(const std::array<int, 3>& lo, const std::array<int, 3>& hi) const {
     if (hi[0] <= lo[0] || hi[1] <= lo[1] || hi[2] <= lo[2]) return 0;
-    // Bricks the box touches [first, end) and those wholly inside it [innerFirst, innerEnd).
+    // Words the box touches [first, end) and those wholly inside it [innerFirst, innerEnd).
     std::array<int, 3> first{}, end{}, innerFirst{}, innerEnd{};
     bool hasInner = true;
     for (int a = 0; a < 3; ++a) {
@@ -170,25 +170,24 @@ std::int64_t CellMask::countCells(const std::array<int, 3>& lo, const std::array
     std::int64_t count = 0;
     if (hasInner) {
         const auto &f = innerFirst, &e = innerEnd;
-        count = brickPrefix(e[0], e[1], e[2]) - brickPrefix(f[0], e[1], e[2]) -
-                brickPrefix(e[0], f[1], e[2]) - brickPrefix(e[0], e[1], f[2]) +
-                brickPrefix(f[0], f[1], e[2]) + brickPrefix(f[0], e[1], f[2]) +
-                brickPrefix(e[0], f[1], f[2]) - brickPrefix(f[0], f[1], f[2]);
+        count = wordPrefix(e[0], e[1], e[2]) - wordPrefix(f[0], e[1], e[2]) - wordPrefix(e[0], f[1], e[2]) -
+                wordPrefix(e[0], e[1], f[2]) + wordPrefix(f[0], f[1], e[2]) + wordPrefix(f[0], e[1], f[2]) +
+                wordPrefix(e[0], f[1], f[2]) - wordPrefix(f[0], f[1], f[2]);
     }
-    // The part of a brick inside the box, as bits: each axis's range within the brick.
-    auto range = [&](int axis, int brick) {
-        const int s = std::max(lo[axis] - brick * B, 0), e = std::min(hi[axis] - brick * B, B);
+    // The part of a word inside the box, as bits: each axis's range within the word.
+    auto range = [&](int axis, int word) {
+        const int s = std::max(lo[axis] - word * B, 0), e = std::min(hi[axis] - word * B, B);
         return AXIS_MASKS.table[axis][s][e];
     };
-    auto inside = [&](int axis, int brick) { return brick >= innerFirst[axis] && brick < innerEnd[axis]; };
+    auto inside = [&](int axis, int word) { return word >= innerFirst[axis] && word < innerEnd[axis]; };
     for (int bz = first[2]; bz < end[2]; ++bz) {
         const std::uint64_t mz = range(2, bz);
         for (int by = first[1]; by < end[1]; ++by) {
             const std::uint64_t myz = mz & range(1, by);
-            const std::uint64_t* words = mBricks.data() + brickIndex(0, by, bz);
+            const std::uint64_t* words = mWords.data() + wordIndex(0, by, bz);
             auto add = [&](int bx) { count += std::popcount(words[bx] & myz & range(0, bx)); };
             if (hasInner && inside(2, bz) && inside(1, by)) {
-                // The inner bricks of this row are already counted: only the cut ones at its ends.
+                // The inner words of this row are already counted: only the cut ones at its ends.
                 for (int bx = first[0]; bx < innerFirst[0]; ++bx)
                     add(bx);
                 for (int bx = innerEnd[0]; bx < end[0]; ++bx)

@@ -24,13 +24,6 @@ json finiteOrNull(double v) {
     return std::isfinite(v) ? json(v) : json(nullptr);
 }
 
-const char* methodName(FitMethod m) {
-    return m == FitMethod::Paper ? "paper" : "fast";
-}
-const char* certifyName(Certify c) {
-    return c == Certify::Cells ? "cells" : "samples";
-}
-
 template <class T> std::optional<T> field(const json& j, const json::json_pointer& ptr) {
     if (!j.contains(ptr)) return std::nullopt;
     const json& v = j.at(ptr);
@@ -88,8 +81,8 @@ std::string buildFitMeta(const FitProvenance& r) {
           {"eps", o.eps},
           {"eps_arg", r.epsText.empty() ? json(nullptr) : json(r.epsText)},
           {"background", o.background ? finiteOrNull(*o.background) : json(nullptr)},
-          {"method", methodName(o.method)},
-          {"certify", certifyName(o.certify)},
+          {"method", nameOf(o.method)},
+          {"certify", nameOf(o.certify)},
           {"focus", focus},
           {"threads", o.threads},
           {"seconds", s.seconds}}},

@@ -48,41 +48,6 @@ std::string normaliseTypeText(const std::string& text) {
     return out;
 }
 
-// NRRD spellings (teem's list), C names and our own short names.
-const std::pair<const char*, ScalarType> TYPE_NAMES[] = {
-    {"uint8", ScalarType::UInt8},
-    {"uint8_t", ScalarType::UInt8},
-    {"uchar", ScalarType::UInt8},
-    {"unsigned char", ScalarType::UInt8},
-    {"int8", ScalarType::Int8},
-    {"int8_t", ScalarType::Int8},
-    {"char", ScalarType::Int8},
-    {"signed char", ScalarType::Int8},
-    {"uint16", ScalarType::UInt16},
-    {"uint16_t", ScalarType::UInt16},
-    {"ushort", ScalarType::UInt16},
-    {"unsigned short", ScalarType::UInt16},
-    {"unsigned short int", ScalarType::UInt16},
-    {"int16", ScalarType::Int16},
-    {"int16_t", ScalarType::Int16},
-    {"short", ScalarType::Int16},
-    {"short int", ScalarType::Int16},
-    {"signed short", ScalarType::Int16},
-    {"signed short int", ScalarType::Int16},
-    {"uint32", ScalarType::UInt32},
-    {"uint32_t", ScalarType::UInt32},
-    {"uint", ScalarType::UInt32},
-    {"unsigned int", ScalarType::UInt32},
-    {"int32", ScalarType::Int32},
-    {"int32_t", ScalarType::Int32},
-    {"int", ScalarType::Int32},
-    {"signed int", ScalarType::Int32},
-    {"float", ScalarType::Float32},
-    {"float32", ScalarType::Float32},
-    {"double", ScalarType::Float64},
-    {"float64", ScalarType::Float64},
-};
-
 template <std::size_t N> struct UnsignedOfSize;
 template <> struct UnsignedOfSize<1> { using Type = std::uint8_t; };
 template <> struct UnsignedOfSize<2> { using Type = std::uint16_t; };
@@ -117,10 +82,7 @@ std::size_t decodeAs(const unsigned char* src, std::size_t count, bool swap, flo
 } // namespace
 
 std::optional<ScalarType> findScalarType(const std::string& text) {
-    const std::string key = normaliseTypeText(text);
-    for (const auto& [name, type] : TYPE_NAMES)
-        if (key == name) return type;
-    return std::nullopt;
+    return findNamed<ScalarType>(normaliseTypeText(text));
 }
 
 CheckedShape checkShape(const std::string& path, const std::array<long long, 3>& dims, ScalarType type) {

@@ -12,7 +12,7 @@ namespace vots::fit {
 
 struct FitControl {
     int threads = 1;
-    std::function<void(double, const char*)> progress;
+    FitProgress progress;
     const std::atomic<bool>* cancel = nullptr;
     void checkCancel() const {
         if (cancel && cancel->load(std::memory_order_relaxed)) throw FitCancelled();

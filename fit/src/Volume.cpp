@@ -14,32 +14,9 @@
 
 namespace vots::fit {
 
-std::string scalarTypeName(ScalarType type) {
-    switch (type) {
-    case ScalarType::UInt8:
-        return "uint8";
-    case ScalarType::Int8:
-        return "int8";
-    case ScalarType::UInt16:
-        return "uint16";
-    case ScalarType::Int16:
-        return "int16";
-    case ScalarType::UInt32:
-        return "uint32";
-    case ScalarType::Int32:
-        return "int32";
-    case ScalarType::Float32:
-        return "float32";
-    case ScalarType::Float64:
-        return "float64";
-    }
-    return "unknown";
-}
-
 ScalarType parseScalarType(const std::string& text) {
     if (const auto type = detail::findScalarType(text)) return *type;
-    throw InputError("unknown sample type '" + text +
-                     "' (expected uint8, int8, uint16, int16, uint32, int32, float32 or float64)");
+    throw InputError("unknown sample type '" + text + "' (known: " + knownNames<ScalarType>() + ")");
 }
 
 std::size_t Volume::heldSamples() const {

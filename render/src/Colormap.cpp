@@ -1,8 +1,6 @@
 // Colour map tables built from formulas and anchors at first use (no copied tables).
 #include "vots/render/Colormap.h"
 
-#include "vots/fit/Error.h"
-
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -96,27 +94,6 @@ ColormapTable build(Colormap map) {
 }
 
 } // namespace
-
-std::string_view colormapName(Colormap map) {
-    switch (map) {
-    case Colormap::Grey:
-        return "grey";
-    case Colormap::Bone:
-        return "bone";
-    case Colormap::Hot:
-        return "hot";
-    case Colormap::Viridis:
-        return "viridis";
-    }
-    return "grey";
-}
-
-Colormap parseColormap(std::string_view name) {
-    if (name == "gray") return Colormap::Grey;
-    for (Colormap map : ALL_COLORMAPS)
-        if (name == colormapName(map)) return map;
-    throw fit::InputError("unknown colormap '" + std::string(name) + "' (known: grey, bone, hot, viridis)");
-}
 
 const ColormapTable& colormapTable(Colormap map) {
     static const std::array<ColormapTable, 4> TABLES{build(Colormap::Grey), build(Colormap::Bone),

@@ -2,8 +2,8 @@
 // stats.
 #pragma once
 
-#include "DisplayPass.h"
 #include "FloatTarget.h"
+#include "GlDisplayPass.h"
 
 #include "vots/render/DisplaySettings.h"
 #include "vots/render/FrameStats.h"
@@ -23,7 +23,7 @@ inline double msSince(FrameClock::time_point t0) {
 /// The frame's values, top row first; the time the readback took goes to stats.readbackMs.
 FloatImage readFloatFrame(const FloatTarget& target, FrameStats& stats);
 /// The frame through the display pass (window, colour map), only RGBA8 read back; timed the same way.
-RgbaImage readDisplayedFrame(DisplayPass& display, const FloatTarget& target, const DisplaySettings& settings,
-                             FrameStats& stats);
+RgbaImage readDisplayedFrame(GlDisplayPass& display, const FloatTarget& target,
+                             const DisplaySettings& settings, FrameStats& stats);
 
 } // namespace vots::render

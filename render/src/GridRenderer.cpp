@@ -1,9 +1,9 @@
 // Exact grid projection (mip, minip, aip): a fullscreen pass per z chunk walks each ray cell by cell.
 #include "vots/render/GridRenderer.h"
 
-#include "DisplayPass.h"
 #include "FloatTarget.h"
 #include "FrameReadout.h"
+#include "GlDisplayPass.h"
 #include "GlObjects.h"
 #include "Shaders.h"
 #include "SlabClip.h"
@@ -109,7 +109,7 @@ struct GridRenderer::Impl {
     std::vector<Chunk> chunks;
     int chunkPlaneLimit = 0; // 0: from the GL limit and MAX_CHUNK_BYTES
     FloatTarget target;
-    DisplayPass display;
+    GlDisplayPass display;
     bool hasData = false;
     SceneBounds bounds;
     std::array<float, 2> valueRange{0.f, 0.f};

@@ -1,9 +1,9 @@
 // Vot MIP and density: the upload (bounds, records, order) and the dispatch to the walk or raster pass.
 #include "vots/render/VotRenderer.h"
 
-#include "DisplayPass.h"
 #include "FloatTarget.h"
 #include "FrameReadout.h"
+#include "GlDisplayPass.h"
 #include "ParallelChunks.h"
 #include "RasterPass.h"
 #include "VotBounds.h"
@@ -28,7 +28,7 @@ struct VotRenderer::Impl {
     WalkPass walk;
     RasterPass raster;
     FloatTarget target;
-    DisplayPass display;
+    GlDisplayPass display;
 
     bool hasData = false;
     SceneBounds bounds;

@@ -107,10 +107,6 @@ void addDicomFolders(const std::vector<fs::path>& folders,
 
 } // namespace
 
-const char* datasetKindName(DatasetKind kind) {
-    return kind == DatasetKind::Vots ? "vots" : "volume";
-}
-
 std::map<std::string, std::string> dicomDatasetNames(const std::string& folderName,
                                                      const std::vector<fit::DicomSeriesSummary>& series) {
     std::map<std::string, std::string> names;

@@ -6,6 +6,7 @@
 
 #include "vots/dist/FrameRanks.h"
 #include "vots/fit/DicomSeries.h"
+#include "vots/fit/EnumNames.h"
 #include "vots/fit/Volume.h"
 #include "vots/fit/VolumeHeader.h"
 #include "vots/fit/VotSpace.h"
@@ -26,8 +27,12 @@ namespace vots::server {
 /// Vot-Space; no grid for reference frames, no refit).
 enum class DatasetKind { Volume, Vots };
 
-/// The API's name of a kind: "volume" or "vots".
-const char* datasetKindName(DatasetKind kind);
+/// The API's names of the kinds.
+inline constexpr auto DATASET_KIND_NAMES = fit::nameTable<DatasetKind>(
+    "dataset kind", {{DatasetKind::Volume, "volume"}, {DatasetKind::Vots, "vots"}});
+constexpr const auto& namesOf(DatasetKind) {
+    return DATASET_KIND_NAMES;
+}
 
 /// A loaded volume or Vot-Space plus what the API reports about it.
 struct Dataset {

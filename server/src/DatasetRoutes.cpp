@@ -34,7 +34,7 @@ nlohmann::json datasetJson(const Dataset& d) {
         presets[name] = windowJson(preset);
     const bool isVots = d.kind == DatasetKind::Vots;
     nlohmann::json out = {{"name", d.name},
-                          {"kind", datasetKindName(d.kind)},
+                          {"kind", std::string(fit::nameOf(d.kind))},
                           {"dims", isVots ? d.space->dims : d.volume->dims},
                           {"spacing", isVots ? d.space->spacing : d.volume->spacing},
                           {"orientation", isVots ? orientationJson(*d.space) : orientationJson(*d.volume)},
@@ -58,7 +58,7 @@ nlohmann::json datasetJson(const Dataset& d) {
 nlohmann::json refusedJson(const std::string& name, DatasetKind kind,
                            const std::optional<fit::VolumeHeaderInfo>& header, const std::string& reason) {
     nlohmann::json out = {
-        {"name", name}, {"kind", datasetKindName(kind)}, {"fits", false}, {"error", reason}};
+        {"name", name}, {"kind", std::string(fit::nameOf(kind))}, {"fits", false}, {"error", reason}};
     if (header) {
         out["dims"] = header->dims;
         out["sourceType"] = fit::scalarTypeName(header->sourceType);

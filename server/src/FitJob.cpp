@@ -5,20 +5,6 @@
 
 namespace vots::server {
 
-const char* jobStateName(JobState state) {
-    switch (state) {
-    case JobState::Queued:
-        return "queued";
-    case JobState::Running:
-        return "running";
-    case JobState::Done:
-        return "done";
-    case JobState::Failed:
-        return "failed";
-    }
-    return "unknown";
-}
-
 namespace {
 constexpr auto PROGRESS_INTERVAL = std::chrono::milliseconds(100);
 

@@ -1,6 +1,8 @@
 // One fit's visible state (state, progress, result) with waits for "finished" and "changed".
 #pragma once
 
+#include "vots/fit/EnumNames.h"
+
 #include "FitKey.h"
 
 #include "vots/fit/VotSpace.h"
@@ -15,7 +17,13 @@
 namespace vots::server {
 
 enum class JobState { Queued, Running, Done, Failed };
-const char* jobStateName(JobState state); // "queued", "running", "done", "failed"
+inline constexpr auto JOB_STATE_NAMES = fit::nameTable<JobState>("job state", {{JobState::Queued, "queued"},
+                                                                               {JobState::Running, "running"},
+                                                                               {JobState::Done, "done"},
+                                                                               {JobState::Failed, "failed"}});
+constexpr const auto& namesOf(JobState) {
+    return JOB_STATE_NAMES;
+}
 
 /// A copy of a job's visible state at one moment.
 struct JobSnapshot {

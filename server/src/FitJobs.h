@@ -41,8 +41,6 @@ struct FitOnRanks {
     std::size_t votCount = 0;
     double seconds = 0.0;
 };
-/// A fit's progress: a fraction in [0, 1] and a stage name (fit::FitOptions::progress).
-using FitProgress = std::function<void(double fraction, const char* stage)>;
 
 /// Owns the worker threads and the warm-ups that follow their fits. Thread-safe.
 class FitJobs {
@@ -69,7 +67,8 @@ public:
     void shutdown();
     /// Under mpirun: every fit is made by the ranks, each of its z cells, through `fit` (which waits for
     /// them), instead of here. Set before the first submit.
-    void fitOnRanksThrough(std::function<FitOnRanks(const Dataset&, const FitKey&, const FitProgress&)> fit) {
+    void
+    fitOnRanksThrough(std::function<FitOnRanks(const Dataset&, const FitKey&, const fit::FitProgress&)> fit) {
         mFitOnRanks = std::move(fit);
     }
 
@@ -104,7 +103,7 @@ private:
     std::map<std::uint64_t, std::shared_ptr<FitJob>> mById;      // active + recent finished
     std::deque<std::uint64_t> mFinishedOrder;
     std::vector<std::thread> mWorkers;
-    std::function<FitOnRanks(const Dataset&, const FitKey&, const FitProgress&)> mFitOnRanks;
+    std::function<FitOnRanks(const Dataset&, const FitKey&, const fit::FitProgress&)> mFitOnRanks;
 };
 
 } // namespace vots::server

@@ -1,6 +1,8 @@
 // Encoded /render answers by request: served again from memory, and shared by identical requests in flight.
 #pragma once
 
+#include "vots/fit/EnumNames.h"
+
 #include <cstddef>
 #include <functional>
 #include <future>
@@ -62,5 +64,14 @@ private:
     std::size_t mBytes = 0;
     std::size_t mRendered = 0, mShared = 0, mCached = 0;
 };
+
+/// The X-Vots-Frame-Cache header's value for each source.
+inline constexpr auto FRAME_SOURCE_NAMES =
+    fit::nameTable<FrameCache::Source>("frame source", {{FrameCache::Source::Rendered, "miss"},
+                                                        {FrameCache::Source::Shared, "shared"},
+                                                        {FrameCache::Source::Cached, "hit"}});
+constexpr const auto& namesOf(FrameCache::Source) {
+    return FRAME_SOURCE_NAMES;
+}
 
 } // namespace vots::server

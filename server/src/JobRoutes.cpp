@@ -28,7 +28,7 @@ std::string sseEvent(const char* name, const nlohmann::json& data) {
 
 nlohmann::json jobJson(const JobSnapshot& job) {
     return {{"id", job.id},
-            {"state", jobStateName(job.state)},
+            {"state", std::string(fit::nameOf(job.state))},
             {"progress", job.progress},
             {"stage", job.stage},
             {"votCount", job.votCount},

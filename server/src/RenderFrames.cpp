@@ -121,7 +121,7 @@ PreparedRender prepareRender(Server::Impl& s, const RenderParams& params, const 
 }
 
 FitOnRanks fitOnRanks(Server::Impl& s, const Dataset& dataset, const FitKey& key,
-                      const FitProgress& progress) {
+                      const fit::FitProgress& progress) {
     const dist::RanksFit done = s.options.ranks->fit(fitRequestFor(dataset, key.eps, key.degree), progress);
     return {static_cast<std::size_t>(done.votCount), done.seconds};
 }

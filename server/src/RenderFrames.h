@@ -26,7 +26,7 @@ PreparedRender prepareRender(Server::Impl& s, const RenderParams& params, const 
 /// frames at that eps find held; this process's fit reports through `progress`. Throws what the port
 /// throws (dist::RanksLost, dist::RanksOverBudget, fit::InputError).
 FitOnRanks fitOnRanks(Server::Impl& s, const Dataset& dataset, const FitKey& key,
-                      const FitProgress& progress);
+                      const fit::FitProgress& progress);
 
 /// The PNG of the frame `params` names (the job's data with these parameters), from the frame cache,
 /// else drawn on the render queue and kept there. Throws HttpError from the queue (409, 503, ...).

@@ -15,18 +15,6 @@ std::string formatMs(double value) {
     return text;
 }
 
-const char* sourceName(FrameCache::Source source) {
-    switch (source) {
-    case FrameCache::Source::Rendered:
-        return "miss";
-    case FrameCache::Source::Shared:
-        return "shared";
-    case FrameCache::Source::Cached:
-        return "hit";
-    }
-    return "miss";
-}
-
 } // namespace
 
 void installRenderRoute(Server::Impl& s) {
@@ -41,7 +29,7 @@ void installRenderRoute(Server::Impl& s) {
         res.status = 200;
         res.set_header("X-Vots-Vot-Count", std::to_string(frame->votCount));
         res.set_header("X-Vots-Frame-Ms", formatMs(frame->frameMs));
-        res.set_header("X-Vots-Frame-Cache", sourceName(source));
+        res.set_header("X-Vots-Frame-Cache", std::string(fit::nameOf(source)));
         res.set_header("X-Vots-Fit-Seconds", formatMs(frame->fitSeconds));
         res.set_header("Cache-Control", "no-cache");
         res.set_content(frame->png, "image/png");

@@ -68,7 +68,7 @@ Server::Impl::Impl(ServerOptions opts)
     if (options.ranks) registry.summarizeOnRanks(options.ranks.get());
     if (options.ranks && renderQueue)
         fitJobs.fitOnRanksThrough(
-            [this](const Dataset& dataset, const FitKey& key, const FitProgress& progress) {
+            [this](const Dataset& dataset, const FitKey& key, const fit::FitProgress& progress) {
                 return fitOnRanks(*this, dataset, key, progress);
             });
     cache.deferDiskWritesWhile([this] { return foreground.busyWithin(DISK_WRITE_QUIET); });
@@ -150,17 +150,18 @@ Server::Server(ServerOptions options) : mImpl(std::make_unique<Impl>(std::move(o
     installJobRoutes(s);
 
     const std::vector<std::string> names = s.registry.names();
-    const std::string& prepare = s.options.prepareDataset;
-    if (std::find(names.begin(), names.end(), prepare) != names.end())
-        s.preparing = std::thread([&s] { prepareDataset(s, s.options.prepareDataset); });
-    else if (!prepare.empty())
-        std::cerr << "vots serve: no dataset '" << prepare.substr(0, 200)
+    const std::string& startup = s.options.startupDataset;
+    if (std::find(names.begin(), names.end(), startup) != names.end())
+        s.readyingStartup = std::thread([&s] { readyStartupDataset(s, s.options.startupDataset); });
+    else if (!startup.empty())
+        std::cerr << "vots serve: no dataset '" << startup.substr(0, 200)
                   << "' in the data folders to prepare; nothing prepared\n";
 }
 
 Server::~Server() {
     stop();
-    if (mImpl->preparing.joinable()) mImpl->preparing.join(); // fits are answered by stop(); a frame is short
+    if (mImpl->readyingStartup.joinable())
+        mImpl->readyingStartup.join(); // fits are answered by stop(); a frame is short
 }
 
 bool Server::bindToPort(const std::string& host, int port) {

@@ -40,8 +40,8 @@ struct Server::Impl {
     ClientQuota renders;                      // /render and /turntable requests in progress per client
     RequestGuard guard;                       // Host, token and cross-site checks before any route
     std::atomic<int> listenSocket{-1};        // the socket httplib binds, so its backlog can be raised
-    std::thread preparing;                    // prepareDataset(options.prepareDataset); joined by ~Server
-    GatedHttpServer http;                     // destroyed first: no handler runs after the rest is gone
+    std::thread readyingStartup; // readyStartupDataset(options.startupDataset); joined by ~Server
+    GatedHttpServer http;        // destroyed first: no handler runs after the rest is gone
 };
 
 // Route installers, one file each.
@@ -55,7 +55,7 @@ bool serveStatic(const Server::Impl& s, const httplib::Request& req, httplib::Re
 
 /// Loads the dataset, fits it at its default eps and draws a small frame of it (the upload), so the
 /// viewer's first image waits for none of them; failures are logged and left to the first request.
-void prepareDataset(Server::Impl& s, const std::string& name);
+void readyStartupDataset(Server::Impl& s, const std::string& name);
 
 /// Resolved eps for a dataset, or HttpError 400 when it comes out 0 (a constant volume with "N%").
 float resolveEps(const Dataset& dataset, const EpsSpec& eps);

@@ -1,5 +1,5 @@
 // Source-typed samples: a volume read as int16/uint8 (Volume::compact) fits to exactly the Vots of the
-// same file read as floats, and the brick-counted background mask agrees with counting cell by cell.
+// same file read as floats, and the word-counted background mask agrees with counting cell by cell.
 #include "vots/fit/Error.h"
 #include "vots/fit/Fitter.h"
 #include "vots/fit/VolumeLoad.h"
@@ -21,7 +21,7 @@ namespace {
 using namespace vots::fit;
 using vots::test::TempDir;
 
-constexpr std::array<int, 3> DIMS{70, 45, 38}; // two zones along x, cut bricks on every side
+constexpr std::array<int, 3> DIMS{70, 45, 38}; // two zones along x, cut mask words on every side
 
 // A CT-like field: air (-1024) around a noisy object whose values span the int16 range used by CT.
 std::vector<double> ctLikeSamples(double lo, double hi) {
@@ -113,7 +113,7 @@ TEST_P(CompactSamples, FitIsTheSameAsFromFloats) {
         EXPECT_EQ(asSource.at(35, 22, 19), asFloat.at(35, 22, 19));
         EXPECT_EQ(asSource.at(69, 44, 37), asFloat.at(69, 44, 37));
         // The fast method only: the paper method fits boxes with the same BoxFitter and reads the same
-        // mask (CellMaskBricks below), and seeding every cell of this grid would take minutes.
+        // mask (CellMaskWords below), and seeding every cell of this grid would take minutes.
         const FitResult fromFloat = fitWith(asFloat, FitMethod::Fast);
         ASSERT_GT(fromFloat.space.vots.size(), 50u) << "the field should need many Vots";
         expectSameVots(fitWith(asSource, FitMethod::Fast), fromFloat);
@@ -138,9 +138,9 @@ TEST(CompactSamples, WiderTypesStayFloat) {
     EXPECT_EQ(volume.values.size(), volume.sampleCount());
 }
 
-// The brick counts against counting isBackground cell by cell, and isBackground against the definition
-// (all 8 corners below the threshold), on boxes of every alignment to the 4-cell bricks.
-TEST(CellMaskBricks, CountsMatchCellByCell) {
+// The word counts against counting isBackground cell by cell, and isBackground against the definition
+// (all 8 corners below the threshold), on boxes of every alignment to the mask's 4-cell words.
+TEST(CellMaskWords, CountsMatchCellByCell) {
     TempDir dir;
     const std::string path =
         writeNrrd(dir.path().string(), "int16", ScalarType::Int16, ctLikeSamples(-1024.0, 3071.0), false);

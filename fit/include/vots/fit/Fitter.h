@@ -1,6 +1,7 @@
 // Fitting a Vot-Space to a volume: the paper's seed-grow-cover method and a fast split-merge method.
 #pragma once
 
+#include "vots/fit/EnumNames.h"
 #include "vots/fit/EpsField.h"
 #include "vots/fit/Volume.h"
 #include "vots/fit/VotSpace.h"
@@ -26,6 +27,22 @@ enum class Certify {
     Cells    // also the trilinear value at cell centres and edge midpoints inside the box
 };
 
+inline constexpr auto FIT_METHOD_NAMES =
+    nameTable<FitMethod>("fit method", {{FitMethod::Paper, "paper"}, {FitMethod::Fast, "fast"}});
+constexpr const auto& namesOf(FitMethod) {
+    return FIT_METHOD_NAMES;
+}
+inline constexpr auto CERTIFY_NAMES =
+    nameTable<Certify>("certification", {{Certify::Samples, "samples"}, {Certify::Cells, "cells"}});
+constexpr const auto& namesOf(Certify) {
+    return CERTIFY_NAMES;
+}
+
+/// A fit's progress report, called now and then from the fitting threads: a fraction in [0, 1] and a stage
+/// name ("split", "merge", "cache", ...). The one type of every progress callback, the server's jobs
+/// included.
+using FitProgress = std::function<void(double fraction, const char* stage)>;
+
 /// Where a volume lies when it is a z slab of a larger grid (a rank's planes under mpirun): the focus is
 /// named in that grid's index space, as the user gives it for the whole volume.
 struct SlabOfGrid {
@@ -42,8 +59,7 @@ struct FitOptions {
     std::optional<FocusRegion> focus; // tighter eps in a sphere (grid index space)
     std::optional<SlabOfGrid> slabOf; // set: the volume is this slab, and the focus is in the grid's space
     int threads = 0;                  // 0: all hardware threads
-    /// Called now and then from the fitting threads with a fraction in [0,1] and a stage name.
-    std::function<void(double fraction, const char* stage)> progress;
+    FitProgress progress;             // empty: no reports
     const std::atomic<bool>* cancel = nullptr; // set to true to abandon the fit (throws FitCancelled)
 };
 

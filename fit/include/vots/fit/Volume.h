@@ -1,6 +1,8 @@
 // A sampled scalar field on a rectilinear grid, with its index-to-world transform; no file I/O here.
 #pragma once
 
+#include "vots/fit/EnumNames.h"
+
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -14,7 +16,47 @@ namespace vots::fit {
 /// Sample type of the source file.
 enum class ScalarType { UInt8, Int8, UInt16, Int16, UInt32, Int32, Float32, Float64 };
 
-std::string scalarTypeName(ScalarType type);
+/// Our names first, then the NRRD spellings (teem's list) and C names the readers accept, each in the form
+/// the readers normalise a header's text to (lower case, single spaces).
+inline constexpr auto SCALAR_TYPE_NAMES =
+    nameTable<ScalarType>("sample type", {{ScalarType::UInt8, "uint8"},
+                                          {ScalarType::Int8, "int8"},
+                                          {ScalarType::UInt16, "uint16"},
+                                          {ScalarType::Int16, "int16"},
+                                          {ScalarType::UInt32, "uint32"},
+                                          {ScalarType::Int32, "int32"},
+                                          {ScalarType::Float32, "float32"},
+                                          {ScalarType::Float64, "float64"},
+                                          {ScalarType::UInt8, "uint8_t"},
+                                          {ScalarType::UInt8, "uchar"},
+                                          {ScalarType::UInt8, "unsigned char"},
+                                          {ScalarType::Int8, "int8_t"},
+                                          {ScalarType::Int8, "char"},
+                                          {ScalarType::Int8, "signed char"},
+                                          {ScalarType::UInt16, "uint16_t"},
+                                          {ScalarType::UInt16, "ushort"},
+                                          {ScalarType::UInt16, "unsigned short"},
+                                          {ScalarType::UInt16, "unsigned short int"},
+                                          {ScalarType::Int16, "int16_t"},
+                                          {ScalarType::Int16, "short"},
+                                          {ScalarType::Int16, "short int"},
+                                          {ScalarType::Int16, "signed short"},
+                                          {ScalarType::Int16, "signed short int"},
+                                          {ScalarType::UInt32, "uint32_t"},
+                                          {ScalarType::UInt32, "uint"},
+                                          {ScalarType::UInt32, "unsigned int"},
+                                          {ScalarType::Int32, "int32_t"},
+                                          {ScalarType::Int32, "int"},
+                                          {ScalarType::Int32, "signed int"},
+                                          {ScalarType::Float32, "float"},
+                                          {ScalarType::Float64, "double"}});
+constexpr const auto& namesOf(ScalarType) {
+    return SCALAR_TYPE_NAMES;
+}
+
+inline std::string scalarTypeName(ScalarType type) {
+    return std::string(nameOf(type));
+}
 
 /// Samples of an 8- or 16-bit integer file held in the file's own type: a half or a quarter of the
 /// memory of floats, with the same values (float holds all of them exactly). Empty: `values` holds them.

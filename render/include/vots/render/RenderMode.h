@@ -1,6 +1,8 @@
 // What an image shows (MIP, MinIP, average, Vot density) and which renderer draws it (Vots or the grid).
 #pragma once
 
+#include "vots/fit/EnumNames.h"
+
 #include <optional>
 #include <string_view>
 
@@ -18,8 +20,26 @@ enum class RendererKind {
     Grid  // exact over the trilinear interpolant of the samples (GridRenderer): the ground truth
 };
 
-std::string_view renderModeName(RenderMode mode); // "mip", "minip", "aip", "density"
-std::string_view rendererName(RendererKind kind); // "vots", "grid"
+inline constexpr auto RENDER_MODE_NAMES =
+    fit::nameTable<RenderMode>("mode", {{RenderMode::Mip, "mip"},
+                                        {RenderMode::MinIp, "minip"},
+                                        {RenderMode::Aip, "aip"},
+                                        {RenderMode::Density, "density"}});
+constexpr const auto& namesOf(RenderMode) {
+    return RENDER_MODE_NAMES;
+}
+inline constexpr auto RENDERER_NAMES =
+    fit::nameTable<RendererKind>("renderer", {{RendererKind::Vots, "vots"}, {RendererKind::Grid, "grid"}});
+constexpr const auto& namesOf(RendererKind) {
+    return RENDERER_NAMES;
+}
+
+constexpr std::string_view renderModeName(RenderMode mode) {
+    return fit::nameOf(mode);
+}
+constexpr std::string_view rendererName(RendererKind kind) {
+    return fit::nameOf(kind);
+}
 
 /// A --mode / mode= text read: a projection, and for "reference" (kept from before the grid renderer
 /// drew every mode) also the renderer it implies, mip on the grid.
@@ -30,6 +50,8 @@ struct ModeName {
 /// Throws vots::fit::InputError listing the valid names.
 ModeName parseModeName(std::string_view name);
 /// Throws vots::fit::InputError listing the valid names.
-RendererKind parseRendererName(std::string_view name);
+inline RendererKind parseRendererName(std::string_view name) {
+    return fit::parseName<RendererKind>(name);
+}
 
 } // namespace vots::render

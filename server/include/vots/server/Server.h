@@ -33,7 +33,7 @@ struct ServerOptions {
     bool withRenderer = true; // false: never try EGL (tests of the 503 path)
     // Loaded, fitted at its default eps and uploaded as the server starts, when the data folders have
     // it: the viewer's first image then waits for none of that. Empty: none.
-    std::string prepareDataset;
+    std::string startupDataset;
     // Security (docs/API.md): Host names answered besides the bound address (and, bound to loopback, the
     // loopback names), as NAME (any port) or NAME:PORT; and the token every request but the viewer's
     // files must show (empty: none asked for).

@@ -1,5 +1,5 @@
-// Readies one dataset as the server starts: its volume loaded, its default fit done and uploaded to the
-// renderer, so that the viewer's first image does not wait for them.
+// The start-up dataset (`vots serve --prepare`), readied as the server starts: its volume loaded, its
+// default fit done and uploaded to the renderer, so that the viewer's first image does not wait for them.
 #include "RenderFrames.h"
 #include "ServerImpl.h"
 
@@ -8,7 +8,7 @@
 
 namespace vots::server {
 
-void prepareDataset(Server::Impl& s, const std::string& name) {
+void readyStartupDataset(Server::Impl& s, const std::string& name) {
     try {
         const auto dataset = s.registry.find(name);
         if (s.options.ranks && dataset->kind == DatasetKind::Vots) {

@@ -1,4 +1,4 @@
-// Preparing a dataset at start: with no request at all, the server loads it, fits it at its default
+// The start-up dataset (--prepare): with no request at all, the server loads it, fits it at its default
 // eps and draws a frame of it, so the viewer's first /render finds the fit done; a name the data
 // folders lack prepares nothing.
 #include "LoopbackServer.h"
@@ -14,10 +14,10 @@ namespace {
 
 using namespace std::chrono_literals;
 
-TEST(ServerPrepare, FitsAndDrawsTheDatasetBeforeAnyRequest) {
+TEST(ServerStartupDataset, FitsAndDrawsTheDatasetBeforeAnyRequest) {
     ServerWorld world;
     auto options = world.options();
-    options.prepareDataset = MRI_BRAIN;
+    options.startupDataset = MRI_BRAIN;
     options.warmUpFits = false;
     LoopbackServer server(options);
     auto c = server.client();
@@ -41,10 +41,10 @@ TEST(ServerPrepare, FitsAndDrawsTheDatasetBeforeAnyRequest) {
         << "the image should come from the prepared fit";
 }
 
-TEST(ServerPrepare, ANameTheDataFoldersLackPreparesNothing) {
+TEST(ServerStartupDataset, ANameTheDataFoldersLackPreparesNothing) {
     ServerWorld world;
     auto options = world.options();
-    options.prepareDataset = "cranium";
+    options.startupDataset = "cranium";
     options.withRenderer = false;
     LoopbackServer server(options);
     auto c = server.client();

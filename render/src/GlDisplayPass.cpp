@@ -1,5 +1,5 @@
-// Display pass: fullscreen triangle sampling the float image, colour-mapped into an RGBA8 target.
-#include "DisplayPass.h"
+// The display pass (GlDisplayPass) and applyDisplay, the public call of it on any float image.
+#include "GlDisplayPass.h"
 
 #include "Shaders.h"
 
@@ -10,7 +10,7 @@
 
 namespace vots::render {
 
-DisplayPass::DisplayPass()
+GlDisplayPass::GlDisplayPass()
     : mProgram(buildProgram(shaders::FULLSCREEN_VERT, shaders::DISPLAY_FRAG, "display")),
       mVertexArray(createVertexArray()) {
     for (Colormap map : ALL_COLORMAPS) {
@@ -21,7 +21,7 @@ DisplayPass::DisplayPass()
     }
 }
 
-RgbaImage DisplayPass::apply(GLuint floatTexture, int width, int height, const DisplaySettings& settings) {
+RgbaImage GlDisplayPass::apply(GLuint floatTexture, int width, int height, const DisplaySettings& settings) {
     checkImageSize(width, height);
     if (!(settings.width > 0.f)) throw fit::GraphicsError("display window width must be > 0");
     if (width != mWidth || height != mHeight || !mFramebuffer.get()) {
@@ -86,7 +86,7 @@ RgbaImage applyDisplay(const FloatImage& image, const DisplaySettings& display) 
     GlTexture texture = createTexture(GL_TEXTURE_2D);
     glTextureStorage2D(texture.get(), 1, GL_R32F, image.width, image.height);
     writeFloatImage(texture.get(), image);
-    DisplayPass pass;
+    GlDisplayPass pass;
     return pass.apply(texture.get(), image.width, image.height, display);
 }
 

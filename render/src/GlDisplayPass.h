@@ -1,4 +1,4 @@
-// The display pass as a reusable GL object: R32F texture -> window/level + colour map -> RGBA8 readback.
+// GlDisplayPass, the display pass as a GL object: R32F texture -> window/level + colour map -> RGBA8.
 #pragma once
 
 #include "GlObjects.h"
@@ -10,9 +10,9 @@
 
 namespace vots::render {
 
-class DisplayPass {
+class GlDisplayPass {
 public:
-    DisplayPass();
+    GlDisplayPass();
     /// Maps the float texture (width x height) and reads RGBA8 back, top row first.
     RgbaImage apply(GLuint floatTexture, int width, int height, const DisplaySettings& settings);
 
