@@ -1,10 +1,10 @@
 // Server: wires the parts together, installs the routes and the guards every request passes through.
 #include "vots/server/Server.h"
 
-#include "HttpJson.h"
-#include "RenderFrames.h"
+#include "routes/HttpJson.h"
+#include "frames/RenderFrames.h"
 #include "ServerImpl.h"
-#include "StaticFiles.h"
+#include "routes/StaticFiles.h"
 
 #include "vots/fit/MemoryBudget.h"
 

@@ -1,18 +1,18 @@
 // Server internals shared by the route files: the parts a request touches, in construction order.
 #pragma once
 
-#include "ClientQuota.h"
-#include "DatasetRegistry.h"
-#include "FitJobs.h"
-#include "ForegroundActivity.h"
-#include "FrameCache.h"
-#include "GatedHttpServer.h"
-#include "MemoryAdmission.h"
-#include "Params.h"
-#include "RenderQueue.h"
-#include "RequestGuard.h"
+#include "connection/ClientQuota.h"
+#include "datasets/DatasetRegistry.h"
+#include "fits/FitJobs.h"
+#include "frames/ForegroundActivity.h"
+#include "frames/FrameCache.h"
+#include "connection/GatedHttpServer.h"
+#include "datasets/MemoryAdmission.h"
+#include "routes/Params.h"
+#include "frames/RenderQueue.h"
+#include "security/RequestGuard.h"
 #include "ServerStats.h"
-#include "VotSpaceCache.h"
+#include "fits/VotSpaceCache.h"
 #include "vots/server/Server.h"
 
 #include <httplib.h>

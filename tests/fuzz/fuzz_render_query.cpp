@@ -1,6 +1,6 @@
 // libFuzzer target: the server's /render query parser and /api/fit body parser on arbitrary text.
 #include "HttpError.h"
-#include "Params.h"
+#include "routes/Params.h"
 
 #include <cstdint>
 #include <cstdlib>

@@ -1,6 +1,6 @@
 // ConnectionGate on its own: a request is handed on only once it has arrived; idle, slow and oversized
 // ones are closed or refused without ever reaching the handler.
-#include "ConnectionGate.h"
+#include "connection/ConnectionGate.h"
 
 #include <gtest/gtest.h>
 

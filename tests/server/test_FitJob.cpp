@@ -1,5 +1,5 @@
 // FitJob: a finished job that is only remembered keeps its result no longer than someone else does.
-#include "FitJob.h"
+#include "fits/FitJob.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // ForegroundActivity, which background work waits on: a frame (or, for cache files, a requested fit) in
 // flight or just ended counts, also one that ended by an exception.
-#include "ForegroundActivity.h"
+#include "frames/ForegroundActivity.h"
 
 #include <gtest/gtest.h>
 

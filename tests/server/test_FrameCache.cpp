@@ -1,5 +1,5 @@
 // FrameCache: frames answered again, renders in flight shared, failures not kept, LRU over the budget.
-#include "FrameCache.h"
+#include "frames/FrameCache.h"
 
 #include <gtest/gtest.h>
 

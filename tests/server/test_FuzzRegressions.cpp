@@ -2,7 +2,7 @@
 #include "FuzzCorpus.h"
 
 #include "HttpError.h"
-#include "Params.h"
+#include "routes/Params.h"
 #include "vots/fit/Error.h"
 #include "vots/render/CameraText.h"
 

@@ -1,6 +1,6 @@
 // HostNames, Origin matching, the constant-time token comparison and the token file's rules.
-#include "HostNames.h"
-#include "RequestGuard.h"
+#include "security/HostNames.h"
+#include "security/RequestGuard.h"
 #include "TempDir.h"
 #include "vots/fit/Error.h"
 #include "vots/server/Exposure.h"

@@ -1,6 +1,6 @@
 // The one exception -> HTTP status table: what a client gets for each kind of failure, wherever it happens.
 #include "HttpError.h"
-#include "HttpJson.h"
+#include "routes/HttpJson.h"
 
 #include "vots/dist/Failure.h"
 #include "vots/fit/Error.h"

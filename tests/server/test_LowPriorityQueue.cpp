@@ -1,6 +1,6 @@
 // LowPriorityQueue: tasks run in order on one thread, drain waits for them, a full queue refuses, and
 // the destructor runs what is still pending.
-#include "LowPriorityQueue.h"
+#include "fits/LowPriorityQueue.h"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // Params: query splitting, defaults, and the 400s for malformed values (no server needed).
 #include "HttpError.h"
-#include "Params.h"
+#include "routes/Params.h"
 
 #include <gtest/gtest.h>
 

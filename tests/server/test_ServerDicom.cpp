@@ -1,5 +1,5 @@
 // DICOM series folders as server datasets over loopback: named after the folder (and series), rendered.
-#include "DatasetRegistry.h"
+#include "datasets/DatasetRegistry.h"
 #include "SampleVolume.h"
 #include "ServerFixture.h"
 #include "dicom/DicomSeriesWriter.h"

@@ -1,6 +1,6 @@
 // The server's --memory-budget over real loopback HTTP: a dataset whose header announces a huge volume is
 // listed as not fitting and refused with 507 JSON before anything is allocated, and the others still serve.
-#include "DatasetRegistry.h"
+#include "datasets/DatasetRegistry.h"
 #include "ServerFixture.h"
 
 #include "vots/fit/MemoryBudget.h"

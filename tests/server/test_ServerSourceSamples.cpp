@@ -1,8 +1,8 @@
 // The server holds an 8- or 16-bit study in its source type: the registry loads it compact, with the
 // range, CRC and grid images of the float-held volume, a memory estimate of what it holds, and /render
 // gives the bytes of `vots render`.
-#include "DatasetRegistry.h"
-#include "MemoryAdmission.h"
+#include "datasets/DatasetRegistry.h"
+#include "datasets/MemoryAdmission.h"
 #include "ServerFixture.h"
 
 #include "vots/fit/Fitter.h"

@@ -1,6 +1,6 @@
 // .vots files in the data folder as datasets of their own over loopback: listed with their kind, drawn
 // byte for byte as `vots render FILE.vots` draws them, 409 for what needs the volume, sized before loading.
-#include "DatasetRegistry.h"
+#include "datasets/DatasetRegistry.h"
 #include "ServerFixture.h"
 
 #include "vots/fit/VotSpaceFile.h"

@@ -1,5 +1,5 @@
 // StaticFiles: hostile targets are recognised; resolution never leaves the web folder.
-#include "StaticFiles.h"
+#include "routes/StaticFiles.h"
 
 #include "TempDir.h"
 

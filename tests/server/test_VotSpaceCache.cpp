@@ -1,7 +1,7 @@
 // VotSpaceCache and FitKey: exact keys, LRU eviction by bytes, bounded later writes, disk round trip.
-#include "CacheMeta.h"
-#include "VotSpaceCache.h"
-#include "VotSpaceStore.h"
+#include "fits/CacheMeta.h"
+#include "fits/VotSpaceCache.h"
+#include "fits/VotSpaceStore.h"
 
 #include "vots/fit/VotSpaceFile.h"
 

@@ -1,0 +1,67 @@
+// BufferedSocketStream: reads the gate's bytes first, then the socket; writes go straight to the socket.
+#include "connection/BufferedSocketStream.h"
+
+#include <poll.h>
+#include <sys/socket.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+
+namespace vots::server {
+
+BufferedSocketStream::BufferedSocketStream(const ArrivedRequest& request, std::chrono::milliseconds timeout)
+    : mRequest(request), mTimeout(timeout) {}
+
+bool BufferedSocketStream::waitFor(short events) const {
+    pollfd p{mRequest.fd, events, 0};
+    for (;;) {
+        const int n = ::poll(&p, 1, static_cast<int>(mTimeout.count()));
+        if (n < 0 && errno == EINTR) continue;
+        return n > 0 && (p.revents & events) != 0;
+    }
+}
+
+bool BufferedSocketStream::is_readable() const {
+    return mOffset < mRequest.bytes.size() || waitFor(POLLIN);
+}
+
+bool BufferedSocketStream::is_writable() const {
+    return waitFor(POLLOUT);
+}
+
+ssize_t BufferedSocketStream::read(char* ptr, std::size_t size) {
+    if (mOffset < mRequest.bytes.size()) {
+        const std::size_t n = std::min(size, mRequest.bytes.size() - mOffset);
+        std::memcpy(ptr, mRequest.bytes.data() + mOffset, n);
+        mOffset += n;
+        return static_cast<ssize_t>(n);
+    }
+    if (!waitFor(POLLIN)) return -1;
+    for (;;) {
+        const ssize_t n = ::recv(mRequest.fd, ptr, size, 0);
+        if (n < 0 && errno == EINTR) continue;
+        return n;
+    }
+}
+
+ssize_t BufferedSocketStream::write(const char* ptr, std::size_t size) {
+    if (!waitFor(POLLOUT)) return -1;
+    for (;;) {
+        const ssize_t n = ::send(mRequest.fd, ptr, size, MSG_NOSIGNAL);
+        if (n < 0 && errno == EINTR) continue;
+        return n;
+    }
+}
+
+void BufferedSocketStream::get_remote_ip_and_port(std::string& ip, int& port) const {
+    ip = mRequest.peerAddress;
+    port = mRequest.peerPort;
+}
+
+void BufferedSocketStream::get_local_ip_and_port(std::string& ip, int& port) const {
+    ip = mRequest.localAddress;
+    port = mRequest.localPort;
+}
+
+} // namespace vots::server

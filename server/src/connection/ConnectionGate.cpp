@@ -1,0 +1,378 @@
+// ConnectionGate: an epoll loop that reads requests without blocking and hands on the complete ones.
+#include "connection/ConnectionGate.h"
+
+#include <nlohmann/json.hpp>
+
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <sys/epoll.h>
+#include <sys/eventfd.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <charconv>
+#include <cstring>
+#include <stdexcept>
+#include <string_view>
+
+namespace vots::server {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+// How long a refused connection is read and dropped before it is closed: closing a socket with unread
+// bytes sends a reset, which can destroy the answer before the client has read it.
+constexpr auto DRAIN_TIME = std::chrono::seconds(2);
+constexpr int SWEEP_MS = 100;
+
+const char* reasonPhrase(int status) {
+    switch (status) {
+    case 411:
+        return "Length Required";
+    case 414:
+        return "URI Too Long";
+    case 431:
+        return "Request Header Fields Too Large";
+    case 503:
+        return "Service Unavailable";
+    default:
+        return "Error";
+    }
+}
+
+void setBlocking(int fd, bool blocking) {
+    const int flags = ::fcntl(fd, F_GETFL, 0);
+    if (flags >= 0) ::fcntl(fd, F_SETFL, blocking ? flags & ~O_NONBLOCK : flags | O_NONBLOCK);
+}
+
+void addressOf(const sockaddr_storage& addr, std::string& text, int& port) {
+    char buffer[INET6_ADDRSTRLEN] = {};
+    if (addr.ss_family == AF_INET) {
+        const auto& in = reinterpret_cast<const sockaddr_in&>(addr);
+        ::inet_ntop(AF_INET, &in.sin_addr, buffer, sizeof buffer);
+        port = ntohs(in.sin_port);
+    } else if (addr.ss_family == AF_INET6) {
+        const auto& in6 = reinterpret_cast<const sockaddr_in6&>(addr);
+        ::inet_ntop(AF_INET6, &in6.sin6_addr, buffer, sizeof buffer);
+        port = ntohs(in6.sin6_port);
+    }
+    text = buffer;
+}
+
+bool equalsIgnoringCase(std::string_view a, std::string_view b) {
+    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
+               return std::tolower(static_cast<unsigned char>(x)) ==
+                      std::tolower(static_cast<unsigned char>(y));
+           });
+}
+
+std::string_view trimmed(std::string_view s) {
+    while (!s.empty() && (s.front() == ' ' || s.front() == '\t'))
+        s.remove_prefix(1);
+    while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
+        s.remove_suffix(1);
+    return s;
+}
+
+/// Where the head ends (just past its blank line), or npos. httplib accepts bare LF line ends too.
+std::size_t headEnd(const std::string& bytes) {
+    const std::size_t crlf = bytes.find("\r\n\r\n");
+    const std::size_t lf = bytes.find("\n\n");
+    if (crlf == std::string::npos && lf == std::string::npos) return std::string::npos;
+    if (lf == std::string::npos || (crlf != std::string::npos && crlf < lf)) return crlf + 4;
+    return lf + 2;
+}
+
+// Removes "Expect: 100-continue" header lines from a request whose head ends at headEnd(bytes).
+void eraseExpectContinue(std::string& bytes) {
+    const std::size_t end = headEnd(bytes);
+    if (end == std::string::npos) return;
+    std::size_t pos = bytes.find('\n');
+    while (pos != std::string::npos && pos + 1 < end) {
+        const std::size_t start = pos + 1;
+        const std::size_t next = bytes.find('\n', start);
+        const std::size_t lineEnd = next == std::string::npos || next > end ? end : next + 1;
+        const std::string_view line(bytes.data() + start, (next == std::string::npos ? end : next) - start);
+        const std::size_t colon = line.find(':');
+        if (colon != std::string_view::npos && equalsIgnoringCase(trimmed(line.substr(0, colon)), "Expect") &&
+            equalsIgnoringCase(trimmed(line.substr(colon + 1)), "100-continue")) {
+            bytes.erase(start, lineEnd - start);
+            return; // one such line; a second one is the handler's to refuse
+        }
+        pos = next;
+    }
+}
+
+} // namespace
+
+void sendJsonErrorNow(int fd, int status, const std::string& message) {
+    const std::string body = nlohmann::json{{"error", message}}.dump();
+    const std::string answer =
+        "HTTP/1.1 " + std::to_string(status) + " " + reasonPhrase(status) +
+        "\r\nContent-Type: application/json\r\nContent-Length: " + std::to_string(body.size()) +
+        "\r\nConnection: close\r\n\r\n" + body;
+    // A few hundred bytes: they fit in any socket's send buffer, so one send is enough.
+    [[maybe_unused]] const ssize_t sent =
+        ::send(fd, answer.data(), answer.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
+}
+
+ConnectionGate::ConnectionGate(GateLimits limits, Dispatch dispatch)
+    : mLimits(limits), mDispatch(std::move(dispatch)) {
+    mEpoll = ::epoll_create1(EPOLL_CLOEXEC);
+    mWake = ::eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC);
+    if (mEpoll < 0 || mWake < 0) throw std::runtime_error("cannot create the connection gate's epoll");
+    epoll_event event{};
+    event.events = EPOLLIN;
+    event.data.fd = mWake;
+    ::epoll_ctl(mEpoll, EPOLL_CTL_ADD, mWake, &event);
+    mThread = std::thread([this] { threadMain(); });
+}
+
+ConnectionGate::~ConnectionGate() {
+    stop();
+    ::close(mWake);
+    ::close(mEpoll);
+}
+
+void ConnectionGate::add(int fd) {
+    {
+        std::lock_guard lock(mMutex);
+        if (!mStopped) {
+            mIncoming.push_back(fd);
+            ++mWaitingCount;
+            const std::uint64_t one = 1;
+            [[maybe_unused]] const ssize_t n = ::write(mWake, &one, sizeof one);
+            return;
+        }
+    }
+    ::close(fd);
+}
+
+void ConnectionGate::stop() {
+    {
+        std::lock_guard lock(mMutex);
+        if (mStopped) return;
+        mStopped = true;
+        const std::uint64_t one = 1;
+        [[maybe_unused]] const ssize_t n = ::write(mWake, &one, sizeof one);
+    }
+    mThread.join();
+}
+
+void ConnectionGate::threadMain() {
+    std::array<epoll_event, 256> events;
+    auto lastSweep = Clock::now();
+    for (;;) {
+        const int n = ::epoll_wait(mEpoll, events.data(), static_cast<int>(events.size()), SWEEP_MS);
+        for (int i = 0; i < n; ++i) {
+            const int fd = events[static_cast<std::size_t>(i)].data.fd;
+            if (fd == mWake) {
+                std::uint64_t count = 0;
+                [[maybe_unused]] const ssize_t r = ::read(mWake, &count, sizeof count);
+                std::vector<int> incoming;
+                bool stopped = false;
+                {
+                    std::lock_guard lock(mMutex);
+                    incoming.swap(mIncoming);
+                    stopped = mStopped;
+                }
+                for (const int socket : incoming)
+                    adopt(socket);
+                if (stopped) {
+                    for (auto& [socket, connection] : mConnections)
+                        ::close(socket);
+                    mConnections.clear();
+                    mWaitingCount = 0;
+                    return;
+                }
+                continue;
+            }
+            const auto it = mConnections.find(fd);
+            if (it != mConnections.end()) readFrom(it->second);
+        }
+        const auto now = Clock::now();
+        if (now - lastSweep >= std::chrono::milliseconds(SWEEP_MS)) {
+            sweep(now);
+            lastSweep = now;
+        }
+    }
+}
+
+void ConnectionGate::adopt(int fd) {
+    if (mConnections.size() >= mLimits.maxConnections) {
+        // The oldest waiting connection is the likeliest to be idle: a real client sends at once.
+        const auto oldest = std::min_element(mConnections.begin(), mConnections.end(), [](auto& a, auto& b) {
+            return a.second.accepted < b.second.accepted;
+        });
+        close(oldest->first);
+    }
+    setBlocking(fd, false);
+    epoll_event event{};
+    event.events = EPOLLIN | EPOLLRDHUP;
+    event.data.fd = fd;
+    if (::epoll_ctl(mEpoll, EPOLL_CTL_ADD, fd, &event) != 0) {
+        ::close(fd);
+        --mWaitingCount;
+        return;
+    }
+    Connection& c = mConnections[fd];
+    c.fd = fd;
+    c.accepted = Clock::now();
+}
+
+void ConnectionGate::readFrom(Connection& c) {
+    std::array<char, 16384> buffer;
+    bool ended = false; // the client closed its side (or the socket failed)
+    for (;;) {
+        const ssize_t n = ::recv(c.fd, buffer.data(), buffer.size(), 0);
+        if (n > 0) {
+            if (!c.draining) c.bytes.append(buffer.data(), static_cast<std::size_t>(n));
+            if (!c.draining && c.bytes.size() > mLimits.maxHeadBytes + mLimits.maxBodyBytes) break;
+            continue;
+        }
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) break;
+        ended = true;
+        break;
+    }
+    if (c.draining && !ended) return;
+    const Verdict verdict = c.draining ? Verdict::Wait : judge(c);
+    // A client may send its request and shut down its sending side; it still reads the answer.
+    if (ended && verdict != Verdict::Dispatch) {
+        close(c.fd);
+        return;
+    }
+    switch (verdict) {
+    case Verdict::Wait:
+        return;
+    case Verdict::WaitAfterContinue:
+        if (!c.continued) {
+            static constexpr std::string_view CONTINUE = "HTTP/1.1 100 Continue\r\n\r\n";
+            [[maybe_unused]] const ssize_t sent =
+                ::send(c.fd, CONTINUE.data(), CONTINUE.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
+            c.continued = true;
+        }
+        return;
+    case Verdict::ChunkedBody:
+        refuse(c, 411, "a request body needs a Content-Length (chunked transfer is not accepted)");
+        return;
+    case Verdict::Dispatch:
+        dispatch(c);
+        return;
+    case Verdict::TooLongTarget:
+        refuse(c, 414, "request target too long");
+        return;
+    case Verdict::TooLargeHead:
+        refuse(c, 431,
+               "request head too large (at most " + std::to_string(mLimits.maxHeaderLines) +
+                   " header lines and " + std::to_string(mLimits.maxHeadBytes / 1024) + " KiB)");
+        return;
+    }
+}
+
+ConnectionGate::Verdict ConnectionGate::judge(const Connection& c) const {
+    const std::string& bytes = c.bytes;
+    const std::size_t lineEnd = bytes.find('\n');
+    if ((lineEnd == std::string::npos ? bytes.size() : lineEnd) > mLimits.maxRequestLine)
+        return Verdict::TooLongTarget;
+    const std::size_t end = headEnd(bytes);
+    const std::size_t headSize = end == std::string::npos ? bytes.size() : end;
+    const auto lines = static_cast<std::size_t>(std::count(bytes.begin(), bytes.begin() + headSize, '\n'));
+    if (headSize > mLimits.maxHeadBytes || lines > mLimits.maxHeaderLines + 2) return Verdict::TooLargeHead;
+    if (end == std::string::npos) return Verdict::Wait;
+
+    // The body: wait for Content-Length bytes when they are few, also behind "Expect: 100-continue" (the
+    // gate says 100 itself); chunked bodies are refused here, so no worker waits for their chunks;
+    // anything else is the handler's to refuse (a body above the limit, a malformed length, another
+    // expectation).
+    std::size_t contentLength = 0;
+    bool expectContinue = false;
+    std::string_view head(bytes.data(), end);
+    for (std::size_t pos = lineEnd + 1; pos < end;) {
+        const std::size_t next = head.find('\n', pos);
+        const std::string_view line = head.substr(pos, (next == std::string::npos ? end : next) - pos);
+        pos = next == std::string::npos ? end : next + 1;
+        const std::size_t colon = line.find(':');
+        if (colon == std::string_view::npos) continue;
+        const std::string_view name = trimmed(line.substr(0, colon));
+        const std::string_view value = trimmed(line.substr(colon + 1));
+        if (equalsIgnoringCase(name, "Transfer-Encoding")) return Verdict::ChunkedBody;
+        if (equalsIgnoringCase(name, "Expect")) {
+            if (!equalsIgnoringCase(value, "100-continue")) return Verdict::Dispatch;
+            expectContinue = true;
+        }
+        if (equalsIgnoringCase(name, "Content-Length")) {
+            const auto [ptr, ec] = std::from_chars(value.data(), value.data() + value.size(), contentLength);
+            if (ec != std::errc() || ptr != value.data() + value.size() ||
+                contentLength > mLimits.maxBodyBytes)
+                return Verdict::Dispatch;
+        }
+    }
+    if (bytes.size() >= end + contentLength) return Verdict::Dispatch;
+    return expectContinue ? Verdict::WaitAfterContinue : Verdict::Wait;
+}
+
+void ConnectionGate::dispatch(Connection& c) {
+    ArrivedRequest request;
+    request.fd = c.fd;
+    request.bytes = std::move(c.bytes);
+    // The body is here already: without its Expect line the handler does not say 100 a second time.
+    eraseExpectContinue(request.bytes);
+    const std::size_t lineEnd = request.bytes.find('\n');
+    const std::string_view line(request.bytes.data(), lineEnd);
+    const std::size_t space = line.find(' ');
+    if (space != std::string_view::npos) {
+        request.method = std::string(line.substr(0, space));
+        const std::size_t second = line.find(' ', space + 1);
+        request.target = std::string(line.substr(
+            space + 1, second == std::string_view::npos ? std::string_view::npos : second - space - 1));
+    }
+    sockaddr_storage addr{};
+    socklen_t length = sizeof addr;
+    if (::getpeername(c.fd, reinterpret_cast<sockaddr*>(&addr), &length) == 0)
+        addressOf(addr, request.peerAddress, request.peerPort);
+    length = sizeof addr;
+    if (::getsockname(c.fd, reinterpret_cast<sockaddr*>(&addr), &length) == 0)
+        addressOf(addr, request.localAddress, request.localPort);
+
+    ::epoll_ctl(mEpoll, EPOLL_CTL_DEL, c.fd, nullptr);
+    setBlocking(c.fd, true);
+    mConnections.erase(c.fd); // c is gone from here on
+    --mWaitingCount;
+    mDispatch(std::move(request));
+}
+
+void ConnectionGate::refuse(Connection& c, int status, const char* message) {
+    refuse(c, status, std::string(message));
+}
+
+void ConnectionGate::refuse(Connection& c, int status, const std::string& message) {
+    sendJsonErrorNow(c.fd, status, message);
+    ::shutdown(c.fd, SHUT_WR);
+    c.bytes.clear();
+    c.bytes.shrink_to_fit();
+    c.draining = true;
+    c.accepted = Clock::now() - mLimits.wholeRequest + DRAIN_TIME; // the sweep closes it after DRAIN_TIME
+}
+
+void ConnectionGate::sweep(Clock::time_point now) {
+    std::vector<int> expired;
+    for (const auto& [fd, c] : mConnections) {
+        const auto age = now - c.accepted;
+        if (age > mLimits.wholeRequest || (c.bytes.empty() && !c.draining && age > mLimits.firstByte))
+            expired.push_back(fd);
+    }
+    for (const int fd : expired)
+        close(fd);
+}
+
+void ConnectionGate::close(int fd) {
+    ::epoll_ctl(mEpoll, EPOLL_CTL_DEL, fd, nullptr);
+    ::close(fd);
+    if (mConnections.erase(fd)) --mWaitingCount;
+}
+
+} // namespace vots::server

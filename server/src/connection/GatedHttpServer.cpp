@@ -1,0 +1,107 @@
+// GatedHttpServer: hands accepted sockets to the gate and serves arrived requests on workers or streams.
+#include "connection/GatedHttpServer.h"
+
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+
+namespace vots::server {
+namespace {
+
+// A worker waits this long at most for the client to take (or send) more bytes, as httplib's own
+// read and write timeouts.
+constexpr auto SOCKET_TIMEOUT = std::chrono::seconds(5);
+
+/// Runs each task at once on the thread that enqueues it: httplib's accept thread then only passes
+/// sockets on to the gate.
+class RunAtOnce final : public httplib::TaskQueue {
+public:
+    void enqueue(std::function<void()> fn) override { fn(); }
+    void shutdown() override {}
+};
+
+void closeConnection(int fd) {
+    // As httplib does: both directions, then close.
+    ::shutdown(fd, SHUT_RDWR);
+    ::close(fd);
+}
+
+} // namespace
+
+bool isEventStreamRequest(const std::string& method, const std::string& target) {
+    constexpr std::string_view prefix = "/api/jobs/", suffix = "/events";
+    if (method != "GET") return false;
+    const std::string_view path = std::string_view(target).substr(0, target.find('?'));
+    if (path.size() <= prefix.size() + suffix.size() || path.substr(0, prefix.size()) != prefix ||
+        path.substr(path.size() - suffix.size()) != suffix)
+        return false;
+    const std::string_view id = path.substr(prefix.size(), path.size() - prefix.size() - suffix.size());
+    return std::all_of(id.begin(), id.end(),
+                       [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
+}
+
+GatedHttpServer::GatedHttpServer() {
+    new_task_queue = [] { return new RunAtOnce(); };
+}
+
+GatedHttpServer::~GatedHttpServer() {
+    stopConnections();
+}
+
+void GatedHttpServer::startConnections(const ConnectionLimits& limits) {
+    std::lock_guard lock(mMutex);
+    if (mGate || mStopped) return;
+    mWorkers =
+        std::make_unique<httplib::ThreadPool>(static_cast<std::size_t>(std::max(1, limits.workerThreads)));
+    mStreams = std::make_unique<StreamThreads>(limits.maxStreams);
+    mGate = std::make_unique<ConnectionGate>(limits.gate, [this](ArrivedRequest r) { route(std::move(r)); });
+}
+
+void GatedHttpServer::stopConnections() {
+    std::lock_guard lock(mMutex);
+    if (mStopped) return;
+    mStopped = true;
+    if (mGate) mGate->stop();
+    if (mWorkers) mWorkers->shutdown(); // runs what is queued, then joins
+    if (mStreams) mStreams->joinAll();  // streams end with their job, or at once once stop() has run
+}
+
+std::size_t GatedHttpServer::waitingConnections() const {
+    return mGate ? mGate->waiting() : 0;
+}
+
+std::size_t GatedHttpServer::runningStreams() const {
+    return mStreams ? mStreams->running() : 0;
+}
+
+bool GatedHttpServer::process_and_close_socket(socket_t sock) {
+    if (mGate)
+        mGate->add(sock);
+    else
+        closeConnection(sock);
+    return true;
+}
+
+void GatedHttpServer::route(ArrivedRequest request) {
+    auto shared = std::make_shared<ArrivedRequest>(std::move(request));
+    if (isEventStreamRequest(shared->method, shared->target)) {
+        if (!mStreams->tryStart([this, shared] { serve(*shared); })) {
+            sendJsonErrorNow(shared->fd, 503, "too many event streams open; try again later");
+            closeConnection(shared->fd);
+        }
+        return;
+    }
+    mWorkers->enqueue([this, shared] { serve(*shared); });
+}
+
+void GatedHttpServer::serve(const ArrivedRequest& request) {
+    BufferedSocketStream stream(request, SOCKET_TIMEOUT);
+    bool connectionClosed = false;
+    // One request per connection, as before the gate: an answer ends with Connection: close.
+    process_request(stream, true, connectionClosed, nullptr);
+    closeConnection(request.fd);
+}
+
+} // namespace vots::server

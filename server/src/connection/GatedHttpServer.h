@@ -1,0 +1,56 @@
+// GatedHttpServer: httplib's server with its connections taken over by a ConnectionGate: a worker thread
+// sees a connection only once its request has arrived, and event streams run on their own threads
+// (docs/RELIABILITY.md, "Hostile connections").
+#pragma once
+
+#include "connection/BufferedSocketStream.h"
+#include "connection/ConnectionGate.h"
+#include "connection/StreamThreads.h"
+
+#include <httplib.h>
+
+#include <atomic>
+#include <cstddef>
+#include <memory>
+#include <mutex>
+#include <string>
+
+namespace vots::server {
+
+struct ConnectionLimits {
+    int workerThreads = 12;        // requests handled at once (event streams not counted)
+    std::size_t maxStreams = 1000; // event streams at once; more are answered 503
+    GateLimits gate;
+};
+
+class GatedHttpServer : public httplib::Server {
+public:
+    GatedHttpServer();
+    ~GatedHttpServer() override; // stopConnections()
+
+    /// Starts the gate and the workers; call once, before listen_after_bind().
+    void startConnections(const ConnectionLimits& limits);
+    /// After stop(): closes waiting connections, then waits for the handlers and streams running.
+    void stopConnections();
+
+    std::size_t waitingConnections() const;
+    std::size_t runningStreams() const;
+
+private:
+    // httplib calls this (through its task queue, which runs it at once on the accept thread) for every
+    // accepted socket; the gate takes the socket over instead of a worker blocking on it.
+    bool process_and_close_socket(socket_t sock) override;
+    void route(ArrivedRequest request); // on the gate's thread: to a worker, or a stream thread
+    void serve(const ArrivedRequest& request);
+
+    std::mutex mMutex; // start and stop
+    bool mStopped = false;
+    std::unique_ptr<httplib::ThreadPool> mWorkers;
+    std::unique_ptr<StreamThreads> mStreams;
+    std::unique_ptr<ConnectionGate> mGate; // after the workers: stopped first, it feeds them
+};
+
+/// True for GET /api/jobs/{digits}/events (with or without a query): the answers that last.
+bool isEventStreamRequest(const std::string& method, const std::string& target);
+
+} // namespace vots::server

@@ -1,0 +1,47 @@
+// The start-up dataset (`vots serve --prepare`), readied as the server starts: its volume loaded, its
+// default fit done and uploaded to the renderer, so that the viewer's first image does not wait for them.
+#include "frames/RenderFrames.h"
+#include "ServerImpl.h"
+
+#include <chrono>
+#include <iostream>
+
+namespace vots::server {
+
+void readyStartupDataset(Server::Impl& s, const std::string& name) {
+    try {
+        const auto dataset = s.registry.find(name);
+        if (s.options.ranks && dataset->kind == DatasetKind::Vots) {
+            // Under mpirun a first frame has every rank read the file and upload its Vots of it.
+            RenderParams first;
+            first.dataset = name;
+            first.width = first.height = 1;
+            s.renderQueue->render(prepareRender(s, first, "").job);
+            return;
+        }
+        std::shared_ptr<const fit::VotSpace> space = dataset->space; // a .vots dataset has it loaded
+        if (dataset->kind == DatasetKind::Volume) {
+            const FitKey key = fitKeyFor(*dataset, EpsSpec{}, DEFAULT_DEGREE); // the viewer's first fit
+            const auto fit = s.fitJobs.submit(dataset, key);
+            const JobSnapshot done = fit->waitFinished(std::chrono::minutes(10));
+            if (done.state != JobState::Done) return; // failed (the job says why) or the server is stopping
+            // Under mpirun the ranks hold their fit; the first frame uploads it.
+            if (s.options.ranks) return;
+            space = fit->space();
+        }
+        if (!s.renderQueue || !s.renderQueue->hasContext()) return;
+        // A small frame is enough: drawing one uploads the Vot-Space, which is what a first frame waits on.
+        RenderJob job;
+        job.params.dataset = name;
+        job.params.width = job.params.height = 16;
+        job.space = space;
+        job.volume = dataset->volume;
+        if (dataset->kind == DatasetKind::Volume) job.valueRange = dataset->range;
+        s.renderQueue->render(job);
+    } catch (const std::exception& e) {
+        // Nothing is lost: the first request for the dataset will load and fit it, and say what fails.
+        std::cerr << "vots serve: could not prepare dataset '" << name << "': " << e.what() << "\n";
+    }
+}
+
+} // namespace vots::server

@@ -1,0 +1,109 @@
+// Fit jobs on worker threads: bounded queue, at most N running, one job per FitKey, results to the cache.
+#pragma once
+
+#include "fits/BoxCaches.h"
+#include "connection/ClientQuota.h"
+#include "datasets/DatasetRegistry.h"
+#include "fits/FitJob.h"
+#include "fits/FitKey.h"
+#include "datasets/MemoryAdmission.h"
+#include "fits/WarmUpFits.h"
+
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace vots::server {
+
+class ForegroundActivity;
+class ServerStats;
+class VotSpaceCache;
+
+struct FitJobLimits {
+    int maxRunning = 2;    // fits at once
+    int maxQueued = 8;     // waiting fits beyond those; more is refused with 429
+    int perClient = 3;     // queued or running fits one client (remote address) started; 0: no limit
+    int keepFinished = 32; // finished jobs remembered for /api/jobs/{id} (their results only weakly)
+    bool warmUp = true;    // fit eps / 2 into the box cache while idle (WarmUpFits)
+};
+
+/// What a fit made by other processes gave (`vots serve` under mpirun): the Vots of all the ranks' cells
+/// and the slowest rank's seconds. The Vot-Space itself stays with the ranks.
+struct FitOnRanks {
+    std::size_t votCount = 0;
+    double seconds = 0.0;
+};
+
+/// Owns the worker threads and the warm-ups that follow their fits. Thread-safe.
+class FitJobs {
+public:
+    FitJobs(VotSpaceCache& cache, ServerStats& stats, ForegroundActivity& foreground, MemoryAdmission& memory,
+            FitJobLimits limits = {});
+    ~FitJobs(); // shutdown(), then joins the workers
+    FitJobs(const FitJobs&) = delete;
+    FitJobs& operator=(const FitJobs&) = delete;
+
+    /// Returns the job for this key: an active one, a finished one from the memory cache, or a new
+    /// queued one. Throws HttpError 429 when the queue is full, 507 when the memory budget does not leave
+    /// room for the fit (Dataset::fitBytes; reserved until the job ends). Warm-ups start only with room.
+    /// A new job counts against its client's FitJobLimits::perClient until it ends (429 beyond); joining
+    /// a job already active costs nothing. An empty client is not limited (the server's own fits).
+    std::shared_ptr<FitJob> submit(std::shared_ptr<const Dataset> dataset, const FitKey& key,
+                                   const std::string& client = {});
+    /// Throws HttpError 404 for an unknown or forgotten id.
+    std::shared_ptr<FitJob> find(std::uint64_t id) const;
+    /// Queued plus running.
+    int activeCount() const;
+    WarmUpSummary warmUps() const { return mWarmUps.summary(); }
+    /// Refuses new jobs (503), fails queued ones and cancels running fits; idempotent.
+    void shutdown();
+    /// Under mpirun: every fit is made by the ranks, each of its z cells, through `fit` (which waits for
+    /// them), instead of here. Set before the first submit.
+    void
+    fitOnRanksThrough(std::function<FitOnRanks(const Dataset&, const FitKey&, const fit::FitProgress&)> fit) {
+        mFitOnRanks = std::move(fit);
+    }
+
+private:
+    struct Pending {
+        std::shared_ptr<FitJob> job;
+        std::shared_ptr<const Dataset> dataset;
+        MemoryReservation memory; // the fit's working memory, given back when the job ends
+        ClientQuota::Ticket clientPlace;
+    };
+    void workerLoop();
+    void run(const Pending& pending);
+    void rememberLocked(const std::shared_ptr<FitJob>& job);
+
+    VotSpaceCache& mCache;
+    ServerStats& mStats;
+    ForegroundActivity& mForeground;
+    MemoryAdmission& mMemory;
+    const FitJobLimits mLimits;
+    ClientQuota mPerClient;
+    std::atomic<bool> mCancel{false};
+    BoxCaches mBoxCaches;
+    WarmUpFits mWarmUps; // after mBoxCaches, which its thread uses until it is joined
+
+    mutable std::mutex mMutex;
+    std::condition_variable mWake;
+    bool mStopping = false;
+    std::deque<Pending> mQueue;
+    int mRunning = 0;
+    std::uint64_t mNextId = 1;
+    std::map<std::string, std::shared_ptr<FitJob>> mActiveByKey; // queued or running
+    std::map<std::uint64_t, std::shared_ptr<FitJob>> mById;      // active + recent finished
+    std::deque<std::uint64_t> mFinishedOrder;
+    std::vector<std::thread> mWorkers;
+    std::function<FitOnRanks(const Dataset&, const FitKey&, const fit::FitProgress&)> mFitOnRanks;
+};
+
+} // namespace vots::server

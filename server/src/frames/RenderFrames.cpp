@@ -1,0 +1,147 @@
+// prepareRender and cachedFrame: one frame key, one fit wait and one way into the render queue for all
+// routes.
+#include "frames/RenderFrames.h"
+
+#include "fits/CacheMeta.h"
+#include "HttpError.h"
+#include "vots/render/CameraText.h"
+#include "vots/render/Colormap.h"
+#include "vots/render/Png.h"
+
+#include <chrono>
+#include <cstdio>
+
+namespace vots::server {
+namespace {
+
+constexpr auto FIT_WAIT = std::chrono::minutes(10); // a request waits this long for its fit at most
+
+// Text that reads back as the same float (9 significant digits): windows share a key only when equal.
+std::string exactText(float value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.9g", static_cast<double>(value));
+    return text;
+}
+
+/// Everything the image depends on: what it is drawn from (the Vot-Space's fit key, or the volume),
+/// camera, size, mode, renderer, slab, window and colour map; not the client id.
+std::string frameKeyFor(const std::string& drawnFrom, const RenderParams& p) {
+    std::string key = drawnFrom;
+    key += '|' + render::formatCamera(p.camera) + '|' + std::to_string(p.width) + 'x' +
+           std::to_string(p.height) + '|' + std::string(render::renderModeName(p.mode)) + '|' +
+           std::string(render::rendererName(p.renderer)) + '|' + (p.slab ? render::formatSlab(*p.slab) : "") +
+           '|' + std::string(render::colormapName(p.colormap)) + '|';
+    key += p.window ? exactText(p.window->level) + ',' + exactText(p.window->width) : "auto";
+    return key;
+}
+
+/// The Vot-Space for this request: from memory, else from the (possibly new) fit job.
+std::shared_ptr<const fit::VotSpace> spaceFor(Server::Impl& s, const std::shared_ptr<const Dataset>& dataset,
+                                              const FitKey& key, const std::string& client) {
+    if (auto space = s.cache.findInMemory(key)) return space;
+    const auto job = s.fitJobs.submit(dataset, key, client);
+    const JobSnapshot done = job->waitFinished(FIT_WAIT);
+    if (done.state == JobState::Failed) throw HttpError(500, "fit failed: " + done.error);
+    if (done.state != JobState::Done)
+        throw HttpError(503, "fit still running; try again later (job " + std::to_string(done.id) + ")");
+    if (auto space = job->space()) return space;
+    // A finished job holds its result only weakly; newer fits can have pushed it out of memory between
+    // the job's end and this wake-up. Its cache file, when written, still has it.
+    if (auto space = s.cache.find(key)) return space;
+    throw HttpError(503, "the fit finished but newer fits have pushed it out of memory; try again");
+}
+
+dist::FitRequest fitRequestFor(const Dataset& dataset, float eps, int degree) {
+    dist::FitRequest request;
+    request.dataset = dataset.name;
+    request.volumePath = dataset.path;
+    request.valueRange = dataset.range;
+    request.eps = eps;
+    request.degree = degree;
+    return request;
+}
+
+/// Under mpirun: the frame is drawn on every rank from its cells' own fit, so rank 0 fits nothing whole
+/// (what the ranks cannot composite was refused before the dataset was looked up); a .vots dataset from
+/// each rank's Vots of the file.
+PreparedRender prepareOnRanks(const Dataset& dataset, PreparedRender prepared) {
+    RenderJob& job = prepared.job;
+    if (dataset.kind == DatasetKind::Vots) {
+        dist::DrawRequest request;
+        request.fit = fitRequestFor(dataset, dataset.space->eps, dataset.space->degree);
+        request.votsFile = true;
+        request.frame = job.params;
+        job.onRanks = std::move(request);
+        job.space = dataset.space; // not drawn here: its meta gives the frame's fit time and Vot count
+        prepared.drawnFrom = dataset.name + "_vots|ranks";
+        return prepared;
+    }
+    dist::DrawRequest request;
+    request.fit = fitRequestFor(dataset, resolveEps(dataset, job.params.eps), job.params.degree);
+    request.frame = job.params;
+    job.onRanks = std::move(request);
+    prepared.drawnFrom = job.params.renderer == render::RendererKind::Grid
+                             ? dataset.name + "_v" + std::to_string(dataset.contentCrc) + "|ranks"
+                             : fitKeyFor(dataset, job.params.eps, job.params.degree).text() + "|ranks";
+    return prepared;
+}
+
+} // namespace
+
+PreparedRender prepareRender(Server::Impl& s, const RenderParams& params, const std::string& client) {
+    PreparedRender prepared;
+    RenderJob& job = prepared.job;
+    job.params = params;
+    // Under mpirun what the ranks cannot draw is refused before they read anything of the dataset.
+    if (s.options.ranks) {
+        const std::string refused = s.options.ranks->refusal(params.dataset, params);
+        if (!refused.empty()) throw HttpError(409, refused);
+    }
+    const auto dataset = s.registry.find(job.params.dataset);
+    refuseWhatVotsCannotDraw(*dataset, job.params); // 409 before any work
+    job.volume = dataset->volume;
+    // A .vots dataset's window comes from the Vots' own range, as in `vots render FILE.vots`.
+    if (dataset->kind == DatasetKind::Volume) job.valueRange = dataset->range;
+    // Checked before a possibly long fit: without a context the answer is 503 either way.
+    if (!s.renderQueue || !s.renderQueue->hasContext())
+        throw HttpError(503, s.renderQueue ? "rendering is unavailable: " + s.renderQueue->contextError()
+                                           : "rendering is disabled");
+    if (s.options.ranks) return prepareOnRanks(*dataset, std::move(prepared));
+    if (dataset->kind == DatasetKind::Vots) {
+        job.space = dataset->space;
+        prepared.drawnFrom = dataset->name + "_vots"; // the file's one Vot-Space, loaded once
+    } else if (job.params.renderer == render::RendererKind::Grid) {
+        prepared.drawnFrom = dataset->name + "_v" + std::to_string(dataset->contentCrc);
+    } else {
+        const FitKey key = fitKeyFor(*dataset, job.params.eps, job.params.degree);
+        job.space = spaceFor(s, dataset, key, client);
+        prepared.drawnFrom = key.text();
+    }
+    return prepared;
+}
+
+FitOnRanks fitOnRanks(Server::Impl& s, const Dataset& dataset, const FitKey& key,
+                      const fit::FitProgress& progress) {
+    const dist::RanksFit done = s.options.ranks->fit(fitRequestFor(dataset, key.eps, key.degree), progress);
+    return {static_cast<std::size_t>(done.votCount), done.seconds};
+}
+
+std::shared_ptr<const FrameCache::Frame> cachedFrame(Server::Impl& s, const PreparedRender& prepared,
+                                                     const RenderParams& params, FrameCache::Source* source) {
+    return s.frames.get(
+        frameKeyFor(prepared.drawnFrom, params),
+        [&] {
+            RenderJob job = prepared.job;
+            job.params = params;
+            const RenderResult result = s.renderQueue->render(std::move(job)); // throws HttpError
+            // PNG encoding runs here, on the HTTP thread, in parallel with the next frame.
+            const std::vector<std::uint8_t> png = render::encodePng(result.image);
+            const auto& space = prepared.job.space; // job was moved into the queue
+            const double fitSeconds = space ? fitSecondsOf(*space) : result.fitMs / 1000.0;
+            return FrameCache::Frame{std::string(png.begin(), png.end()), result.votCount, result.frameMs,
+                                     fitSeconds};
+        },
+        source);
+}
+
+} // namespace vots::server

@@ -1,0 +1,36 @@
+// What GET /render and GET /turntable share: a request's render job, and its frames through the cache and
+// queue.
+#pragma once
+
+#include "frames/FrameCache.h"
+#include "frames/RenderQueue.h"
+#include "ServerImpl.h"
+
+#include <memory>
+#include <string>
+
+namespace vots::server {
+
+/// A request made ready to draw: the dataset found, its Vot-Space fitted (or waited for), and the name
+/// of what its frames are drawn from (the fit key, or for grid frames the volume).
+struct PreparedRender {
+    RenderJob job;
+    std::string drawnFrom;
+};
+
+/// Throws HttpError: 404 for an unknown dataset, 409 for what Vots cannot draw, 503 without a renderer
+/// or while the fit still runs, 500 when it failed. `client` is the fit job's owner.
+PreparedRender prepareRender(Server::Impl& s, const RenderParams& params, const std::string& client);
+
+/// Under mpirun: the ranks fit their cells at the key's eps (dist::FrameRanks::fit), which the next
+/// frames at that eps find held; this process's fit reports through `progress`. Throws what the port
+/// throws (dist::RanksLost, dist::RanksOverBudget, fit::InputError).
+FitOnRanks fitOnRanks(Server::Impl& s, const Dataset& dataset, const FitKey& key,
+                      const fit::FitProgress& progress);
+
+/// The PNG of the frame `params` names (the job's data with these parameters), from the frame cache,
+/// else drawn on the render queue and kept there. Throws HttpError from the queue (409, 503, ...).
+std::shared_ptr<const FrameCache::Frame> cachedFrame(Server::Impl& s, const PreparedRender& prepared,
+                                                     const RenderParams& params, FrameCache::Source* source);
+
+} // namespace vots::server

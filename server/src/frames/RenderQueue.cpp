@@ -1,0 +1,181 @@
+// RenderQueue: the render thread owns the GL context; a newer frame of a client replaces its waiting one.
+#include "frames/RenderQueue.h"
+
+#include "frames/ForegroundActivity.h"
+#include "HttpError.h"
+#include "routes/HttpJson.h"
+#include "ServerStats.h"
+#include "vots/fit/Error.h"
+#include "vots/render/EglContext.h"
+#include "vots/render/FrameRequest.h"
+#include "vots/render/GridRenderer.h"
+#include "vots/render/Png.h"
+#include "vots/render/VotRenderer.h"
+#include "vots/server/RenderPolicy.h"
+
+#include <algorithm>
+#include <chrono>
+#include <iostream>
+#include <stdexcept>
+
+namespace vots::server {
+
+/// Everything GL lives here and is created, used and destroyed on the render thread only.
+/// Members are destroyed bottom-up, so the context outlives the renderers.
+struct RenderQueue::Renderers {
+    std::unique_ptr<render::EglContext> context;
+    std::unique_ptr<render::VotRenderer> vots;
+    std::unique_ptr<render::GridRenderer> grid;
+    std::shared_ptr<const fit::VotSpace> uploadedSpace; // kept alive so the pointer compare is sound
+    std::shared_ptr<const fit::Volume> uploadedVolume;
+};
+
+RenderQueue::RenderQueue(ServerStats& stats, ForegroundActivity& foreground, dist::FrameRanks* ranks,
+                         std::size_t maxWaiting)
+    : mStats(stats), mForeground(foreground), mRanks(ranks), mMaxWaiting(maxWaiting) {
+    mThread = std::thread([this] { threadMain(); });
+    std::unique_lock lock(mMutex);
+    mWake.wait(lock, [this] { return mReady; });
+}
+
+RenderQueue::~RenderQueue() {
+    {
+        std::lock_guard lock(mMutex);
+        mStopping = true;
+    }
+    mWake.notify_all();
+    mThread.join();
+    for (Item& item : mQueue) // left by a thread that had no context, or by the stop
+        item.promise.set_value(Refusal{503, "server is stopping"});
+}
+
+std::size_t RenderQueue::waiting() const {
+    std::lock_guard lock(mMutex);
+    return mQueue.size();
+}
+
+RenderResult RenderQueue::render(RenderJob job) {
+    Outcome outcome = submit(std::move(job)).get();
+    if (auto* refusal = std::get_if<Refusal>(&outcome)) throw HttpError(refusal->status, refusal->message);
+    return std::move(std::get<RenderResult>(outcome));
+}
+
+std::future<RenderQueue::Outcome> RenderQueue::submit(RenderJob job) {
+    Item item{std::move(job), {}};
+    auto future = item.promise.get_future();
+    std::lock_guard lock(mMutex);
+    if (!mHasContext) throw HttpError(503, "rendering is unavailable: " + mContextError);
+    if (mStopping) throw HttpError(503, "server is stopping");
+    const std::string& client = item.job.params.client;
+    if (!client.empty()) {
+        for (auto it = mQueue.begin(); it != mQueue.end(); ++it) {
+            if (it->job.params.client != client) continue;
+            // The client has moved on: it wants this newer frame, not the one still waiting.
+            it->promise.set_value(Refusal{409, "superseded"});
+            mQueue.erase(it);
+            mStats.addSuperseded();
+            break; // at most one can wait per client, since each arrival replaces the previous
+        }
+    }
+    if (mQueue.size() >= mMaxWaiting) throw HttpError(503, "render queue is full; try again");
+    mQueue.push_back(std::move(item));
+    mWake.notify_one();
+    return future;
+}
+
+void RenderQueue::threadMain() {
+    Renderers renderers;
+    std::string error;
+    try {
+        renderers.context = render::EglContext::create(&error);
+        if (renderers.context) {
+            renderers.vots = std::make_unique<render::VotRenderer>();
+            applyRenderPolicy(*renderers.vots);
+            renderers.grid = std::make_unique<render::GridRenderer>();
+        }
+    } catch (const std::exception& e) { // a shader that does not compile on this driver, say
+        error = e.what();
+        renderers = Renderers{};
+    }
+    {
+        std::lock_guard lock(mMutex);
+        mHasContext = renderers.context != nullptr;
+        mContextError = mHasContext ? "" : (error.empty() ? "no EGL context" : error);
+        mRendererName = mHasContext ? renderers.context->renderer() : "";
+        if (mHasContext) mWalkShaderName = render::walkShaderName(renderers.vots->walkShader());
+        mReady = true;
+    }
+    mWake.notify_all();
+    if (!mHasContext) {
+        std::cerr << "vots serve: warning: no renderer, /render answers 503: " << mContextError << "\n";
+        return;
+    }
+
+    for (;;) {
+        Item item;
+        {
+            std::unique_lock lock(mMutex);
+            mWake.wait(lock, [this] { return mStopping || !mQueue.empty(); });
+            if (mStopping) return;
+            item = std::move(mQueue.front());
+            mQueue.pop_front();
+        }
+        Outcome outcome;
+        try {
+            outcome = draw(renderers, item.job);
+        } catch (...) {
+            HttpFailure failure = httpFailureOf(std::current_exception(), "render failed");
+            outcome = Refusal{failure.status, std::move(failure.message)};
+        }
+        item.promise.set_value(std::move(outcome));
+    }
+}
+
+RenderResult RenderQueue::draw(Renderers& r, const RenderJob& job) {
+    const RenderParams& p = job.params;
+    RenderResult result;
+    const ForegroundMark mark(mForeground, Foreground::Frame); // warm-ups and cache files wait meanwhile
+    const auto start = std::chrono::steady_clock::now();
+    if (job.onRanks) {
+        if (!mRanks) throw std::logic_error("a frame on the ranks on a queue without them");
+        dist::DrawRequest request = *job.onRanks;
+        request.frame = p;
+        r.uploadedSpace = nullptr; // the ranks' port uploads this rank's own Vots and samples
+        r.uploadedVolume = nullptr;
+        const dist::ComposedFrame composed = mRanks->draw(request, *r.vots, *r.grid);
+        // Shown as one process shows its frame: the renderer's own display pass over the same range.
+        result.image = r.vots->display(composed.image, render::displayFor(p, composed.displayRange));
+        // Read here, on the render thread, before another frame replaces them.
+        for (const dist::RankTimes& t : mRanks->lastTimes()) {
+            result.votCount += static_cast<std::size_t>(t.votCount);
+            result.fitMs = std::max(result.fitMs, t.heldFitMs);
+        }
+        // A file's Vot crossing the face between two ranks' cells is drawn by both (minip, aip) but is one
+        // Vot.
+        if (job.space) result.votCount = job.space->vots.size();
+        result.frameMs =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        mStats.addFrame(result.frameMs);
+        return result;
+    }
+    if (p.renderer == render::RendererKind::Grid) {
+        if (r.uploadedVolume != job.volume) {
+            r.grid->upload(*job.volume);
+            r.uploadedVolume = job.volume;
+        }
+    } else {
+        if (r.uploadedSpace != job.space) {
+            r.vots->upload(*job.space);
+            r.uploadedSpace = job.space;
+        }
+        result.votCount = job.space->vots.size();
+    }
+    render::RgbaImage image = render::renderFrame(p, r.vots.get(), r.grid.get(), job.valueRange);
+    result.frameMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    mStats.addFrame(result.frameMs);
+    result.image = std::move(image);
+    return result;
+}
+
+} // namespace vots::server

@@ -1,0 +1,108 @@
+// The one render thread: owns the EglContext and renderers; handlers post jobs and wait on a future.
+#pragma once
+
+#include "routes/Params.h"
+#include "vots/dist/FrameRanks.h"
+#include "vots/fit/Volume.h"
+#include "vots/fit/VotSpace.h"
+#include "vots/render/Image.h"
+
+#include <array>
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <future>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <variant>
+#include <vector>
+
+namespace vots::server {
+
+class ForegroundActivity;
+class ServerStats;
+
+/// What to draw. The Vot-Space is needed for mip and density, the volume for reference and the
+/// default window (full data range).
+struct RenderJob {
+    RenderParams params;
+    std::shared_ptr<const fit::VotSpace> space;
+    std::shared_ptr<const fit::Volume> volume;
+    // The volume's min and max sample, as the registry keeps it, so that no frame scans the volume;
+    // nullopt: the Vot-Space's own range (a .vots dataset, as `vots render FILE.vots` draws it).
+    std::optional<std::array<float, 2>> valueRange;
+    // Set when the ranks draw the frame (dist::FrameRanks): its request. `space` is then null, or a .vots
+    // dataset's (only its count and meta are read: the ranks draw their own Vots of the file).
+    std::optional<dist::DrawRequest> onRanks;
+};
+
+struct RenderResult {
+    render::RgbaImage image;  // encoded to PNG by the waiting handler, so the render thread only renders
+    double frameMs = 0.0;     // render + display pass on the GPU, without PNG encoding
+    std::size_t votCount = 0; // Vots in the Vot-Space drawn (0 for reference); under mpirun, all ranks'
+    double fitMs = 0.0; // under mpirun: the slowest rank's fit the frame was drawn from (made now or before)
+};
+
+/// Thread-safe. If no EGL context can be made, every render() gives HttpError 503.
+class RenderQueue {
+public:
+    /// Starts the thread and waits until it has (or has failed to get) a context. Jobs drawn on the ranks
+    /// go through `ranks`, which must then outlive the queue.
+    RenderQueue(ServerStats& stats, ForegroundActivity& foreground, dist::FrameRanks* ranks = nullptr,
+                std::size_t maxWaiting = 64);
+    ~RenderQueue(); // answers waiting jobs with 503 and joins
+
+    RenderQueue(const RenderQueue&) = delete;
+    RenderQueue& operator=(const RenderQueue&) = delete;
+
+    bool hasContext() const { return mHasContext; }
+    const std::string& contextError() const { return mContextError; }
+    const std::string& rendererName() const { return mRendererName; }
+    /// "compute" or "fragment": the shader stage the Vot walk runs in (VotRenderer::WalkShader).
+    const std::string& walkShaderName() const { return mWalkShaderName; }
+
+    /// Queues a job and waits for it. Throws HttpError 409 ("superseded") when a newer job with the
+    /// same non-empty client id arrived while this one waited, 503 without a context or when the queue
+    /// is full, 400 for input the renderer refuses.
+    RenderResult render(RenderJob job);
+    std::size_t waiting() const;
+
+private:
+    // A refused job travels back as a value, and render() throws a fresh HttpError on the waiting
+    // thread: an exception object shared across threads through a future is freed by whichever thread
+    // drops the last reference, and that count lives in libstdc++, where ThreadSanitizer cannot see
+    // the ordering (it reported the free racing the waiting thread's read of what()).
+    struct Refusal {
+        int status = 500;
+        std::string message;
+    };
+    using Outcome = std::variant<RenderResult, Refusal>;
+    struct Item {
+        RenderJob job;
+        std::promise<Outcome> promise;
+    };
+    std::future<Outcome> submit(RenderJob job);
+    struct Renderers; // VotRenderer + GridRenderer + what they hold, render thread only
+    void threadMain();
+    RenderResult draw(Renderers& renderers, const RenderJob& job);
+
+    ServerStats& mStats;
+    ForegroundActivity& mForeground;
+    dist::FrameRanks* const mRanks;
+    const std::size_t mMaxWaiting;
+    mutable std::mutex mMutex;
+    std::condition_variable mWake;
+    std::deque<Item> mQueue;
+    bool mStopping = false;
+    bool mReady = false;
+    bool mHasContext = false;
+    std::string mContextError;
+    std::string mRendererName;
+    std::string mWalkShaderName;
+    std::thread mThread;
+};
+
+} // namespace vots::server
