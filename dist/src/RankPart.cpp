@@ -74,11 +74,7 @@ RankFit RankPart::fit(const std::string& volumePath, float eps, int degree, std:
     mFitId.clear(); // until the new fit is made, nothing is held
     mFitted.reset();
     const auto& [cells, read] = heldPlanes(volumePath);
-    fit::FitOptions options;
-    options.eps = eps;
-    options.degree = degree;
-    options.background = fit::defaultBackground(range);
-    options.certify = render::RENDER_FIT_CERTIFY;
+    fit::FitOptions options = render::renderFitOptions(eps, degree, fit::defaultBackground(range));
     options.progress = progress;
     fit::FitResult fitted;
     if (!cells.empty()) {

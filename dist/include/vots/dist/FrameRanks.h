@@ -14,12 +14,7 @@
 #include <string>
 #include <vector>
 
-namespace vots::render {
-class GridRenderer;
-class VotRenderer;
-} // namespace vots::render
-
-namespace vots::dist {
+namespace vots::dist { // render::GridRenderer and render::VotRenderer are declared by RankPart.h
 
 /// A fit of a volume dataset on every rank, each of its cells, with the whole volume's options.
 struct FitRequest {

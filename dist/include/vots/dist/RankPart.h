@@ -27,8 +27,8 @@ class VotRenderer;
 
 namespace vots::dist {
 
-/// A fit's progress: a fraction in [0, 1] and a stage name (fit::FitOptions::progress).
-using FitProgress = std::function<void(double fraction, const char* stage)>;
+/// A fit's progress is the fitter's own callback type.
+using fit::FitProgress;
 
 /// What a rank's part needs from the layers above it, given by the command line's wiring.
 struct RankSetup {
