@@ -187,7 +187,7 @@ void runFit(const FitArgs& a) {
 void runFitOnRanks(const dist::MpiWorld& world, const FitArgs& a) {
     CheckedArgs checked;
     dist::RankCells cells;
-    fit::VolumeSlab read;
+    fit::PlanesOfGrid read;
     world.allOrNone([&] {
         checked = checkArgs(a);
         if (world.rank() == 0) checkOutput(a);
@@ -204,7 +204,7 @@ void runFitOnRanks(const dist::MpiWorld& world, const FitArgs& a) {
     world.allOrNone([&] {
         options = fitOptionsFor(a, checked, range);
         // The focus is named in the whole volume's index space; each rank's field is moved into its planes.
-        options.slabOf = fit::SlabOfGrid{cells.first, read.whole.dims};
+        options.partOfGrid = fit::PartOfGrid{cells.first, read.whole.dims};
         fit::validateFitOptions(read.planes, options);
         ProgressLine progress(a.progress && world.rank() == 0); // rank 0's fit stands for the others
         if (a.progress && world.rank() == 0)

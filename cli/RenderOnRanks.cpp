@@ -33,7 +33,7 @@ struct RankInput {
     CheckedArgs c;
     RankCells cells;
     fit::VotSpace space;
-    std::optional<fit::VolumeSlab> read; // the volume's planes of these cells, when there is a volume
+    std::optional<fit::PlanesOfGrid> read; // the volume's planes of these cells, when there is a volume
     bool fitHere = false;
     bool grid = false;
 };
@@ -145,7 +145,7 @@ void runRenderOnRanks(const MpiWorld& world, const RenderArgs& a) {
     world.allOrNone([&] {
         context = render::EglContext::createOrThrow();
         if (in.grid) {
-            drawer.grid.emplace().uploadSlab(in.read->planes, in.cells.first, in.read->whole);
+            drawer.grid.emplace().uploadPlanes(in.read->planes, in.cells.first, in.read->whole);
             in.read.reset(); // the samples are in the textures
         } else {
             drawer.vots.emplace();

@@ -13,7 +13,7 @@ CompositeOp compositeOpFor(render::RenderMode mode, RankSource source) {
     case render::RenderMode::Mip:
         return CompositeOp::Max;
     case render::RenderMode::MinIp:
-        // The grid draws each rank's cells with the whole ray (GridRenderer::uploadSlab): +inf where its
+        // The grid draws each rank's cells with the whole ray (GridRenderer::uploadPlanes): +inf where its
         // ray takes nothing, as where one process's misses.
         return grid ? CompositeOp::Min : CompositeOp::MinOfCutRays;
     case render::RenderMode::Aip:

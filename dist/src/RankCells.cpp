@@ -25,9 +25,9 @@ fit::Volume planesOfCells(const fit::Volume& volume, RankCells cells) {
     return fit::planesOf(volume, cells.first, cells.end);
 }
 
-fit::VolumeSlab loadPlanesOfCells(const std::string& path, RankCells cells,
-                                  const std::optional<fit::RawLayout>& raw, fit::SampleStorage storage,
-                                  const std::string& dicomSeries) {
+fit::PlanesOfGrid loadPlanesOfCells(const std::string& path, RankCells cells,
+                                    const std::optional<fit::RawLayout>& raw, fit::SampleStorage storage,
+                                    const std::string& dicomSeries) {
     return fit::loadVolumePlanes(path, cells.first, cells.end, raw, storage, dicomSeries);
 }
 

@@ -182,7 +182,7 @@ double RankPart::ensureGrid(const std::string& volumePath, render::GridRenderer&
     mGridPath.clear(); // until the new planes are uploaded, nothing is held
     // An empty range of cells (more ranks than cells) still reads its one plane and draws nothing of its own.
     const auto [cells, read] = readOwnPlanes(volumePath, fit::SampleStorage::Float);
-    grid.uploadSlab(read.planes, cells.first, read.whole);
+    grid.uploadPlanes(read.planes, cells.first, read.whole);
     mGridPath = volumePath;
     return msSince(start);
 }

@@ -44,12 +44,12 @@ void validateFitOptions(const Volume& volume, const FitOptions& options) {
     if (volume.heldSamples() != volume.sampleCount())
         throw InputError("volume sample count does not match its dims");
     std::array<int, 3> gridDims = volume.dims;
-    if (options.slabOf) {
-        gridDims = options.slabOf->gridDims;
-        const int first = options.slabOf->firstPlane;
+    if (options.partOfGrid) {
+        gridDims = options.partOfGrid->gridDims;
+        const int first = options.partOfGrid->firstPlane;
         if (gridDims[0] != volume.dims[0] || gridDims[1] != volume.dims[1] || first < 0 ||
             static_cast<long long>(first) + volume.dims[2] > gridDims[2])
-            throw InputError("the volume is not a z slab of the grid it is placed in");
+            throw InputError("the volume is not a run of z planes of the grid it is placed in");
     }
     if (options.focus) {
         const auto& f = *options.focus;
@@ -68,7 +68,7 @@ FitResult fitVotSpace(const Volume& volume, const FitOptions& options, FitCache*
     const auto start = std::chrono::steady_clock::now();
 
     std::optional<FocusRegion> focus = options.focus; // in the fitted volume's own index space
-    if (focus && options.slabOf) focus->centerIndex[2] -= options.slabOf->firstPlane;
+    if (focus && options.partOfGrid) focus->centerIndex[2] -= options.partOfGrid->firstPlane;
     const EpsField eps(options.eps, focus);
     const BoxFitter fitter(volume, options.degree, options.certify);
     FitCounters counters;

@@ -62,12 +62,12 @@ void removeDuplicateBoxes(std::vector<FittedBox>& boxes) {
 std::vector<FittedBox> growSeeds(const CellMask& mask, const BoxTester& tester, const FitControl& control) {
     const auto cells = mask.cellDims();
     const std::array<int, 3> pointDims{cells[0] + 1, cells[1] + 1, cells[2] + 1};
-    const std::size_t slabs = static_cast<std::size_t>(cells[2]);
-    std::vector<std::vector<FittedBox>> perSlab(slabs);
+    const std::size_t layers = static_cast<std::size_t>(cells[2]);
+    std::vector<std::vector<FittedBox>> perLayer(layers);
     std::atomic<std::size_t> done{0};
     std::mutex progressMutex;
-    parallelFor(slabs, control.threads, [&](std::size_t k, int) {
-        auto& out = perSlab[k];
+    parallelFor(layers, control.threads, [&](std::size_t k, int) {
+        auto& out = perLayer[k];
         for (int j = 0; j < cells[1]; ++j)
             for (int i = 0; i < cells[0]; ++i) {
                 if (mask.isBackground(i, j, static_cast<int>(k))) continue;
@@ -79,11 +79,11 @@ std::vector<FittedBox> growSeeds(const CellMask& mask, const BoxTester& tester, 
         const std::size_t finished = done.fetch_add(1) + 1;
         if (control.progress) {
             std::lock_guard lock(progressMutex);
-            control.progress(0.9 * static_cast<double>(finished) / static_cast<double>(slabs), "grow");
+            control.progress(0.9 * static_cast<double>(finished) / static_cast<double>(layers), "grow");
         }
     });
     std::vector<FittedBox> all;
-    for (auto& v : perSlab)
+    for (auto& v : perLayer)
         all.insert(all.end(), v.begin(), v.end());
     removeDuplicateBoxes(all);
     return all;

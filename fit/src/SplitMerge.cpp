@@ -157,23 +157,23 @@ void mergeNeighbours(std::vector<FittedBox>& boxes, const BoxTester& tester, con
 }
 
 void mergeAcrossZones(std::vector<FittedBox>& boxes, const BoxTester& tester, const FitControl& control) {
-    // Each box lies inside one zone, so inside one slab.
-    std::size_t slabCount = 0;
+    // Each box lies inside one zone, so inside one band.
+    std::size_t bandCount = 0;
     for (const FittedBox& b : boxes)
-        slabCount = std::max(slabCount, static_cast<std::size_t>(b.box.lo[2] / MERGE_SLAB_CELLS) + 1);
-    if (slabCount <= 1) return mergeNeighbours(boxes, tester, control, ZONE_CELLS);
-    std::vector<std::vector<FittedBox>> slabs(slabCount);
+        bandCount = std::max(bandCount, static_cast<std::size_t>(b.box.lo[2] / MERGE_BAND_CELLS) + 1);
+    if (bandCount <= 1) return mergeNeighbours(boxes, tester, control, ZONE_CELLS);
+    std::vector<std::vector<FittedBox>> bands(bandCount);
     for (const FittedBox& b : boxes)
-        slabs[static_cast<std::size_t>(b.box.lo[2] / MERGE_SLAB_CELLS)].push_back(b);
-    parallelFor(slabCount, control.threads, [&](std::size_t k, int) {
-        mergeNeighbours(slabs[k], tester, FitControl{1, nullptr, control.cancel}, ZONE_CELLS);
+        bands[static_cast<std::size_t>(b.box.lo[2] / MERGE_BAND_CELLS)].push_back(b);
+    parallelFor(bandCount, control.threads, [&](std::size_t k, int) {
+        mergeNeighbours(bands[k], tester, FitControl{1, nullptr, control.cancel}, ZONE_CELLS);
     });
     boxes.clear();
-    for (auto& slab : slabs) {
-        boxes.insert(boxes.end(), slab.begin(), slab.end());
-        std::vector<FittedBox>().swap(slab);
+    for (auto& band : bands) {
+        boxes.insert(boxes.end(), band.begin(), band.end());
+        std::vector<FittedBox>().swap(band);
     }
-    mergeNeighbours(boxes, tester, control, std::array<int, 3>{0, 0, MERGE_SLAB_CELLS});
+    mergeNeighbours(boxes, tester, control, std::array<int, 3>{0, 0, MERGE_BAND_CELLS});
 }
 
 void mergeNeighbours(std::vector<FittedBox>& boxes, const BoxTester& tester, const FitControl& control,

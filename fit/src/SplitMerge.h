@@ -41,13 +41,13 @@ void mergeNeighbours(std::vector<FittedBox>& boxes, const BoxTester& tester, con
 void mergeNeighbours(std::vector<FittedBox>& boxes, const BoxTester& tester, const FitControl& control,
                      const std::array<int, 3>& planeCells);
 
-/// splitZones' boxes are merged across zone planes in slabs of this many cells along z, each slab on
-/// a thread of its own, and then across the slab planes only: the merge across zones no longer runs on
+/// splitZones' boxes are merged across zone planes in bands of this many cells along z, each band on
+/// a thread of its own, and then across the band planes only: the merge across zones no longer runs on
 /// one thread (bench/RESULTS.md, "512x512x1000 under mpirun"). Fixed, not taken from the thread count,
 /// so that a fit's boxes never depend on how many threads made them.
-inline constexpr int MERGE_SLAB_CELLS = 4 * ZONE_CELLS;
+inline constexpr int MERGE_BAND_CELLS = 4 * ZONE_CELLS;
 
-/// Merges splitZones' boxes across zone planes: slab by slab in parallel, then across slab planes.
+/// Merges splitZones' boxes across zone planes: band by band in parallel, then across band planes.
 void mergeAcrossZones(std::vector<FittedBox>& boxes, const BoxTester& tester, const FitControl& control);
 
 } // namespace vots::fit

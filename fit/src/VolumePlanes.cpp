@@ -91,12 +91,13 @@ bool readsOnlyPlanes(const std::string& path, const std::optional<RawLayout>& ra
            gzipSamplesOf(path, raw).has_value();
 }
 
-VolumeSlab loadVolumePlanes(const std::string& path, int first, int last, const std::optional<RawLayout>& raw,
-                            SampleStorage storage, const std::string& dicomSeries) {
+PlanesOfGrid loadVolumePlanes(const std::string& path, int first, int last,
+                              const std::optional<RawLayout>& raw, SampleStorage storage,
+                              const std::string& dicomSeries) {
     if (!raw && isDicomFolder(path)) {
-        VolumeSlab slab;
-        slab.planes = loadDicomSeriesPlanes(path, first, last, slab.whole, dicomSeries, storage);
-        return slab;
+        PlanesOfGrid read;
+        read.planes = loadDicomSeriesPlanes(path, first, last, read.whole, dicomSeries, storage);
+        return read;
     }
     if (auto stored = storedSamplesOf(path, raw)) {
         Volume planes = detail::readStoredPlanes(path, *stored, first, last, storage);

@@ -173,10 +173,10 @@ GridRenderer::GridRenderer() : mImpl(std::make_unique<Impl>()) {}
 GridRenderer::~GridRenderer() = default;
 
 void GridRenderer::upload(const fit::Volume& volume) {
-    uploadSlab(volume, 0, volume);
+    uploadPlanes(volume, 0, volume);
 }
 
-void GridRenderer::uploadSlab(const fit::Volume& volume, int firstPlane, const fit::Volume& whole) {
+void GridRenderer::uploadPlanes(const fit::Volume& volume, int firstPlane, const fit::Volume& whole) {
     Impl& d = *mImpl;
     GLint maxSide = 0;
     glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &maxSide);
@@ -190,7 +190,7 @@ void GridRenderer::uploadSlab(const fit::Volume& volume, int firstPlane, const f
     if (volume.dims[0] != whole.dims[0] || volume.dims[1] != whole.dims[1] || firstPlane < 0 ||
         volume.dims[2] < 1 || lastPlane >= whole.dims[2])
         throw fit::InputError("planes " + std::to_string(firstPlane) + ".." + std::to_string(lastPlane) +
-                              " are not a slab of the volume's grid");
+                              " are not planes of the volume's grid");
     const std::size_t planeSamples =
         static_cast<std::size_t>(volume.dims[0]) * static_cast<std::size_t>(volume.dims[1]);
     // Sized as floats whatever the texel: the chunks decide the order of aip's sums, so a volume gives
@@ -202,8 +202,8 @@ void GridRenderer::uploadSlab(const fit::Volume& volume, int firstPlane, const f
                                                      MAX_CHUNK_BYTES / (planeSamples * sizeof(float))));
     if (planeLimit < 4)
         throw fit::InputError("volume planes too large for the reference renderer's textures");
-    // Chunk k owns the cells z in [k (P - 1), (k + 1) (P - 1)) from the slab's first plane: P planes, the
-    // last shared with the next. A slab of one plane owns no cell and has no chunk: it draws nothing.
+    // Chunk k owns the cells z in [k (P - 1), (k + 1) (P - 1)) from the first plane uploaded: P planes,
+    // the last shared with the next. One plane alone owns no cell and has no chunk: it draws nothing.
     const int ownedCells = planeLimit - 1;
     std::vector<Chunk> chunks;
     for (int z = firstPlane; z < lastPlane; z += ownedCells) {

@@ -33,7 +33,7 @@ fit::VotSpace unionOfRankFits(const std::string& path, int ranks, std::array<flo
     fit::VotSpace all;
     for (int r = 0; r < ranks; ++r) {
         const dist::RankCells cells = dist::cellsOfRankInVolume(path, r, ranks);
-        const fit::VolumeSlab read =
+        const fit::PlanesOfGrid read =
             dist::loadPlanesOfCells(path, cells, std::nullopt, fit::SampleStorage::Source, "");
         fit::FitOptions options;
         options.eps = EPS;

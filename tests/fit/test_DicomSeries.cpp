@@ -250,7 +250,8 @@ TEST(DicomSeries, PlanesAreTheCutOfTheWholeSeries) {
             for (int last = first; last < 5; ++last) {
                 SCOPED_TRACE("planes " + std::to_string(first) + ".." + std::to_string(last));
                 const Volume cut = planesOf(whole, first, last);
-                const VolumeSlab slab = loadVolumePlanes(dir.file("ct"), first, last, std::nullopt, storage);
+                const PlanesOfGrid slab =
+                    loadVolumePlanes(dir.file("ct"), first, last, std::nullopt, storage);
                 EXPECT_EQ(slab.planes.dims, cut.dims);
                 EXPECT_EQ(std::memcmp(slab.planes.origin.data(), cut.origin.data(), sizeof cut.origin), 0);
                 EXPECT_EQ(slab.planes.spacing, cut.spacing);

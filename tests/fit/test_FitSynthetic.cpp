@@ -239,7 +239,7 @@ TEST(Fitter, TheFocusOfASlabIsNamedInItsWholeGrid) {
     const auto field = [](int x, int y, int z) { return 200.0 * std::sin(0.3 * x + 0.2 * y) + 0.4 * z * z; };
     const Volume slab = sampleVolume({32, 32, 14}, [&](int x, int y, int z) { return field(x, y, z + 10); });
     FitOptions inGrid = options(30.f, 2);
-    inGrid.slabOf = SlabOfGrid{10, {32, 32, 24}};
+    inGrid.partOfGrid = PartOfGrid{10, {32, 32, 24}};
     inGrid.focus = FocusRegion{{16.0, 16.0, 12.0}, 6.0, 2.f};
     FitOptions inSlab = options(30.f, 2);
     inSlab.focus = FocusRegion{{16.0, 16.0, 2.0}, 6.0, 2.f};
@@ -255,7 +255,7 @@ TEST(Fitter, TheFocusOfASlabIsNamedInItsWholeGrid) {
     inGrid.focus->centerIndex[2] = 30.0; // beyond the whole grid
     EXPECT_THROW(fitVotSpace(slab, inGrid), InputError);
     inGrid.focus->centerIndex[2] = 12.0;
-    inGrid.slabOf->firstPlane = 11; // planes 11..24 do not fit in 24
+    inGrid.partOfGrid->firstPlane = 11; // planes 11..24 do not fit in 24
     EXPECT_THROW(fitVotSpace(slab, inGrid), InputError);
 }
 

@@ -85,7 +85,7 @@ TEST(SplitMerge, MergeAcrossZonesMatchesTryingEveryFaceAndLeavesNoMergeablePair)
 TEST(SplitMerge, MergeAcrossZonesInSlabsIsTheSameOnAnyThreadCountAndLeavesNoMergeablePair) {
     std::mt19937 rng(11);
     std::normal_distribution<double> noise(0.0, 2.0);
-    const Volume volume = sampleVolume({34, 27, 2 * MERGE_SLAB_CELLS + 40}, [&](int x, int y, int z) {
+    const Volume volume = sampleVolume({34, 27, 2 * MERGE_BAND_CELLS + 40}, [&](int x, int y, int z) {
         if (x + y < 6) return -1000.0;
         return 300.0 * std::sin(0.11 * x + 0.01 * z) * std::cos(0.13 * y) + 0.5 * z + noise(rng);
     });
@@ -107,7 +107,7 @@ TEST(SplitMerge, MergeAcrossZonesInSlabsIsTheSameOnAnyThreadCountAndLeavesNoMerg
     std::size_t crossingSlabs = 0;
     for (std::size_t i = 0; i < oneThread.size(); ++i) {
         const Box& a = oneThread[i].box;
-        if (a.lo[2] / MERGE_SLAB_CELLS != (a.hi[2] - 1) / MERGE_SLAB_CELLS) ++crossingSlabs;
+        if (a.lo[2] / MERGE_BAND_CELLS != (a.hi[2] - 1) / MERGE_BAND_CELLS) ++crossingSlabs;
         for (std::size_t j = i + 1; j < oneThread.size(); ++j) {
             const Box& b = oneThread[j].box;
             bool overlap = true;

@@ -58,7 +58,7 @@ void expectPlanesMatchCut(const Case& c, bool byOffset) {
                 SCOPED_TRACE("planes " + std::to_string(first) + ".." + std::to_string(last));
                 const Volume cut = planesOf(whole, first, last);
                 ASSERT_EQ(cut.dims[2], last - first + 1);
-                const VolumeSlab slab = loadVolumePlanes(c.path, first, last, c.raw, storage);
+                const PlanesOfGrid slab = loadVolumePlanes(c.path, first, last, c.raw, storage);
                 expectSameVolume(slab.planes, cut);
                 expectSameVolume(slab.whole, gridOf(whole));
                 EXPECT_TRUE(slab.whole.values.empty() && !slab.whole.isCompact());
@@ -290,7 +290,7 @@ TEST(VolumePlanes, LargeGzipNrrdPlanesAreTheCutOfTheWholeAndHoldOnlyThePlanes) {
         const Volume whole = loadVolume(path, std::nullopt, storage);
         for (const auto& [first, last] : {std::pair{0, 0}, {0, 13}, {6, 7}, {13, 26}, {20, 39}, {39, 39}}) {
             SCOPED_TRACE("planes " + std::to_string(first) + ".." + std::to_string(last));
-            const VolumeSlab slab = loadVolumePlanes(path, first, last, std::nullopt, storage);
+            const PlanesOfGrid slab = loadVolumePlanes(path, first, last, std::nullopt, storage);
             expectSameVolume(slab.planes, planesOf(whole, first, last));
             // The reader gives back the slab alone, never the whole volume.
             EXPECT_EQ(slab.planes.heldSamples(), plane * static_cast<std::size_t>(last - first + 1));

@@ -49,7 +49,7 @@ TEST(GridSlabs, SlabsCombineToTheImageOfTheSameChunks) {
     const fit::Volume whole = fit::gridOf(volume);
     std::vector<GridRenderer> slabs(3);
     for (int k = 0; k < 3; ++k) {
-        slabs[k].uploadSlab(fit::planesOf(volume, 11 * k, 11 * (k + 1)), 11 * k, whole);
+        slabs[k].uploadPlanes(fit::planesOf(volume, 11 * k, 11 * (k + 1)), 11 * k, whole);
         ASSERT_EQ(slabs[k].chunkCount(), 1);
         EXPECT_EQ(slabs[k].bounds().dims, volume.dims); // the camera frames the whole grid on every slab
     }
@@ -77,13 +77,13 @@ TEST(GridSlabs, APlaneWithoutCellsDrawsNothingAndBadSlabsAreRefused) {
     const fit::Volume volume = ridgedVolume();
     const fit::Volume whole = fit::gridOf(volume);
     GridRenderer grid;
-    grid.uploadSlab(fit::planesOf(volume, 33, 33), 33, whole); // more ranks than cells: the last plane
+    grid.uploadPlanes(fit::planesOf(volume, 33, 33), 33, whole); // more ranks than cells: the last plane
     EXPECT_EQ(grid.chunkCount(), 0);
     const Camera cam = parseCamera("az=30,el=20");
     for (const float v : grid.render(cam, 32, 24, RenderMode::Mip).pixels)
         EXPECT_EQ(v, -INFINITY);
     for (const float v : grid.render(cam, 32, 24, RenderMode::MinIp).pixels)
         EXPECT_EQ(v, INFINITY);
-    EXPECT_THROW(grid.uploadSlab(fit::planesOf(volume, 30, 33), 31, whole), fit::InputError);
-    EXPECT_THROW(grid.uploadSlab(fit::planesOf(volume, 0, 3), -1, whole), fit::InputError);
+    EXPECT_THROW(grid.uploadPlanes(fit::planesOf(volume, 30, 33), 31, whole), fit::InputError);
+    EXPECT_THROW(grid.uploadPlanes(fit::planesOf(volume, 0, 3), -1, whole), fit::InputError);
 }

@@ -14,7 +14,7 @@
 namespace vots::dist {
 
 /// What one rank drew: the projection's float frame, and for the Vots' aip the ray lengths in its cells.
-/// The grid's parts need no lengths: each is drawn with the whole ray's (GridRenderer::uploadSlab).
+/// The grid's parts need no lengths: each is drawn with the whole ray's (GridRenderer::uploadPlanes).
 struct RankFrame {
     render::FloatImage frame;
     std::optional<render::FloatImage> lengths;

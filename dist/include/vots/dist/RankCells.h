@@ -30,9 +30,9 @@ RankCells cellsOfRankInVolume(const std::string& path, int rank, int ranks,
 fit::Volume planesOfCells(const fit::Volume& volume, RankCells cells);
 /// The same planes read from the file, only their bytes where the format allows (fit::loadVolumePlanes),
 /// with the whole volume's grid.
-fit::VolumeSlab loadPlanesOfCells(const std::string& path, RankCells cells,
-                                  const std::optional<fit::RawLayout>& raw, fit::SampleStorage storage,
-                                  const std::string& dicomSeries);
+fit::PlanesOfGrid loadPlanesOfCells(const std::string& path, RankCells cells,
+                                    const std::optional<fit::RawLayout>& raw, fit::SampleStorage storage,
+                                    const std::string& dicomSeries);
 /// Moves a Vot-Space fitted on the cells' planes into the grid of the whole (`whole`: its grid is enough).
 void placeCellsFitInGrid(fit::VotSpace& space, RankCells cells, const fit::Volume& whole);
 

@@ -103,7 +103,7 @@ public:
     static std::string votsFileId(const std::string& votsPath, bool cutRays);
 
 private:
-    using HeldPlanes = std::pair<RankCells, fit::VolumeSlab>;
+    using HeldPlanes = std::pair<RankCells, fit::PlanesOfGrid>;
     /// This rank's planes of the volume in the file's sample type, read (readOwnPlanes) when they are not
     /// the ones held; a new volume drops the box caches of the last.
     const HeldPlanes& heldPlanes(const std::string& volumePath);

@@ -43,10 +43,10 @@ constexpr const auto& namesOf(Certify) {
 /// included.
 using FitProgress = std::function<void(double fraction, const char* stage)>;
 
-/// Where a volume lies when it is a z slab of a larger grid (a rank's planes under mpirun): the focus is
-/// named in that grid's index space, as the user gives it for the whole volume.
-struct SlabOfGrid {
-    int firstPlane = 0;                   // the slab's plane 0 in the grid
+/// Where a volume lies when it is a run of z planes of a larger grid (a rank's planes under mpirun): the
+/// focus is named in that grid's index space, as the user gives it for the whole volume.
+struct PartOfGrid {
+    int firstPlane = 0;                   // the volume's plane 0 in the grid
     std::array<int, 3> gridDims{0, 0, 0}; // the whole grid's points per axis
 };
 
@@ -56,10 +56,10 @@ struct FitOptions {
     std::optional<float> background; // cells with all 8 corners below it are omitted
     FitMethod method = FitMethod::Fast;
     Certify certify = Certify::Samples;
-    std::optional<FocusRegion> focus; // tighter eps in a sphere (grid index space)
-    std::optional<SlabOfGrid> slabOf; // set: the volume is this slab, and the focus is in the grid's space
-    int threads = 0;                  // 0: all hardware threads
-    FitProgress progress;             // empty: no reports
+    std::optional<FocusRegion> focus;     // tighter eps in a sphere (grid index space)
+    std::optional<PartOfGrid> partOfGrid; // set: the volume is these planes of a grid, the focus in its space
+    int threads = 0;                      // 0: all hardware threads
+    FitProgress progress;                 // empty: no reports
     const std::atomic<bool>* cancel = nullptr; // set to true to abandon the fit (throws FitCancelled)
 };
 
@@ -103,7 +103,7 @@ private:
 };
 
 /// Checks options against the volume; throws InputError (eps <= 0 or not finite, degree outside
-/// 0..3, focus outside the grid (the whole grid's when slabOf is set), empty volume, NaN samples).
+/// 0..3, focus outside the grid (the whole grid's when partOfGrid is set), empty volume, NaN samples).
 void validateFitOptions(const Volume& volume, const FitOptions& options);
 
 /// Fits a Vot-Space. Every non-background cell is covered and every grid sample inside a chosen

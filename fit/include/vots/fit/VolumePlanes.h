@@ -22,7 +22,7 @@ Volume planesOf(const Volume& volume, int first, int last);
 bool readsOnlyPlanes(const std::string& path, const std::optional<RawLayout>& raw = std::nullopt);
 
 /// A run of planes of a volume file, and the grid of the whole volume they belong to.
-struct VolumeSlab {
+struct PlanesOfGrid {
     Volume planes;
     Volume whole; // dims, spacing, origin, axes, type and name of the whole volume; no samples
 };
@@ -33,9 +33,9 @@ Volume gridOf(const Volume& volume);
 /// Planes [first, last] of the volume loadVolume would give: the same result as planesOf(loadVolume(...),
 /// first, last), bit for bit, read alone where readsOnlyPlanes says so. Sample checks (NaN, Inf)
 /// see only the planes read. Throws InputError for bad input or planes outside the grid.
-VolumeSlab loadVolumePlanes(const std::string& path, int first, int last,
-                            const std::optional<RawLayout>& raw = std::nullopt,
-                            SampleStorage storage = SampleStorage::Float,
-                            const std::string& dicomSeries = {});
+PlanesOfGrid loadVolumePlanes(const std::string& path, int first, int last,
+                              const std::optional<RawLayout>& raw = std::nullopt,
+                              SampleStorage storage = SampleStorage::Float,
+                              const std::string& dicomSeries = {});
 
 } // namespace vots::fit

@@ -32,10 +32,10 @@ public:
     void upload(const fit::Volume& volume);
     /// Uploads planes [firstPlane, firstPlane + planes.dims z - 1] of the grid `whole` (its grid alone is
     /// read) as chunks that own only the cells between them: rays are clipped to the whole grid as by
-    /// upload(whole), and each frame takes the max, min, or the part of the mean, of the slab's cells
-    /// alone. Under mpirun each rank draws its z slab this way; max, min or sum over the ranks' frames
+    /// upload(whole), and each frame takes the max, min, or the part of the mean, of those planes'
+    /// cells alone. Under mpirun each rank draws its z cells this way; max, min or sum over the ranks' frames
     /// is the frame of the whole, as the chunks of one upload combine. Throws fit::InputError as upload.
-    void uploadSlab(const fit::Volume& planes, int firstPlane, const fit::Volume& whole);
+    void uploadPlanes(const fit::Volume& planes, int firstPlane, const fit::Volume& whole);
     /// The most z planes one texture holds at the next upload (0: from the GL limit and 1 GiB); for
     /// tests, which split small volumes.
     void setChunkPlaneLimit(int planes);
