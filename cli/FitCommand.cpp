@@ -38,8 +38,8 @@ struct FitArgs {
     std::string eps;
     int degree = 3;
     std::string background = "auto";
-    std::string method = "fast";     // checked by CLI11: paper | fast
-    std::string certify = "samples"; // checked by CLI11: samples | cells
+    std::string method = "fast";     // checked by CLI11 against fit::FIT_METHOD_NAMES
+    std::string certify = "samples"; // checked by CLI11 against fit::CERTIFY_NAMES
     std::string focus;
     std::string epsFocus;
     int threads = 0;
@@ -251,11 +251,11 @@ void addFitCommand(CLI::App& app) {
                     "'none'")
         ->capture_default_str();
     cmd->add_option("--method", args->method, "paper (seed, grow, greedy cover) or fast (split and merge)")
-        ->check(CLI::IsMember({"paper", "fast"}))
+        ->check(CLI::IsMember(fit::acceptedNames<fit::FitMethod>()))
         ->capture_default_str();
     cmd->add_option("--certify", args->certify,
                     "samples: bound at grid samples; cells: also at cell centres and edge midpoints")
-        ->check(CLI::IsMember({"samples", "cells"}))
+        ->check(CLI::IsMember(fit::acceptedNames<fit::Certify>()))
         ->capture_default_str();
     CLI::Option* focus = cmd->add_option("--focus", args->focus, "Focus sphere x,y,z,r in grid index units");
     CLI::Option* epsFocus =

@@ -128,7 +128,7 @@ void addRenderCommand(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("--certify", args->certify,
                     "Fit certification for volume input: cells (also between samples) or samples")
-        ->check(CLI::IsMember({"cells", "samples"}))
+        ->check(CLI::IsMember(fit::acceptedNames<fit::Certify>()))
         ->capture_default_str();
     cmd->add_option("--volume", args->volume, "The volume of a .vots input (for --renderer grid)");
     cmd->add_option("--turntable", args->turntable,

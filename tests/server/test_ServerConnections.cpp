@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -18,10 +19,26 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using std::chrono::milliseconds;
 
-/// A fit of the blobs tight enough to run for many seconds on a shared 2-core machine (cancelled when the
-/// server stops), so the watchers and renders waiting on it stay open for the whole test.
+/// Pseudo-random bytes: no polynomial but a cell's own fits them within a small eps, so a fit at 0.02 runs
+/// for seconds on any machine (cancelled when the server stops) and the watchers and renders waiting on
+/// it stay open for the whole test. The smooth test volumes fit in a fraction of a second.
+constexpr const char* NOISE = "noise_96x96x96_uint8";
+
+/// Writes the noise volume into the world's data folder.
+void addNoiseVolume(const ServerWorld& world) {
+    constexpr int SIDE = 96;
+    std::string samples(static_cast<std::size_t>(SIDE) * SIDE * SIDE, '\0');
+    std::uint32_t state = 12345u;
+    for (char& sample : samples) {
+        state = state * 1664525u + 1013904223u; // a fixed LCG: the same volume every run
+        sample = static_cast<char>(state >> 24);
+    }
+    world.dir().write(std::string("data/") + NOISE + ".nrrd",
+                      "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 96 96 96\nencoding: raw\n\n" + samples);
+}
+
 std::string slowFitBody(double eps) {
-    return std::string(R"({"dataset":")") + BLOBS + R"(","eps":)" + std::to_string(eps) + "}";
+    return std::string(R"({"dataset":")") + NOISE + R"(","eps":)" + std::to_string(eps) + "}";
 }
 
 struct OpenSockets {
@@ -38,6 +55,7 @@ double secondsSince(Clock::time_point start) {
 
 TEST(ServerConnections, IdleConnectionsAndWatchersDoNotDelayAPlainRequest) {
     ServerWorld world;
+    addNoiseVolume(world);
     auto options = world.options();
     options.maxRunningFits = 1;
     options.warmUpFits = false;
@@ -83,6 +101,7 @@ TEST(ServerConnections, IdleConnectionsAndWatchersDoNotDelayAPlainRequest) {
 
 TEST(ServerConnections, AClientFloodingFitsGets429AndAnotherIsServed) {
     ServerWorld world;
+    addNoiseVolume(world);
     auto options = world.options();
     options.maxRunningFits = 1;
     options.maxQueuedFits = 8;
@@ -117,6 +136,7 @@ TEST(ServerConnections, AClientFloodingFitsGets429AndAnotherIsServed) {
 
 TEST(ServerConnections, AClientFloodingRendersGets429AndAnotherIsServed) {
     ServerWorld world;
+    addNoiseVolume(world);
     auto options = world.options();
     options.maxRunningFits = 1;
     options.maxRendersPerClient = 2;
@@ -128,7 +148,7 @@ TEST(ServerConnections, AClientFloodingRendersGets429AndAnotherIsServed) {
         << "no EGL context (Mesa's llvmpipe gives one without a GPU)";
 
     // Two renders that wait for a slow fit hold both of 127.0.0.2's places.
-    const std::string waiting = std::string("/render?dataset=") + BLOBS + "&size=64x64&eps=0.02";
+    const std::string waiting = std::string("/render?dataset=") + NOISE + "&size=64x64&eps=0.02";
     OpenSockets held;
     for (int i = 0; i < 2; ++i) {
         held.fds.push_back(connectFrom("127.0.0.2", port));

@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace vots::fit {
 
@@ -61,6 +62,14 @@ template <class E> std::string knownNames() {
         out += table.rows[i].name;
     }
     return out;
+}
+
+/// Every spelling parseName accepts, in table order (for a command line's list of choices).
+template <class E> std::vector<std::string> acceptedNames() {
+    std::vector<std::string> names;
+    for (const NamedValue<E>& row : namesOf(E{}).rows)
+        names.emplace_back(row.name);
+    return names;
 }
 
 /// The value spelt `name`; throws InputError "unknown <what> '<name>' (known: <knownNames>)".
