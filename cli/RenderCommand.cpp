@@ -15,6 +15,7 @@
 #include "vots/fit/Fitter.h"
 #include "vots/fit/VolumeLoad.h"
 #include "vots/fit/VotSpaceFile.h"
+#include "vots/meta/VotSpaceRead.h"
 #include "vots/render/DisplayPass.h"
 #include "vots/render/EglContext.h"
 #include "vots/render/FrameRequest.h"
@@ -40,7 +41,7 @@ void runRender(const RenderArgs& a) {
     std::optional<fit::Volume> volume;
     std::optional<fit::VotSpace> space;
     if (inputIsVots) {
-        space = fit::readVotSpaceFile(a.input);
+        space = meta::readVotSpaceFile(a.input);
         if (!a.volume.empty()) {
             checkVolumeFitsBudget(a.volume, c.raw, a.memoryBudget, a.series);
             volume = fit::loadVolume(a.volume, c.raw, fit::SampleStorage::Float, a.series);
