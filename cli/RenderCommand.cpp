@@ -50,8 +50,10 @@ void runRender(const RenderArgs& a) {
     if (c.slabSweep && c.slabSweep->format == SweepFormat::Dicom) source = sourceIdentity(a, inputIsVots);
     std::optional<fit::Volume> volume;
     std::optional<fit::VotSpace> space;
+    std::optional<render::SlabSweepPlan> sweep; // planned from the grid before the fit and the GL context
     if (inputIsVots) {
         space = fit::readVotSpaceFile(a.input);
+        if (c.slabSweep) sweep = planSweep(*c.slabSweep, c.frame, render::sceneBounds(*space));
         if (!a.volume.empty()) {
             checkVolumeFitsBudget(a.volume, c.raw, a.memoryBudget, a.series);
             volume = fit::loadVolume(a.volume, c.raw, fit::SampleStorage::Float, a.series);
@@ -68,6 +70,7 @@ void runRender(const RenderArgs& a) {
         // The fit's estimate also for the grid renderer: it covers the samples, their texture and the read.
         checkVolumeFitsBudget(a.input, c.raw, a.memoryBudget, a.series);
         volume = fit::loadVolume(a.input, c.raw, fit::SampleStorage::Float, a.series);
+        if (c.slabSweep) sweep = planSweep(*c.slabSweep, c.frame, render::sceneBounds(*volume));
         if (c.frame.renderer != render::RendererKind::Grid)
             space = fitForRender(*volume, volume->valueRange(), a, c).space;
     }
@@ -89,8 +92,8 @@ void runRender(const RenderArgs& a) {
     };
     if (c.slabSweep) {
         render::Renderer& renderer = grid ? static_cast<render::Renderer&>(*grid) : *vots;
-        writeSlabSweep(*c.slabSweep, c.frame, renderer, volumeRange.value_or(renderer.valueRange()), source,
-                       draw);
+        writeSlabSweep(*c.slabSweep, *sweep, c.frame, renderer, volumeRange.value_or(renderer.valueRange()),
+                       source, draw);
         return;
     }
     if (c.turntable) {

@@ -65,11 +65,15 @@ SlabSweepOutput checkSlabSweepArgs(const std::string& sweep, const std::string& 
     return out;
 }
 
-void writeSlabSweep(const SlabSweepOutput& output, const render::FrameRequest& first, render::Renderer& renderer,
+render::SlabSweepPlan planSweep(const SlabSweepOutput& output, const render::FrameRequest& first,
+                                const render::SceneBounds& bounds) {
+    return render::planSlabSweep(output.spacing, first.camera, bounds, first.width, first.height);
+}
+
+void writeSlabSweep(const SlabSweepOutput& output, const render::SlabSweepPlan& plan,
+                    const render::FrameRequest& first, render::Renderer& renderer,
                     std::array<float, 2> fullRange, const std::optional<fit::DicomIdentity>& source,
                     const std::function<render::RgbaImage(const render::FrameRequest&)>& drawRgba) {
-    const render::SlabSweepPlan plan =
-        render::planSlabSweep(output.spacing, first.camera, renderer.bounds(), first.width, first.height);
     if (output.format == SweepFormat::Png) {
         TurntableWriter writer({TurntableFormat::PngFrames, output.pattern}, first.width, first.height);
         for (const render::SweepSlab& slab : plan.slabs)

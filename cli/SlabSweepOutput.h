@@ -27,12 +27,17 @@ struct SlabSweepOutput {
 SlabSweepOutput checkSlabSweepArgs(const std::string& sweep, const std::string& output,
                                    const render::FrameRequest& first);
 
-/// Draws every slab of the sweep (render::planSlabSweep over the renderer's volume) with `first`'s
-/// camera, size, mode and display settings and writes them: the float frames from `renderer` as a
-/// derived DICOM series (pacs::writeDerivedSeries; the source's identity where it is DICOM, the window
-/// over `fullRange` unless the frame names one), or the windowed images from `drawRgba` as PNGs. All
-/// or nothing in both cases.
-void writeSlabSweep(const SlabSweepOutput& output, const render::FrameRequest& first, render::Renderer& renderer,
+/// The sweep's slabs through the volume `bounds` describes, for `first`'s camera and size, before any GL
+/// context: a sweep of too many slabs fails with its one line. Throws fit::InputError.
+render::SlabSweepPlan planSweep(const SlabSweepOutput& output, const render::FrameRequest& first,
+                                const render::SceneBounds& bounds);
+
+/// Draws every slab of the plan with `first`'s camera, size, mode and display settings and writes them: the
+/// float frames from `renderer` as a derived DICOM series (pacs::writeDerivedSeries; the source's identity
+/// where it is DICOM, the window over `fullRange` unless the frame names one), or the windowed images from
+/// `drawRgba` as PNGs. All or nothing in both cases.
+void writeSlabSweep(const SlabSweepOutput& output, const render::SlabSweepPlan& plan,
+                    const render::FrameRequest& first, render::Renderer& renderer,
                     std::array<float, 2> fullRange, const std::optional<fit::DicomIdentity>& source,
                     const std::function<render::RgbaImage(const render::FrameRequest&)>& drawRgba);
 

@@ -24,7 +24,8 @@ void checkSeries(const DerivedSeries& series, const std::vector<std::string>& pa
     constexpr int MAX_SIDE = std::numeric_limits<std::uint16_t>::max(); // Rows and Columns are US
     for (const DerivedImage& image : series.images)
         if (image.width < 1 || image.height < 1 || image.width > MAX_SIDE || image.height > MAX_SIDE ||
-            image.pixels.size() != static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height))
+            image.pixels.size() !=
+                static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height))
             throw std::invalid_argument("writeDerivedSeries: an image's pixels do not match its size");
 }
 
@@ -101,7 +102,8 @@ void writeDerivedSeries(const DerivedSeries& series, const std::vector<std::stri
     gdcm::UIDGenerator uids;
     PendingFiles pending;
     for (std::size_t k = 0; k < paths.size(); ++k)
-        pending.add(paths[k], detail::encodeDerivedImage(series, static_cast<int>(k), stamp, uids.Generate()));
+        pending.add(paths[k],
+                    detail::encodeDerivedImage(series, static_cast<int>(k), stamp, uids.Generate()));
     pending.commit();
 }
 

@@ -112,9 +112,10 @@ void addPlane(gdcm::DataSet& data, const DerivedSeries& series, const DerivedIma
     const double orientation[6] = {g.rowDirection[0],    g.rowDirection[1],    g.rowDirection[2],
                                    g.columnDirection[0], g.columnDirection[1], g.columnDirection[2]};
     const double spacing[2] = {g.pixelSpacingMm, g.pixelSpacingMm};
-    const std::array<double, 3> normal{g.rowDirection[1] * g.columnDirection[2] - g.rowDirection[2] * g.columnDirection[1],
-                                       g.rowDirection[2] * g.columnDirection[0] - g.rowDirection[0] * g.columnDirection[2],
-                                       g.rowDirection[0] * g.columnDirection[1] - g.rowDirection[1] * g.columnDirection[0]};
+    const std::array<double, 3> normal{
+        g.rowDirection[1] * g.columnDirection[2] - g.rowDirection[2] * g.columnDirection[1],
+        g.rowDirection[2] * g.columnDirection[0] - g.rowDirection[0] * g.columnDirection[2],
+        g.rowDirection[0] * g.columnDirection[1] - g.rowDirection[1] * g.columnDirection[0]};
     double location = 0.0;
     for (int a = 0; a < 3; ++a)
         location += normal[a] * image.firstPixelCentre[a];

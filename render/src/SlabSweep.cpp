@@ -170,7 +170,8 @@ std::string_view sweepPlaneName(const std::array<double, 3>& normal) {
     return "oblique";
 }
 
-std::string sweepDescription(RenderMode mode, const SlabSweepSpacing& spacing, const std::array<double, 3>& normal) {
+std::string sweepDescription(RenderMode mode, const SlabSweepSpacing& spacing,
+                             const std::array<double, 3>& normal) {
     const std::string name = mode == RenderMode::Mip     ? "MIP"
                              : mode == RenderMode::MinIp ? "MinIP"
                              : mode == RenderMode::Aip   ? "AIP"

@@ -46,8 +46,8 @@ std::string writeSource(const TempDir& dir) {
 }
 
 std::vector<std::string> sweepArgs(const std::string& input, const std::string& output) {
-    return {"render", input, "--view", "inferior", "--slab-sweep", "10,5", "--size", "48x40",
-            "--eps", std::to_string(EPS), "-o", output};
+    return {"render", input,   "--view", "inferior",          "--slab-sweep", "10,5",
+            "--size", "48x40", "--eps",  std::to_string(EPS), "-o",           output};
 }
 
 std::vector<std::string> filesIn(const std::string& folder) {
@@ -110,7 +110,7 @@ TEST(CliSlabSweep, WritesADerivedSeriesInTheSourcesStudy) {
                 ++compared;
             }
     EXPECT_GT(compared, 300u);
-    EXPECT_NEAR(brightest, 900.0, EPS + 1.0); // the middle slab holds the ball's centre
+    EXPECT_NEAR(brightest, ball().valueRange()[1], EPS + 1.0); // the middle slab holds the ball's centre
 
     const DicomTags sourceFile(filesIn(source).front());
     std::set<std::string> sops;

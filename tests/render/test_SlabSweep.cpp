@@ -111,8 +111,9 @@ TEST(SlabSweep, ImagesLieWhereTheRendererDrawsThem) {
     oblique.panX = 0.1;
     constexpr int W = 40, H = 30;
     const SlabSweepSpacing spacing{4.0, 3.0};
-    for (const Camera& camera : {cameraForView(ViewPreset::Inferior), cameraForView(ViewPreset::Superior),
-                                 cameraForView(ViewPreset::Left), cameraForView(ViewPreset::Anterior), oblique}) {
+    for (const Camera& camera :
+         {cameraForView(ViewPreset::Inferior), cameraForView(ViewPreset::Superior),
+          cameraForView(ViewPreset::Left), cameraForView(ViewPreset::Anterior), oblique}) {
         const SlabSweepPlan plan = planSlabSweep(spacing, camera, grid.bounds(), W, H);
         const SweepImagePlane& p = plan.plane;
         EXPECT_NEAR(dot(p.rowDirection, p.columnDirection), 0.0, 1e-12);
@@ -124,10 +125,11 @@ TEST(SlabSweep, ImagesLieWhereTheRendererDrawsThem) {
         int checked = 0;
         for (std::size_t k = 0; k < plan.slabs.size(); ++k) {
             const SweepSlab& slab = plan.slabs[k];
-            if (k > 0)
-                for (int c = 0; c < 3; ++c) // one STEP along the normal from the previous slab
+            if (k > 0) { // one STEP along the normal from the previous slab
+                for (int c = 0; c < 3; ++c)
                     EXPECT_NEAR(slab.firstPixelCentre[c] - plan.slabs[k - 1].firstPixelCentre[c],
                                 spacing.stepMm * p.normal[c], 1e-9);
+            }
             const FloatImage image = grid.render(camera, W, H, RenderOptions{RenderMode::Aip, slab.slab});
             for (int y = 0; y < H; ++y)
                 for (int x = 0; x < W; ++x) {
@@ -140,9 +142,9 @@ TEST(SlabSweep, ImagesLieWhereTheRendererDrawsThem) {
                         back[c] += 0.5 * spacing.thicknessMm * p.normal[c];
                     }
                     if (!insideGrid(v, front, 0.05) || !insideGrid(v, back, 0.05)) continue;
-                    ASSERT_NEAR(image.at(x, y), field(w), 0.02) << "camera az " << camera.azimuthDeg << " el "
-                                                                << camera.elevationDeg << " slab " << k
-                                                                << " pixel " << x << "," << y;
+                    ASSERT_NEAR(image.at(x, y), field(w), 0.02)
+                        << "camera az " << camera.azimuthDeg << " el " << camera.elevationDeg << " slab " << k
+                        << " pixel " << x << "," << y;
                     ++checked;
                 }
         }

@@ -17,7 +17,7 @@ namespace vots::pacs {
 struct DerivedImage {
     int width = 0;
     int height = 0;
-    std::vector<float> pixels;                        // width * height, top row first
+    std::vector<float> pixels;                       // width * height, top row first
     std::array<double, 3> firstPixelCentre{0, 0, 0}; // ImagePositionPatient: the top left pixel, LPS mm
 };
 

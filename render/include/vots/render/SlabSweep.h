@@ -62,6 +62,7 @@ FrameRequest sweepFrame(const FrameRequest& first, const SweepSlab& slab);
 std::string_view sweepPlaneName(const std::array<double, 3>& normal);
 
 /// The series' description: mode, thickness, step and plane, e.g. "MIP 10 mm / 5 mm axial".
-std::string sweepDescription(RenderMode mode, const SlabSweepSpacing& spacing, const std::array<double, 3>& normal);
+std::string sweepDescription(RenderMode mode, const SlabSweepSpacing& spacing,
+                             const std::array<double, 3>& normal);
 
 } // namespace vots::render
