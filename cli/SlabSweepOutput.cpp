@@ -38,11 +38,11 @@ SweepFormat formatOf(const std::string& output) {
     throw bad("must end in .dcm (a DICOM series) or .png (display images)");
 }
 
-pacs::DerivedImage derivedImage(const render::FloatImage& frame, const render::SweepSlab& slab) {
+pacs::DerivedImage derivedImage(render::FloatImage frame, const render::SweepSlab& slab) {
     pacs::DerivedImage image;
     image.width = frame.width;
     image.height = frame.height;
-    image.pixels = frame.pixels;
+    image.pixels = std::move(frame.pixels);
     image.firstPixelCentre = slab.firstPixelCentre;
     return image;
 }
@@ -91,15 +91,20 @@ void writeSlabSweep(const SlabSweepOutput& output, const render::SlabSweepPlan& 
     series.geometry.spacingBetweenSlicesMm = output.spacing.stepMm;
     const render::DisplaySettings window = render::displayFor(first, fullRange);
     series.window = std::array<double, 2>{window.level, window.width};
+    // Every value either renderer can draw: the Vots' bounds reach past the samples by up to eps.
+    const std::array<float, 2> drawable = renderer.valueRange();
+    series.valueRange =
+        std::array<double, 2>{std::min(drawable[0], fullRange[0]), std::max(drawable[1], fullRange[1])};
     std::vector<std::string> paths;
-    for (std::size_t k = 0; k < plan.slabs.size(); ++k) {
-        const render::SweepSlab& slab = plan.slabs[k];
-        const render::FloatImage frame = renderer.render(first.camera, first.width, first.height,
-                                                         render::RenderOptions{first.mode, slab.slab});
-        series.images.push_back(derivedImage(frame, slab));
+    for (std::size_t k = 0; k < plan.slabs.size(); ++k)
         paths.push_back(framePath(output.pattern, static_cast<int>(k)));
+    pacs::DerivedSeriesWriter writer(std::move(series), paths);
+    for (const render::SweepSlab& slab : plan.slabs) {
+        render::FloatImage frame = renderer.render(first.camera, first.width, first.height,
+                                                   render::RenderOptions{first.mode, slab.slab});
+        writer.add(derivedImage(std::move(frame), slab));
     }
-    pacs::writeDerivedSeries(series, paths);
+    writer.finish();
 }
 
 } // namespace vots::cli

@@ -18,21 +18,17 @@
 namespace vots::pacs {
 namespace {
 
-void checkSeries(const DerivedSeries& series, const std::vector<std::string>& paths) {
-    if (paths.size() != series.images.size())
-        throw std::invalid_argument("writeDerivedSeries: one path per image");
+void checkImage(const DerivedImage& image) {
     constexpr int MAX_SIDE = std::numeric_limits<std::uint16_t>::max(); // Rows and Columns are US
-    for (const DerivedImage& image : series.images)
-        if (image.width < 1 || image.height < 1 || image.width > MAX_SIDE || image.height > MAX_SIDE ||
-            image.pixels.size() !=
-                static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height))
-            throw std::invalid_argument("writeDerivedSeries: an image's pixels do not match its size");
+    if (image.width < 1 || image.height < 1 || image.width > MAX_SIDE || image.height > MAX_SIDE ||
+        image.pixels.size() != static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height))
+        throw std::invalid_argument("writeDerivedSeries: an image's pixels do not match its size");
 }
 
 /// The finite values of every image, [lo, hi]; {0, 0} when none is finite.
-std::array<double, 2> valueSpan(const DerivedSeries& series) {
+std::array<double, 2> valueSpan(const std::vector<DerivedImage>& images) {
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-    for (const DerivedImage& image : series.images)
+    for (const DerivedImage& image : images)
         for (const float v : image.pixels)
             if (std::isfinite(v)) {
                 lo = std::min(lo, static_cast<double>(v));
@@ -43,6 +39,8 @@ std::array<double, 2> valueSpan(const DerivedSeries& series) {
 }
 
 detail::SeriesStamp stampFor(const DerivedSeries& series) {
+    if (!series.valueRange)
+        throw std::invalid_argument("DerivedSeriesWriter: the series needs its valueRange");
     gdcm::UIDGenerator uids;
     detail::SeriesStamp stamp;
     const fit::DicomIdentity identity = series.source.value_or(fit::DicomIdentity{});
@@ -58,53 +56,71 @@ detail::SeriesStamp stampFor(const DerivedSeries& series) {
     std::strftime(time, sizeof time, "%H%M%S", &utc);
     stamp.date = date;
     stamp.time = time;
-    const auto [lo, hi] = valueSpan(series);
-    stamp.rescale = chooseRescale(lo, hi);
+    stamp.rescale = chooseRescale((*series.valueRange)[0], (*series.valueRange)[1]);
     return stamp;
 }
 
-/// Files written to their temporary names; removed again unless committed.
-class PendingFiles {
-public:
-    PendingFiles() = default;
-    PendingFiles(const PendingFiles&) = delete;
-    PendingFiles& operator=(const PendingFiles&) = delete;
-    ~PendingFiles() {
-        for (const auto& [temporary, path] : mFiles)
-            std::remove(temporary.c_str());
-        for (const std::string& path : mPublished)
-            std::remove(path.c_str());
-    }
-    void add(const std::string& path, const std::vector<std::uint8_t>& bytes) {
-        mFiles.emplace_back(fit::writeTemporaryFor(path, bytes), path);
-    }
-    /// Renames every temporary to its path; should one rename fail, the files already renamed go too.
-    void commit() {
-        while (!mFiles.empty()) {
-            const auto [temporary, path] = mFiles.front();
-            mFiles.erase(mFiles.begin());
-            fit::publishTemporary(temporary, path);
-            mPublished.push_back(path);
-        }
-        mPublished.clear();
-    }
-
-private:
-    std::vector<std::pair<std::string, std::string>> mFiles; // {temporary, final path}
-    std::vector<std::string> mPublished;                     // renamed by a commit still under way
-};
-
 } // namespace
 
-void writeDerivedSeries(const DerivedSeries& series, const std::vector<std::string>& paths) {
-    checkSeries(series, paths);
-    const detail::SeriesStamp stamp = stampFor(series);
+struct DerivedSeriesWriter::State {
+    DerivedSeries series;
+    std::vector<std::string> paths;
+    detail::SeriesStamp stamp;
     gdcm::UIDGenerator uids;
-    PendingFiles pending;
-    for (std::size_t k = 0; k < paths.size(); ++k)
-        pending.add(paths[k],
-                    detail::encodeDerivedImage(series, static_cast<int>(k), stamp, uids.Generate()));
-    pending.commit();
+    std::vector<std::string> temporaries; // one per image added, beside its path
+    std::vector<std::string> published;   // renamed by a finish() still under way
+};
+
+DerivedSeriesWriter::DerivedSeriesWriter(DerivedSeries series, std::vector<std::string> paths)
+    : mState(std::make_unique<State>()) {
+    series.images.clear();
+    mState->stamp = stampFor(series);
+    mState->series = std::move(series);
+    mState->paths = std::move(paths);
+}
+
+DerivedSeriesWriter::~DerivedSeriesWriter() {
+    for (const std::string& temporary : mState->temporaries)
+        std::remove(temporary.c_str());
+    for (const std::string& path : mState->published)
+        std::remove(path.c_str());
+}
+
+void DerivedSeriesWriter::add(const DerivedImage& image) {
+    State& s = *mState;
+    const std::size_t index = s.temporaries.size();
+    if (index >= s.paths.size()) throw std::invalid_argument("DerivedSeriesWriter: more images than paths");
+    checkImage(image);
+    s.temporaries.push_back(fit::writeTemporaryFor(
+        s.paths[index],
+        detail::encodeDerivedImage(s.series, image, static_cast<int>(index), s.stamp, s.uids.Generate())));
+}
+
+void DerivedSeriesWriter::finish() {
+    State& s = *mState;
+    if (s.temporaries.size() != s.paths.size())
+        throw std::invalid_argument("DerivedSeriesWriter: one image per path");
+    // Should one rename fail, the files already renamed go too (the destructor), so no partial series stays.
+    for (std::size_t k = 0; k < s.paths.size(); ++k) {
+        const std::string temporary = s.temporaries[k];
+        s.temporaries[k].clear();
+        fit::publishTemporary(temporary, s.paths[k]);
+        s.published.push_back(s.paths[k]);
+    }
+    s.temporaries.clear();
+    s.published.clear();
+}
+
+void writeDerivedSeries(const DerivedSeries& series, const std::vector<std::string>& paths) {
+    if (paths.size() != series.images.size())
+        throw std::invalid_argument("writeDerivedSeries: one path per image");
+    DerivedSeries header = series;
+    if (!header.valueRange) header.valueRange = valueSpan(series.images);
+    header.images.clear();
+    DerivedSeriesWriter writer(std::move(header), paths);
+    for (const DerivedImage& image : series.images)
+        writer.add(image);
+    writer.finish();
 }
 
 } // namespace vots::pacs

@@ -157,9 +157,8 @@ void addPixels(gdcm::DataSet& data, const DerivedSeries& series, const DerivedIm
 
 } // namespace
 
-std::vector<std::uint8_t> encodeDerivedImage(const DerivedSeries& series, int index, const SeriesStamp& stamp,
-                                             const std::string& sopUid) {
-    const DerivedImage& image = series.images.at(static_cast<std::size_t>(index));
+std::vector<std::uint8_t> encodeDerivedImage(const DerivedSeries& series, const DerivedImage& image,
+                                             int index, const SeriesStamp& stamp, const std::string& sopUid) {
     gdcm::Writer writer;
     gdcm::File& file = writer.GetFile();
     file.GetHeader().SetDataSetTransferSyntax(gdcm::TransferSyntax::ExplicitVRLittleEndian);

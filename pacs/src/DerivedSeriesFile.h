@@ -20,9 +20,10 @@ struct SeriesStamp {
     PixelRescale rescale;
 };
 
-/// Image `index` of the series as a DICOM file (explicit VR little endian) with SOPInstanceUID `sopUid`.
-std::vector<std::uint8_t> encodeDerivedImage(const DerivedSeries& series, int index, const SeriesStamp& stamp,
-                                             const std::string& sopUid);
+/// `image`, number `index` (from 0) of the series, as a DICOM file (explicit VR little endian) with
+/// SOPInstanceUID `sopUid`; the series' own `images` are not read.
+std::vector<std::uint8_t> encodeDerivedImage(const DerivedSeries& series, const DerivedImage& image,
+                                             int index, const SeriesStamp& stamp, const std::string& sopUid);
 
 /// The stored value of a pixel: the value through `rescale`, rounded and clamped to [-32767, 32767], or
 /// PIXEL_PADDING when it is not finite.

@@ -195,5 +195,27 @@ TEST(DerivedSeries, AFailedWriteLeavesNoFile) {
     EXPECT_FALSE(std::filesystem::exists(dir.path() / "missing"));
 }
 
+TEST(DerivedSeries, AWriterStoppedBeforeFinishLeavesNoFile) {
+    TempDir dir;
+    const std::vector<std::string> paths = pathsIn(dir, "out", IMAGES);
+    pacs::DerivedSeries s = series(ctIdentity());
+    const std::vector<pacs::DerivedImage> images = std::move(s.images);
+    s.valueRange = std::array<double, 2>{-1024.0, 3071.0};
+    {
+        pacs::DerivedSeriesWriter writer(s, paths);
+        writer.add(images[0]);
+        writer.add(images[1]);
+        EXPECT_THROW(writer.finish(), std::invalid_argument); // two images short
+    }
+    EXPECT_TRUE(std::filesystem::is_empty(dir.path() / "out"));
+
+    pacs::DerivedSeriesWriter writer(s, paths);
+    for (const pacs::DerivedImage& image : images)
+        writer.add(image);
+    EXPECT_FALSE(std::filesystem::exists(paths[0])); // only temporaries before finish()
+    writer.finish();
+    EXPECT_EQ(fit::loadDicomSeries(dir.file("out")).dims[2], IMAGES);
+}
+
 } // namespace
 } // namespace vots::test

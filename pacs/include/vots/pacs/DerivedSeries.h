@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -39,6 +40,9 @@ struct DerivedSeries {
     std::vector<DerivedImage> images; // in order along the slice normal (rowDirection x columnDirection)
     /// WindowCenter, WindowWidth for a viewer's first display; nullopt: none written.
     std::optional<std::array<double, 2>> window;
+    /// [lo, hi] of the values the images can hold, which sets the series' one rescale (chooseRescale);
+    /// nullopt: the finite values of `images`.
+    std::optional<std::array<double, 2>> valueRange;
 };
 
 /// The stored value of a pixel without a value, also written as PixelPaddingValue.
@@ -58,6 +62,26 @@ PixelRescale chooseRescale(double lo, double hi);
 /// The SOP class a derived image of this modality is stored as: CT Image Storage for "CT", MR Image
 /// Storage for "MR", Secondary Capture Image Storage otherwise (and for a source that is not DICOM).
 std::string storageClassFor(const std::optional<fit::DicomIdentity>& source);
+
+/// Writes a series one image at a time, so that only the image being added is held: image k (in the
+/// order added) goes to a temporary beside paths[k], and finish() renames them all once every image is
+/// there. Destroyed without finish() (an error on the way), it leaves no file and no temporary. Throws
+/// as writeDerivedSeries.
+class DerivedSeriesWriter {
+public:
+    /// `series` gives everything but the images (its `images` are not read); its valueRange is required.
+    DerivedSeriesWriter(DerivedSeries series, std::vector<std::string> paths);
+    ~DerivedSeriesWriter();
+    DerivedSeriesWriter(const DerivedSeriesWriter&) = delete;
+    DerivedSeriesWriter& operator=(const DerivedSeriesWriter&) = delete;
+    void add(const DerivedImage& image);
+    /// Renames every file into place; throws std::invalid_argument unless one image per path was added.
+    void finish();
+
+private:
+    struct State;
+    std::unique_ptr<State> mState;
+};
 
 /// Writes image k of the series to paths[k] (one file per image, explicit VR little endian, GDCM), with a
 /// new SeriesInstanceUID and SOPInstanceUIDs under GDCM's UID root. All or nothing: every file goes to
