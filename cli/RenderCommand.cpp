@@ -159,12 +159,14 @@ void addRenderCommand(CLI::App& app) {
                     "N views around the vertical axis from the camera's azimuth, 360/N degrees apart, in one "
                     "load and fit: PNG frames (-o with %d) or a VP9 WebM video (-o *.webm, " +
                         std::to_string(render::ANIMATION_FPS) + " frames/s)");
-    cmd->add_option("--slab-sweep", args->slabSweep,
-                    "THICKNESS,STEP in mm: slabs THICKNESS thick every STEP along the view through the whole "
-                    "volume, one image each (orthographic; --size and the other options apply to each). -o "
-                    "DIR/%03d.dcm writes a derived DICOM series in the source's units, DIR/%03d.png the "
-                    "display images. Pixel spacing: the view's extent, 2R/(zoom*H) mm with R the half-"
-                    "diagonal of the volume's box and H the image height");
+    cmd->add_option(
+        "--slab-sweep", args->slabSweep,
+        "THICKNESS,STEP in mm: slabs THICKNESS thick every STEP along the view through the whole "
+        "volume, one image each: 1 + ceil((L - THICKNESS) / STEP) slabs centred on the volume, L its "
+        "depth along the view (orthographic; --size and the other options apply to each). -o "
+        "DIR/%03d.dcm writes a derived DICOM series in the source's units, DIR/%03d.png the "
+        "display images. Pixel spacing: the view's extent, 2R/(zoom*H) mm with R the half-"
+        "diagonal of the volume's box and H the image height");
     cmd->add_option("--elevation", args->elevation,
                     "The turntable's elevation in degrees (default: the camera's)");
     cmd->add_flag("--times", args->times,
