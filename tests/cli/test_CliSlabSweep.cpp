@@ -136,6 +136,36 @@ TEST(CliSlabSweep, WritesADerivedSeriesInTheSourcesStudy) {
     EXPECT_EQ(sops.count(sourceFile.text(0x0008, 0x0018)), 0u);
 }
 
+// A .vots file knows no patient: with its DICOM volume the series joins the source's study; alone it is a
+// new study stored as Secondary Capture.
+TEST(CliSlabSweep, AVotsInputTakesItsIdentityFromItsVolume) {
+    TempDir dir;
+    const std::string source = writeSource(dir);
+    const std::string vots = dir.file("ct.vots");
+    ASSERT_EQ(runVots({"fit", source, "-o", vots, "--eps", "20"}).exitCode, 0);
+    std::filesystem::create_directories(dir.path() / "with");
+    std::filesystem::create_directories(dir.path() / "alone");
+    std::vector<std::string> with = sweepArgs(vots, dir.file("with/%d.dcm"));
+    with.insert(with.end(), {"--volume", source});
+    const CliResult joined = runVots(with);
+    ASSERT_EQ(joined.exitCode, 0) << joined.err;
+    const CliResult alone = runVots(sweepArgs(vots, dir.file("alone/%d.dcm")));
+    ASSERT_EQ(alone.exitCode, 0) << alone.err;
+
+    const DicomTags sourceFile(filesIn(source).front());
+    const DicomTags withFile(dir.file("with/0.dcm")), aloneFile(dir.file("alone/0.dcm"));
+    EXPECT_EQ(withFile.text(0x0020, 0x000d), sourceFile.text(0x0020, 0x000d));
+    EXPECT_EQ(withFile.text(0x0010, 0x0020), "VOTS-PHANTOM-1");
+    EXPECT_EQ(withFile.text(0x0008, 0x0016), "1.2.840.10008.5.1.4.1.1.2");
+    EXPECT_NE(aloneFile.text(0x0020, 0x000d), sourceFile.text(0x0020, 0x000d));
+    EXPECT_NE(aloneFile.text(0x0020, 0x000d), "");
+    EXPECT_EQ(aloneFile.text(0x0010, 0x0020), "");
+    EXPECT_EQ(aloneFile.text(0x0008, 0x0016), "1.2.840.10008.5.1.4.1.1.7"); // Secondary Capture
+    // The same Vots drawn either way: the same slabs at the same places.
+    EXPECT_EQ(filesIn(dir.file("with")).size(), 3u);
+    EXPECT_EQ(withFile.text(0x0020, 0x0032), aloneFile.text(0x0020, 0x0032));
+}
+
 TEST(CliSlabSweep, WritesDisplayImagesAsPngs) {
     TempDir dir;
     const std::string source = writeSource(dir);
