@@ -81,6 +81,12 @@ CheckedArgs checkArgs(const RenderArgs& a) {
     c.eps = parseEps(a.eps, "--eps");
     if (a.degree < 0 || a.degree > 3) throw fit::InputError("--degree must be 0..3");
     c.raw = rawLayoutFrom(a.raw);
+    if (!a.slabSweep.empty()) {
+        if (a.turntable) throw fit::InputError("give --slab-sweep or --turntable, not both");
+        if (a.elevation) throw fit::InputError("--elevation is for --turntable N");
+        c.slabSweep = checkSlabSweepArgs(a.slabSweep, a.output, f);
+        return c;
+    }
     c.turntable = checkTurntableArgs(a, f);
     return c;
 }

@@ -3,6 +3,7 @@
 
 #include "Args.h"
 #include "RawOptions.h"
+#include "SlabSweepOutput.h"
 #include "TurntableOutput.h"
 
 #include "vots/fit/EpsSpec.h"
@@ -26,8 +27,9 @@ struct RenderArgs {
     std::string view;
     std::string size = sizeText(render::DEFAULT_FRAME_SIDE, render::DEFAULT_FRAME_SIDE);
     std::string mode{render::renderModeName(render::FrameRequest{}.mode)};
-    std::string renderer; // empty: what the mode implies (vots; grid for reference)
-    std::string slab;     // empty: whole rays
+    std::string renderer;  // empty: what the mode implies (vots; grid for reference)
+    std::string slab;      // empty: whole rays
+    std::string slabSweep; // THICKNESS,STEP; empty: one frame (or a turntable)
     std::string window;
     std::string colormap{render::colormapName(render::FrameRequest{}.colormap)};
     std::string eps = formatNumber(fit::DEFAULT_EPS_PERCENT) + "%";
@@ -48,6 +50,7 @@ struct CheckedArgs {
     fit::EpsSpec eps;
     std::optional<fit::RawLayout> raw;
     std::optional<TurntableOutput> turntable;
+    std::optional<SlabSweepOutput> slabSweep;
 };
 
 /// Every option checked (and the output folders), before any load or fit; throws fit::InputError.

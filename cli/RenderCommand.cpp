@@ -7,10 +7,12 @@
 #include "RenderArgs.h"
 #include "RenderOnRanks.h"
 #include "SeriesOption.h"
+#include "SlabSweepOutput.h"
 #include "TurntableOutput.h"
 
 #include "vots/dist/mpi/CollectiveComposite.h"
 #include "vots/dist/mpi/MpiWorld.h"
+#include "vots/fit/DicomSeries.h"
 #include "vots/fit/Error.h"
 #include "vots/fit/Fitter.h"
 #include "vots/fit/VolumeLoad.h"
@@ -35,13 +37,24 @@
 namespace vots::cli {
 namespace {
 
+/// The DICOM identity of the volume drawn, when it is a DICOM series (INPUT or a .vots input's --volume).
+std::optional<fit::DicomIdentity> sourceIdentity(const RenderArgs& a, bool inputIsVots) {
+    const std::string& volume = inputIsVots ? a.volume : a.input;
+    if (volume.empty() || !fit::isDicomFolder(volume)) return std::nullopt;
+    return fit::readDicomIdentity(volume, a.series);
+}
+
 void runRender(const RenderArgs& a) {
     const CheckedArgs c = checkArgs(a);
     const bool inputIsVots = isVotsFile(a.input);
+    std::optional<fit::DicomIdentity> source;
+    if (c.slabSweep && c.slabSweep->format == SweepFormat::Dicom) source = sourceIdentity(a, inputIsVots);
     std::optional<fit::Volume> volume;
     std::optional<fit::VotSpace> space;
+    std::optional<render::SlabSweepPlan> sweep; // planned from the grid before the fit and the GL context
     if (inputIsVots) {
         space = meta::readVotSpaceFile(a.input);
+        if (c.slabSweep) sweep = planSweep(*c.slabSweep, c.frame, render::sceneBounds(*space));
         if (!a.volume.empty()) {
             checkVolumeFitsBudget(a.volume, c.raw, a.memoryBudget, a.series);
             volume = fit::loadVolume(a.volume, c.raw, fit::SampleStorage::Float, a.series);
@@ -58,6 +71,7 @@ void runRender(const RenderArgs& a) {
         // The fit's estimate also for the grid renderer: it covers the samples, their texture and the read.
         checkVolumeFitsBudget(a.input, c.raw, a.memoryBudget, a.series);
         volume = fit::loadVolume(a.input, c.raw, fit::SampleStorage::Float, a.series);
+        if (c.slabSweep) sweep = planSweep(*c.slabSweep, c.frame, render::sceneBounds(*volume));
         if (c.frame.renderer != render::RendererKind::Grid)
             space = fitForRender(*volume, volume->valueRange(), a, c).space;
     }
@@ -77,6 +91,12 @@ void runRender(const RenderArgs& a) {
     const auto draw = [&](const render::FrameRequest& frame) {
         return render::renderFrame(frame, vots ? &*vots : nullptr, grid ? &*grid : nullptr, volumeRange);
     };
+    if (c.slabSweep) {
+        render::Renderer& renderer = grid ? static_cast<render::Renderer&>(*grid) : *vots;
+        writeSlabSweep(*c.slabSweep, *sweep, c.frame, renderer, volumeRange.value_or(renderer.valueRange()),
+                       source, draw);
+        return;
+    }
     if (c.turntable) {
         writeTurntable(*c.turntable, c.frame, *a.turntable, a.elevation, draw);
         return;
@@ -91,6 +111,8 @@ void runRender(const RenderArgs& a) {
 
 void runRenderCommand(const RenderArgs& a) {
     const dist::MpiWorld& world = dist::MpiWorld::get();
+    if (world.distributed() && !a.slabSweep.empty())
+        throw fit::InputError("--slab-sweep runs in one process, not under mpirun");
     if (world.distributed())
         runRenderOnRanks(world, a);
     else
@@ -106,8 +128,10 @@ void addRenderCommand(CLI::App& app) {
                     "A .vots file, or a volume file, DICOM folder or raw file with --raw-* (fitted first at "
                     "--eps for mip/density)")
         ->required();
-    cmd->add_option("-o,--output", args->output,
-                    "PNG file to write (replaced atomically); with --turntable: frames/%03d.png or turn.webm")
+    cmd->add_option(
+           "-o,--output", args->output,
+           "PNG file to write (replaced atomically); with --turntable: frames/%03d.png or turn.webm; "
+           "with --slab-sweep: slabs/%03d.dcm (DICOM series) or slabs/%03d.png")
         ->required();
     cmd->add_option("--cam", args->cam,
                     "Camera, e.g. az=30,el=20,zoom=1,pan=0:0,proj=ortho,fov=30 or a view name");
@@ -136,6 +160,14 @@ void addRenderCommand(CLI::App& app) {
                     "N views around the vertical axis from the camera's azimuth, 360/N degrees apart, in one "
                     "load and fit: PNG frames (-o with %d) or a VP9 WebM video (-o *.webm, " +
                         std::to_string(render::ANIMATION_FPS) + " frames/s)");
+    cmd->add_option(
+        "--slab-sweep", args->slabSweep,
+        "THICKNESS,STEP in mm: slabs THICKNESS thick every STEP along the view through the whole "
+        "volume, one image each: 1 + ceil((L - THICKNESS) / STEP) slabs centred on the volume, L its "
+        "depth along the view (orthographic; --size and the other options apply to each). -o "
+        "DIR/%03d.dcm writes a derived DICOM series in the source's units, DIR/%03d.png the "
+        "display images. Pixel spacing: the view's extent, 2R/(zoom*H) mm with R the half-"
+        "diagonal of the volume's box and H the image height");
     cmd->add_option("--elevation", args->elevation,
                     "The turntable's elevation in degrees (default: the camera's)");
     cmd->add_flag("--times", args->times,

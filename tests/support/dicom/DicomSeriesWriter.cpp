@@ -119,6 +119,8 @@ void writeSlice(const fit::Volume& volume, int z, int fileIndex, const std::stri
     setText(data, 0x0008, 0x0060, gdcm::VR::CS, "CT");
     setText(data, 0x0008, 0x103e, gdcm::VR::LO, o.description);
     setText(data, 0x0010, 0x0010, gdcm::VR::PN, "Vots^Phantom");
+    setText(data, 0x0010, 0x0020, gdcm::VR::LO, o.patientId);
+    setText(data, 0x0020, 0x0052, gdcm::VR::UI, o.frameOfReferenceUid);
     setText(data, 0x0020, 0x000d, gdcm::VR::UI, o.seriesUid + ".0");
     setText(data, 0x0020, 0x000e, gdcm::VR::UI, o.seriesUid);
     setText(data, 0x0020, 0x0013, gdcm::VR::IS, std::to_string(fileIndex + 1));

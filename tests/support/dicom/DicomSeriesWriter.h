@@ -18,6 +18,8 @@ enum class DicomFileOrder {
 struct DicomWriteOptions {
     std::string seriesUid = "1.2.826.0.1.3680043.10.1234.1";
     std::string description = "synthetic";
+    std::string patientId = "VOTS-PHANTOM-1";
+    std::string frameOfReferenceUid = "1.2.826.0.1.3680043.10.1234.900";
     /// explicit, implicit, rle, jpeg-lossless, jpeg-ls or jpeg2000 (all lossless).
     std::string syntax = "explicit";
     DicomFileOrder order = DicomFileOrder::Ascending;

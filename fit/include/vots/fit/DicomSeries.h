@@ -10,6 +10,26 @@
 
 namespace vots::fit {
 
+/// Who and what a series belongs to: the patient, study and frame of reference modules of its first file
+/// (in file-name order), as text with the padding removed; empty where the file leaves a tag out. A
+/// series derived from it (pacs::writeDerivedSeries) joins the same patient and study.
+struct DicomIdentity {
+    std::string patientId;              // (0010,0020)
+    std::string patientName;            // (0010,0010)
+    std::string patientBirthDate;       // (0010,0030)
+    std::string patientSex;             // (0010,0040)
+    std::string studyInstanceUid;       // (0020,000D)
+    std::string studyId;                // (0020,0010)
+    std::string studyDate;              // (0008,0020)
+    std::string studyTime;              // (0008,0030)
+    std::string accessionNumber;        // (0008,0050)
+    std::string referringPhysicianName; // (0008,0090)
+    std::string studyDescription;       // (0008,1030)
+    std::string modality;               // (0008,0060)
+    std::string frameOfReferenceUid;    // (0020,0052)
+    std::string manufacturer;           // (0008,0070)
+};
+
 /// One series found in a folder, from the files' headers only.
 struct DicomSeriesSummary {
     std::string uid;         // SeriesInstanceUID
@@ -29,6 +49,10 @@ std::vector<DicomSeriesSummary> listDicomSeries(const std::string& folder);
 /// series; empty: the folder must hold exactly one. Throws InputError with one line naming the problem
 /// (no images, several series, missing slice, mixed image sizes, ...).
 VolumeHeaderInfo dicomSeriesHeaderInfo(const std::string& folder, const std::string& seriesUid = {});
+
+/// The identity of the series `seriesUid` (empty: the folder's only series) from the header of its first
+/// file, read by GDCM in a child process. Throws InputError as dicomSeriesHeaderInfo does.
+DicomIdentity readDicomIdentity(const std::string& folder, const std::string& seriesUid = {});
 
 /// Loads the series: values in real units (RescaleSlope/Intercept), slices ordered by
 /// ImagePositionPatient along the slice normal, spacing from PixelSpacing and the slice positions,
