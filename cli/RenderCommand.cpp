@@ -2,6 +2,7 @@
 // process or (RenderOnRanks.cpp) across the ranks of mpirun.
 #include "Args.h"
 #include "Commands.h"
+#include "DicomWebInput.h"
 #include "MemoryBudgetOption.h"
 #include "RawOptions.h"
 #include "RenderArgs.h"
@@ -15,6 +16,7 @@
 #include "vots/fit/Fitter.h"
 #include "vots/fit/VolumeLoad.h"
 #include "vots/fit/VotSpaceFile.h"
+#include "vots/pacs/DicomWebUrl.h"
 #include "vots/render/DisplayPass.h"
 #include "vots/render/EglContext.h"
 #include "vots/render/FrameRequest.h"
@@ -34,16 +36,28 @@
 namespace vots::cli {
 namespace {
 
+/// Loads a volume file, folder or PACS series (its spool folder is gone once the samples are in memory),
+/// refused before its samples are read when the budget cannot hold it.
+fit::Volume loadRenderVolume(const std::string& named, const RenderArgs& a, const CheckedArgs& c) {
+    const VolumeInput input(
+        named, a.dicomWeb,
+        [&](const fit::VolumeHeaderInfo& header) { checkHeaderFitsBudget(named, header, a.memoryBudget); },
+        false);
+    return input.reading([&] {
+        checkVolumeFitsBudget(input.path(), c.raw, a.memoryBudget, a.series);
+        return fit::loadVolume(input.path(), c.raw, fit::SampleStorage::Float, a.series);
+    });
+}
+
 void runRender(const RenderArgs& a) {
     const CheckedArgs c = checkArgs(a);
-    const bool inputIsVots = isVotsFile(a.input);
+    const bool inputIsVots = !pacs::isDicomWebUrl(a.input) && isVotsFile(a.input);
     std::optional<fit::Volume> volume;
     std::optional<fit::VotSpace> space;
     if (inputIsVots) {
         space = fit::readVotSpaceFile(a.input);
         if (!a.volume.empty()) {
-            checkVolumeFitsBudget(a.volume, c.raw, a.memoryBudget, a.series);
-            volume = fit::loadVolume(a.volume, c.raw, fit::SampleStorage::Float, a.series);
+            volume = loadRenderVolume(a.volume, a, c);
         } else if (c.raw) {
             throw fit::InputError("--raw-* describe a volume; a .vots input has one only with --volume");
         }
@@ -55,8 +69,7 @@ void runRender(const RenderArgs& a) {
         if (!a.volume.empty())
             throw fit::InputError("--volume is only for .vots input; INPUT is already a volume");
         // The fit's estimate also for the grid renderer: it covers the samples, their texture and the read.
-        checkVolumeFitsBudget(a.input, c.raw, a.memoryBudget, a.series);
-        volume = fit::loadVolume(a.input, c.raw, fit::SampleStorage::Float, a.series);
+        volume = loadRenderVolume(a.input, a, c);
         if (c.frame.renderer != render::RendererKind::Grid)
             space = fitForRender(*volume, volume->valueRange(), a, c).space;
     }
@@ -90,6 +103,9 @@ void runRender(const RenderArgs& a) {
 
 void runRenderCommand(const RenderArgs& a) {
     const dist::MpiWorld& world = dist::MpiWorld::get();
+    if (world.distributed() && (pacs::isDicomWebUrl(a.input) || pacs::isDicomWebUrl(a.volume)))
+        throw fit::InputError("a dicomweb+http(s):// input is read by one process: render it without mpirun, "
+                              "or retrieve it into a folder first");
     if (world.distributed())
         runRenderOnRanks(world, a);
     else
@@ -101,9 +117,10 @@ void runRenderCommand(const RenderArgs& a) {
 void addRenderCommand(CLI::App& app) {
     auto args = std::make_shared<RenderArgs>();
     CLI::App* cmd = app.add_subcommand("render", "Render a Vot-Space or volume as MIP (or density) to a PNG");
-    cmd->add_option("INPUT", args->input,
-                    "A .vots file, or a volume file, DICOM folder or raw file with --raw-* (fitted first at "
-                    "--eps for mip/density)")
+    cmd->add_option(
+           "INPUT", args->input,
+           "A .vots file, or a volume file, DICOM folder, PACS series (dicomweb+http(s)://...) or raw file "
+           "with --raw-* (fitted first at --eps for mip/density)")
         ->required();
     cmd->add_option("-o,--output", args->output,
                     "PNG file to write (replaced atomically); with --turntable: frames/%03d.png or turn.webm")
@@ -142,6 +159,7 @@ void addRenderCommand(CLI::App& app) {
     addMemoryBudgetOption(*cmd, args->memoryBudget);
     addSeriesOption(*cmd, args->series);
     addRawOptions(*cmd, args->raw);
+    addDicomWebOptions(*cmd, args->dicomWeb);
     cmd->callback([args] { runRenderCommand(*args); });
 }
 
