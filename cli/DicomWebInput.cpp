@@ -14,9 +14,10 @@ void addDicomWebOptions(CLI::App& command, DicomWebOptions& options) {
     command.add_option("--dicomweb-auth", options.authFile,
                        "For a dicomweb+http(s):// input: a file whose one line is 'basic USER:PASSWORD' or "
                        "'bearer TOKEN' (credentials never go in the URL)");
-    command.add_option("--dicomweb-ca", options.caFile,
-                       "For a dicomweb+https:// input: PEM certificates to verify the server with (default: the "
-                       "system's)");
+    command.add_option(
+        "--dicomweb-ca", options.caFile,
+        "For a dicomweb+https:// input: PEM certificates to verify the server with (default: the "
+        "system's)");
 }
 
 pacs::DicomWebAccess dicomWebAccessOf(const DicomWebOptions& options) {
@@ -49,7 +50,8 @@ void VolumeInput::rethrowNamingTheUrl(const std::exception& e) const {
     const auto* input = dynamic_cast<const fit::InputError*>(&e);
     if (!input || !mRetrieved) return;
     std::string text = input->what();
-    for (std::size_t at = text.find(mPath); at != std::string::npos; at = text.find(mPath, at + mNamed.size()))
+    for (std::size_t at = text.find(mPath); at != std::string::npos;
+         at = text.find(mPath, at + mNamed.size()))
         text.replace(at, mPath.size(), mNamed);
     throw fit::InputError(text);
 }

@@ -24,7 +24,8 @@ DicomWebAuth readDicomWebAuthFile(const std::string& path) {
     in.read(text.data(), static_cast<std::streamsize>(text.size()));
     text.resize(static_cast<std::size_t>(in.gcount()));
     if (text.size() > MAX_AUTH_FILE_BYTES) refuse(path, "longer than one line of credentials");
-    while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
+    while (!text.empty() && (text.back() == '\n' || text.back() == '\r'))
+        text.pop_back();
     if (text.find_first_of("\r\n") != std::string::npos)
         refuse(path, "must hold one line: 'basic USER:PASSWORD' or 'bearer TOKEN'");
     const std::size_t space = text.find(' ');

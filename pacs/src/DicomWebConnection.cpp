@@ -27,13 +27,15 @@ DicomWebConnection::DicomWebConnection(const DicomWebEndpoint& endpoint, const D
         mClient->enable_server_certificate_verification(true);
         if (!access.caFile.empty()) mClient->set_ca_cert_path(access.caFile);
     }
-    if (access.auth.kind == DicomWebAuth::Kind::Basic) mClient->set_basic_auth(access.auth.user, access.auth.secret);
+    if (access.auth.kind == DicomWebAuth::Kind::Basic)
+        mClient->set_basic_auth(access.auth.user, access.auth.secret);
     if (access.auth.kind == DicomWebAuth::Kind::Bearer) mClient->set_bearer_token_auth(access.auth.secret);
 }
 
 std::string DicomWebConnection::statusProblem(int status, const std::string& what) const {
     const std::string code = " (HTTP " + std::to_string(status) + ")";
-    if (status == 401) return name() + ": the PACS refused the credentials for " + what + code + "; check --dicomweb-auth";
+    if (status == 401)
+        return name() + ": the PACS refused the credentials for " + what + code + "; check --dicomweb-auth";
     if (status == 403) return name() + ": the PACS forbids " + what + " to these credentials" + code;
     if (status == 404) return name() + ": " + what + " not found" + code;
     return name() + ": the PACS answered " + what + " with an error" + code;
@@ -49,8 +51,10 @@ std::string DicomWebConnection::transportProblem(httplib::Error error, const std
     case httplib::Error::SSLServerVerification:
         return name() + ": the TLS connection for " + what + " failed (" + httplib::to_string(error) +
                "); check the certificate or --dicomweb-ca";
-    case httplib::Error::Read: return name() + ": the connection broke while reading " + what;
-    default: return name() + ": " + what + " failed (" + httplib::to_string(error) + ")";
+    case httplib::Error::Read:
+        return name() + ": the connection broke while reading " + what;
+    default:
+        return name() + ": " + what + " failed (" + httplib::to_string(error) + ")";
     }
 }
 
@@ -70,7 +74,8 @@ nlohmann::json DicomWebConnection::getJson(const std::string& resource, const st
             return true;
         });
     if (body.size() >= MAX_JSON_BYTES)
-        throw fit::InputError(name() + ": " + what + " is larger than " + std::to_string(MAX_JSON_BYTES >> 20) + " MB");
+        throw fit::InputError(name() + ": " + what + " is larger than " +
+                              std::to_string(MAX_JSON_BYTES >> 20) + " MB");
     if (!result) throw fit::InputError(transportProblem(result.error(), what));
     if (status == 204 || (status == 200 && body.empty())) return nlohmann::json::array();
     if (status != 200) throw fit::InputError(statusProblem(status, what));
@@ -104,8 +109,8 @@ int DicomWebConnection::getStream(const std::string& resource, const std::string
 
 httplib::Result DicomWebConnection::post(const std::string& resource, const std::string& contentType,
                                          std::size_t length, httplib::ContentProvider provide) {
-    return mClient->Post(mEndpoint.root + resource, httplib::Headers{{"Accept", "application/dicom+json"}}, length,
-                         std::move(provide), contentType);
+    return mClient->Post(mEndpoint.root + resource, httplib::Headers{{"Accept", "application/dicom+json"}},
+                         length, std::move(provide), contentType);
 }
 
 } // namespace vots::pacs

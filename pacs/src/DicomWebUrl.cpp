@@ -15,9 +15,9 @@ constexpr std::size_t MAX_URL_LENGTH = 4096;
 constexpr std::size_t MAX_UID_LENGTH = 64; // DICOM's UI value representation
 
 bool startsWith(const std::string& text, const std::string& prefix) {
-    return text.size() >= prefix.size() && std::equal(prefix.begin(), prefix.end(), text.begin(), [](char p, char t) {
-               return std::tolower(static_cast<unsigned char>(t)) == p;
-           });
+    return text.size() >= prefix.size() &&
+           std::equal(prefix.begin(), prefix.end(), text.begin(),
+                      [](char p, char t) { return std::tolower(static_cast<unsigned char>(t)) == p; });
 }
 
 [[noreturn]] void refuse(const std::string& problem) {
@@ -56,12 +56,14 @@ DicomWebEndpoint parseAuthority(const std::string& url, std::string& path) {
         refuse("it must start with dicomweb+http:// or dicomweb+https://");
     }
     const std::size_t slash = url.find('/', start);
-    const std::string authority = url.substr(start, slash == std::string::npos ? std::string::npos : slash - start);
+    const std::string authority =
+        url.substr(start, slash == std::string::npos ? std::string::npos : slash - start);
     path = slash == std::string::npos ? std::string() : url.substr(slash);
     // Not echoed: whatever precedes '@' may be a password.
     if (authority.find('@') != std::string::npos)
         refuse("credentials in the URL are not accepted; put them in a --dicomweb-auth file");
-    if (path.find_first_of("?#") != std::string::npos) refuse("a query or fragment is not part of a series URL");
+    if (path.find_first_of("?#") != std::string::npos)
+        refuse("a query or fragment is not part of a series URL");
     std::string portText;
     if (!authority.empty() && authority.front() == '[') {
         const std::size_t close = authority.find(']');
@@ -88,7 +90,8 @@ DicomWebEndpoint parseAuthority(const std::string& url, std::string& path) {
 }
 
 std::string withoutTrailingSlashes(std::string path) {
-    while (!path.empty() && path.back() == '/') path.pop_back();
+    while (!path.empty() && path.back() == '/')
+        path.pop_back();
     return path;
 }
 
@@ -129,7 +132,8 @@ DicomWebSeries parseDicomWebSeriesUrl(const std::string& url) {
     s.studyUid = path.substr(studyStart, series - studyStart);
     s.seriesUid = path.substr(series + std::string("/series/").size());
     if (!isUid(s.studyUid)) refuse("the study UID '" + s.studyUid + "' is not a DICOM UID (digits and dots)");
-    if (!isUid(s.seriesUid)) refuse("the series UID '" + s.seriesUid + "' is not a DICOM UID (digits and dots)");
+    if (!isUid(s.seriesUid))
+        refuse("the series UID '" + s.seriesUid + "' is not a DICOM UID (digits and dots)");
     return s;
 }
 

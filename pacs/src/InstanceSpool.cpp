@@ -35,7 +35,9 @@ std::vector<std::string> InstanceSpool::completedFiles() const {
     return mCompleted;
 }
 
-SpoolStream::~SpoolStream() { discardOpenPart(); }
+SpoolStream::~SpoolStream() {
+    discardOpenPart();
+}
 
 bool SpoolStream::begin(const std::string& contentType) {
     try {
@@ -85,7 +87,8 @@ void SpoolStream::openPart(const PartHeaders& headers) {
     // A part without Content-Type is taken as what was asked for (application/dicom).
     const auto type = headers.find("content-type");
     if (type != headers.end() && type->second.rfind("application/dicom", 0) != 0)
-        throw fit::InputError("a part of the answer is '" + type->second.substr(0, 100) + "', not application/dicom");
+        throw fit::InputError("a part of the answer is '" + type->second.substr(0, 100) +
+                              "', not application/dicom");
     mPath = mSpool.newFilePath();
     mFile = std::fopen(mPath.c_str(), "wb");
     if (!mFile) throw fit::InputError("cannot write the spool file " + mPath + ": " + std::strerror(errno));
@@ -99,7 +102,8 @@ void SpoolStream::writePart(const char* data, std::size_t size) {
 void SpoolStream::closePart() {
     const int closed = std::fclose(mFile);
     mFile = nullptr;
-    if (closed != 0) throw fit::InputError("cannot write the spool file " + mPath + ": " + std::strerror(errno));
+    if (closed != 0)
+        throw fit::InputError("cannot write the spool file " + mPath + ": " + std::strerror(errno));
     mSpool.completed(mPath);
     mPath.clear();
 }

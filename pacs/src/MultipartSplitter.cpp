@@ -37,14 +37,16 @@ std::string multipartBoundary(const std::string& contentType) {
     std::size_t at = lower.find(';');
     while (at != std::string::npos) {
         const std::size_t next = lower.find(';', at + 1);
-        const std::string parameter = trimmed(contentType.substr(at + 1, next == std::string::npos ? next : next - at - 1));
+        const std::string parameter =
+            trimmed(contentType.substr(at + 1, next == std::string::npos ? next : next - at - 1));
         const std::size_t equals = parameter.find('=');
         if (equals != std::string::npos && lowerCase(trimmed(parameter.substr(0, equals))) == "boundary") {
             std::string value = trimmed(parameter.substr(equals + 1));
-            if (value.size() >= 2 && value.front() == '"' && value.back() == '"') value = value.substr(1, value.size() - 2);
+            if (value.size() >= 2 && value.front() == '"' && value.back() == '"')
+                value = value.substr(1, value.size() - 2);
             if (value.empty() || value.size() > MAX_BOUNDARY_LENGTH)
-                throw fit::InputError("the multipart boundary must be 1.." + std::to_string(MAX_BOUNDARY_LENGTH) +
-                                      " characters");
+                throw fit::InputError("the multipart boundary must be 1.." +
+                                      std::to_string(MAX_BOUNDARY_LENGTH) + " characters");
             return value;
         }
         at = next;
@@ -69,20 +71,32 @@ void MultipartSplitter::feed(const char* data, std::size_t size) {
 
 void MultipartSplitter::finish() {
     if (mState != State::Epilogue)
-        throw fit::InputError("the multipart body ended before its closing boundary (the stream was cut) after " +
-                              std::to_string(mPartsCompleted) + " complete parts");
+        throw fit::InputError(
+            "the multipart body ended before its closing boundary (the stream was cut) after " +
+            std::to_string(mPartsCompleted) + " complete parts");
 }
 
 void MultipartSplitter::step() {
     bool progressed = true;
     while (progressed && mState != State::Epilogue) {
         switch (mState) {
-        case State::Preamble: progressed = skipToFirstDelimiter(); break;
-        case State::AfterDelimiter: progressed = readAfterDelimiter(); break;
-        case State::Padding: progressed = readPadding(); break;
-        case State::Headers: progressed = readHeaders(); break;
-        case State::Data: progressed = readData(); break;
-        case State::Epilogue: break;
+        case State::Preamble:
+            progressed = skipToFirstDelimiter();
+            break;
+        case State::AfterDelimiter:
+            progressed = readAfterDelimiter();
+            break;
+        case State::Padding:
+            progressed = readPadding();
+            break;
+        case State::Headers:
+            progressed = readHeaders();
+            break;
+        case State::Data:
+            progressed = readData();
+            break;
+        case State::Epilogue:
+            break;
         }
     }
     if (mState == State::Epilogue) mPending.clear();
@@ -114,12 +128,15 @@ bool MultipartSplitter::readAfterDelimiter() {
 
 bool MultipartSplitter::readPadding() {
     std::size_t at = 0;
-    while (at < mPending.size() && (mPending[at] == ' ' || mPending[at] == '\t')) ++at;
+    while (at < mPending.size() && (mPending[at] == ' ' || mPending[at] == '\t'))
+        ++at;
     mPaddingBytes += at;
     mPending.erase(0, at);
-    if (mPaddingBytes > MAX_PADDING_BYTES) malformed("more than " + std::to_string(MAX_PADDING_BYTES) + " bytes of padding after a boundary");
+    if (mPaddingBytes > MAX_PADDING_BYTES)
+        malformed("more than " + std::to_string(MAX_PADDING_BYTES) + " bytes of padding after a boundary");
     if (mPending.size() < 2) return false;
-    if (mPending.compare(0, 2, "\r\n") != 0) malformed("a boundary line is followed by other text than a line end");
+    if (mPending.compare(0, 2, "\r\n") != 0)
+        malformed("a boundary line is followed by other text than a line end");
     mPending.erase(0, 2);
     mState = State::Headers;
     return true;

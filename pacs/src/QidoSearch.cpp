@@ -14,7 +14,8 @@ namespace vots::pacs {
 namespace {
 
 bool isDate(const std::string& text) {
-    return text.size() == 8 && std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+    return text.size() == 8 &&
+           std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
 }
 
 void addParameter(std::string& query, const std::string& key, const std::string& value) {
@@ -42,11 +43,13 @@ std::vector<StudySummary> searchStudies(const DicomWebEndpoint& endpoint, const 
     addParameter(query, "ModalitiesInStudy", q.modality);
     addParameter(query, "AccessionNumber", q.accessionNumber);
     addParameter(query, "limit", std::to_string(q.limit));
-    for (const char* field : {"00081030", "00201206", "00201208", "00080061"}) addParameter(query, "includefield", field);
+    for (const char* field : {"00081030", "00201206", "00201208", "00080061"})
+        addParameter(query, "includefield", field);
 
     DicomWebConnection connection(endpoint, access);
     const nlohmann::json answer = connection.getJson("/studies" + query, "the study search");
-    if (!answer.is_array()) throw fit::InputError(connection.name() + ": the study search did not answer a list");
+    if (!answer.is_array())
+        throw fit::InputError(connection.name() + ": the study search did not answer a list");
     std::vector<StudySummary> studies;
     for (const nlohmann::json& d : answer) {
         StudySummary s;
@@ -67,12 +70,15 @@ std::vector<StudySummary> searchStudies(const DicomWebEndpoint& endpoint, const 
 std::vector<SeriesSummary> searchSeries(const DicomWebEndpoint& endpoint, const DicomWebAccess& access,
                                         const std::string& studyUid) {
     if (studyUid.empty() || studyUid.size() > 64 ||
-        !std::all_of(studyUid.begin(), studyUid.end(), [](char c) { return c == '.' || (c >= '0' && c <= '9'); }))
-        throw fit::InputError("the study UID '" + studyUid.substr(0, 80) + "' is not a DICOM UID (digits and dots)");
+        !std::all_of(studyUid.begin(), studyUid.end(),
+                     [](char c) { return c == '.' || (c >= '0' && c <= '9'); }))
+        throw fit::InputError("the study UID '" + studyUid.substr(0, 80) +
+                              "' is not a DICOM UID (digits and dots)");
     DicomWebConnection connection(endpoint, access);
     const nlohmann::json answer = connection.getJson(
         "/studies/" + studyUid + "/series?includefield=0008103E&includefield=00201209", "the series search");
-    if (!answer.is_array()) throw fit::InputError(connection.name() + ": the series search did not answer a list");
+    if (!answer.is_array())
+        throw fit::InputError(connection.name() + ": the series search did not answer a list");
     std::vector<SeriesSummary> series;
     for (const nlohmann::json& d : answer) {
         SeriesSummary s;
@@ -83,8 +89,9 @@ std::vector<SeriesSummary> searchSeries(const DicomWebEndpoint& endpoint, const 
         s.instanceCount = countOf(d, "00201209");
         if (!s.seriesUid.empty()) series.push_back(std::move(s));
     }
-    std::stable_sort(series.begin(), series.end(),
-                     [](const SeriesSummary& a, const SeriesSummary& b) { return a.seriesNumber < b.seriesNumber; });
+    std::stable_sort(series.begin(), series.end(), [](const SeriesSummary& a, const SeriesSummary& b) {
+        return a.seriesNumber < b.seriesNumber;
+    });
     return series;
 }
 

@@ -11,7 +11,8 @@ namespace vots::pacs {
 class DicomWebConnection;
 
 /// The multipart type every retrieve asks for: the stored transfer syntax, so nothing is transcoded.
-inline constexpr const char* DICOM_MULTIPART_ACCEPT = "multipart/related; type=\"application/dicom\"; transfer-syntax=*";
+inline constexpr const char* DICOM_MULTIPART_ACCEPT =
+    "multipart/related; type=\"application/dicom\"; transfer-syntax=*";
 
 /// "/studies/STUDY/series/SERIES".
 inline std::string seriesResource(const DicomWebSeries& s) {

@@ -43,14 +43,16 @@ std::string sopInstanceUidOf(const std::string& path) {
     const gdcm::ByteValue* value = dataset.GetDataElement(sopTag).GetByteValue();
     if (!value) return {};
     std::string uid(value->GetPointer(), value->GetLength());
-    while (!uid.empty() && (uid.back() == '\0' || uid.back() == ' ')) uid.pop_back();
+    while (!uid.empty() && (uid.back() == '\0' || uid.back() == ' '))
+        uid.pop_back();
     return uid;
 }
 
 /// The instances the spool lacks, in the series' order.
 std::vector<std::string> missingInstances(const SeriesAnnouncement& announced, const InstanceSpool& spool) {
     std::set<std::string> received;
-    for (const std::string& path : spool.completedFiles()) received.insert(sopInstanceUidOf(path));
+    for (const std::string& path : spool.completedFiles())
+        received.insert(sopInstanceUidOf(path));
     std::vector<std::string> missing;
     for (const std::string& sop : announced.sopInstanceUids)
         if (!received.count(sop)) missing.push_back(sop);
@@ -85,8 +87,10 @@ std::string retrieveEach(const DicomWebSeries& series, const DicomWebAccess& acc
     };
     const int threads = std::clamp(inFlight, 1, std::max(1, static_cast<int>(missing.size())));
     std::vector<std::thread> pool;
-    for (int t = 0; t < threads; ++t) pool.emplace_back(worker);
-    for (std::thread& t : pool) t.join();
+    for (int t = 0; t < threads; ++t)
+        pool.emplace_back(worker);
+    for (std::thread& t : pool)
+        t.join();
     return failure;
 }
 
@@ -115,8 +119,8 @@ RetrievedSeries retrieveSeries(const DicomWebSeries& series, const DicomWebAcces
     }
     retrieved.instanceCount = spool.completedCount();
     if (retrieved.instanceCount < announced.instanceCount)
-        throw fit::InputError(name + ": received " + std::to_string(retrieved.instanceCount) + " of the series' " +
-                              std::to_string(announced.instanceCount) + " instances");
+        throw fit::InputError(name + ": received " + std::to_string(retrieved.instanceCount) +
+                              " of the series' " + std::to_string(announced.instanceCount) + " instances");
     return retrieved;
 }
 

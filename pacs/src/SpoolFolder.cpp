@@ -21,13 +21,18 @@ SpoolFolder::SpoolFolder(const std::string& parent) {
     std::vector<char> buffer(pattern.begin(), pattern.end());
     buffer.push_back('\0');
     if (!::mkdtemp(buffer.data()))
-        throw fit::InputError("cannot make a spool folder for the retrieve in '" + base + "': " + std::strerror(errno));
+        throw fit::InputError("cannot make a spool folder for the retrieve in '" + base +
+                              "': " + std::strerror(errno));
     mPath = buffer.data();
 }
 
-SpoolFolder::~SpoolFolder() { remove(); }
+SpoolFolder::~SpoolFolder() {
+    remove();
+}
 
-SpoolFolder::SpoolFolder(SpoolFolder&& other) noexcept : mPath(std::move(other.mPath)) { other.mPath.clear(); }
+SpoolFolder::SpoolFolder(SpoolFolder&& other) noexcept : mPath(std::move(other.mPath)) {
+    other.mPath.clear();
+}
 
 SpoolFolder& SpoolFolder::operator=(SpoolFolder&& other) noexcept {
     if (this != &other) {

@@ -18,7 +18,8 @@ std::string newBoundary() {
     std::mt19937_64 random(device());
     static const char digits[] = "0123456789abcdef";
     std::string boundary = "vots-stow-";
-    for (int i = 0; i < 32; ++i) boundary += digits[random() % 16];
+    for (int i = 0; i < 32; ++i)
+        boundary += digits[random() % 16];
     return boundary;
 }
 
@@ -92,14 +93,15 @@ StoreReport storeInstances(const DicomWebEndpoint& endpoint, const DicomWebAcces
     DicomWebConnection connection(endpoint, access);
     const httplib::Result result = connection.post(
         "/studies", "multipart/related; type=\"application/dicom\"; boundary=" + boundary, length, provide);
-    if (!readProblem.empty()) throw fit::InputError("cannot store on " + connection.name() + ": " + readProblem);
+    if (!readProblem.empty())
+        throw fit::InputError("cannot store on " + connection.name() + ": " + readProblem);
     if (!result) throw fit::InputError(connection.transportProblem(result.error(), "the store"));
     const nlohmann::json answer = nlohmann::json::parse(result->body, nullptr, false);
     int failedCount = 0;
     const std::string failure = answer.is_discarded() ? std::string() : failureOf(answer, failedCount);
     if (!failure.empty())
-        throw fit::InputError(connection.name() + ": the PACS refused " + std::to_string(failedCount) + " of " +
-                              std::to_string(files.size()) + " instances; " + failure);
+        throw fit::InputError(connection.name() + ": the PACS refused " + std::to_string(failedCount) +
+                              " of " + std::to_string(files.size()) + " instances; " + failure);
     if (result->status != 200) throw fit::InputError(connection.statusProblem(result->status, "the store"));
     StoreReport report;
     if (answer.is_object() && answer.contains("00081199") && answer["00081199"].contains("Value"))

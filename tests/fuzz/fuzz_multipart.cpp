@@ -17,9 +17,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const std::size_t length = size - 2;
     std::size_t partBytes = 0, begun = 0, ended = 0;
     try {
-        vots::pacs::MultipartSplitter splitter(
-            boundary, {[&](const vots::pacs::PartHeaders&) { ++begun; },
-                       [&](const char*, std::size_t n) { partBytes += n; }, [&] { ++ended; }});
+        vots::pacs::MultipartSplitter splitter(boundary, {[&](const vots::pacs::PartHeaders&) { ++begun; },
+                                                          [&](const char*, std::size_t n) { partBytes += n; },
+                                                          [&] { ++ended; }});
         for (std::size_t at = 0; at < length; at += chunk)
             splitter.feed(body + at, std::min(chunk, length - at));
         splitter.finish();

@@ -64,6 +64,7 @@ run_one() {
     mkdir -p "$fuzz/artifacts/$target"
     local maxlen=4096
     [[ $target == fuzz_nrrd || $target == fuzz_votspace_reader ]] && maxlen=131072
+    [[ $target == fuzz_multipart ]] && maxlen=65536 # past the 16 KB bound on part headers
     nice -n 10 "$bin" -runs="$runs" -max_total_time="$seconds" -max_len="$maxlen" -rss_limit_mb=2048 \
         -timeout=30 -print_final_stats=1 -artifact_prefix="$fuzz/artifacts/$target/" \
         "$fuzz/corpus/$target" "tests/fuzz/seeds/$target" >"$fuzz/logs/$target.log" 2>&1 || true

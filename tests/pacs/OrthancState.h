@@ -16,19 +16,22 @@ namespace vots::test {
 /// The fixture's folder (VOTS_ORTHANC_STATE): a missing one fails the test, never skips it.
 inline std::string orthancState() {
     const char* state = std::getenv("VOTS_ORTHANC_STATE");
-    if (!state || !*state) throw std::runtime_error("VOTS_ORTHANC_STATE is not set (run the tests through ctest)");
+    if (!state || !*state)
+        throw std::runtime_error("VOTS_ORTHANC_STATE is not set (run the tests through ctest)");
     return state;
 }
 
 inline std::string orthancStateFile(const std::string& name) {
     std::ifstream in(orthancState() + "/" + name);
     std::string value;
-    if (!(in >> value)) throw std::runtime_error("no " + name + " in the Orthanc fixture's state (did it start?)");
+    if (!(in >> value))
+        throw std::runtime_error("no " + name + " in the Orthanc fixture's state (did it start?)");
     return value;
 }
 
 inline pacs::DicomWebEndpoint orthancEndpoint() {
-    return pacs::parseDicomWebEndpoint("dicomweb+http://127.0.0.1:" + orthancStateFile("port") + "/dicom-web");
+    return pacs::parseDicomWebEndpoint("dicomweb+http://127.0.0.1:" + orthancStateFile("port") +
+                                       "/dicom-web");
 }
 
 inline pacs::DicomWebAccess orthancAccess() {

@@ -6,6 +6,7 @@ One request per connection (it asks Orthanc to close), then one of these faults:
   --refuse-series    answer 503 to a series-level retrieve (GET .../series/UID), pass everything else
   --garble           break the part headers of multipart answers ("Content-Type application/dicom")
   (none)             pass everything unchanged
+  --tls CERT KEY     serve HTTPS with this certificate (Debian's Orthanc 1.10 crashes on its own TLS)
 Usage: fault_proxy.py --target PORT --port-file FILE [--log FILE] [fault]   (writes its port to FILE once
 listening; --log gets each request line, with REFUSED or CUT when the fault struck it)
 """
@@ -14,6 +15,7 @@ import os
 import re
 import socket
 import socketserver
+import ssl
 import threading
 
 SERIES_RETRIEVE = re.compile(rb"^GET [^ ]*/studies/[0-9.]+/series/[0-9.]+ HTTP/1\.[01]$")
@@ -89,8 +91,13 @@ def main():
     parser.add_argument("--refuse-series", action="store_true")
     parser.add_argument("--garble", action="store_true")
     parser.add_argument("--log")
+    parser.add_argument("--tls", nargs=2, metavar=("CERT", "KEY"))
     options = parser.parse_args()
     server = Server(("127.0.0.1", 0), Handler)
+    if options.tls:
+        context = ssl.SSLContext(ssl.PROTOCOL_TLS_SERVER)
+        context.load_cert_chain(*options.tls)
+        server.socket = context.wrap_socket(server.socket, server_side=True)
     server.options = options
     server.log_file = options.log
     with open(options.port_file + ".tmp", "w") as f:

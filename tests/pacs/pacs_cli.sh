@@ -138,6 +138,20 @@ MalformedBody)
     expect_refused "malformed multipart body" "$work/o.vots" fit "$(url "$proxy_port" $ramp_series)" \
         --dicomweb-auth "$auth" -o "$work/o.vots" --eps 1%
     ;;
+HttpsVerifiesTheCertificate)
+    # HTTPS with a self-signed certificate for 127.0.0.1 (the proxy terminates TLS in front of Orthanc):
+    # refused unless --dicomweb-ca trusts it.
+    openssl req -x509 -newkey rsa:2048 -nodes -days 2 -subj /CN=127.0.0.1 -addext subjectAltName=IP:127.0.0.1 \
+        -keyout "$work/key.pem" -out "$work/cert.pem" 2>/dev/null || fail "openssl could not make a certificate"
+    start_proxy --tls "$work/cert.pem" "$work/key.pem"
+    tls_url=dicomweb+https://127.0.0.1:$proxy_port/dicom-web/studies/$ramp_series.0/series/$ramp_series
+    expect_refused "TLS" "$work/o.png" render "$tls_url" --dicomweb-auth "$auth" -o "$work/o.png"
+    "$vots" render "$tls_url" --dicomweb-auth "$auth" --dicomweb-ca "$work/cert.pem" -o "$work/pacs.png" --size 64x64 ||
+        fail "render over HTTPS with --dicomweb-ca"
+    "$vots" render "$state/series/ramp" -o "$work/folder.png" --size 64x64 || fail "render from the folder"
+    cmp "$work/pacs.png" "$work/folder.png" || fail "the PNGs differ"
+    no_spool_left
+    ;;
 *)
     fail "unknown case"
     ;;

@@ -40,11 +40,12 @@ TEST(DicomWebUrl, ParsesEndpointsWithDefaultPortsAndRoots) {
 }
 
 TEST(DicomWebUrl, RefusesMalformedUrls) {
-    for (const char* url : {"http://h:1/studies/1/series/2", "dicomweb+http://:80/studies/1/series/2",
-                            "dicomweb+http://h:0/studies/1/series/2", "dicomweb+http://h:99999/studies/1/series/2",
-                            "dicomweb+http://h:1/dicom-web", "dicomweb+http://h:1/studies/1.2/series/",
-                            "dicomweb+http://h:1/studies/1.2/series/3.x", "dicomweb+http://h:1/studies/1/series/2?x=1",
-                            "dicomweb+http://h%20x:1/studies/1/series/2"})
+    for (const char* url :
+         {"http://h:1/studies/1/series/2", "dicomweb+http://:80/studies/1/series/2",
+          "dicomweb+http://h:0/studies/1/series/2", "dicomweb+http://h:99999/studies/1/series/2",
+          "dicomweb+http://h:1/dicom-web", "dicomweb+http://h:1/studies/1.2/series/",
+          "dicomweb+http://h:1/studies/1.2/series/3.x", "dicomweb+http://h:1/studies/1/series/2?x=1",
+          "dicomweb+http://h%20x:1/studies/1/series/2"})
         EXPECT_THROW(parseDicomWebSeriesUrl(url), vots::fit::InputError) << url;
 }
 
@@ -76,8 +77,8 @@ TEST(DicomWebAuth, ReadsBasicAndBearerLines) {
 
 TEST(DicomWebAuth, RefusesMalformedFilesWithoutQuotingThem) {
     vots::test::TempDir dir;
-    for (const std::string text : {"basic s3cretpw\n", "token s3cretpw", "bearer s3cret pw", "basic a:s3cretpw\nmore\n",
-                                   "basic :s3cretpw"}) {
+    for (const std::string text : {"basic s3cretpw\n", "token s3cretpw", "bearer s3cret pw",
+                                   "basic a:s3cretpw\nmore\n", "basic :s3cretpw"}) {
         try {
             readDicomWebAuthFile(writeFile(dir.file("auth"), text));
             FAIL() << "accepted: " << text;

@@ -44,8 +44,9 @@ const std::string B = "abc123";
 
 TEST(MultipartSplitter, SplitsPartsWithTheirHeadersAndBytes) {
     const std::string one(1000, '\x01'), two = "DICM\r\n--abc12\r\n--ab"; // data that resembles a delimiter
-    const Collected c = split(B, part(B, one) + part(B, two, "Content-Type: application/dicom\r\nX-Extra:  v \r\n") +
-                                     "--" + B + "--\r\n");
+    const Collected c =
+        split(B, part(B, one) + part(B, two, "Content-Type: application/dicom\r\nX-Extra:  v \r\n") + "--" +
+                     B + "--\r\n");
     ASSERT_EQ(c.ended, 2);
     EXPECT_EQ(c.bodies[0], one);
     EXPECT_EQ(c.bodies[1], two);
@@ -55,7 +56,8 @@ TEST(MultipartSplitter, SplitsPartsWithTheirHeadersAndBytes) {
 
 TEST(MultipartSplitter, GivesTheSamePartsForEveryChunkSize) {
     std::string data;
-    for (int i = 0; i < 3000; ++i) data += static_cast<char>(i * 7 % 256);
+    for (int i = 0; i < 3000; ++i)
+        data += static_cast<char>(i * 7 % 256);
     const std::string body = part(B, data) + part(B, data.substr(17)) + "--" + B + "--";
     for (std::size_t chunk : {1u, 2u, 3u, 5u, 7u, 8u, 9u, 64u, 1000u}) {
         const Collected c = split(B, body, chunk);
@@ -66,13 +68,15 @@ TEST(MultipartSplitter, GivesTheSamePartsForEveryChunkSize) {
 }
 
 TEST(MultipartSplitter, SkipsThePreambleAndTheEpilogue) {
-    const Collected c = split(B, "This is a preamble.\r\n" + part(B, "x") + "--" + B + "--\r\nepilogue --" + B + "\r\n", 3);
+    const Collected c =
+        split(B, "This is a preamble.\r\n" + part(B, "x") + "--" + B + "--\r\nepilogue --" + B + "\r\n", 3);
     ASSERT_EQ(c.ended, 1);
     EXPECT_EQ(c.bodies[0], "x");
 }
 
 TEST(MultipartSplitter, AcceptsTransportPaddingAfterABoundary) {
-    const Collected c = split(B, "--" + B + " \t \r\nContent-Type: application/dicom\r\n\r\nxy\r\n--" + B + "--", 2);
+    const Collected c =
+        split(B, "--" + B + " \t \r\nContent-Type: application/dicom\r\n\r\nxy\r\n--" + B + "--", 2);
     ASSERT_EQ(c.ended, 1);
     EXPECT_EQ(c.bodies[0], "xy");
 }
@@ -85,7 +89,7 @@ TEST(MultipartSplitter, HandsOnAPartWithoutContentType) {
 }
 
 TEST(MultipartSplitter, ACutStreamIsAnError) {
-    EXPECT_THROW(split(B, part(B, "data")), vots::fit::InputError);           // no closing delimiter
+    EXPECT_THROW(split(B, part(B, "data")), vots::fit::InputError);             // no closing delimiter
     EXPECT_THROW(split(B, part(B, "da").substr(0, 20)), vots::fit::InputError); // cut inside a part
     EXPECT_THROW(split(B, ""), vots::fit::InputError);                          // nothing at all
     EXPECT_THROW(split(B, "just text"), vots::fit::InputError);                 // no delimiter ever
@@ -110,7 +114,8 @@ TEST(MultipartSplitter, ReadsTheBoundaryOfAContentType) {
     EXPECT_EQ(multipartBoundary("Multipart/Related;boundary=\"a b\""), "a b");
     EXPECT_THROW(multipartBoundary("application/dicom"), vots::fit::InputError);
     EXPECT_THROW(multipartBoundary("multipart/related; type=\"application/dicom\""), vots::fit::InputError);
-    EXPECT_THROW(multipartBoundary("multipart/related; boundary=" + std::string(71, 'x')), vots::fit::InputError);
+    EXPECT_THROW(multipartBoundary("multipart/related; boundary=" + std::string(71, 'x')),
+                 vots::fit::InputError);
 }
 
 } // namespace

@@ -14,7 +14,8 @@ using namespace vots::pacs;
 using namespace vots::test;
 
 const StudySummary* findStudy(const std::vector<StudySummary>& studies, const std::string& uid) {
-    const auto it = std::find_if(studies.begin(), studies.end(), [&](const StudySummary& s) { return s.studyUid == uid; });
+    const auto it = std::find_if(studies.begin(), studies.end(),
+                                 [&](const StudySummary& s) { return s.studyUid == uid; });
     return it == studies.end() ? nullptr : &*it;
 }
 

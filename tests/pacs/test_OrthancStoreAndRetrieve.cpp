@@ -22,20 +22,22 @@ namespace fs = std::filesystem;
 
 std::vector<std::string> filesOf(const std::string& folder) {
     std::vector<std::string> files;
-    for (const auto& entry : fs::directory_iterator(folder)) files.push_back(entry.path().string());
+    for (const auto& entry : fs::directory_iterator(folder))
+        files.push_back(entry.path().string());
     std::sort(files.begin(), files.end());
     return files;
 }
 
 TEST(OrthancStoreAndRetrieve, StoredSeriesComesBackSampleForSample) {
     TempDir dir;
-    const vots::fit::Volume volume =
-        sampleVolume({20, 16, 12}, [](int x, int y, int z) { return x * 3 + y * 5 - z * 7; }, {0.7, 0.7, 1.5});
+    const vots::fit::Volume volume = sampleVolume(
+        {20, 16, 12}, [](int x, int y, int z) { return x * 3 + y * 5 - z * 7; }, {0.7, 0.7, 1.5});
     DicomWriteOptions options;
     options.seriesUid = "1.2.826.0.1.3680043.10.1234.301";
     options.description = "stored by STOW";
     writeDicomSeries(volume, dir.file("series"), options);
-    const StoreReport report = storeInstances(orthancEndpoint(), orthancAccess(), filesOf(dir.file("series")));
+    const StoreReport report =
+        storeInstances(orthancEndpoint(), orthancAccess(), filesOf(dir.file("series")));
     EXPECT_EQ(report.stored, 12);
 
     const auto series = searchSeries(orthancEndpoint(), orthancAccess(), options.seriesUid + ".0");
@@ -51,7 +53,8 @@ TEST(OrthancStoreAndRetrieve, StoredSeriesComesBackSampleForSample) {
     std::array<std::uint64_t, 3> admitted{};
     retrieve.admit = [&](const vots::fit::VolumeHeaderInfo& header) { admitted = header.dims; };
     {
-        const RetrievedSeries retrieved = retrieveSeries(orthancSeries(options.seriesUid), orthancAccess(), retrieve);
+        const RetrievedSeries retrieved =
+            retrieveSeries(orthancSeries(options.seriesUid), orthancAccess(), retrieve);
         EXPECT_FALSE(retrieved.perInstance) << retrieved.seriesProblem;
         EXPECT_EQ(retrieved.instanceCount, 12);
         const vots::fit::Volume back = vots::fit::loadDicomSeries(retrieved.folder());
@@ -63,7 +66,8 @@ TEST(OrthancStoreAndRetrieve, StoredSeriesComesBackSampleForSample) {
     EXPECT_TRUE(fs::is_empty(dir.file("spool"))) << "the spool folder outlived the retrieved series";
     EXPECT_EQ(admitted, (std::array<std::uint64_t, 3>{20, 16, 12}));
     ASSERT_EQ(progress.size(), 12u);
-    for (int i = 0; i < 12; ++i) EXPECT_EQ(progress[static_cast<std::size_t>(i)], std::make_pair(i + 1, 12));
+    for (int i = 0; i < 12; ++i)
+        EXPECT_EQ(progress[static_cast<std::size_t>(i)], std::make_pair(i + 1, 12));
 }
 
 TEST(OrthancStoreAndRetrieve, ARefusedInstanceIsOneClearLine) {
@@ -88,7 +92,8 @@ TEST(OrthancStoreAndRetrieve, RefusalBeforeThePixelsLeavesNoSpool) {
         EXPECT_EQ(header.dims, (std::array<std::uint64_t, 3>{256, 256, 108}));
         throw vots::fit::InputError("too big for this test");
     };
-    EXPECT_THROW(retrieveSeries(orthancSeries(CRANIUM_SERIES), orthancAccess(), retrieve), vots::fit::InputError);
+    EXPECT_THROW(retrieveSeries(orthancSeries(CRANIUM_SERIES), orthancAccess(), retrieve),
+                 vots::fit::InputError);
     EXPECT_TRUE(fs::is_empty(dir.path()));
 }
 
@@ -101,7 +106,8 @@ TEST(OrthancStoreAndRetrieve, ACancelledRetrieveThrowsAndLeavesNoSpool) {
     retrieve.progress = [&](int received, int) {
         if (received == 10) cancel = true;
     };
-    EXPECT_THROW(retrieveSeries(orthancSeries(CRANIUM_SERIES), orthancAccess(), retrieve), vots::fit::InputError);
+    EXPECT_THROW(retrieveSeries(orthancSeries(CRANIUM_SERIES), orthancAccess(), retrieve),
+                 vots::fit::InputError);
     EXPECT_TRUE(fs::is_empty(dir.path()));
 }
 

@@ -43,7 +43,7 @@ public:
     const std::string& folder() const { return mFolder.path(); }
 
     int instanceCount = 0;
-    bool perInstance = false;   // the series request failed and the instances came one by one
+    bool perInstance = false;  // the series request failed and the instances came one by one
     std::string seriesProblem; // why the series request failed (empty when it did not)
 
 private:
