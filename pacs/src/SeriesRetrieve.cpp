@@ -5,6 +5,7 @@
 #include "InstanceSpool.h"
 #include "SeriesResources.h"
 
+#include "vots/fit/DicomSeries.h"
 #include "vots/fit/Error.h"
 
 #include <gdcmReader.h>
@@ -121,6 +122,14 @@ RetrievedSeries retrieveSeries(const DicomWebSeries& series, const DicomWebAcces
     if (retrieved.instanceCount < announced.instanceCount)
         throw fit::InputError(name + ": received " + std::to_string(retrieved.instanceCount) +
                               " of the series' " + std::to_string(announced.instanceCount) + " instances");
+    // Abbreviated metadata cannot tell images from other instances; the reader would skip the others.
+    int images = 0;
+    for (const fit::DicomSeriesSummary& found : fit::listDicomSeries(retrieved.folder()))
+        images += found.sliceCount;
+    if (images != retrieved.instanceCount)
+        throw fit::InputError(name + ": " + std::to_string(retrieved.instanceCount - images) +
+                              " of the series' " + std::to_string(retrieved.instanceCount) +
+                              " instances are not an image; a volume needs images only");
     return retrieved;
 }
 

@@ -100,6 +100,13 @@ MixedSizes)
     expect_refused "mixed image sizes" "$work/o.vots" fit "$(url "$port" $mixed_series)" --dicomweb-auth "$auth" \
         -o "$work/o.vots" --eps 1%
     ;;
+NotImages)
+    # A series of one report, then a report among the images of a series.
+    expect_refused "is not an image" "$work/o.vots" fit "$(url "$port" 1.2.826.0.1.3680043.10.1234.204)" \
+        --dicomweb-auth "$auth" -o "$work/o.vots" --eps 1%
+    expect_refused "not an image" "$work/o.vots" fit "$(url "$port" 1.2.826.0.1.3680043.10.1234.205)" \
+        --dicomweb-auth "$auth" -o "$work/o.vots" --eps 1%
+    ;;
 MemoryBudget)
     expect_refused "memory budget" "$work/o.vots" fit "$(url "$port" $cranium_series)" --dicomweb-auth "$auth" \
         -o "$work/o.vots" --eps 1% --memory-budget 1M

@@ -25,4 +25,17 @@ for file in "$series"/*/*; do
     curl -fsS -u "vots:$(cat "$state/password")" -X POST --data-binary "@$file" \
         -H 'Content-Type: application/dicom' "http://127.0.0.1:$port/instances" -o /dev/null
 done
+# Instances that are not images (a structured report made by Orthanc itself): a series of one, and one
+# beside the images of a ramp.
+"$tool" "$series/with-report" --synthetic ramp --dims 32,24,20 --spacing 0.8,0.8,1.25 \
+    --series-uid 1.2.826.0.1.3680043.10.1234.205 --description with-report
+for file in "$series/with-report"/*; do
+    curl -fsS -u "vots:$(cat "$state/password")" -X POST --data-binary "@$file" \
+        -H 'Content-Type: application/dicom' "http://127.0.0.1:$port/instances" -o /dev/null
+done
+for uid in 1.2.826.0.1.3680043.10.1234.204 1.2.826.0.1.3680043.10.1234.205; do
+    curl -fsS -u "vots:$(cat "$state/password")" -X POST "http://127.0.0.1:$port/tools/create-dicom" -o /dev/null \
+        -d '{"Force": true, "Tags": {"PatientName": "Vots^Phantom", "PatientID": "", "StudyInstanceUID": "'$uid'.0", "SeriesInstanceUID": "'$uid'",
+             "SOPClassUID": "1.2.840.10008.5.1.4.1.1.88.11", "Modality": "SR"}}'
+done
 echo "pacs_setup: Orthanc on 127.0.0.1:$port holds $(find "$series" -type f | wc -l) instances"
