@@ -61,6 +61,7 @@ std::string DicomWebConnection::transportProblem(httplib::Error error, const std
 nlohmann::json DicomWebConnection::getJson(const std::string& resource, const std::string& what) {
     std::string body;
     int status = 0;
+    bool tooLarge = false;
     const httplib::Headers headers{{"Accept", "application/dicom+json, application/json"}};
     const httplib::Result result = mClient->Get(
         mEndpoint.root + resource, headers,
@@ -69,11 +70,12 @@ nlohmann::json DicomWebConnection::getJson(const std::string& resource, const st
             return true;
         },
         [&](const char* data, std::size_t size) {
-            if (body.size() + size > MAX_JSON_BYTES) return false;
+            tooLarge = body.size() + size > MAX_JSON_BYTES;
+            if (tooLarge) return false;
             body.append(data, size);
             return true;
         });
-    if (body.size() >= MAX_JSON_BYTES)
+    if (tooLarge)
         throw fit::InputError(name() + ": " + what + " is larger than " +
                               std::to_string(MAX_JSON_BYTES >> 20) + " MB");
     if (!result) throw fit::InputError(transportProblem(result.error(), what));

@@ -52,6 +52,21 @@ TEST(OrthancSearch, FiltersStudiesByModalityAndDate) {
     EXPECT_EQ(searchStudies(orthancEndpoint(), orthancAccess(), limited).size(), 1u);
 }
 
+TEST(OrthancSearch, FiltersStudiesByPatientAndAccession) {
+    StudyQuery phantom;
+    phantom.patientName = "Vots*"; // the writer's patient, Vots^Phantom, by a wildcard
+    const auto found = searchStudies(orthancEndpoint(), orthancAccess(), phantom);
+    ASSERT_GE(found.size(), 3u);
+    for (const StudySummary& s : found)
+        EXPECT_EQ(s.patientName, "Vots^Phantom");
+    StudyQuery nobody;
+    nobody.patientName = "Nobody*";
+    EXPECT_TRUE(searchStudies(orthancEndpoint(), orthancAccess(), nobody).empty());
+    StudyQuery accession;
+    accession.accessionNumber = "NO-SUCH-ACCESSION";
+    EXPECT_TRUE(searchStudies(orthancEndpoint(), orthancAccess(), accession).empty());
+}
+
 TEST(OrthancSearch, ListsTheSeriesOfAStudy) {
     const std::vector<SeriesSummary> series =
         searchSeries(orthancEndpoint(), orthancAccess(), std::string(CRANIUM_SERIES) + ".0");
