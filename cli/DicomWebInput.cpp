@@ -33,6 +33,7 @@ VolumeInput::VolumeInput(const std::string& input, const DicomWebOptions& option
     if (!pacs::isDicomWebUrl(input)) return;
     const pacs::DicomWebSeries series = pacs::parseDicomWebSeriesUrl(input);
     mNamed = series.describe();
+    mVolumeName = series.seriesUid;
     ProgressLine line(progress);
     pacs::SeriesRetrieveOptions retrieve;
     retrieve.admit = admit;

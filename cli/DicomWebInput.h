@@ -39,6 +39,9 @@ public:
     /// The input as the user named it (the URL for a PACS series).
     const std::string& named() const { return mNamed; }
     bool fromPacs() const { return mRetrieved != nullptr; }
+    /// The name a loaded volume should carry: a PACS series' SeriesInstanceUID (not its spool folder's
+    /// name); empty for other inputs, whose readers name them.
+    const std::string& volumeName() const { return mVolumeName; }
 
     /// Runs `read` with the spool folder's name in its fit::InputError replaced by the series URL.
     template <typename Read> auto reading(Read&& read) const {
@@ -54,6 +57,7 @@ private:
     void rethrowNamingTheUrl(const std::exception& e) const;
 
     std::string mNamed;
+    std::string mVolumeName;
     std::string mPath;
     std::unique_ptr<pacs::RetrievedSeries> mRetrieved;
 };

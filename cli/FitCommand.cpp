@@ -176,7 +176,9 @@ void runFit(const FitArgs& a) {
     const fit::Volume volume = input.reading([&] {
         checkVolumeFitsBudget(input.path(), checked.raw, a.memoryBudget, a.series,
                               fit::SampleStorage::Source);
-        return fit::loadVolume(input.path(), checked.raw, fit::SampleStorage::Source, a.series);
+        fit::Volume loaded = fit::loadVolume(input.path(), checked.raw, fit::SampleStorage::Source, a.series);
+        if (input.fromPacs()) loaded.name = input.volumeName();
+        return loaded;
     });
     const auto range = volume.valueRange();
     fit::FitOptions options = fitOptionsFor(a, checked, range);
