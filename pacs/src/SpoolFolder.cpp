@@ -43,6 +43,16 @@ SpoolFolder& SpoolFolder::operator=(SpoolFolder&& other) noexcept {
     return *this;
 }
 
+void SpoolFolder::keepAs(const std::string& destination) {
+    std::error_code ec;
+    if (std::filesystem::exists(destination, ec))
+        throw fit::InputError("cannot keep the retrieved series as '" + destination + "': it exists");
+    std::filesystem::rename(mPath, destination, ec);
+    if (ec)
+        throw fit::InputError("cannot keep the retrieved series as '" + destination + "': " + ec.message());
+    mPath.clear();
+}
+
 void SpoolFolder::remove() noexcept {
     if (mPath.empty()) return;
     std::error_code ignored;

@@ -41,6 +41,8 @@ class RetrievedSeries {
 public:
     explicit RetrievedSeries(SpoolFolder folder) : mFolder(std::move(folder)) {}
     const std::string& folder() const { return mFolder.path(); }
+    /// Keeps the instances as the folder `destination` instead of removing them (SpoolFolder::keepAs).
+    void keepAs(const std::string& destination) { mFolder.keepAs(destination); }
 
     int instanceCount = 0;
     bool perInstance = false;  // the series request failed and the instances came one by one

@@ -19,6 +19,10 @@ public:
 
     const std::string& path() const { return mPath; }
 
+    /// Renames the folder to `destination` (same file system; it must not exist) and gives it up: it is
+    /// no longer removed. For a cache that keeps retrieved series. Throws fit::InputError when it cannot.
+    void keepAs(const std::string& destination);
+
 private:
     void remove() noexcept;
 
