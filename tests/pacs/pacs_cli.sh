@@ -65,6 +65,13 @@ RenderMatchesFolder)
             fail "render from the folder"
         cmp "$work/pacs-$view.png" "$work/folder-$view.png" || fail "the $view PNGs differ"
     done
+    # The volume of a .vots input (--volume) from the PACS too.
+    "$vots" fit "$state/series/ramp" -o "$work/ramp.vots" --eps 2% >/dev/null || fail "fit of the ramp folder"
+    "$vots" render "$work/ramp.vots" --volume "$(url "$port" $ramp_series)" --dicomweb-auth "$auth" --renderer grid \
+        -o "$work/pacs-grid.png" --size 64x64 || fail "render --volume from the PACS"
+    "$vots" render "$work/ramp.vots" --volume "$state/series/ramp" --renderer grid -o "$work/folder-grid.png" \
+        --size 64x64 || fail "render --volume from the folder"
+    cmp "$work/pacs-grid.png" "$work/folder-grid.png" || fail "the --volume PNGs differ"
     no_spool_left
     ;;
 FitAndVerify)
