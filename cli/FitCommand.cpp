@@ -243,8 +243,11 @@ void runFitOnRanks(const dist::MpiWorld& world, const FitArgs& a) {
 void runFitCommand(const FitArgs& a) {
     const dist::MpiWorld& world = dist::MpiWorld::get();
     if (world.launched() && pacs::isDicomWebUrl(a.input))
-        throw fit::InputError("a dicomweb+http(s):// input is read by one process: fit it without mpirun, or "
-                              "retrieve it into a folder first");
+        world.allOrNone([] { // one message, from rank 0
+            throw fit::InputError(
+                "a dicomweb+http(s):// input is read by one process: fit it without mpirun, or "
+                "retrieve it into a folder first");
+        });
     if (world.launched())
         runFitOnRanks(world, a);
     else

@@ -104,8 +104,11 @@ void runRender(const RenderArgs& a) {
 void runRenderCommand(const RenderArgs& a) {
     const dist::MpiWorld& world = dist::MpiWorld::get();
     if (world.distributed() && (pacs::isDicomWebUrl(a.input) || pacs::isDicomWebUrl(a.volume)))
-        throw fit::InputError("a dicomweb+http(s):// input is read by one process: render it without mpirun, "
-                              "or retrieve it into a folder first");
+        world.allOrNone([] { // one message, from rank 0
+            throw fit::InputError(
+                "a dicomweb+http(s):// input is read by one process: render it without mpirun, "
+                "or retrieve it into a folder first");
+        });
     if (world.distributed())
         runRenderOnRanks(world, a);
     else
