@@ -8,7 +8,44 @@
 
 #include <CLI/CLI.hpp>
 
+#include <atomic>
+#include <csignal>
+
 namespace vots::cli {
+namespace {
+
+std::atomic<bool> gInterrupted{false}; // lock-free, so the signal handler may set it
+
+void interruptRetrieve(int) {
+    gInterrupted.store(true);
+}
+
+/// While it lives, SIGINT and SIGTERM cancel the retrieve, which then removes its spool folder and fails
+/// with one line, instead of killing the process with the folder left behind; a second signal kills as
+/// usual (SA_RESETHAND).
+class InterruptCancelsRetrieve {
+public:
+    InterruptCancelsRetrieve() {
+        struct sigaction action {};
+        action.sa_handler = interruptRetrieve;
+        sigemptyset(&action.sa_mask);
+        action.sa_flags = SA_RESETHAND;
+        sigaction(SIGINT, &action, &mOldInterrupt);
+        sigaction(SIGTERM, &action, &mOldTerminate);
+    }
+    ~InterruptCancelsRetrieve() {
+        sigaction(SIGINT, &mOldInterrupt, nullptr);
+        sigaction(SIGTERM, &mOldTerminate, nullptr);
+    }
+    InterruptCancelsRetrieve(const InterruptCancelsRetrieve&) = delete;
+    InterruptCancelsRetrieve& operator=(const InterruptCancelsRetrieve&) = delete;
+
+private:
+    struct sigaction mOldInterrupt {};
+    struct sigaction mOldTerminate {};
+};
+
+} // namespace
 
 void addDicomWebOptions(CLI::App& command, DicomWebOptions& options) {
     command.add_option("--dicomweb-auth", options.authFile,
@@ -37,6 +74,8 @@ VolumeInput::VolumeInput(const std::string& input, const DicomWebOptions& option
     ProgressLine line(progress);
     pacs::SeriesRetrieveOptions retrieve;
     retrieve.admit = admit;
+    const InterruptCancelsRetrieve interruptCancels;
+    retrieve.cancel = &gInterrupted;
     if (progress)
         retrieve.progress = [&line](int received, int total) {
             line.update(total > 0 ? static_cast<double>(received) / total : 1.0, "retrieve");

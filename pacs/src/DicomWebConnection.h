@@ -35,6 +35,9 @@ public:
     httplib::Result post(const std::string& resource, const std::string& contentType, std::size_t length,
                          httplib::ContentProvider provide);
 
+    /// Ends the request in flight from another thread (its socket is shut down): a stalled answer too.
+    void stop() { mClient->stop(); }
+
     /// "dicomweb+http://HOST:PORT/ROOT".
     std::string name() const { return mEndpoint.describe(); }
 

@@ -1,6 +1,7 @@
 // A series from a DICOMweb service into a spool folder: one streamed series request, per-instance fallback.
 #include "vots/pacs/SeriesRetrieve.h"
 
+#include "CancelWatch.h"
 #include "DicomWebConnection.h"
 #include "InstanceSpool.h"
 #include "SeriesResources.h"
@@ -62,7 +63,8 @@ std::vector<std::string> missingInstances(const SeriesAnnouncement& announced, c
 
 /// Fetches `missing` one request each, `inFlight` at a time; empty, or the first failure.
 std::string retrieveEach(const DicomWebSeries& series, const DicomWebAccess& access,
-                         const std::vector<std::string>& missing, InstanceSpool& spool, int inFlight) {
+                         const std::vector<std::string>& missing, InstanceSpool& spool, int inFlight,
+                         CancelWatch& watch) {
     std::atomic<std::size_t> next{0};
     std::mutex failureMutex;
     std::string failure;
@@ -73,6 +75,7 @@ std::string retrieveEach(const DicomWebSeries& series, const DicomWebAccess& acc
     const auto worker = [&] {
         try {
             DicomWebConnection connection(series.endpoint, access);
+            const WatchedConnection watched(watch, connection);
             for (std::size_t i = next++; i < missing.size() && !failed(); i = next++) {
                 const std::string problem =
                     retrieveInto(connection, seriesResource(series) + "/instances/" + missing[i], spool);
@@ -106,13 +109,18 @@ RetrievedSeries retrieveSeries(const DicomWebSeries& series, const DicomWebAcces
     RetrievedSeries retrieved{SpoolFolder(options.spoolParent)};
     InstanceSpool spool(retrieved.folder(), announced.instanceCount, options.progress, options.cancel);
     const std::string name = series.describe();
-    retrieved.seriesProblem = retrieveInto(connection, seriesResource(series), spool);
+    CancelWatch watch(options.cancel);
+    {
+        const WatchedConnection watched(watch, connection);
+        retrieved.seriesProblem = retrieveInto(connection, seriesResource(series), spool);
+    }
     if (spool.cancelled()) throw fit::InputError(name + ": the retrieve was cancelled");
     if (!retrieved.seriesProblem.empty() || spool.completedCount() < announced.instanceCount) {
         if (retrieved.seriesProblem.empty()) retrieved.seriesProblem = "the answer lacked instances";
         retrieved.perInstance = true;
         const std::vector<std::string> missing = missingInstances(announced, spool);
-        const std::string problem = retrieveEach(series, access, missing, spool, options.instancesInFlight);
+        const std::string problem =
+            retrieveEach(series, access, missing, spool, options.instancesInFlight, watch);
         if (spool.cancelled()) throw fit::InputError(name + ": the retrieve was cancelled");
         if (!problem.empty())
             throw fit::InputError(name + ": the series retrieve failed (" + retrieved.seriesProblem +

@@ -4,6 +4,7 @@
 One request per connection (it asks Orthanc to close), then one of these faults:
   --cut N            drop the connection after N bytes of a multipart answer (a retrieve)
   --refuse-series    answer 503 to a series-level retrieve (GET .../series/UID), pass everything else
+  --stall N          send N bytes of a multipart answer, then nothing more until the client hangs up
   --garble           break the part headers of multipart answers ("Content-Type application/dicom")
   (none)             pass everything unchanged
   --tls CERT KEY     serve HTTPS with this certificate (Debian's Orthanc 1.10 crashes on its own TLS)
@@ -58,6 +59,11 @@ class Handler(socketserver.BaseRequestHandler):
                     multipart = b"multipart/" in head.lower()
                     # This connection ends with the answer, whatever Orthanc offers.
                     chunk = re.sub(rb"(?im)^connection: *keep-alive", b"Connection: close", head) + chunk[len(head):]
+                if options.stall is not None and multipart and sent + len(chunk) >= options.stall:
+                    self.request.sendall(chunk[: options.stall - sent])
+                    self.server.log(lines[0], "STALLED")
+                    self.request.recv(1)  # returns when the client hangs up
+                    return
                 if options.garble and multipart:
                     chunk = chunk.replace(b"Content-Type: application/dicom", b"Content-Type application/dicom")
                 if options.cut is not None and multipart and sent + len(chunk) >= options.cut:
@@ -90,6 +96,7 @@ def main():
     parser.add_argument("--cut", type=int)
     parser.add_argument("--refuse-series", action="store_true")
     parser.add_argument("--garble", action="store_true")
+    parser.add_argument("--stall", type=int)
     parser.add_argument("--log")
     parser.add_argument("--tls", nargs=2, metavar=("CERT", "KEY"))
     options = parser.parse_args()

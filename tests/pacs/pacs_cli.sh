@@ -166,6 +166,28 @@ MalformedBody)
     expect_refused "malformed multipart body" "$work/o.vots" fit "$(url "$proxy_port" $ramp_series)" \
         --dicomweb-auth "$auth" -o "$work/o.vots" --eps 1%
     ;;
+InterruptRemovesTheSpool)
+    # The answer stalls after 1 MB; once instances are in the spool, SIGINT ends vots with one line, exit 2
+    # and no spool folder.
+    start_proxy --stall 1000000
+    "$vots" fit "$(url "$proxy_port" $cranium_series)" --dicomweb-auth "$auth" -o "$work/o.vots" --eps 1% \
+        >"$work/out" 2>"$work/err" &
+    vots_pid=$!
+    for _ in $(seq 600); do
+        [[ -n $(find "$spool" -name 'instance-*' 2>/dev/null) ]] && break
+        sleep 0.1
+    done
+    [[ -n $(find "$spool" -name 'instance-*') ]] || fail "no instance reached the spool"
+    kill -INT "$vots_pid"
+    wait "$vots_pid"
+    rc=$?
+    [[ $rc == 2 ]] || fail "exit $rc after SIGINT (expected 2): $(cat "$work/err")"
+    grep -q "cancelled" "$work/err" || fail "no 'cancelled' in: $(cat "$work/err")"
+    [[ $(wc -l <"$work/err") == 1 ]] || fail "not one line: $(cat "$work/err")"
+    [[ -e $work/o.vots ]] && fail "o.vots was written"
+    no_spool_left
+    echo "interrupted as expected: $(cat "$work/err")"
+    ;;
 HttpsVerifiesTheCertificate)
     # HTTPS with a self-signed certificate for 127.0.0.1 (the proxy terminates TLS in front of Orthanc):
     # refused unless --dicomweb-ca trusts it.
