@@ -37,7 +37,8 @@ void CancelWatch::watch() {
         // A flag set from a signal handler cannot notify: poll it.
         mWake.wait_for(lock, std::chrono::milliseconds(50));
         if (!mDone && mCancel->load())
-            for (DicomWebConnection* connection : mConnections) connection->stop();
+            for (DicomWebConnection* connection : mConnections)
+                connection->stop();
     }
 }
 

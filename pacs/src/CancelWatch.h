@@ -37,7 +37,8 @@ private:
 /// Registers a connection with a watch for one scope.
 class WatchedConnection {
 public:
-    WatchedConnection(CancelWatch& watch, DicomWebConnection& connection) : mWatch(watch), mConnection(connection) {
+    WatchedConnection(CancelWatch& watch, DicomWebConnection& connection)
+        : mWatch(watch), mConnection(connection) {
         mWatch.add(mConnection);
     }
     ~WatchedConnection() { mWatch.remove(mConnection); }

@@ -111,8 +111,11 @@ RetrievedSeries retrieveSeries(const DicomWebSeries& series, const DicomWebAcces
     const std::string name = series.describe();
     CancelWatch watch(options.cancel);
     {
-        const WatchedConnection watched(watch, connection);
-        retrieved.seriesProblem = retrieveInto(connection, seriesResource(series), spool);
+        // A connection of its own: the admission may take longer than a PACS keeps an idle one open
+        // (Orthanc: 1 s).
+        DicomWebConnection pixels(series.endpoint, access);
+        const WatchedConnection watched(watch, pixels);
+        retrieved.seriesProblem = retrieveInto(pixels, seriesResource(series), spool);
     }
     if (spool.cancelled()) throw fit::InputError(name + ": the retrieve was cancelled");
     if (!retrieved.seriesProblem.empty() || spool.completedCount() < announced.instanceCount) {

@@ -12,7 +12,9 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
+#include <thread>
 
 namespace {
 
@@ -51,7 +53,11 @@ TEST(OrthancStoreAndRetrieve, StoredSeriesComesBackSampleForSample) {
     retrieve.spoolParent = dir.file("spool");
     retrieve.progress = [&](int received, int total) { progress.emplace_back(received, total); };
     std::array<std::uint64_t, 3> admitted{};
-    retrieve.admit = [&](const vots::fit::VolumeHeaderInfo& header) { admitted = header.dims; };
+    retrieve.admit = [&](const vots::fit::VolumeHeaderInfo& header) {
+        admitted = header.dims;
+        // Longer than Orthanc keeps an idle connection (1 s): the series request must not depend on it.
+        std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+    };
     {
         const RetrievedSeries retrieved =
             retrieveSeries(orthancSeries(options.seriesUid), orthancAccess(), retrieve);
