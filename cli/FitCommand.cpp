@@ -1,6 +1,7 @@
 // `vots fit`: volume -> Vot-Space file, arguments checked before loading; under mpirun, z cells per rank.
 #include "Args.h"
 #include "Commands.h"
+#include "DicomWebInput.h"
 #include "MemoryBudgetOption.h"
 #include "ProgressLine.h"
 #include "RawOptions.h"
@@ -16,6 +17,7 @@
 #include "vots/fit/VolumeLoad.h"
 #include "vots/fit/VotSpaceFile.h"
 #include "vots/meta/FitMeta.h"
+#include "vots/pacs/DicomWebUrl.h"
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -47,6 +49,7 @@ struct FitArgs {
     std::string memoryBudget; // empty: the default
     RawArgs raw;
     std::string series; // DICOM SeriesInstanceUID; empty: the folder's only series
+    DicomWebOptions dicomWeb;
 };
 
 /// What can be checked without the volume; the rest is in validateFitOptions.
@@ -91,7 +94,7 @@ void checkOutput(const FitArgs& a) {
         throw fit::InputError("cannot write '" + a.output + "': folder '" + dir.string() +
                               "' is not writable");
     if (fs::is_directory(out, ec)) throw fit::InputError("cannot write '" + a.output + "': it is a folder");
-    if (fs::exists(a.input, ec) && fs::equivalent(a.input, out, ec))
+    if (!pacs::isDicomWebUrl(a.input) && fs::exists(a.input, ec) && fs::equivalent(a.input, out, ec))
         throw fit::InputError("the output '" + a.output + "' is the input file");
 }
 
@@ -130,13 +133,14 @@ std::string metaOfRanks(const std::string& meta, std::array<float, 2> range, int
 
 /// The meta block of the fit of `volume` (whose grid is enough) whose Vots' largest error is `maxError`.
 /// `ranks`: under mpirun, the meta block records them and the whole volume's value range `range`.
-std::string fitMetaFor(const FitArgs& a, const fit::Volume& volume, const fit::FitOptions& options,
-                       const fit::FitResult& result, double maxError, std::optional<int> ranks,
-                       std::array<float, 2> range) {
+std::string fitMetaFor(const FitArgs& a, const std::string& source, const fit::Volume& volume,
+                       const fit::FitOptions& options, const fit::FitResult& result, double maxError,
+                       std::optional<int> ranks, std::array<float, 2> range) {
     meta::FitProvenance record;
     std::error_code ec;
-    const fs::path absolute = fs::absolute(a.input, ec);
-    record.sourcePath = ec ? a.input : absolute.lexically_normal().string();
+    const fs::path absolute = fs::absolute(source, ec);
+    // A PACS series is named by its URL, which never holds credentials.
+    record.sourcePath = pacs::isDicomWebUrl(source) || ec ? source : absolute.lexically_normal().string();
     record.volume = &volume;
     record.epsText = a.eps;
     record.options = options;
@@ -162,10 +166,20 @@ void reportFit(const FitArgs& a, const fit::Volume& volume, const fit::FitOption
 void runFit(const FitArgs& a) {
     const CheckedArgs checked = checkArgs(a);
     checkOutput(a);
-    checkVolumeFitsBudget(a.input, checked.raw, a.memoryBudget, a.series, fit::SampleStorage::Source);
-
+    const VolumeInput input(
+        a.input, a.dicomWeb,
+        [&a](const fit::VolumeHeaderInfo& header) {
+            checkHeaderFitsBudget(a.input, header, a.memoryBudget, fit::SampleStorage::Source);
+        },
+        a.progress);
     // Source-typed samples: an int16 CT takes half the memory of floats, and fits to the same Vots.
-    const fit::Volume volume = fit::loadVolume(a.input, checked.raw, fit::SampleStorage::Source, a.series);
+    const fit::Volume volume = input.reading([&] {
+        checkVolumeFitsBudget(input.path(), checked.raw, a.memoryBudget, a.series,
+                              fit::SampleStorage::Source);
+        fit::Volume loaded = fit::loadVolume(input.path(), checked.raw, fit::SampleStorage::Source, a.series);
+        if (input.fromPacs()) loaded.name = input.volumeName();
+        return loaded;
+    });
     const auto range = volume.valueRange();
     fit::FitOptions options = fitOptionsFor(a, checked, range);
     fit::validateFitOptions(volume, options);
@@ -176,7 +190,8 @@ void runFit(const FitArgs& a) {
     fit::FitResult result = fit::fitVotSpace(volume, options);
     progress.finish();
     const double maxError = fit::maxStoredError(result.space);
-    result.space.metaJson = fitMetaFor(a, volume, options, result, maxError, std::nullopt, range);
+    result.space.metaJson =
+        fitMetaFor(a, input.named(), volume, options, result, maxError, std::nullopt, range);
     fit::writeVotSpaceFile(a.output, result.space);
     reportFit(a, volume, options, result, result.space.vots.size(), maxError, std::nullopt);
 }
@@ -218,7 +233,8 @@ void runFitOnRanks(const dist::MpiWorld& world, const FitArgs& a) {
     const double maxError = world.maxOverRanks(fit::maxStoredError(result.space));
     world.allOrNone([&] {
         if (world.rank() == 0)
-            result.space.metaJson = fitMetaFor(a, read.whole, options, result, maxError, world.size(), range);
+            result.space.metaJson =
+                fitMetaFor(a, a.input, read.whole, options, result, maxError, world.size(), range);
     });
     dist::writeVotSpaceOnRanks(world, a.output, result.space);
     if (world.rank() == 0) reportFit(a, read.whole, options, result, count, maxError, world.size());
@@ -226,6 +242,12 @@ void runFitOnRanks(const dist::MpiWorld& world, const FitArgs& a) {
 
 void runFitCommand(const FitArgs& a) {
     const dist::MpiWorld& world = dist::MpiWorld::get();
+    if (world.launched() && pacs::isDicomWebUrl(a.input))
+        world.allOrNone([] { // one message, from rank 0
+            throw fit::InputError(
+                "a dicomweb+http(s):// input is read by one process: fit it without mpirun, or "
+                "retrieve it into a folder first");
+        });
     if (world.launched())
         runFitOnRanks(world, a);
     else
@@ -237,9 +259,10 @@ void runFitCommand(const FitArgs& a) {
 void addFitCommand(CLI::App& app) {
     auto args = std::make_shared<FitArgs>();
     CLI::App* cmd = app.add_subcommand("fit", "Fit a Vot-Space to a volume and write it to a .vots file");
-    cmd->add_option("INPUT", args->input,
-                    "Volume file: .nrrd/.nhdr, .nii/.nii.gz, .mhd/.mha, a folder of DICOM files, or raw with "
-                    "--raw-*")
+    cmd->add_option(
+           "INPUT", args->input,
+           "Volume file: .nrrd/.nhdr, .nii/.nii.gz, .mhd/.mha, a folder of DICOM files, a series on a PACS "
+           "(dicomweb+http(s)://HOST:PORT/ROOT/studies/STUDY/series/SERIES), or raw with --raw-*")
         ->required();
     cmd->add_option("-o,--output", args->output, "Vot-Space file to write (replaced atomically)")->required();
     cmd->add_option("--eps", args->eps,
@@ -267,6 +290,7 @@ void addFitCommand(CLI::App& app) {
     addMemoryBudgetOption(*cmd, args->memoryBudget);
     addRawOptions(*cmd, args->raw);
     addSeriesOption(*cmd, args->series);
+    addDicomWebOptions(*cmd, args->dicomWeb);
     cmd->callback([args] { runFitCommand(*args); });
 }
 

@@ -40,18 +40,18 @@ std::string budgetRefusal(const std::string& path, const fit::VolumeHeaderInfo& 
            "); give a larger --memory-budget or use a smaller volume";
 }
 
-void checkFitsBudget(const std::string& path, const fit::VolumeHeaderInfo& header,
-                     const std::string& budgetText, fit::SampleStorage storage) {
-    const std::string refusal = budgetRefusal(path, header, budgetText, storage);
+} // namespace
+
+void checkHeaderFitsBudget(const std::string& name, const fit::VolumeHeaderInfo& header,
+                           const std::string& budgetText, fit::SampleStorage storage) {
+    const std::string refusal = budgetRefusal(name, header, budgetText, storage);
     if (!refusal.empty()) throw fit::InputError(refusal);
 }
-
-} // namespace
 
 void checkVolumeFitsBudget(const std::string& path, const std::optional<fit::RawLayout>& raw,
                            const std::string& budgetText, const std::string& dicomSeries,
                            fit::SampleStorage storage) {
-    checkFitsBudget(path, fit::volumeHeaderInfo(path, raw, dicomSeries), budgetText, storage);
+    checkHeaderFitsBudget(path, fit::volumeHeaderInfo(path, raw, dicomSeries), budgetText, storage);
 }
 
 std::string planesBudgetRefusal(const std::string& path, const std::optional<fit::RawLayout>& raw,

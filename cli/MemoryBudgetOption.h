@@ -1,6 +1,7 @@
 // The --memory-budget option of `fit`, `render` and `serve`, and the check a load makes against it.
 #pragma once
 
+#include "vots/fit/VolumeHeader.h"
 #include "vots/fit/VolumeLoad.h"
 
 #include <cstdint>
@@ -19,6 +20,13 @@ void addMemoryBudgetOption(CLI::App& command, std::string& text);
 /// The budget in bytes: the option's value, or fit::defaultMemoryBudget() when it is empty.
 /// Throws InputError for a malformed size.
 std::uint64_t resolveMemoryBudget(const std::string& text);
+
+/// Throws one-line InputError (exit 2) when loading a volume of this announced `header` (named `name` in
+/// the message) with `storage` and fitting it would need more than the budget leaves; for inputs whose
+/// header comes from elsewhere than a file (a PACS series' metadata).
+void checkHeaderFitsBudget(const std::string& name, const fit::VolumeHeaderInfo& header,
+                           const std::string& budgetText,
+                           fit::SampleStorage storage = fit::SampleStorage::Float);
 
 /// Reads only the volume's header and throws one-line InputError (exit 2) when loading it with
 /// `storage` and fitting it would need more than the budget leaves after what this process holds:

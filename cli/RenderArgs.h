@@ -2,6 +2,7 @@
 #pragma once
 
 #include "Args.h"
+#include "DicomWebInput.h"
 #include "RawOptions.h"
 #include "SlabSweepOutput.h"
 #include "TurntableOutput.h"
@@ -43,6 +44,7 @@ struct RenderArgs {
     std::optional<int> turntable; // frames of a turn about the vertical axis; nullopt: one frame
     std::optional<double> elevation; // the turn's elevation; nullopt: the camera's
     bool times = false;              // print the frame's render and composite milliseconds on stderr
+    DicomWebOptions dicomWeb;        // credentials for a dicomweb+http(s):// INPUT or --volume
 };
 
 struct CheckedArgs {

@@ -2,6 +2,7 @@
 // process or (RenderOnRanks.cpp) across the ranks of mpirun.
 #include "Args.h"
 #include "Commands.h"
+#include "DicomWebInput.h"
 #include "MemoryBudgetOption.h"
 #include "RawOptions.h"
 #include "RenderArgs.h"
@@ -18,6 +19,7 @@
 #include "vots/fit/VolumeLoad.h"
 #include "vots/fit/VotSpaceFile.h"
 #include "vots/meta/VotSpaceRead.h"
+#include "vots/pacs/DicomWebUrl.h"
 #include "vots/render/DisplayPass.h"
 #include "vots/render/EglContext.h"
 #include "vots/render/FrameRequest.h"
@@ -33,22 +35,41 @@
 #include <array>
 #include <memory>
 #include <optional>
+#include <utility>
 
 namespace vots::cli {
 namespace {
 
-/// The DICOM identity of the volume drawn, when it is a DICOM series (INPUT or a .vots input's --volume).
-std::optional<fit::DicomIdentity> sourceIdentity(const RenderArgs& a, bool inputIsVots) {
-    const std::string& volume = inputIsVots ? a.volume : a.input;
-    if (volume.empty() || !fit::isDicomFolder(volume)) return std::nullopt;
-    return fit::readDicomIdentity(volume, a.series);
+/// A volume as the render reads it, and its DICOM identity when a sweep writes a derived series of it.
+struct RenderVolume {
+    fit::Volume volume;
+    std::optional<fit::DicomIdentity> identity; // the source's patient and study; nullopt: not DICOM
+};
+
+/// Loads a volume file, folder or PACS series (its spool folder is gone once the samples are in memory),
+/// refused before its samples are read when the budget cannot hold it. A DICOM series' identity is read
+/// when `withIdentity`, while a PACS series' spool is still there.
+RenderVolume loadRenderVolume(const std::string& named, const RenderArgs& a, const CheckedArgs& c,
+                              bool withIdentity) {
+    const VolumeInput input(
+        named, a.dicomWeb,
+        [&](const fit::VolumeHeaderInfo& header) { checkHeaderFitsBudget(named, header, a.memoryBudget); },
+        false);
+    return input.reading([&] {
+        checkVolumeFitsBudget(input.path(), c.raw, a.memoryBudget, a.series);
+        RenderVolume loaded{fit::loadVolume(input.path(), c.raw, fit::SampleStorage::Float, a.series), {}};
+        if (withIdentity && fit::isDicomFolder(input.path()))
+            loaded.identity = fit::readDicomIdentity(input.path(), a.series);
+        return loaded;
+    });
 }
 
 void runRender(const RenderArgs& a) {
     const CheckedArgs c = checkArgs(a);
-    const bool inputIsVots = isVotsFile(a.input);
+    const bool inputIsVots = !pacs::isDicomWebUrl(a.input) && isVotsFile(a.input);
+    // A derived DICOM series joins the source's patient and study (INPUT or a .vots input's --volume).
+    const bool withIdentity = c.slabSweep && c.slabSweep->format != SweepFormat::Png;
     std::optional<fit::DicomIdentity> source;
-    if (c.slabSweep && c.slabSweep->format == SweepFormat::Dicom) source = sourceIdentity(a, inputIsVots);
     std::optional<fit::Volume> volume;
     std::optional<fit::VotSpace> space;
     std::optional<render::SlabSweepPlan> sweep; // planned from the grid before the fit and the GL context
@@ -56,8 +77,9 @@ void runRender(const RenderArgs& a) {
         space = meta::readVotSpaceFile(a.input);
         if (c.slabSweep) sweep = planSweep(*c.slabSweep, c.frame, render::sceneBounds(*space));
         if (!a.volume.empty()) {
-            checkVolumeFitsBudget(a.volume, c.raw, a.memoryBudget, a.series);
-            volume = fit::loadVolume(a.volume, c.raw, fit::SampleStorage::Float, a.series);
+            RenderVolume loaded = loadRenderVolume(a.volume, a, c, withIdentity);
+            volume = std::move(loaded.volume);
+            source = std::move(loaded.identity);
         } else if (c.raw) {
             throw fit::InputError("--raw-* describe a volume; a .vots input has one only with --volume");
         }
@@ -69,8 +91,9 @@ void runRender(const RenderArgs& a) {
         if (!a.volume.empty())
             throw fit::InputError("--volume is only for .vots input; INPUT is already a volume");
         // The fit's estimate also for the grid renderer: it covers the samples, their texture and the read.
-        checkVolumeFitsBudget(a.input, c.raw, a.memoryBudget, a.series);
-        volume = fit::loadVolume(a.input, c.raw, fit::SampleStorage::Float, a.series);
+        RenderVolume loaded = loadRenderVolume(a.input, a, c, withIdentity);
+        volume = std::move(loaded.volume);
+        source = std::move(loaded.identity);
         if (c.slabSweep) sweep = planSweep(*c.slabSweep, c.frame, render::sceneBounds(*volume));
         if (c.frame.renderer != render::RendererKind::Grid)
             space = fitForRender(*volume, volume->valueRange(), a, c).space;
@@ -113,6 +136,12 @@ void runRenderCommand(const RenderArgs& a) {
     const dist::MpiWorld& world = dist::MpiWorld::get();
     if (world.distributed() && !a.slabSweep.empty())
         throw fit::InputError("--slab-sweep runs in one process, not under mpirun");
+    if (world.distributed() && (pacs::isDicomWebUrl(a.input) || pacs::isDicomWebUrl(a.volume)))
+        world.allOrNone([] { // one message, from rank 0
+            throw fit::InputError(
+                "a dicomweb+http(s):// input is read by one process: render it without mpirun, "
+                "or retrieve it into a folder first");
+        });
     if (world.distributed())
         runRenderOnRanks(world, a);
     else
@@ -124,9 +153,10 @@ void runRenderCommand(const RenderArgs& a) {
 void addRenderCommand(CLI::App& app) {
     auto args = std::make_shared<RenderArgs>();
     CLI::App* cmd = app.add_subcommand("render", "Render a Vot-Space or volume as MIP (or density) to a PNG");
-    cmd->add_option("INPUT", args->input,
-                    "A .vots file, or a volume file, DICOM folder or raw file with --raw-* (fitted first at "
-                    "--eps for mip/density)")
+    cmd->add_option(
+           "INPUT", args->input,
+           "A .vots file, or a volume file, DICOM folder, PACS series (dicomweb+http(s)://...) or raw file "
+           "with --raw-* (fitted first at --eps for mip/density)")
         ->required();
     cmd->add_option(
            "-o,--output", args->output,
@@ -175,6 +205,7 @@ void addRenderCommand(CLI::App& app) {
     addMemoryBudgetOption(*cmd, args->memoryBudget);
     addSeriesOption(*cmd, args->series);
     addRawOptions(*cmd, args->raw);
+    addDicomWebOptions(*cmd, args->dicomWeb);
     cmd->callback([args] { runRenderCommand(*args); });
 }
 

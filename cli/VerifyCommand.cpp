@@ -1,6 +1,7 @@
 // `vots verify`: re-checks a .vots file against its volume with the independent verifier; exit 1 on failure.
 #include "Args.h"
 #include "Commands.h"
+#include "DicomWebInput.h"
 #include "RawOptions.h"
 #include "SeriesOption.h"
 
@@ -25,6 +26,7 @@ struct VerifyArgs {
     std::string input;
     RawArgs raw;
     std::string series; // DICOM SeriesInstanceUID; empty: the folder's only series
+    DicomWebOptions dicomWeb;
 };
 
 /// The bound the file was fitted against: with a focus region, rebuild the field from the meta block
@@ -37,7 +39,9 @@ std::optional<fit::EpsField> epsFieldOf(const fit::VotSpace& space, const meta::
 void runVerify(const VerifyArgs& a) {
     const auto raw = rawLayoutFrom(a.raw);
     const fit::VotSpace space = meta::readVotSpaceFile(a.file);
-    const fit::Volume volume = fit::loadVolume(a.input, raw, fit::SampleStorage::Float, a.series);
+    const VolumeInput input(a.input, a.dicomWeb, nullptr, false);
+    const fit::Volume volume = input.reading(
+        [&] { return fit::loadVolume(input.path(), raw, fit::SampleStorage::Float, a.series); });
     const meta::FitMetaView meta = meta::readFitMeta(space.metaJson);
     const fit::VerifyReport r = fit::verifyVotSpace(space, volume, epsFieldOf(space, meta));
 
@@ -71,9 +75,12 @@ void addVerifyCommand(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand(
         "verify", "Check a .vots file against its volume: coverage and error bound (exit 1 when it fails)");
     cmd->add_option("FILE", args->file, "Vot-Space file")->required();
-    cmd->add_option("INPUT", args->input, "The volume (file or DICOM folder) it was fitted to")->required();
+    cmd->add_option("INPUT", args->input,
+                    "The volume (file, DICOM folder or dicomweb+http(s):// series URL) it was fitted to")
+        ->required();
     addRawOptions(*cmd, args->raw);
     addSeriesOption(*cmd, args->series);
+    addDicomWebOptions(*cmd, args->dicomWeb);
     cmd->callback([args] { runVerify(*args); });
 }
 

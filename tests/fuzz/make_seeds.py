@@ -80,3 +80,17 @@ for i, query in enumerate([
         '{"dataset":"blobs_64x64x64_uint8","eps":"3%","degree":3,"focus":{"x":32,"y":32,"z":32,"r":8,"eps":1}}',
         '{"dataset":"x","eps":7.5}']):
     put("fuzz_render_query", "query%d.txt" % i, query)
+
+# multipart/related bodies: byte 0 picks the chunk size, byte 1 the boundary "012345" (5 -> 6 characters).
+def multipart(parts, close=True, preamble=b""):
+    body = preamble
+    for headers, data in parts:
+        body += b"--012345\r\n" + headers + b"\r\n" + data + b"\r\n"
+    return bytes([7, 5]) + body + (b"--012345--\r\n" if close else b"")
+
+
+put("fuzz_multipart", "two_parts", multipart([(b"Content-Type: application/dicom\r\n", b"DICM" + ramp),
+                                              (b"Content-Type: application/dicom\r\nX-A: b\r\n", ramp)]))
+put("fuzz_multipart", "preamble_padding", bytes([0, 5]) + b"preamble\r\n--012345 \t\r\n\r\nx\r\n--012345--")
+put("fuzz_multipart", "cut", multipart([(b"Content-Type: application/dicom\r\n", ramp)], close=False))
+put("fuzz_multipart", "delimiter_like_data", multipart([(b"", b"\r\n--01234\r\n--0123456")]))

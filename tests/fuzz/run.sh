@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs the libFuzzer targets (preset fuzz) on seeded corpora, two at a time, and prints one summary line each.
 #
-# Usage: tests/fuzz/run.sh [--seconds N] [--runs N] [target...]   (default: all seven, 600 s or 1,000,000 runs)
+# Usage: tests/fuzz/run.sh [--seconds N] [--runs N] [target...]   (default: all eight, 600 s or 1,000,000 runs)
 # Needs: cmake --preset fuzz && cmake --build --preset fuzz -j2, and a `vots` binary for .vots seeds
 # (VOTS_BIN, default build/rel/cli/vots, else build/asan/cli/vots). Logs, corpora and crash artifacts go
 # to build/fuzz/{logs,corpus,artifacts}/<target>/.
@@ -19,7 +19,7 @@ while [[ $# -gt 0 ]]; do
     esac
 done
 [[ ${#targets[@]} -gt 0 ]] ||
-    targets=(fuzz_votspace_reader fuzz_nrrd fuzz_nifti fuzz_metaimage fuzz_dicom fuzz_camera fuzz_render_query)
+    targets=(fuzz_votspace_reader fuzz_nrrd fuzz_nifti fuzz_metaimage fuzz_dicom fuzz_camera fuzz_render_query fuzz_multipart)
 
 fuzz=build/fuzz
 volumes=$fuzz/volumes
@@ -64,6 +64,7 @@ run_one() {
     mkdir -p "$fuzz/artifacts/$target"
     local maxlen=4096
     [[ $target == fuzz_nrrd || $target == fuzz_votspace_reader ]] && maxlen=131072
+    [[ $target == fuzz_multipart ]] && maxlen=65536 # past the 16 KB bound on part headers
     nice -n 10 "$bin" -runs="$runs" -max_total_time="$seconds" -max_len="$maxlen" -rss_limit_mb=2048 \
         -timeout=30 -print_final_stats=1 -artifact_prefix="$fuzz/artifacts/$target/" \
         "$fuzz/corpus/$target" "tests/fuzz/seeds/$target" >"$fuzz/logs/$target.log" 2>&1 || true

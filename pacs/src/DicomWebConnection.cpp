@@ -1,0 +1,118 @@
+// The authenticated HTTP(S) client of a DICOMweb service, and the words for its failures.
+#include "DicomWebConnection.h"
+
+#include "vots/fit/Error.h"
+
+namespace vots::pacs {
+namespace {
+
+constexpr time_t CONNECT_TIMEOUT_S = 10;
+constexpr time_t READ_TIMEOUT_S = 120;
+constexpr std::size_t MAX_JSON_BYTES = 256u << 20; // a 1000-instance series' full metadata is ~30 MB
+
+} // namespace
+
+DicomWebConnection::DicomWebConnection(const DicomWebEndpoint& endpoint, const DicomWebAccess& access)
+    : mEndpoint(endpoint) {
+    const bool bracket = endpoint.host.find(':') != std::string::npos;
+    const std::string origin = std::string(endpoint.https ? "https://" : "http://") +
+                               (bracket ? "[" + endpoint.host + "]" : endpoint.host) + ":" +
+                               std::to_string(endpoint.port);
+    mClient = std::make_unique<httplib::Client>(origin);
+    if (!mClient->is_valid()) throw fit::InputError(name() + ": cannot make a client for this address");
+    mClient->set_connection_timeout(CONNECT_TIMEOUT_S);
+    mClient->set_read_timeout(READ_TIMEOUT_S);
+    mClient->set_keep_alive(true);
+    if (endpoint.https) {
+        mClient->enable_server_certificate_verification(true);
+        if (!access.caFile.empty()) mClient->set_ca_cert_path(access.caFile);
+    }
+    if (access.auth.kind == DicomWebAuth::Kind::Basic)
+        mClient->set_basic_auth(access.auth.user, access.auth.secret);
+    if (access.auth.kind == DicomWebAuth::Kind::Bearer) mClient->set_bearer_token_auth(access.auth.secret);
+}
+
+std::string DicomWebConnection::statusProblem(int status, const std::string& what) const {
+    const std::string code = " (HTTP " + std::to_string(status) + ")";
+    if (status == 401)
+        return name() + ": the PACS refused the credentials for " + what + code + "; check --dicomweb-auth";
+    if (status == 403) return name() + ": the PACS forbids " + what + " to these credentials" + code;
+    if (status == 404) return name() + ": " + what + " not found" + code;
+    return name() + ": the PACS answered " + what + " with an error" + code;
+}
+
+std::string DicomWebConnection::transportProblem(httplib::Error error, const std::string& what) const {
+    switch (error) {
+    case httplib::Error::Connection:
+        return name() + ": cannot connect to " + mEndpoint.host + ":" + std::to_string(mEndpoint.port) +
+               " for " + what + " (nothing answers there)";
+    case httplib::Error::SSLConnection:
+    case httplib::Error::SSLLoadingCerts:
+    case httplib::Error::SSLServerVerification:
+        return name() + ": the TLS connection for " + what + " failed (" + httplib::to_string(error) +
+               "); check the certificate or --dicomweb-ca";
+    case httplib::Error::Read:
+        return name() + ": the connection broke while reading " + what;
+    default:
+        return name() + ": " + what + " failed (" + httplib::to_string(error) + ")";
+    }
+}
+
+nlohmann::json DicomWebConnection::getJson(const std::string& resource, const std::string& what) {
+    std::string body;
+    int status = 0;
+    bool tooLarge = false;
+    const httplib::Headers headers{{"Accept", "application/dicom+json, application/json"}};
+    const httplib::Result result = mClient->Get(
+        mEndpoint.root + resource, headers,
+        [&](const httplib::Response& response) {
+            status = response.status;
+            return true;
+        },
+        [&](const char* data, std::size_t size) {
+            tooLarge = body.size() + size > MAX_JSON_BYTES;
+            if (tooLarge) return false;
+            body.append(data, size);
+            return true;
+        });
+    if (tooLarge)
+        throw fit::InputError(name() + ": " + what + " is larger than " +
+                              std::to_string(MAX_JSON_BYTES >> 20) + " MB");
+    if (!result) throw fit::InputError(transportProblem(result.error(), what));
+    if (status == 204 || (status == 200 && body.empty())) return nlohmann::json::array();
+    if (status != 200) throw fit::InputError(statusProblem(status, what));
+    nlohmann::json json = nlohmann::json::parse(body, nullptr, /*allow_exceptions=*/false);
+    if (json.is_discarded()) throw fit::InputError(name() + ": " + what + " is not JSON");
+    return json;
+}
+
+int DicomWebConnection::getStream(const std::string& resource, const std::string& accept,
+                                  const std::function<bool(const std::string&)>& begin,
+                                  const std::function<bool(const char*, std::size_t)>& receive,
+                                  std::string& failure) {
+    int status = 0;
+    const httplib::Headers headers{{"Accept", accept}};
+    const httplib::Result result = mClient->Get(
+        mEndpoint.root + resource, headers,
+        [&](const httplib::Response& response) {
+            status = response.status;
+            if (status != 200) return false;
+            return begin(response.get_header_value("Content-Type"));
+        },
+        receive);
+    if (status == 401 || status == 403) throw fit::InputError(statusProblem(status, "the series"));
+    if (status != 0 && status != 200) return status;
+    if (!result && result.error() != httplib::Error::Canceled) {
+        failure = transportProblem(result.error(), "the series");
+        return status;
+    }
+    return status;
+}
+
+httplib::Result DicomWebConnection::post(const std::string& resource, const std::string& contentType,
+                                         std::size_t length, httplib::ContentProvider provide) {
+    return mClient->Post(mEndpoint.root + resource, httplib::Headers{{"Accept", "application/dicom+json"}},
+                         length, std::move(provide), contentType);
+}
+
+} // namespace vots::pacs

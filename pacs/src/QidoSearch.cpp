@@ -1,0 +1,98 @@
+// QIDO-RS study and series searches, their query strings and the answers' DICOM JSON read into summaries.
+#include "vots/pacs/QidoSearch.h"
+
+#include "DicomJson.h"
+#include "DicomWebConnection.h"
+
+#include "vots/fit/Error.h"
+
+#include <httplib.h>
+
+#include <algorithm>
+
+namespace vots::pacs {
+namespace {
+
+bool isDate(const std::string& text) {
+    return text.size() == 8 &&
+           std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+void addParameter(std::string& query, const std::string& key, const std::string& value) {
+    if (value.empty()) return;
+    query += (query.empty() ? "?" : "&") + key + "=" + httplib::detail::encode_query_param(value);
+}
+
+int countOf(const nlohmann::json& dataset, const char* tag) {
+    return static_cast<int>(dicomNumber(dataset, tag).value_or(0.0));
+}
+
+} // namespace
+
+std::vector<StudySummary> searchStudies(const DicomWebEndpoint& endpoint, const DicomWebAccess& access,
+                                        const StudyQuery& q) {
+    for (const std::string* date : {&q.studyDateFrom, &q.studyDateTo})
+        if (!date->empty() && !isDate(*date))
+            throw fit::InputError("study date '" + date->substr(0, 40) + "' is not YYYYMMDD");
+    if (q.limit < 1) throw fit::InputError("a study search needs a limit of at least 1");
+    std::string query;
+    addParameter(query, "PatientName", q.patientName);
+    addParameter(query, "PatientID", q.patientId);
+    if (!q.studyDateFrom.empty() || !q.studyDateTo.empty())
+        addParameter(query, "StudyDate", q.studyDateFrom + "-" + q.studyDateTo);
+    addParameter(query, "ModalitiesInStudy", q.modality);
+    addParameter(query, "AccessionNumber", q.accessionNumber);
+    addParameter(query, "limit", std::to_string(q.limit));
+    for (const char* field : {"00081030", "00201206", "00201208", "00080061"})
+        addParameter(query, "includefield", field);
+
+    DicomWebConnection connection(endpoint, access);
+    const nlohmann::json answer = connection.getJson("/studies" + query, "the study search");
+    if (!answer.is_array())
+        throw fit::InputError(connection.name() + ": the study search did not answer a list");
+    std::vector<StudySummary> studies;
+    for (const nlohmann::json& d : answer) {
+        StudySummary s;
+        s.studyUid = dicomString(d, "0020000D");
+        s.patientName = dicomString(d, "00100010");
+        s.patientId = dicomString(d, "00100020");
+        s.studyDate = dicomString(d, "00080020");
+        s.studyDescription = dicomString(d, "00081030");
+        s.accessionNumber = dicomString(d, "00080050");
+        s.modalities = dicomStrings(d, "00080061");
+        s.seriesCount = countOf(d, "00201206");
+        s.instanceCount = countOf(d, "00201208");
+        if (!s.studyUid.empty()) studies.push_back(std::move(s));
+    }
+    return studies;
+}
+
+std::vector<SeriesSummary> searchSeries(const DicomWebEndpoint& endpoint, const DicomWebAccess& access,
+                                        const std::string& studyUid) {
+    if (studyUid.empty() || studyUid.size() > 64 ||
+        !std::all_of(studyUid.begin(), studyUid.end(),
+                     [](char c) { return c == '.' || (c >= '0' && c <= '9'); }))
+        throw fit::InputError("the study UID '" + studyUid.substr(0, 80) +
+                              "' is not a DICOM UID (digits and dots)");
+    DicomWebConnection connection(endpoint, access);
+    const nlohmann::json answer = connection.getJson(
+        "/studies/" + studyUid + "/series?includefield=0008103E&includefield=00201209", "the series search");
+    if (!answer.is_array())
+        throw fit::InputError(connection.name() + ": the series search did not answer a list");
+    std::vector<SeriesSummary> series;
+    for (const nlohmann::json& d : answer) {
+        SeriesSummary s;
+        s.seriesUid = dicomString(d, "0020000E");
+        s.modality = dicomString(d, "00080060");
+        s.description = dicomString(d, "0008103E");
+        s.seriesNumber = countOf(d, "00200011");
+        s.instanceCount = countOf(d, "00201209");
+        if (!s.seriesUid.empty()) series.push_back(std::move(s));
+    }
+    std::stable_sort(series.begin(), series.end(), [](const SeriesSummary& a, const SeriesSummary& b) {
+        return a.seriesNumber < b.seriesNumber;
+    });
+    return series;
+}
+
+} // namespace vots::pacs
