@@ -48,12 +48,13 @@ private:
 } // namespace
 
 void addDicomWebOptions(CLI::App& command, DicomWebOptions& options) {
-    command.add_option("--dicomweb-auth", options.authFile,
-                       "For a dicomweb+http(s):// input: a file whose one line is 'basic USER:PASSWORD' or "
-                       "'bearer TOKEN' (credentials never go in the URL)");
+    command.add_option(
+        "--dicomweb-auth", options.authFile,
+        "For a dicomweb+http(s):// input or output: a file whose one line is 'basic USER:PASSWORD' or "
+        "'bearer TOKEN' (credentials never go in the URL)");
     command.add_option(
         "--dicomweb-ca", options.caFile,
-        "For a dicomweb+https:// input: PEM certificates to verify the server with (default: the "
+        "For a dicomweb+https:// input or output: PEM certificates to verify the server with (default: the "
         "system's)");
 }
 

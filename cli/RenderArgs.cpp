@@ -84,7 +84,7 @@ CheckedArgs checkArgs(const RenderArgs& a) {
     if (!a.slabSweep.empty()) {
         if (a.turntable) throw fit::InputError("give --slab-sweep or --turntable, not both");
         if (a.elevation) throw fit::InputError("--elevation is for --turntable N");
-        c.slabSweep = checkSlabSweepArgs(a.slabSweep, a.output, f);
+        c.slabSweep = checkSlabSweepArgs(a.slabSweep, a.output, f, dicomWebAccessOf(a.dicomWeb));
         return c;
     }
     c.turntable = checkTurntableArgs(a, f);

@@ -161,7 +161,9 @@ void addRenderCommand(CLI::App& app) {
     cmd->add_option(
            "-o,--output", args->output,
            "PNG file to write (replaced atomically); with --turntable: frames/%03d.png or turn.webm; "
-           "with --slab-sweep: slabs/%03d.dcm (DICOM series) or slabs/%03d.png")
+           "with --slab-sweep: slabs/%03d.dcm (DICOM series), slabs/%03d.png, or "
+           "dicomweb+http(s)://HOST:PORT/ROOT "
+           "(the DICOM series stored on a PACS with STOW-RS)")
         ->required();
     cmd->add_option("--cam", args->cam,
                     "Camera, e.g. az=30,el=20,zoom=1,pan=0:0,proj=ortho,fov=30 or a view name");

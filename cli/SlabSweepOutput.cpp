@@ -5,9 +5,14 @@
 
 #include "vots/fit/Error.h"
 #include "vots/pacs/DerivedSeries.h"
+#include "vots/pacs/QidoSearch.h"
+#include "vots/pacs/SpoolFolder.h"
+#include "vots/pacs/StowStore.h"
 
 #include <algorithm>
 #include <cctype>
+#include <iostream>
+#include <optional>
 #include <string_view>
 #include <vector>
 
@@ -50,7 +55,7 @@ pacs::DerivedImage derivedImage(render::FloatImage frame, const render::SweepSla
 } // namespace
 
 SlabSweepOutput checkSlabSweepArgs(const std::string& sweep, const std::string& output,
-                                   const render::FrameRequest& first) {
+                                   const render::FrameRequest& first, const pacs::DicomWebAccess& access) {
     SlabSweepOutput out;
     out.spacing = render::parseSlabSweep(sweep);
     if (first.slab) throw fit::InputError("--slab-sweep places its own slabs; leave out --slab");
@@ -59,6 +64,17 @@ SlabSweepOutput checkSlabSweepArgs(const std::string& sweep, const std::string& 
     if (first.camera.projection != render::Projection::Orthographic)
         throw fit::InputError("--slab-sweep needs an orthographic camera: a slab of a perspective view has "
                               "no single image plane");
+    if (pacs::isDicomWebUrl(output)) {
+        out.format = SweepFormat::DicomWeb;
+        out.store = pacs::parseDicomWebEndpoint(output);
+        out.access = access;
+        // Asked now, so refused credentials or a service that is down cost one line, not a whole sweep
+        // drawn first: the smallest search the service answers.
+        pacs::StudyQuery probe;
+        probe.limit = 1;
+        (void)pacs::searchStudies(out.store, out.access, probe);
+        return out;
+    }
     out.format = formatOf(output);
     out.pattern = output;
     checkOutputFolder(framePath(output, 0));
@@ -95,9 +111,14 @@ void writeSlabSweep(const SlabSweepOutput& output, const render::SlabSweepPlan& 
     const std::array<float, 2> drawable = renderer.valueRange();
     series.valueRange =
         std::array<double, 2>{std::min(drawable[0], fullRange[0]), std::max(drawable[1], fullRange[1])};
+    // A series for a PACS goes to a private spool folder first, removed however the store ends.
+    std::optional<pacs::SpoolFolder> spool;
+    if (output.format == SweepFormat::DicomWeb) spool.emplace();
+    const std::string pattern = spool ? spool->path() + "/%05d.dcm" : output.pattern;
     std::vector<std::string> paths;
     for (std::size_t k = 0; k < plan.slabs.size(); ++k)
-        paths.push_back(framePath(output.pattern, static_cast<int>(k)));
+        paths.push_back(framePath(pattern, static_cast<int>(k)));
+    const std::string description = series.description;
     pacs::DerivedSeriesWriter writer(std::move(series), paths);
     for (const render::SweepSlab& slab : plan.slabs) {
         render::FloatImage frame = renderer.render(first.camera, first.width, first.height,
@@ -105,6 +126,10 @@ void writeSlabSweep(const SlabSweepOutput& output, const render::SlabSweepPlan& 
         writer.add(derivedImage(std::move(frame), slab));
     }
     writer.finish();
+    if (!spool) return;
+    const pacs::StoreReport report = pacs::storeInstances(output.store, output.access, paths);
+    std::cerr << "vots: stored " << report.stored << " images (" << description << ") on "
+              << output.store.describe() << "\n";
 }
 
 } // namespace vots::cli

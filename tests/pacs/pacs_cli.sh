@@ -16,6 +16,7 @@ auth=$state/auth
 ramp_series=1.2.826.0.1.3680043.10.1234.201
 cranium_series=1.2.826.0.1.3680043.10.1234.202
 mixed_series=1.2.826.0.1.3680043.10.1234.203
+sweep_series=1.2.826.0.1.3680043.10.1234.206 # its study gets the derived series of SweepStoredOnThePacs
 url() { echo "dicomweb+http://127.0.0.1:$1/dicom-web/studies/$2.0/series/$2"; }
 
 work=$(mktemp -d)
@@ -200,6 +201,41 @@ HttpsVerifiesTheCertificate)
         fail "render over HTTPS with --dicomweb-ca"
     "$vots" render "$state/series/ramp" -o "$work/folder.png" --size 64x64 || fail "render from the folder"
     cmp "$work/pacs.png" "$work/folder.png" || fail "the PNGs differ"
+    no_spool_left
+    ;;
+SweepStoredOnThePacs)
+    # A slab sweep stored with STOW-RS joins its source's study as a new series whose images read back as
+    # the same volume as the sweep written to a folder; a refused store leaves nothing behind.
+    mkdir -p "$work/local"
+    sweep=(--view inferior --slab-sweep 6,3 --size 48x48)
+    "$vots" render "$state/series/sweep-source" "${sweep[@]}" -o "$work/local/%03d.dcm" || fail "sweep to a folder"
+    count=$(find "$work/local" -name '*.dcm' | wc -l)
+    ((count > 1)) || fail "the sweep wrote $count images"
+    echo "basic vots:not-$password" >"$work/wrong"
+    expect_refused "refused the credentials" "$work/none" render "$state/series/sweep-source" "${sweep[@]}" \
+        -o "dicomweb+http://127.0.0.1:$port/dicom-web" --dicomweb-auth "$work/wrong"
+    "$vots" render "$state/series/sweep-source" "${sweep[@]}" -o "dicomweb+http://127.0.0.1:$port/dicom-web" \
+        --dicomweb-auth "$auth" 2>"$work/err" || fail "sweep to the PACS: $(cat "$work/err")"
+    grep -q "stored $count images" "$work/err" || fail "no 'stored $count images' in: $(cat "$work/err")"
+    curl -fsS -u "vots:$password" "http://127.0.0.1:$port/dicom-web/studies/$sweep_series.0/series" >"$work/series.json" ||
+        fail "QIDO of the source's study"
+    derived=$(python3 - "$work/series.json" "$sweep_series" <<'PY'
+import json, sys
+series = [s for s in json.load(open(sys.argv[1])) if s["0020000E"]["Value"][0] != sys.argv[2]]
+assert len(series) == 1, f"{len(series)} new series in the source's study"
+s = series[0]
+print(s["0020000E"]["Value"][0], s["00201209"]["Value"][0], s["0008103E"]["Value"][0])
+PY
+) || fail "the source's study: $(cat "$work/series.json")"
+    read -r derived_uid derived_count derived_description <<<"$derived"
+    [[ $derived_count == "$count" ]] || fail "the PACS holds $derived_count images of the sweep's $count"
+    echo "derived series $derived_uid: $derived_count images, '$derived_description'"
+    derived_url=dicomweb+http://127.0.0.1:$port/dicom-web/studies/$sweep_series.0/series/$derived_uid
+    "$vots" render "$derived_url" --dicomweb-auth "$auth" --renderer grid --view anterior --size 64x64 \
+        -o "$work/pacs.png" || fail "render of the stored series"
+    "$vots" render "$work/local" --renderer grid --view anterior --size 64x64 -o "$work/folder.png" ||
+        fail "render of the folder's series"
+    cmp "$work/pacs.png" "$work/folder.png" || fail "the stored series renders differently from the folder's"
     no_spool_left
     ;;
 *)
