@@ -1,0 +1,108 @@
+#!/usr/bin/env bash
+# A large series on a PACS opened in `vots serve`, against the same series from a local folder: time to the
+# first (exact-grid) image and to the first Vot frame, the server's peak memory; then a slab sweep of about
+# 300 slabs written to a folder and stored back on the PACS with STOW-RS.
+#
+# Usage: bench/pacs_bench.sh [SLICES [SWEEP_SLABS]]   (defaults 1000 and 300; VOTS_BUILD default build/ci)
+# The series is the Cranium (scripts/fetch-ct) resampled to 512x512xSLICES int16 with noise (make_scaled_volume)
+# and written as DICOM by the tests' GDCM writer; Orthanc runs on loopback (tests/pacs/orthanc.sh). Needs the
+# tests built (vots_write_dicom) and about 3 x 0.5 GB of disk per 1000 slices under $TMPDIR.
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+build=${VOTS_BUILD:-build/ci}
+slices=${1:-1000}
+sweep_slabs=${2:-300}
+vots=$build/cli/vots
+size=512x512
+work=$(mktemp -d "${TMPDIR:-/tmp}/vots-pacs-bench.XXXXXX")
+server=0
+cleanup() {
+    ((server)) && kill "$server" 2>/dev/null
+    wait 2>/dev/null
+    tests/pacs/orthanc.sh stop "$work/orthanc" >/dev/null 2>&1 || true
+    rm -rf "$work"
+}
+trap cleanup EXIT
+now() { date +%s.%N; }
+since() { echo "$(now) - $1" | bc -l; }
+
+# The series: the Cranium resampled, written one file a slice, then uploaded 4 at a time.
+series_uid=1.2.826.0.1.3680043.10.1234.700
+"$build/bench/make_scaled_volume" data/cranium.nhdr "$work/scaled.nhdr" --size "512x512x$slices" --noise 8 --seed 1 \
+    >/dev/null
+"$build/tests/vots_write_dicom" "$work/folder/bench" --input "$work/scaled.nhdr" --series-uid "$series_uid" \
+    --description "bench $slices" >/dev/null
+extent_z=$(sed -n 's/^space directions:.*(\([^)]*\))$/\1/p' "$work/scaled.nhdr" |
+    awk -F, -v n="$slices" '{ printf "%.6f", $3 * (n - 1) }')
+rm -f "$work"/scaled.*
+tests/pacs/orthanc.sh start "$work/orthanc"
+port=$(cat "$work/orthanc/port")
+password=$(cat "$work/orthanc/password")
+auth=$work/orthanc/auth
+start=$(now)
+find "$work/folder/bench" -type f -print0 |
+    xargs -0 -P 4 -I{} curl -fsS -u "vots:$password" -X POST --data-binary @{} -H 'Content-Type: application/dicom' \
+        "http://127.0.0.1:$port/instances" -o /dev/null
+printf 'upload of %s instances (%s MB): %.1f s\n' "$slices" "$(du -sm "$work/folder/bench" | cut -f1)" "$(since "$start")"
+
+# One fresh server per run: its peak memory is that run's.
+serve() { # serve LOG ARGS... -> sets server, base
+    local server_port=$((20000 + RANDOM % 20000))
+    "$vots" serve --port "$server_port" --cache-dir "$work/cache-$RANDOM" --no-warm-up "${@:2}" >"$1" 2>&1 &
+    server=$!
+    base=http://127.0.0.1:$server_port
+    until curl -sf "$base/api/datasets" >/dev/null; do
+        kill -0 "$server" 2>/dev/null || { cat "$1"; exit 1; }
+        sleep 0.1
+    done
+}
+frame() { # frame DATASET QUERY -> HTTP status of one /render
+    curl -s -o /dev/null -w '%{http_code}' "$base/render?dataset=$1&size=$size&cam=az%3D30%2Cel%3D20&$2"
+}
+peak_mib() { awk '/VmHWM/ { printf "%.0f", $2 / 1024 }' "/proc/$server/status"; }
+stop_server() {
+    kill "$server"
+    wait "$server" 2>/dev/null || true
+    server=0
+}
+report() { # report LABEL START DATASET
+    local grid vots
+    grid=$(frame "$3" "renderer=grid")
+    printf '%-7s first image (grid) %6.2f s (HTTP %s)' "$1" "$(since "$2")" "$grid"
+    vots=$(frame "$3" "eps=2%25")
+    printf '  first Vot frame %6.2f s (HTTP %s)  peak %s MiB\n' "$(since "$2")" "$vots" "$(peak_mib)"
+}
+
+# The folder: the clock starts at the first request, which loads the series.
+serve "$work/folder.log" --data "$work/folder"
+report folder "$(now)" bench
+stop_server
+
+# The PACS: the clock starts at the open (announce, retrieve, load), as the viewer's "Open" does.
+mkdir -p "$work/empty"
+serve "$work/pacs.log" --data "$work/empty" --dicomweb "orthanc=dicomweb+http://127.0.0.1:$port/dicom-web" \
+    --dicomweb-auth "orthanc=$auth"
+start=$(now)
+open=$(curl -sf -X POST "$base/api/pacs/orthanc/studies/$series_uid.0/series/$series_uid/open" \
+    -H 'Content-Type: application/json' -d '{}')
+id=$(echo "$open" | sed -n 's/.*"id":\([0-9]*\).*/\1/p')
+state=
+until [[ $state == done || $state == failed || $state == cancelled ]]; do
+    sleep 0.1
+    state=$(curl -sf "$base/api/pacs/opens/$id" | sed -n 's/.*"state":"\([a-z]*\)".*/\1/p')
+done
+[[ $state == done ]] || { curl -s "$base/api/pacs/opens/$id"; exit 1; }
+printf 'pacs    opened (retrieved, loaded) %6.2f s\n' "$(since "$start")"
+report pacs "$start" "orthanc-${series_uid//./_}"
+stop_server
+
+# The sweep: THICKNESS 10 mm, the step that makes about SWEEP_SLABS slabs along the series' z extent.
+step=$(echo "($extent_z - 10) / ($sweep_slabs - 1.5)" | bc -l)
+sweep=(--view inferior --slab-sweep "10,$step" --size "$size")
+mkdir -p "$work/sweep"
+/usr/bin/time -f '%e s %M KB' -o "$work/time-folder" "$vots" render "$work/folder/bench" "${sweep[@]}" \
+    -o "$work/sweep/%04d.dcm" 2>/dev/null
+printf 'sweep of %s slabs to a folder: %s\n' "$(find "$work/sweep" -name '*.dcm' | wc -l)" "$(cat "$work/time-folder")"
+/usr/bin/time -f '%e s %M KB' -o "$work/time-pacs" "$vots" render "$work/folder/bench" "${sweep[@]}" \
+    -o "dicomweb+http://127.0.0.1:$port/dicom-web" --dicomweb-auth "$auth" 2>"$work/sweep.log"
+printf 'sweep stored on the PACS: %s (%s)\n' "$(cat "$work/time-pacs")" "$(grep -o 'stored [0-9]* images' "$work/sweep.log")"
