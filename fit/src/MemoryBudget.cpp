@@ -91,6 +91,15 @@ std::uint64_t estimateLoadedVolumeBytes(const VolumeHeaderInfo& header, SampleSt
     return clampedBytes(static_cast<double>(header.sampleCount()) * heldBytesPerSample(header, storage));
 }
 
+std::uint64_t dicomReaderAddressSpace(std::uint64_t largestObjectBytes) {
+    // Measured: a child reading a 512x512 header or slice adds under 10 MB; the fixed part leaves room for
+    // a compressed slice's decoder. The copies: the file's bytes, the decoded buffer, the codec's own.
+    constexpr double FIXED = 128.0 * MEBIBYTE;
+    constexpr double COPIES = 4.0;
+    const std::uint64_t wanted = clampedBytes(FIXED + COPIES * static_cast<double>(largestObjectBytes));
+    return std::min(wanted, defaultMemoryBudget());
+}
+
 std::uint64_t parseMemorySize(const std::string& text, const std::string& what) {
     const std::string bad = what + " '" + detail::quotable(text) +
                             "' is not a memory size (bytes, or a number with K, M, G or T: 512M, 8G)";
