@@ -76,7 +76,7 @@ void decodeAndSend(const DicomSliceHeader& slice, const std::array<int, 3>& dims
                    detail::ChildSender& child) {
     gdcm::ImageReader reader;
     reader.SetFileName(slice.path.c_str());
-    if (!reader.Read()) throwInputError(slice.path, detail::damagedFileProblem());
+    if (!reader.Read()) throwInputError(slice.path, "cannot be read (truncated or damaged DICOM file)");
     const gdcm::Image& image = reader.GetImage();
     const gdcm::PixelFormat format = image.GetPixelFormat();
     if (image.GetDimension(0) != static_cast<unsigned>(dims[0]) ||

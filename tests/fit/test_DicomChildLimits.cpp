@@ -49,7 +49,7 @@ TEST(DicomChildLimits, AnAllocationPastTheAddressSpaceIsADamagedFile) {
             child.send(value.get(), 1);
         },
         limits);
-    EXPECT_NE(error.find("/series/slice-0007.dcm: cannot be read (truncated or damaged DICOM file)"), std::string::npos) << error;
+    EXPECT_NE(error.find("/series/slice-0007.dcm: is a damaged DICOM file"), std::string::npos) << error;
     EXPECT_LT(childrenPeakKb(), 500 * 1024) << "the child filled memory past its limit";
 }
 
@@ -64,7 +64,7 @@ TEST(DicomChildLimits, ASilentChildIsKilledAfterTheTimeout) {
             child.send("late");
         },
         limits);
-    EXPECT_NE(error.find("/series/slice-0002.dcm: cannot be read (truncated or damaged DICOM file)"), std::string::npos) << error;
+    EXPECT_NE(error.find("/series/slice-0002.dcm: is a damaged DICOM file"), std::string::npos) << error;
     EXPECT_LT(std::chrono::steady_clock::now() - start, 10s) << "the parent waited for the child";
 }
 
