@@ -28,6 +28,19 @@ constexpr char ANNOUNCE = 'A', MESSAGE = 'M', FAILURE = 'X', DONE = 'Z';
     ::_exit(status);
 }
 
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define VOTS_ADDRESS_SANITIZER 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__) || defined(VOTS_ADDRESS_SANITIZER)
+/// AddressSanitizer keeps freed blocks mapped in its quarantine (256 MiB by default) before it reuses
+/// them, so a healthy child that allocates and frees (a JPEG 2000 decoder) needs that much more.
+constexpr std::uint64_t SANITIZER_ADDRESS_SPACE = 512ull << 20;
+#else
+constexpr std::uint64_t SANITIZER_ADDRESS_SPACE = 0;
+#endif
+
 /// Caps the child's address space at what it holds now (the parent's mappings, a sanitizer's reserved
 /// shadow and allocator ranges) plus `extra`, so that only new allocations count against the limit.
 void limitAddressSpace(std::uint64_t extra) {
@@ -152,7 +165,7 @@ void runIsolated(const std::function<void(ChildSender&)>& child,
         const int devNull = ::open("/dev/null", O_WRONLY);
         if (devNull >= 0) ::dup2(devNull, STDERR_FILENO);
         if (devNull > STDERR_FILENO) ::close(devNull);
-        limitAddressSpace(limits.extraAddressSpace);
+        limitAddressSpace(limits.extraAddressSpace + SANITIZER_ADDRESS_SPACE);
         ChildSender sender(fds[1]);
         try {
             child(sender);

@@ -92,8 +92,9 @@ std::uint64_t estimateLoadedVolumeBytes(const VolumeHeaderInfo& header, SampleSt
 }
 
 std::uint64_t dicomReaderAddressSpace(std::uint64_t largestObjectBytes) {
-    // Measured: a child reading a 512x512 header or slice adds under 10 MB; the fixed part leaves room for
-    // a compressed slice's decoder. The copies: the file's bytes, the decoded buffer, the codec's own.
+    // The Cranium series (256x256 slices, uncompressed, JPEG-LS, RLE) loads with 8 MiB plus one copy of the
+    // largest object; the fixed part and the copies (the file's bytes, the decoded buffer, a codec's own)
+    // leave room for JPEG 2000 decoders and larger slices, far below what a damaged length claims.
     constexpr double FIXED = 128.0 * MEBIBYTE;
     constexpr double COPIES = 4.0;
     const std::uint64_t wanted = clampedBytes(FIXED + COPIES * static_cast<double>(largestObjectBytes));
