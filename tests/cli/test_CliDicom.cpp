@@ -104,7 +104,7 @@ TEST(CliDicom, BadSeriesExitTwoWithoutOutput) {
 }
 
 // Found by fuzz_dicom: an element length of gigabytes, after the pixel data or misread in the header,
-// made GDCM's child allocate it (peaks of 1.4 and 4.2 GB). The child's address space ends that early.
+// made GDCM's child allocate it (peaks of 3.6 and 4.2 GB). The child's address space ends that early.
 TEST(CliDicom, ALengthOfGigabytesIsADamagedFileWithinASmallPeak) {
     TempDir out;
     for (const char* name : {"huge-length-after-pixel-data", "huge-length-in-header"}) {

@@ -63,7 +63,7 @@ TEST(ServerDicom, SeriesFoldersAreDatasetsThatRender) {
 }
 
 // A damaged file found by fuzz_dicom (an element length of gigabytes, which took the start-up scan's child
-// to 1.4 GB) costs its folder only: the server starts and serves the other series.
+// to 3.6 GB) costs its folder only: the server starts and serves the other series.
 TEST(ServerDicom, AFolderWithADamagedFileIsSkippedWithinASmallPeak) {
     ServerWorld world;
     writeDicomSeries(ball(), (world.data() / "ct").string(), {});
