@@ -193,8 +193,13 @@ std::vector<DicomSliceHeader> scanDicomFolder(const std::string& folder) {
     std::error_code ec;
     if (!fs::is_directory(folder, ec)) throwInputError(folder, "is not a folder");
     std::vector<std::string> files;
+    std::uint64_t largestFile = 0;
     for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec))
-        if (it->is_regular_file(ec)) files.push_back(it->path().string());
+        if (it->is_regular_file(ec)) {
+            files.push_back(it->path().string());
+            std::error_code sizeError;
+            largestFile = std::max<std::uint64_t>(largestFile, it->file_size(sizeError));
+        }
     if (ec) throwInputError(folder, "cannot read the folder: " + ec.message());
     std::sort(files.begin(), files.end());
     std::vector<DicomSliceHeader> slices;
@@ -219,7 +224,8 @@ std::vector<DicomSliceHeader> scanDicomFolder(const std::string& folder) {
                     slices.push_back(headerFrom(numbers, file, std::string(uid.begin(), uid.end()),
                                                 std::string(description.begin(), description.end())));
             }
-        });
+        },
+        childLimitsHolding(largestFile));
     return slices;
 }
 

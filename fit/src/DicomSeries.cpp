@@ -112,6 +112,10 @@ void loadInto(const DicomSeriesLayout& layout, int first, int last, std::vector<
     const auto begin = layout.slices.begin() + first;
     const auto end = layout.slices.begin() + last + 1;
     out.resize(pixels * static_cast<std::size_t>(last - first + 1));
+    std::uint64_t largestFile = 0;
+    for (auto slice = begin; slice != end; ++slice)
+        largestFile = std::max(largestFile, slice->fileSize);
+    const std::uint64_t decodedSlice = pixels * static_cast<std::uint64_t>(begin->bitsAllocated / 8);
     detail::runIsolated(
         [&](detail::ChildSender& child) {
             for (auto slice = begin; slice != end; ++slice) {
@@ -142,7 +146,8 @@ void loadInto(const DicomSeriesLayout& layout, int first, int last, std::vector<
                     slice[i] = static_cast<T>(value);
                 }
             }
-        });
+        },
+        detail::childLimitsHolding(std::max(largestFile, decodedSlice)));
 }
 
 } // namespace

@@ -91,6 +91,16 @@ std::uint64_t estimateLoadedVolumeBytes(const VolumeHeaderInfo& header, SampleSt
     return clampedBytes(static_cast<double>(header.sampleCount()) * heldBytesPerSample(header, storage));
 }
 
+std::uint64_t dicomReaderAddressSpace(std::uint64_t largestObjectBytes) {
+    // The Cranium series (256x256 slices, uncompressed, JPEG-LS, RLE) loads with 8 MiB plus one copy of the
+    // largest object; the fixed part and the copies (the file's bytes, the decoded buffer, a codec's own)
+    // leave room for JPEG 2000 decoders and larger slices, far below what a damaged length claims.
+    constexpr double FIXED = 128.0 * MEBIBYTE;
+    constexpr double COPIES = 4.0;
+    const std::uint64_t wanted = clampedBytes(FIXED + COPIES * static_cast<double>(largestObjectBytes));
+    return std::min(wanted, defaultMemoryBudget());
+}
+
 std::uint64_t parseMemorySize(const std::string& text, const std::string& what) {
     const std::string bad = what + " '" + detail::quotable(text) +
                             "' is not a memory size (bytes, or a number with K, M, G or T: 512M, 8G)";

@@ -5,6 +5,7 @@
 
 #include <fcntl.h>
 #include <spawn.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 
 #include <cerrno>
@@ -20,7 +21,8 @@ extern char** environ;
 namespace vots::test {
 
 struct CliResult {
-    int exitCode = -1; // -1: killed by a signal
+    int exitCode = -1;       // -1: killed by a signal
+    long peakResidentKb = 0; // of `vots` and the children it waited for (its DICOM readers)
     std::string out;
     std::string err;
 
@@ -57,9 +59,11 @@ struct CommandLine {
 /// Waits for the child and reads what it wrote to the capture files.
 inline CliResult collectResult(pid_t pid, const std::string& outPath, const std::string& errPath) {
     int status = 0;
-    while (waitpid(pid, &status, 0) < 0)
+    rusage usage{};
+    while (wait4(pid, &status, 0, &usage) < 0)
         if (errno != EINTR) throw std::runtime_error("waitpid failed");
     CliResult r;
+    r.peakResidentKb = usage.ru_maxrss;
     r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     r.out = slurpText(outPath);
     r.err = slurpText(errPath);

@@ -103,5 +103,27 @@ TEST(CliDicom, BadSeriesExitTwoWithoutOutput) {
     }
 }
 
+// Found by fuzz_dicom: an element length of gigabytes, after the pixel data or misread in the header,
+// made GDCM's child allocate it (peaks of 3.6 and 4.2 GB). The child's address space ends that early.
+TEST(CliDicom, ALengthOfGigabytesIsADamagedFileWithinASmallPeak) {
+    TempDir out;
+    for (const char* name : {"huge-length-after-pixel-data", "huge-length-in-header"}) {
+        SCOPED_TRACE(name);
+        TempDir series;
+        std::filesystem::copy_file(std::filesystem::path(VOTS_SOURCE_DIR) /
+                                       "tests/fuzz/regressions/fuzz_dicom" / name,
+                                   series.file("slice-0001.dcm"));
+        const std::vector<std::string> args = {
+            "fit", series.path().string(), "-o", out.file("x.vots"), "--eps", "10"};
+        const CliResult r = runVots(args);
+        EXPECT_EQ(r.exitCode, 2) << describe(args, r);
+        ASSERT_EQ(r.errLines().size(), 1u) << describe(args, r);
+        EXPECT_NE(r.err.find("slice-0001.dcm: "), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("damaged"), std::string::npos) << r.err;
+        EXPECT_FALSE(std::filesystem::exists(out.file("x.vots")));
+        EXPECT_LT(r.peakResidentKb, 500 * 1024) << "peak of vots and its DICOM reader";
+    }
+}
+
 } // namespace
 } // namespace vots::test

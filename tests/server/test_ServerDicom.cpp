@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
+
 #include <cmath>
 
 namespace vots::test {
@@ -58,6 +60,29 @@ TEST(ServerDicom, SeriesFoldersAreDatasetsThatRender) {
         EXPECT_EQ(res->body.substr(1, 3), "PNG");
         EXPECT_GT(std::stoi(res->get_header_value("X-Vots-Vot-Count")), 0) << dataset;
     }
+}
+
+// A damaged file found by fuzz_dicom (an element length of gigabytes, which took the start-up scan's child
+// to 3.6 GB) costs its folder only: the server starts and serves the other series.
+TEST(ServerDicom, AFolderWithADamagedFileIsSkippedWithinASmallPeak) {
+    ServerWorld world;
+    writeDicomSeries(ball(), (world.data() / "ct").string(), {});
+    std::filesystem::create_directories(world.data() / "damaged");
+    std::filesystem::copy_file(std::filesystem::path(VOTS_SOURCE_DIR) /
+                                   "tests/fuzz/regressions/fuzz_dicom/huge-length-in-header",
+                               world.data() / "damaged" / "slice-0001.dcm");
+
+    LoopbackServer server(world.options());
+    auto c = server.client();
+    const auto names = namesIn(bodyJson(c->Get("/api/datasets")));
+    EXPECT_NE(std::find(names.begin(), names.end(), "ct"), names.end());
+    EXPECT_EQ(std::find(names.begin(), names.end(), "damaged"), names.end());
+    const auto res = c->Get("/render?dataset=ct&size=48x48&eps=20");
+    ASSERT_TRUE(res);
+    EXPECT_EQ(res->status, 200) << res->body;
+    rusage children{};
+    getrusage(RUSAGE_CHILDREN, &children);
+    EXPECT_LT(children.ru_maxrss, 500 * 1024) << "peak of the DICOM readers' children, in KB";
 }
 
 TEST(ServerDicom, NamesFallBackToTheUidWhenDescriptionsDoNotTellSeriesApart) {

@@ -33,6 +33,13 @@ std::uint64_t estimateLoadAndFitBytes(const VolumeHeaderInfo& header,
 std::uint64_t estimateLoadedVolumeBytes(const VolumeHeaderInfo& header,
                                         SampleStorage storage = SampleStorage::Float);
 
+/// Address space a DICOM reader's child process (GDCM, fit/src/DicomChild.h) may add to what it inherits.
+/// It holds one header or one slice at a time: GDCM's copy of the file's bytes and the decoded pixels, so
+/// a fixed part for GDCM and a few times `largestObjectBytes` (the larger of the biggest file and the
+/// biggest decoded slice) are enough; never more than the budget the volume is admitted under. A damaged
+/// length that claims more fails in the child, which then reports the file as damaged.
+std::uint64_t dicomReaderAddressSpace(std::uint64_t largestObjectBytes);
+
 /// "8G", "512M", "1.5G", "64K", "1T" (powers of 1024; an optional trailing B or iB) or plain bytes.
 /// Throws InputError naming `what` for anything else, zero or negative.
 std::uint64_t parseMemorySize(const std::string& text, const std::string& what);
