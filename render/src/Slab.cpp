@@ -3,22 +3,14 @@
 
 #include "vots/fit/Error.h"
 
-#include <charconv>
+#include "NumberText.h"
+
 #include <cmath>
 #include <cstdio>
 
 namespace vots::render {
 
 namespace {
-std::optional<double> parseFinite(std::string_view text) {
-    if (text.empty() || text.size() > 32) return std::nullopt;
-    double value = 0.0;
-    const char* end = text.data() + text.size();
-    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-    if (ec != std::errc() || ptr != end || !std::isfinite(value)) return std::nullopt;
-    return value;
-}
-
 std::string exact(double value) {
     char text[40];
     std::snprintf(text, sizeof text, "%.17g", value);
@@ -27,17 +19,11 @@ std::string exact(double value) {
 } // namespace
 
 Slab parseSlab(std::string_view text) {
-    const auto comma = text.find(',');
-    const auto bad = [&] {
-        return fit::InputError("slab '" + std::string(text.substr(0, 64)) +
-                               "' is not OFFSET,THICKNESS in mm (two finite numbers, thickness > 0)");
-    };
-    if (comma == std::string_view::npos) throw bad();
-    const auto offset = parseFinite(text.substr(0, comma));
-    const auto thickness = parseFinite(text.substr(comma + 1));
-    if (!offset || !thickness || !(*thickness > 0.0) || std::abs(*offset) > 1e9 || *thickness > 1e9)
-        throw bad();
-    return Slab{*offset, *thickness};
+    const auto pair = detail::parseFinitePair(text);
+    if (!pair || !((*pair)[1] > 0.0))
+        throw fit::InputError("slab '" + std::string(text.substr(0, 64)) +
+                              "' is not OFFSET,THICKNESS in mm (two finite numbers, thickness > 0)");
+    return Slab{(*pair)[0], (*pair)[1]};
 }
 
 std::string formatSlab(const Slab& slab) {

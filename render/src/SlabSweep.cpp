@@ -3,8 +3,9 @@
 
 #include "vots/fit/Error.h"
 
+#include "NumberText.h"
+
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -22,15 +23,6 @@ Vec3 minus(const Vec3& a, const Vec3& b) {
 }
 Vec3 scaled(const Vec3& a, double s) {
     return {a[0] * s, a[1] * s, a[2] * s};
-}
-
-std::optional<double> parseFinite(std::string_view text) {
-    if (text.empty() || text.size() > 32) return std::nullopt;
-    double value = 0.0;
-    const char* end = text.data() + text.size();
-    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-    if (ec != std::errc() || ptr != end || !std::isfinite(value)) return std::nullopt;
-    return value;
 }
 
 /// The pixel-centre rays of one camera, in world (patient) coordinates.
@@ -110,17 +102,11 @@ std::string millimetres(double value) {
 } // namespace
 
 SlabSweepSpacing parseSlabSweep(std::string_view text) {
-    const auto comma = text.find(',');
-    const auto bad = [&] {
-        return fit::InputError("--slab-sweep '" + std::string(text.substr(0, 64)) +
-                               "' is not THICKNESS,STEP in mm (two finite numbers, both > 0)");
-    };
-    if (comma == std::string_view::npos) throw bad();
-    const auto thickness = parseFinite(text.substr(0, comma));
-    const auto step = parseFinite(text.substr(comma + 1));
-    if (!thickness || !step || !(*thickness > 0.0) || !(*step > 0.0) || *thickness > 1e9 || *step > 1e9)
-        throw bad();
-    return {*thickness, *step};
+    const auto pair = detail::parseFinitePair(text);
+    if (!pair || !((*pair)[0] > 0.0) || !((*pair)[1] > 0.0))
+        throw fit::InputError("--slab-sweep '" + std::string(text.substr(0, 64)) +
+                              "' is not THICKNESS,STEP in mm (two finite numbers, both > 0)");
+    return {(*pair)[0], (*pair)[1]};
 }
 
 SlabSweepPlan planSlabSweep(const SlabSweepSpacing& spacing, const Camera& camera, const SceneBounds& bounds,
