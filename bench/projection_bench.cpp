@@ -10,6 +10,7 @@
 #include "vots/fit/Error.h"
 #include "vots/fit/VolumeLoad.h"
 #include "vots/fit/VotSpaceFile.h"
+#include "vots/meta/VotSpaceRead.h"
 #include "vots/render/CameraText.h"
 #include "vots/render/EglContext.h"
 #include "vots/render/GridRenderer.h"
@@ -43,7 +44,7 @@ int main(int argc, char** argv) {
         const Camera camera = parseCamera(cam);
         const Slab slab = parseSlab(slabText);
         VotRenderer vots;
-        vots.upload(vots::fit::readVotSpaceFile(votsPath));
+        vots.upload(vots::meta::readVotSpaceFile(votsPath));
         vots.render(camera, size, size);
         vots.finishPendingWork(); // the steady state: skip boxes grown
         GridRenderer grid;

@@ -15,6 +15,7 @@
 #include "vots/fit/Fitter.h"
 #include "vots/fit/VolumeLoad.h"
 #include "vots/fit/VotSpaceFile.h"
+#include "vots/meta/VotSpaceRead.h"
 #include "vots/render/Camera.h"
 #include "vots/render/CameraText.h"
 #include "vots/render/DisplayPass.h"
@@ -120,7 +121,7 @@ int main(int argc, char** argv) {
             vots::fit::VotSpace space;
             double fitSeconds = 0.0, eps = epsWanted;
             if (epsWanted < 0) {
-                space = vots::fit::readVotSpaceFile(votsPath);
+                space = vots::meta::readVotSpaceFile(votsPath);
                 eps = space.eps;
             } else {
                 const vots::fit::FitOptions options = vots::render::renderFitOptions(

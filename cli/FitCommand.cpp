@@ -12,11 +12,11 @@
 #include "vots/dist/mpi/VotsFileOnRanks.h"
 
 #include "vots/fit/Error.h"
-#include "vots/fit/FitMeta.h"
 #include "vots/fit/Fitter.h"
 #include "vots/fit/VolumeHeader.h"
 #include "vots/fit/VolumeLoad.h"
 #include "vots/fit/VotSpaceFile.h"
+#include "vots/meta/FitMeta.h"
 #include "vots/pacs/DicomWebUrl.h"
 
 #include <CLI/CLI.hpp>
@@ -136,7 +136,7 @@ std::string metaOfRanks(const std::string& meta, std::array<float, 2> range, int
 std::string fitMetaFor(const FitArgs& a, const std::string& source, const fit::Volume& volume,
                        const fit::FitOptions& options, const fit::FitResult& result, double maxError,
                        std::optional<int> ranks, std::array<float, 2> range) {
-    fit::FitProvenance record;
+    meta::FitProvenance record;
     std::error_code ec;
     const fs::path absolute = fs::absolute(source, ec);
     // A PACS series is named by its URL, which never holds credentials.
@@ -148,7 +148,7 @@ std::string fitMetaFor(const FitArgs& a, const std::string& source, const fit::V
     record.stats = result.stats;
     record.maxError = maxError;
     record.backgroundFill = result.space.backgroundFill;
-    const std::string meta = fit::buildFitMeta(record);
+    const std::string meta = meta::buildFitMeta(record);
     return ranks ? metaOfRanks(meta, range, *ranks) : meta;
 }
 

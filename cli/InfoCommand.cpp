@@ -2,8 +2,9 @@
 #include "Args.h"
 #include "Commands.h"
 
-#include "vots/fit/FitMeta.h"
 #include "vots/fit/VotSpaceFile.h"
+#include "vots/meta/FitMeta.h"
+#include "vots/meta/VotSpaceRead.h"
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -45,7 +46,7 @@ struct Summary {
     std::optional<double> perNonBackgroundCell;
 };
 
-Summary summarise(const fit::VotSpace& s, const fit::FitMetaView& meta) {
+Summary summarise(const fit::VotSpace& s, const meta::FitMetaView& meta) {
     Summary sum;
     for (const fit::Vot& v : s.vots) {
         ++sum.histogram[sizeClass(v.box)];
@@ -63,7 +64,7 @@ template <class T> json orNull(const std::optional<T>& v) {
     return v ? json(*v) : json(nullptr);
 }
 
-json toJson(const std::string& path, const fit::VotSpace& s, const fit::FitMetaView& meta,
+json toJson(const std::string& path, const fit::VotSpace& s, const meta::FitMetaView& meta,
             const Summary& sum) {
     json hist = json::array();
     for (std::size_t k = 0; k < SIZE_LABELS.size(); ++k)
@@ -97,7 +98,7 @@ std::optional<long long> ranksOf(const std::string& metaJson) {
     return j["ranks"].get<long long>();
 }
 
-void printText(const std::string& path, const fit::VotSpace& s, const fit::FitMetaView& meta,
+void printText(const std::string& path, const fit::VotSpace& s, const meta::FitMetaView& meta,
                const Summary& sum) {
     std::ostringstream o;
     const auto row = [&o](const char* key) -> std::ostream& {
@@ -135,8 +136,8 @@ void printText(const std::string& path, const fit::VotSpace& s, const fit::FitMe
 }
 
 void runInfo(const InfoArgs& a) {
-    const fit::VotSpace space = fit::readVotSpaceFile(a.file);
-    const fit::FitMetaView meta = fit::readFitMeta(space.metaJson);
+    const fit::VotSpace space = meta::readVotSpaceFile(a.file);
+    const meta::FitMetaView meta = meta::readFitMeta(space.metaJson);
     const Summary sum = summarise(space, meta);
     if (a.json)
         std::cout << toJson(a.file, space, meta, sum).dump(-1, ' ', false, json::error_handler_t::replace)

@@ -16,6 +16,7 @@
 #include "vots/fit/Fitter.h"
 #include "vots/fit/VolumeLoad.h"
 #include "vots/fit/VotSpaceFile.h"
+#include "vots/meta/VotSpaceRead.h"
 #include "vots/pacs/DicomWebUrl.h"
 #include "vots/render/DisplayPass.h"
 #include "vots/render/EglContext.h"
@@ -55,7 +56,7 @@ void runRender(const RenderArgs& a) {
     std::optional<fit::Volume> volume;
     std::optional<fit::VotSpace> space;
     if (inputIsVots) {
-        space = fit::readVotSpaceFile(a.input);
+        space = meta::readVotSpaceFile(a.input);
         if (!a.volume.empty()) {
             volume = loadRenderVolume(a.volume, a, c);
         } else if (c.raw) {

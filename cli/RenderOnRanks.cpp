@@ -11,6 +11,7 @@
 #include "vots/fit/Error.h"
 #include "vots/fit/VolumeHeader.h"
 #include "vots/fit/VotSpaceFile.h"
+#include "vots/meta/VotSpaceRead.h"
 #include "vots/render/DisplayPass.h"
 #include "vots/render/EglContext.h"
 #include "vots/render/GridRenderer.h"
@@ -60,7 +61,7 @@ void readRankInput(const MpiWorld& world, const RenderArgs& a, RankInput& in) {
                     "--volume PATH");
             in.cells = cellsOfVolume(world, a.volume, a, in.c);
         } else {
-            in.space = fit::readVotSpaceFile(a.input);
+            in.space = meta::readVotSpaceFile(a.input);
             in.cells = dist::cellsOfRank(in.space.dims[2] - 1, world.rank(), world.size());
             in.space =
                 dist::votsOfCells(std::move(in.space), in.cells, dist::compositesCutRays(in.c.frame.mode));

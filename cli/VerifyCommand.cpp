@@ -5,10 +5,11 @@
 #include "RawOptions.h"
 #include "SeriesOption.h"
 
-#include "vots/fit/FitMeta.h"
 #include "vots/fit/Verify.h"
 #include "vots/fit/VolumeLoad.h"
 #include "vots/fit/VotSpaceFile.h"
+#include "vots/meta/FitMeta.h"
+#include "vots/meta/VotSpaceRead.h"
 
 #include <CLI/CLI.hpp>
 
@@ -30,18 +31,18 @@ struct VerifyArgs {
 
 /// The bound the file was fitted against: with a focus region, rebuild the field from the meta block
 /// so samples inside the focus are held to eps_focus, not to the looser header eps.
-std::optional<fit::EpsField> epsFieldOf(const fit::VotSpace& space, const fit::FitMetaView& meta) {
+std::optional<fit::EpsField> epsFieldOf(const fit::VotSpace& space, const meta::FitMetaView& meta) {
     if (space.epsVaries && meta.focus) return fit::EpsField(space.eps, meta.focus);
     return std::nullopt;
 }
 
 void runVerify(const VerifyArgs& a) {
     const auto raw = rawLayoutFrom(a.raw);
-    const fit::VotSpace space = fit::readVotSpaceFile(a.file);
+    const fit::VotSpace space = meta::readVotSpaceFile(a.file);
     const VolumeInput input(a.input, a.dicomWeb, nullptr, false);
     const fit::Volume volume = input.reading(
         [&] { return fit::loadVolume(input.path(), raw, fit::SampleStorage::Float, a.series); });
-    const fit::FitMetaView meta = fit::readFitMeta(space.metaJson);
+    const meta::FitMetaView meta = meta::readFitMeta(space.metaJson);
     const fit::VerifyReport r = fit::verifyVotSpace(space, volume, epsFieldOf(space, meta));
 
     std::ostringstream o;

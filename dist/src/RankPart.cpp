@@ -6,6 +6,7 @@
 
 #include "vots/fit/Error.h"
 #include "vots/fit/VotSpaceFile.h"
+#include "vots/meta/VotSpaceRead.h"
 #include "vots/render/GridRenderer.h"
 #include "vots/render/VotRenderer.h"
 
@@ -128,7 +129,7 @@ double RankPart::ensureVotsFile(const std::string& votsPath, bool cutRays, rende
         mFileVots.reset();
         // The whole file is read and this rank's Vots kept, as `mpirun vots render FILE.vots` does: rank
         // 0's dataset registry has checked the file's size against the memory budget before any rank read it.
-        fit::VotSpace space = fit::readVotSpaceFile(votsPath);
+        fit::VotSpace space = meta::readVotSpaceFile(votsPath);
         if (space.dims[2] < 2) throw fit::InputError("a Vot-Space needs at least 2 grid points along z");
         const RankCells cells = cellsOfRank(space.dims[2] - 1, mRank, mRanks);
         mFileVots = votsOfCells(std::move(space), cells, true);

@@ -4,7 +4,6 @@
 #include "vots/fit/Volume.h"
 
 #include "vots/fit/Error.h"
-#include "vots/fit/FitMeta.h"
 
 #include "Crc32.h"
 
@@ -307,7 +306,7 @@ VotSpaceFrame encodeVotSpaceFrame(const VotSpace& space, const std::vector<VotRe
     return frame;
 }
 
-VotSpace decodeVotSpace(const std::uint8_t* data, std::size_t size) {
+VotSpace decodeVotSpaceWithoutMeta(const std::uint8_t* data, std::size_t size) {
     if (data == nullptr) size = 0;
     const std::uint64_t metaBytes = checkFraming(data, size);
     const std::size_t crcAt = size - CRC_BYTES;
@@ -345,14 +344,6 @@ VotSpace decodeVotSpace(const std::uint8_t* data, std::size_t size) {
         s.vots.push_back(decodeVot(data + VOTS_HEADER_BYTES + i * VOTS_RECORD_BYTES));
         validateVot(s, s.vots.back(), i);
     }
-    // The fields a file keeps in its meta block rather than its header, restored here so that no reader
-    // can forget them: without a valid source.patient_axes the grid is unoriented (the six views are index
-    // directions); without a valid background_fill omitted cells count as the threshold, as they did in
-    // files written before the key.
-    const FitMetaView kept = readFitMeta(s.metaJson);
-    s.orientationKnown = kept.patientAxes.has_value();
-    s.patientAxes = kept.patientAxes.value_or(IDENTITY_PATIENT_AXES);
-    s.backgroundFill = kept.backgroundFill;
     return s;
 }
 

@@ -36,7 +36,7 @@ void writeVotSpaceFile(const std::string& path, const VotSpace& space,
     writeFileAtomically(path, encodeVotSpace(space), betweenChunks);
 }
 
-VotSpace readVotSpaceFile(const std::string& path) {
+VotSpace readVotSpaceFileWithoutMeta(const std::string& path) {
     // O_NONBLOCK: opening a FIFO must not hang; it has no effect on reading a regular file.
     Fd fd(::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK));
     if (fd.get() < 0) failErrno("read", path, errno);
@@ -55,7 +55,7 @@ VotSpace readVotSpaceFile(const std::string& path) {
     }
     bytes.resize(got);
     try {
-        return decodeVotSpace(bytes.data(), bytes.size());
+        return decodeVotSpaceWithoutMeta(bytes.data(), bytes.size());
     } catch (const InputError& e) {
         throw InputError(quoted(path) + ": " + e.what());
     }

@@ -7,6 +7,7 @@
 #include "vots/fit/Verify.h"
 #include "vots/fit/VolumeLoad.h"
 #include "vots/fit/VotSpaceFile.h"
+#include "vots/meta/VotSpaceRead.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -112,7 +113,7 @@ TEST_F(CliEndToEnd, TheFileCountsOmittedCellsAsTheirFillAsTheVolumeDoes) {
     EXPECT_GE(info.at("background_fill").get<double>(), -1024.0);
 
     // The same file without the key, as written before it: omitted cells count as the threshold.
-    fit::VotSpace space = fit::readVotSpaceFile(ctVots);
+    fit::VotSpace space = meta::readVotSpaceFile(ctVots);
     json meta = json::parse(space.metaJson);
     meta.erase("background_fill");
     space.metaJson = meta.dump();
@@ -155,7 +156,7 @@ TEST_F(CliEndToEnd, VerifyPassesOnTheFit) {
 
 TEST_F(CliEndToEnd, VerifyFailsOnATamperedVot) {
     ASSERT_EQ(sFit.exitCode, 0);
-    fit::VotSpace space = fit::readVotSpaceFile(sVots);
+    fit::VotSpace space = meta::readVotSpaceFile(sVots);
     ASSERT_FALSE(space.vots.empty());
     space.vots[space.vots.size() / 2].c[0] += 10 * space.eps; // a valid file that is wrong
     const std::string bad = sDir->file("tampered.vots");
@@ -191,7 +192,7 @@ TEST(CliFit, RawInputWithFocusAndCellCertificationVerifies) {
     const CliResult fitRun = runVots(fitArgs);
     ASSERT_EQ(fitRun.exitCode, 0) << describe(fitArgs, fitRun);
 
-    const fit::VotSpace space = fit::readVotSpaceFile(out);
+    const fit::VotSpace space = meta::readVotSpaceFile(out);
     EXPECT_TRUE(space.epsVaries);
     EXPECT_EQ(space.spacing, (std::array<double, 3>{2, 2, 2}));
     const json meta = json::parse(space.metaJson);

@@ -5,6 +5,7 @@
 #include "TempDir.h"
 
 #include "vots/fit/VotSpaceFile.h"
+#include "vots/meta/VotSpaceRead.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -32,7 +33,7 @@ TEST(CliOrientation, VotsFileRendersLikeItsOrientedVolume) {
     ASSERT_EQ(fit.exitCode, 0) << describe(fitArgs, fit);
 
     // The meta block names the axes, rows in grid order, in LPS.
-    const nlohmann::json meta = nlohmann::json::parse(fit::readVotSpaceFile(vots).metaJson);
+    const nlohmann::json meta = nlohmann::json::parse(meta::readVotSpaceFile(vots).metaJson);
     ASSERT_TRUE(meta["source"].contains("patient_axes")) << meta.dump();
     EXPECT_EQ(meta["source"]["patient_axes"], nlohmann::json(PERMUTED_ORDER));
 
@@ -55,7 +56,7 @@ TEST(CliOrientation, VotsFileWithoutTheKeyRendersInIndexSpace) {
     writePhantomNifti(phantomGrid(RAS_ORDER), volume);
     const std::string vots = dir.file("ras.vots");
     ASSERT_EQ(runVots({"fit", volume, "-o", vots, "--eps", "0.5", "--threads", "2"}).exitCode, 0);
-    fit::VotSpace space = fit::readVotSpaceFile(vots);
+    fit::VotSpace space = meta::readVotSpaceFile(vots);
     nlohmann::ordered_json meta = nlohmann::ordered_json::parse(space.metaJson);
     meta["source"].erase("patient_axes");
     space.metaJson = meta.dump();

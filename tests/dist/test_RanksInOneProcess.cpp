@@ -8,10 +8,11 @@
 #include "vots/dist/RankPart.h"
 #include "vots/dist/WholeFill.h"
 
-#include "vots/fit/FitMeta.h"
 #include "vots/fit/Fitter.h"
 #include "vots/fit/VolumeLoad.h"
 #include "vots/fit/VotSpaceFile.h"
+#include "vots/meta/FitMeta.h"
+#include "vots/meta/VotSpaceRead.h"
 #include "vots/render/EglContext.h"
 #include "vots/render/VotRenderer.h"
 
@@ -175,15 +176,15 @@ TEST_F(RanksInOneProcess, DrawAVotsFileAsOneProcessDrawsIt) {
     fit::FitResult fitted = fit::fitVotSpace(whole, options); // boxes across the ranks' faces
     fit::VotSpace& space = fitted.space;
     // The meta block as `vots fit` writes it: each rank's reader restores the fill from it.
-    fit::FitProvenance provenance;
+    meta::FitProvenance provenance;
     provenance.volume = &whole;
     provenance.options = options;
     provenance.stats = fitted.stats;
     provenance.backgroundFill = space.backgroundFill;
-    space.metaJson = fit::buildFitMeta(provenance);
+    space.metaJson = meta::buildFitMeta(provenance);
     const std::string file = dir.file("air-step.vots");
     fit::writeVotSpaceFile(file, space);
-    ASSERT_EQ(fit::readVotSpaceFile(file).backgroundFill, space.backgroundFill);
+    ASSERT_EQ(meta::readVotSpaceFile(file).backgroundFill, space.backgroundFill);
     const dist::RankSetup setup;
     render::VotRenderer one;
     one.upload(space);

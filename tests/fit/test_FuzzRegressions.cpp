@@ -6,6 +6,7 @@
 #include "vots/fit/Error.h"
 #include "vots/fit/VolumeLoad.h"
 #include "vots/fit/VotSpaceFile.h"
+#include "vots/meta/VotSpaceRead.h"
 
 #include <gtest/gtest.h>
 #include <zlib.h>
@@ -36,7 +37,7 @@ void expectLoadsOrInputError(const std::string& target, const std::string& exten
 
 void decodeOrInputError(const std::vector<std::uint8_t>& bytes) {
     try {
-        const auto space = vots::fit::decodeVotSpace(bytes.data(), bytes.size());
+        const auto space = vots::meta::decodeVotSpace(bytes.data(), bytes.size());
         (void)vots::fit::encodeVotSpace(space);
     } catch (const vots::fit::InputError&) {
     }

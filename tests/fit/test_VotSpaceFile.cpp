@@ -29,7 +29,7 @@ constexpr std::size_t H = VOTS_HEADER_BYTES;
 constexpr std::size_t R = VOTS_RECORD_BYTES;
 
 VotSpace decode(const Bytes& b) {
-    return decodeVotSpace(b.data(), b.size());
+    return decodeVotSpaceWithoutMeta(b.data(), b.size());
 }
 
 /// Expects an InputError whose message is one line containing `needle`.
@@ -152,10 +152,10 @@ TEST(VotSpaceFile, EveryTruncationIsRejected) {
     const Bytes good = encodeVotSpace(makeSampleSpace(3));
     for (std::size_t n = 0; n < good.size(); ++n) {
         const Bytes b(good.begin(), good.begin() + static_cast<std::ptrdiff_t>(n));
-        EXPECT_THROW(decodeVotSpace(b.data(), b.size()), InputError) << "length " << n;
+        EXPECT_THROW(decodeVotSpaceWithoutMeta(b.data(), b.size()), InputError) << "length " << n;
     }
     expectRejected(Bytes(good.begin(), good.begin() + 100), "shorter than", "100 bytes");
-    EXPECT_THROW(decodeVotSpace(nullptr, 0), InputError);
+    EXPECT_THROW(decodeVotSpaceWithoutMeta(nullptr, 0), InputError);
 }
 
 TEST(VotSpaceFile, TrailingBytesAreRejected) {

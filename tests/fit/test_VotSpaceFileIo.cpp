@@ -68,11 +68,11 @@ TEST(VotSpaceFileIo, WriteThenReadLeavesOnlyTheFile) {
     const VotSpace s = makeSampleSpace(4);
     writeVotSpaceFile(path, s);
     EXPECT_EQ(slurp(path), encodeVotSpace(s));
-    EXPECT_EQ(encodeVotSpace(readVotSpaceFile(path)), encodeVotSpace(s));
+    EXPECT_EQ(encodeVotSpace(readVotSpaceFileWithoutMeta(path)), encodeVotSpace(s));
     EXPECT_EQ(entryCount(dir.path()), 1u); // no temp file left behind
     // Overwriting an existing file replaces it.
     writeVotSpaceFile(path, makeSampleSpace(1));
-    EXPECT_EQ(readVotSpaceFile(path).vots.size(), 1u);
+    EXPECT_EQ(readVotSpaceFileWithoutMeta(path).vots.size(), 1u);
     EXPECT_EQ(entryCount(dir.path()), 1u);
 }
 
@@ -150,18 +150,18 @@ TEST(VotSpaceFileIo, DiskFullMidWriteLeavesExistingFileIntact) {
 TEST(VotSpaceFileIo, ReadErrorsNameThePath) {
     TempDir dir;
     const std::string missing = dir.file("nope.vots");
-    std::string msg = errorOf([&] { readVotSpaceFile(missing); });
+    std::string msg = errorOf([&] { readVotSpaceFileWithoutMeta(missing); });
     EXPECT_NE(msg.find(missing), std::string::npos) << msg;
     EXPECT_NE(msg.find("No such file or directory"), std::string::npos) << msg;
 
-    msg = errorOf([&] { readVotSpaceFile(dir.path().string()); });
+    msg = errorOf([&] { readVotSpaceFileWithoutMeta(dir.path().string()); });
     EXPECT_NE(msg.find("not a regular file"), std::string::npos) << msg;
 
     const std::string truncated = dir.file("t.vots");
     Bytes b = encodeVotSpace(makeSampleSpace(3));
     b.resize(b.size() / 2); // cut mid-record
     dump(truncated, b);
-    msg = errorOf([&] { readVotSpaceFile(truncated); });
+    msg = errorOf([&] { readVotSpaceFileWithoutMeta(truncated); });
     EXPECT_NE(msg.find(truncated), std::string::npos) << msg;
     EXPECT_NE(msg.find("does not match"), std::string::npos) << msg;
 }

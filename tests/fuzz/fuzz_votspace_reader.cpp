@@ -1,7 +1,8 @@
-// libFuzzer target: decodeVotSpace on arbitrary bytes, as given and with the CRC-32 repaired, decodes or
-// throws InputError.
+// libFuzzer target: meta::decodeVotSpace on arbitrary bytes, as given and with the CRC-32 repaired, decodes
+// or throws InputError.
 #include "vots/fit/Error.h"
 #include "vots/fit/VotSpaceFile.h"
+#include "vots/meta/VotSpaceRead.h"
 
 #include <zlib.h>
 
@@ -13,7 +14,7 @@ namespace {
 
 void decode(const std::uint8_t* data, std::size_t size) {
     try {
-        const vots::fit::VotSpace space = vots::fit::decodeVotSpace(data, size);
+        const vots::fit::VotSpace space = vots::meta::decodeVotSpace(data, size);
         // A file that decodes must encode again (round trip of whatever the decoder accepted).
         (void)vots::fit::encodeVotSpace(space);
     } catch (const vots::fit::InputError&) {

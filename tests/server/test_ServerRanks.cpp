@@ -4,6 +4,7 @@
 
 #include "vots/dist/FrameRanks.h"
 #include "vots/fit/VotSpaceFile.h"
+#include "vots/meta/VotSpaceRead.h"
 #include "vots/render/Png.h"
 
 #include <algorithm>
@@ -205,7 +206,7 @@ TEST(ServerRanks, AVotsDatasetIsDrawnFromTheFileOnEveryRankAndCountedOnce) {
     const std::string fit = std::string(VOTS_CLI) + " fit '" + VOTS_TEST_DATA_DIR + "/" + MRI_BRAIN_FILE +
                             "' -o '" + head + "' --eps 3% 2>/dev/null";
     ASSERT_EQ(std::system(fit.c_str()), 0) << fit;
-    const fit::VotSpace file = fit::readVotSpaceFile(head);
+    const fit::VotSpace file = meta::readVotSpaceFile(head);
     auto ranks = std::make_shared<FakeRanks>("head");
     server::ServerOptions options = world.options();
     options.ranks = ranks;

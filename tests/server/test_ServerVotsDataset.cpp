@@ -4,6 +4,7 @@
 #include "datasets/DatasetRegistry.h"
 
 #include "vots/fit/VotSpaceFile.h"
+#include "vots/meta/VotSpaceRead.h"
 
 #include <gtest/gtest.h>
 
@@ -26,7 +27,7 @@ protected:
         ASSERT_EQ(std::system(fit.c_str()), 0) << fit;
         std::filesystem::copy_file(head, sWorld->data() / (std::string(BLOBS) + ".vots"));
         sWorld->dir().write("data/broken.vots", "VOTS but not a Vot-Space");
-        sVotCount = fit::readVotSpaceFile(head).vots.size();
+        sVotCount = meta::readVotSpaceFile(head).vots.size();
         sServer = new LoopbackServer(sWorld->options());
     }
     static void TearDownTestSuite() {
@@ -75,7 +76,7 @@ protected:
 };
 
 TEST_F(ServerVotsDataset, ListedWithItsKindAndTheFilesEps) {
-    const fit::VotSpace space = fit::readVotSpaceFile((sWorld->data() / "head.vots").string());
+    const fit::VotSpace space = meta::readVotSpaceFile((sWorld->data() / "head.vots").string());
     const auto head = listed("head");
     ASSERT_TRUE(head.is_object()) << "head.vots is not listed";
     EXPECT_EQ(head["kind"], "vots");

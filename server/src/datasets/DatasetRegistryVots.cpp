@@ -2,6 +2,7 @@
 #include "datasets/DatasetRegistryVots.h"
 
 #include "vots/fit/VotSpaceFile.h"
+#include "vots/meta/VotSpaceRead.h"
 
 #include <nlohmann/json.hpp>
 
@@ -63,7 +64,7 @@ std::uint64_t estimateVotsLoadBytes(std::uint64_t fileBytes) {
 }
 
 std::shared_ptr<const Dataset> loadVotsDataset(const std::string& name, const fs::path& path) {
-    auto space = std::make_shared<fit::VotSpace>(fit::readVotSpaceFile(path.string()));
+    auto space = std::make_shared<fit::VotSpace>(meta::readVotSpaceFile(path.string()));
     auto dataset = std::make_shared<Dataset>();
     dataset->name = name;
     dataset->path = path;

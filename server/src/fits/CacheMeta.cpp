@@ -1,7 +1,7 @@
 // CacheMeta: the server's use of fit's meta schema, with the FitKey text as the cache key.
 #include "fits/CacheMeta.h"
 
-#include "vots/fit/FitMeta.h"
+#include "vots/meta/FitMeta.h"
 
 #include <filesystem>
 
@@ -9,7 +9,7 @@ namespace vots::server {
 
 std::string cacheMetaFor(const FitKey& key, const Dataset& dataset, const fit::FitStats& stats,
                          const fit::VotSpace& space) {
-    fit::FitProvenance provenance;
+    meta::FitProvenance provenance;
     std::error_code ec;
     const auto absolute = std::filesystem::absolute(dataset.path, ec);
     provenance.sourcePath = ec ? dataset.path.string() : absolute.lexically_normal().string();
@@ -19,15 +19,15 @@ std::string cacheMetaFor(const FitKey& key, const Dataset& dataset, const fit::F
     provenance.maxError = fit::maxStoredError(space);
     provenance.cacheKey = key.text();
     provenance.backgroundFill = space.backgroundFill;
-    return fit::buildFitMeta(provenance);
+    return meta::buildFitMeta(provenance);
 }
 
 bool carriesKey(const fit::VotSpace& space, const std::string& keyText) {
-    return fit::readFitMeta(space.metaJson).cacheKey == keyText;
+    return meta::readFitMeta(space.metaJson).cacheKey == keyText;
 }
 
 double fitSecondsOf(const fit::VotSpace& space) {
-    return fit::readFitMeta(space.metaJson).fitSeconds.value_or(0.0);
+    return meta::readFitMeta(space.metaJson).fitSeconds.value_or(0.0);
 }
 
 } // namespace vots::server

@@ -5,6 +5,7 @@
 #include "fits/StaleTemporaries.h"
 
 #include "vots/fit/VotSpaceFile.h"
+#include "vots/meta/VotSpaceRead.h"
 
 #include <unistd.h>
 
@@ -52,7 +53,7 @@ std::shared_ptr<const fit::VotSpace> VotSpaceStore::read(const FitKey& key) cons
     std::error_code ec;
     if (!fs::is_regular_file(file, ec)) return nullptr;
     try {
-        fit::VotSpace space = fit::readVotSpaceFile(file.string());
+        fit::VotSpace space = meta::readVotSpaceFile(file.string());
         if (!carriesKey(space, key.text())) return nullptr; // a stranger's file under our name: refit
         fs::last_write_time(file, fs::file_time_type::clock::now(), ec); // used: last to be trimmed
         return std::make_shared<const fit::VotSpace>(std::move(space));

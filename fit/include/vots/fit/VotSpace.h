@@ -3,6 +3,7 @@
 
 #include "vots/fit/Vot.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -16,7 +17,7 @@ struct VotSpace {
     std::array<double, 3> origin{0.0, 0.0, 0.0};  // world position of grid point (0,0,0)
     std::array<double, 3> spacing{1.0, 1.0, 1.0}; // world distance between grid points
     /// The source volume's grid directions in patient space (Volume::patientAxes). Not in the binary
-    /// header: a file keeps them in its meta block (FitMeta.h), which decodeVotSpace reads back into them.
+    /// header: a file keeps them in its meta block, which meta::decodeVotSpace (vots/meta) restores.
     std::array<std::array<double, 3>, 3> patientAxes{{{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}}};
     bool orientationKnown = false;
     int degree = 3;         // highest degree of any nonzero stored coefficient
@@ -36,5 +37,13 @@ struct VotSpace {
 
     static constexpr std::uint32_t FLAG_EPS_VARIES = 1u;
 };
+
+/// The largest error bound stored in the Vots (0 for none).
+inline double maxStoredError(const VotSpace& space) {
+    double maxError = 0.0;
+    for (const Vot& v : space.vots)
+        maxError = std::max(maxError, double{v.err});
+    return maxError;
+}
 
 } // namespace vots::fit

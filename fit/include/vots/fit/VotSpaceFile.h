@@ -21,8 +21,10 @@ inline constexpr std::size_t VOTS_RECORD_BYTES = 120;
 std::vector<std::uint8_t> encodeVotSpace(const VotSpace& space);
 /// Parses and validates v1 bytes; throws InputError naming the first problem found
 /// (magic, version, header size, length/count mismatch, CRC, box outside grid, lo >= hi, non-finite).
-/// The fields kept in the meta block (patientAxes, orientationKnown, backgroundFill) are restored from it.
-VotSpace decodeVotSpace(const std::uint8_t* data, std::size_t size);
+/// The fields a file keeps in its JSON meta block (patientAxes, orientationKnown, backgroundFill) stay
+/// at their defaults: fit reads no JSON. Readers call meta::decodeVotSpace (vots/meta/VotSpaceRead.h),
+/// which restores them.
+VotSpace decodeVotSpaceWithoutMeta(const std::uint8_t* data, std::size_t size);
 
 /// A file that several processes write (`mpirun vots fit`): each encodes the records of its own Vots
 /// (encodeVotRecords), one process the frame around them (encodeVotSpaceFrame), and the bytes at their
@@ -56,7 +58,8 @@ VotSpaceFrame encodeVotSpaceFrame(const VotSpace& space, const std::vector<VotRe
 /// uniqueTemporaryPath and publishTemporary (AtomicFile.h) instead.
 void writeVotSpaceFile(const std::string& path, const VotSpace& space,
                        const std::function<void()>& betweenChunks = {});
-/// Reads and validates a file; throws InputError with the path in the message.
-VotSpace readVotSpaceFile(const std::string& path);
+/// Reads and validates a file as decodeVotSpaceWithoutMeta does; throws InputError with the path in the
+/// message. Readers call meta::readVotSpaceFile (vots/meta/VotSpaceRead.h).
+VotSpace readVotSpaceFileWithoutMeta(const std::string& path);
 
 } // namespace vots::fit

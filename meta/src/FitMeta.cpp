@@ -1,8 +1,8 @@
 // Writes and reads the meta JSON block of .vots files; the key names live only here.
-#include "vots/fit/FitMeta.h"
+#include "vots/meta/FitMeta.h"
 
+#include "vots/fit/EnumNames.h"
 #include "vots/fit/PatientAxes.h"
-#include "vots/fit/VotSpace.h"
 
 #include <nlohmann/json.hpp>
 
@@ -14,8 +14,14 @@
 #define VOTS_VERSION "unknown"
 #endif
 
-namespace vots::fit {
+namespace vots::meta {
 namespace {
+
+using fit::FitOptions;
+using fit::FitStats;
+using fit::FocusRegion;
+using fit::PatientAxes;
+using fit::Volume;
 
 using json = nlohmann::ordered_json;
 
@@ -51,7 +57,7 @@ std::optional<PatientAxes> patientAxesField(const json& j, const json::json_poin
             axes[a][c] = rows[a][c].get<double>();
         }
     }
-    return normalizedPatientAxes(axes);
+    return fit::normalizedPatientAxes(axes);
 }
 
 } // namespace
@@ -139,11 +145,4 @@ FitMetaView readFitMeta(const std::string& metaJson) {
     return view;
 }
 
-double maxStoredError(const VotSpace& space) {
-    double maxError = 0.0;
-    for (const Vot& v : space.vots)
-        maxError = std::max(maxError, double{v.err});
-    return maxError;
-}
-
-} // namespace vots::fit
+} // namespace vots::meta

@@ -10,15 +10,15 @@
 #include <optional>
 #include <string>
 
-namespace vots::fit {
+namespace vots::meta {
 
 /// Everything recorded about one fit.
 struct FitProvenance {
     std::string sourcePath; // the volume file, absolute
-    const Volume* volume = nullptr;
-    std::string epsText; // as the person typed it ("2%" or "20"); empty: none typed (null in the block)
-    FitOptions options;  // resolved (eps in data units, background value); progress and cancel unused
-    FitStats stats;
+    const fit::Volume* volume = nullptr;
+    std::string epsText;     // as the person typed it ("2%" or "20"); empty: none typed (null in the block)
+    fit::FitOptions options; // resolved (eps in data units, background value); progress and cancel unused
+    fit::FitStats stats;
     double maxError = 0.0; // max of the stored Vots' err
     std::string cacheKey;  // the server's key for the fit (its cache files carry it); empty: no key
     std::optional<float> backgroundFill; // VotSpace::backgroundFill; absent: no key in the block
@@ -34,17 +34,14 @@ struct FitMetaView {
     std::optional<int> requestedDegree;
     std::optional<double> fitSeconds;          // also read from the server's earlier cache blocks
     std::optional<std::uint64_t> coveredCells; // non-background cells
-    std::optional<FocusRegion> focus;
+    std::optional<fit::FocusRegion> focus;
     std::optional<std::string> sourcePath;
     std::optional<std::string> method;
     std::optional<std::string> cacheKey;
-    std::optional<PatientAxes> patientAxes; // source.patient_axes: the grid's directions in LPS
-    std::optional<float> backgroundFill;    // background_fill: what omitted cells stand for
+    std::optional<fit::PatientAxes> patientAxes; // source.patient_axes: the grid's directions in LPS
+    std::optional<float> backgroundFill;         // background_fill: what omitted cells stand for
 };
 
 FitMetaView readFitMeta(const std::string& metaJson);
 
-/// The largest error bound stored in the Vots (0 for none).
-double maxStoredError(const VotSpace& space);
-
-} // namespace vots::fit
+} // namespace vots::meta

@@ -1,7 +1,8 @@
 // The meta block's fields: written by buildFitMeta, restored by every .vots read, absent in old files.
-#include "vots/fit/FitMeta.h"
+#include "vots/meta/FitMeta.h"
 
 #include "vots/fit/VotSpaceFile.h"
+#include "vots/meta/VotSpaceRead.h"
 
 #include "TempDir.h"
 
@@ -10,7 +11,8 @@
 
 #include <cmath>
 
-namespace vots::fit {
+namespace vots::meta {
+
 namespace {
 
 fit::Volume smallVolume() {
@@ -37,7 +39,7 @@ fit::VotSpace throughAFile(std::optional<float> fill, const fit::Volume& volume 
     const test::TempDir dir;
     const std::string path = dir.file("small.vots");
     fit::writeVotSpaceFile(path, space);
-    return fit::readVotSpaceFile(path); // the header has neither fill nor axes: the meta block has them
+    return readVotSpaceFile(path); // the header has neither fill nor axes: the meta block has them
 }
 
 TEST(FitMeta, TheBackgroundFillSurvivesAFileBitForBit) {
@@ -88,4 +90,4 @@ TEST(FitMeta, OldOrForeignBlocksGiveNoFill) {
 }
 
 } // namespace
-} // namespace vots::fit
+} // namespace vots::meta
