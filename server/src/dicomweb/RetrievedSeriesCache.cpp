@@ -1,0 +1,160 @@
+// RetrievedSeriesCache: retrieved spool folders moved into the server's cache folder, found again by the
+// series' instance list, and trimmed least recently opened first.
+#include "dicomweb/RetrievedSeriesCache.h"
+
+#include "vots/fit/Error.h"
+
+#include <nlohmann/json.hpp>
+#include <zlib.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+
+namespace vots::server {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr const char* RECORD_EXTENSION = ".json";
+
+std::uint32_t crcOf(std::uint32_t crc, const std::string& text) {
+    return static_cast<std::uint32_t>(
+        crc32(crc, reinterpret_cast<const Bytef*>(text.data()), static_cast<uInt>(text.size())));
+}
+
+struct FolderContent {
+    std::uint64_t bytes = 0;
+    std::uint32_t crc = 0;
+    int files = 0;
+};
+
+/// The bytes and CRC-32 of a folder's files, in name order.
+FolderContent readContent(const fs::path& folder) {
+    std::vector<fs::path> files;
+    for (const auto& entry : fs::directory_iterator(folder))
+        if (entry.is_regular_file()) files.push_back(entry.path());
+    std::sort(files.begin(), files.end());
+    FolderContent content;
+    std::vector<char> buffer(1 << 20);
+    for (const fs::path& file : files) {
+        std::ifstream in(file, std::ios::binary);
+        while (in) {
+            in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+            const auto got = static_cast<std::size_t>(in.gcount());
+            content.crc = static_cast<std::uint32_t>(
+                crc32(content.crc, reinterpret_cast<const Bytef*>(buffer.data()), static_cast<uInt>(got)));
+            content.bytes += got;
+        }
+        ++content.files;
+    }
+    return content;
+}
+
+std::uint64_t folderBytes(const fs::path& folder) {
+    std::uint64_t total = 0;
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(folder, ec)) {
+        const auto size = entry.file_size(ec);
+        if (!ec) total += size;
+    }
+    return total;
+}
+
+} // namespace
+
+std::string retrievedSeriesKey(const std::string& seriesUid, std::vector<std::string> sopInstanceUids) {
+    std::sort(sopInstanceUids.begin(), sopInstanceUids.end());
+    std::uint32_t crc = 0;
+    for (const std::string& uid : sopInstanceUids)
+        crc = crcOf(crc, uid + '\n');
+    char hex[9];
+    std::snprintf(hex, sizeof hex, "%08x", crc);
+    return seriesUid + "-" + hex;
+}
+
+RetrievedSeriesCache::RetrievedSeriesCache(fs::path root, std::uint64_t budgetBytes)
+    : mRoot(std::move(root)), mBudget(budgetBytes) {
+    if (mRoot.empty()) {
+        std::string pattern = (fs::temp_directory_path() / "vots-retrieved-XXXXXX").string();
+        if (!mkdtemp(pattern.data())) throw fit::InputError("cannot make a folder for retrieved series");
+        mRoot = pattern;
+        mOwnsRoot = true;
+    }
+    fs::create_directories(mRoot);
+}
+
+RetrievedSeriesCache::~RetrievedSeriesCache() {
+    std::error_code ignored;
+    if (mOwnsRoot) fs::remove_all(mRoot, ignored);
+}
+
+std::optional<fs::path> RetrievedSeriesCache::find(const std::string& seriesUid,
+                                                   const std::vector<std::string>& sopInstanceUids) {
+    const std::string key = retrievedSeriesKey(seriesUid, sopInstanceUids);
+    std::lock_guard lock(mMutex);
+    const fs::path record = mRoot / (key + RECORD_EXTENSION);
+    std::error_code ec;
+    if (!fs::is_regular_file(record, ec) || !fs::is_directory(mRoot / key, ec)) return std::nullopt;
+    fs::last_write_time(record, fs::file_time_type::clock::now(), ec); // recently opened: trimmed last
+    return mRoot / key;
+}
+
+fs::path RetrievedSeriesCache::keep(const std::string& seriesUid, const std::vector<std::string>& sopInstanceUids,
+                                    const pacs::RetrievedSeries& retrieved) {
+    const std::string key = retrievedSeriesKey(seriesUid, sopInstanceUids);
+    const FolderContent content = readContent(retrieved.folder());
+    std::lock_guard lock(mMutex);
+    const fs::path folder = mRoot / key;
+    const fs::path record = mRoot / (key + RECORD_EXTENSION);
+    std::error_code ec;
+    fs::remove(record, ec);
+    fs::remove_all(folder, ec); // an incomplete earlier copy
+    fs::rename(retrieved.folder(), folder, ec); // the spool folder's owner then finds nothing to remove
+    if (ec) throw fit::InputError("cannot keep the retrieved series in " + mRoot.string() + ": " + ec.message());
+    const nlohmann::json received = {{"seriesInstanceUid", seriesUid},
+                                     {"instances", content.files},
+                                     {"bytes", content.bytes},
+                                     {"crc32", content.crc},
+                                     {"perInstance", retrieved.perInstance}};
+    const fs::path temporary = record.string() + ".tmp";
+    {
+        std::ofstream out(temporary);
+        out << received.dump(2) << "\n";
+        if (!out) throw fit::InputError("cannot write " + temporary.string());
+    }
+    fs::rename(temporary, record, ec); // the record last: a folder without one is incomplete
+    if (ec) throw fit::InputError("cannot write " + record.string() + ": " + ec.message());
+    trimToBudget(folder);
+    return folder;
+}
+
+void RetrievedSeriesCache::trimToBudget(const fs::path& keep) const {
+    struct Kept {
+        fs::path folder;
+        fs::file_time_type opened;
+        std::uint64_t bytes = 0;
+    };
+    std::vector<Kept> kept;
+    std::uint64_t total = 0;
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(mRoot, ec)) {
+        if (entry.path().extension() != RECORD_EXTENSION) continue;
+        fs::path folder = entry.path();
+        folder.replace_extension();
+        Kept k{folder, entry.last_write_time(ec), folderBytes(folder)};
+        total += k.bytes;
+        kept.push_back(std::move(k));
+    }
+    std::sort(kept.begin(), kept.end(), [](const Kept& a, const Kept& b) { return a.opened < b.opened; });
+    for (const Kept& k : kept) {
+        if (total <= mBudget) break;
+        if (k.folder == keep) continue;
+        fs::remove(k.folder.string() + RECORD_EXTENSION, ec); // the record first: never a half-removed hit
+        fs::remove_all(k.folder, ec);
+        total -= k.bytes;
+    }
+}
+
+} // namespace vots::server
