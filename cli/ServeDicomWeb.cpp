@@ -27,9 +27,10 @@ std::pair<std::string, std::string> namedValue(const std::string& text, const ch
 } // namespace
 
 void addServeDicomWebOptions(CLI::App& command, ServeDicomWebArgs& args) {
-    command.add_option("--dicomweb", args.services,
-                       "A PACS the viewer may browse and open series from, as NAME=dicomweb+http(s)://HOST:PORT/"
-                       "ROOT (repeatable; docs/PACS.md). Retrieved series are kept in the cache folder");
+    command.add_option(
+        "--dicomweb", args.services,
+        "A PACS the viewer may browse and open series from, as NAME=dicomweb+http(s)://HOST:PORT/"
+        "ROOT (repeatable; docs/PACS.md). Retrieved series are kept in the cache folder");
     command.add_option("--dicomweb-auth", args.auths,
                        "NAME=FILE: the credentials for that PACS, the file's one line 'basic USER:PASSWORD' "
                        "or 'bearer TOKEN' (repeatable)");

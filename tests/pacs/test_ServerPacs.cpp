@@ -44,8 +44,9 @@ class CountingProxy {
 public:
     explicit CountingProxy(const fs::path& folder) : mLog(folder / "proxy.log") {
         const std::string portFile = (folder / "proxy_port").string();
-        std::vector<std::string> args = {"python3", VOTS_FAULT_PROXY, "--target", orthancStateFile("port"),
-                                         "--port-file", portFile, "--log", mLog.string()};
+        std::vector<std::string> args = {
+            "python3",     VOTS_FAULT_PROXY, "--target", orthancStateFile("port"),
+            "--port-file", portFile,         "--log",    mLog.string()};
         std::vector<char*> argv;
         for (std::string& a : args)
             argv.push_back(a.data());
@@ -105,7 +106,8 @@ protected:
     ServerPacs() {
         fs::create_directories(mDir.path() / "data");
         // The same files as a folder dataset: what an opened series must look like.
-        fs::create_directory_symlink(fs::path(orthancState()) / "series" / "ramp", mDir.path() / "data" / "ramp");
+        fs::create_directory_symlink(fs::path(orthancState()) / "series" / "ramp",
+                                     mDir.path() / "data" / "ramp");
     }
 
     server::ServerOptions options(const std::vector<server::DicomWebService>& services) const {
@@ -120,9 +122,9 @@ protected:
     /// POSTs the open and polls it until it ends (about two minutes at most); returns every answer seen.
     static std::vector<nlohmann::json> openSeries(httplib::Client& c, const std::string& service,
                                                   const std::string& study, const std::string& series) {
-        const auto posted = c.Post(
-            ("/api/pacs/" + service + "/studies/" + study + "/series/" + series + "/open").c_str(), "{}",
-            "application/json");
+        const auto posted =
+            c.Post(("/api/pacs/" + service + "/studies/" + study + "/series/" + series + "/open").c_str(),
+                   "{}", "application/json");
         EXPECT_TRUE(posted);
         if (!posted) return {};
         EXPECT_EQ(posted->status, 202) << posted->body;
@@ -151,7 +153,8 @@ TEST_F(ServerPacs, ListsTheServicesWithoutCredentials) {
     const auto body = nlohmann::json::parse(res->body);
     ASSERT_EQ(body["services"].size(), 1u);
     EXPECT_EQ(body["services"][0]["name"], "orthanc");
-    EXPECT_EQ(body["services"][0]["url"], "dicomweb+http://127.0.0.1:" + orthancStateFile("port") + "/dicom-web");
+    EXPECT_EQ(body["services"][0]["url"],
+              "dicomweb+http://127.0.0.1:" + orthancStateFile("port") + "/dicom-web");
     EXPECT_EQ(res->body.find(orthancStateFile("password")), std::string::npos);
 }
 

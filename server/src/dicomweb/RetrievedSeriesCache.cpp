@@ -101,7 +101,8 @@ std::optional<fs::path> RetrievedSeriesCache::find(const std::string& seriesUid,
     return mRoot / key;
 }
 
-fs::path RetrievedSeriesCache::keep(const std::string& seriesUid, const std::vector<std::string>& sopInstanceUids,
+fs::path RetrievedSeriesCache::keep(const std::string& seriesUid,
+                                    const std::vector<std::string>& sopInstanceUids,
                                     const pacs::RetrievedSeries& retrieved) {
     const std::string key = retrievedSeriesKey(seriesUid, sopInstanceUids);
     const FolderContent content = readContent(retrieved.folder());
@@ -110,9 +111,10 @@ fs::path RetrievedSeriesCache::keep(const std::string& seriesUid, const std::vec
     const fs::path record = mRoot / (key + RECORD_EXTENSION);
     std::error_code ec;
     fs::remove(record, ec);
-    fs::remove_all(folder, ec); // an incomplete earlier copy
+    fs::remove_all(folder, ec);                 // an incomplete earlier copy
     fs::rename(retrieved.folder(), folder, ec); // the spool folder's owner then finds nothing to remove
-    if (ec) throw fit::InputError("cannot keep the retrieved series in " + mRoot.string() + ": " + ec.message());
+    if (ec)
+        throw fit::InputError("cannot keep the retrieved series in " + mRoot.string() + ": " + ec.message());
     const nlohmann::json received = {{"seriesInstanceUid", seriesUid},
                                      {"instances", content.files},
                                      {"bytes", content.bytes},

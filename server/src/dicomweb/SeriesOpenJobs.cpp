@@ -49,7 +49,8 @@ SeriesOpenSnapshot SeriesOpenJobs::open(const std::string& serviceName, const st
         if (active && s.service == serviceName && s.seriesUid == seriesUid) return s;
     }
     if (mRunning >= MAX_RUNNING)
-        throw HttpError(429, std::to_string(MAX_RUNNING) + " series are being opened; try again when one is in");
+        throw HttpError(429,
+                        std::to_string(MAX_RUNNING) + " series are being opened; try again when one is in");
     auto job = std::make_unique<Job>();
     job->state.id = mNextId++;
     job->state.service = serviceName;
@@ -76,7 +77,8 @@ void SeriesOpenJobs::run(Job& job) {
         // QIDO and the series' metadata only: enough to know whether the kept copy is still the series.
         const pacs::SeriesAnnouncement announced = pacs::announceSeries(series, service.access);
         update(job, [&](SeriesOpenSnapshot& s) { s.total = announced.instanceCount; });
-        std::optional<std::filesystem::path> folder = mCache.find(series.seriesUid, announced.sopInstanceUids);
+        std::optional<std::filesystem::path> folder =
+            mCache.find(series.seriesUid, announced.sopInstanceUids);
         if (folder) {
             update(job, [&](SeriesOpenSnapshot& s) {
                 s.fromCache = true;

@@ -20,7 +20,8 @@ constexpr int MAX_STUDIES = 500;
 std::string fieldParam(const httplib::Request& req, const char* name) {
     const std::string value = req.get_param_value(name);
     if (value.size() > MAX_FIELD_CHARS)
-        throw HttpError(400, std::string(name) + ": at most " + std::to_string(MAX_FIELD_CHARS) + " characters");
+        throw HttpError(400,
+                        std::string(name) + ": at most " + std::to_string(MAX_FIELD_CHARS) + " characters");
     for (const char c : value)
         if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f || c == '\\')
             throw HttpError(400, std::string(name) + ": control characters and '\\' are not accepted");
@@ -41,8 +42,8 @@ std::string dateParam(const httplib::Request& req, const char* name) {
 int limitParam(const httplib::Request& req) {
     if (!req.has_param("limit")) return 100;
     const std::string text = req.get_param_value("limit");
-    const bool digits =
-        !text.empty() && text.size() <= 4 && std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+    const bool digits = !text.empty() && text.size() <= 4 &&
+                        std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
     const int limit = digits ? std::stoi(text) : 0;
     if (limit < 1 || limit > MAX_STUDIES)
         throw HttpError(400, "limit: a whole number from 1 to " + std::to_string(MAX_STUDIES));
@@ -59,10 +60,14 @@ template <class Call> auto askPacs(Call&& call) {
 }
 
 nlohmann::json studyJson(const pacs::StudySummary& s) {
-    return {{"studyUid", s.studyUid},         {"patientName", s.patientName},
-            {"patientId", s.patientId},       {"studyDate", s.studyDate},
-            {"description", s.studyDescription}, {"accessionNumber", s.accessionNumber},
-            {"modalities", s.modalities},     {"seriesCount", s.seriesCount},
+    return {{"studyUid", s.studyUid},
+            {"patientName", s.patientName},
+            {"patientId", s.patientId},
+            {"studyDate", s.studyDate},
+            {"description", s.studyDescription},
+            {"accessionNumber", s.accessionNumber},
+            {"modalities", s.modalities},
+            {"seriesCount", s.seriesCount},
             {"instanceCount", s.instanceCount}};
 }
 
@@ -106,23 +111,24 @@ void installPacsRoutes(Server::Impl& s) {
         sendJson(res, 200, {{"services", services}});
     });
 
-    s.http.Get(R"(/api/pacs/([A-Za-z0-9_-]{1,64})/studies)", [&s](const httplib::Request& req,
-                                                                 httplib::Response& res) {
-        const DicomWebService& service = s.seriesOpens.service(req.matches[1].str());
-        pacs::StudyQuery query;
-        query.patientName = fieldParam(req, "patientName");
-        query.patientId = fieldParam(req, "patientId");
-        query.studyDateFrom = dateParam(req, "dateFrom");
-        query.studyDateTo = dateParam(req, "dateTo");
-        query.modality = fieldParam(req, "modality");
-        query.accessionNumber = fieldParam(req, "accessionNumber");
-        query.limit = limitParam(req);
-        const auto studies = askPacs([&] { return pacs::searchStudies(service.endpoint, service.access, query); });
-        nlohmann::json out = nlohmann::json::array();
-        for (const pacs::StudySummary& study : studies)
-            out.push_back(studyJson(study));
-        sendJson(res, 200, {{"studies", out}});
-    });
+    s.http.Get(R"(/api/pacs/([A-Za-z0-9_-]{1,64})/studies)",
+               [&s](const httplib::Request& req, httplib::Response& res) {
+                   const DicomWebService& service = s.seriesOpens.service(req.matches[1].str());
+                   pacs::StudyQuery query;
+                   query.patientName = fieldParam(req, "patientName");
+                   query.patientId = fieldParam(req, "patientId");
+                   query.studyDateFrom = dateParam(req, "dateFrom");
+                   query.studyDateTo = dateParam(req, "dateTo");
+                   query.modality = fieldParam(req, "modality");
+                   query.accessionNumber = fieldParam(req, "accessionNumber");
+                   query.limit = limitParam(req);
+                   const auto studies =
+                       askPacs([&] { return pacs::searchStudies(service.endpoint, service.access, query); });
+                   nlohmann::json out = nlohmann::json::array();
+                   for (const pacs::StudySummary& study : studies)
+                       out.push_back(studyJson(study));
+                   sendJson(res, 200, {{"studies", out}});
+               });
 
     s.http.Get(R"(/api/pacs/([A-Za-z0-9_-]{1,64})/studies/([0-9.]{1,64})/series)",
                [&s](const httplib::Request& req, httplib::Response& res) {
@@ -147,10 +153,10 @@ void installPacsRoutes(Server::Impl& s) {
         sendJson(res, 200, openJson(s.seriesOpens.snapshot(openIdFrom(req))));
     });
 
-    s.http.Post(R"(/api/pacs/opens/(\d{1,20})/cancel)", [&s](const httplib::Request& req,
-                                                            httplib::Response& res) {
-        sendJson(res, 200, openJson(s.seriesOpens.cancel(openIdFrom(req))));
-    });
+    s.http.Post(R"(/api/pacs/opens/(\d{1,20})/cancel)",
+                [&s](const httplib::Request& req, httplib::Response& res) {
+                    sendJson(res, 200, openJson(s.seriesOpens.cancel(openIdFrom(req))));
+                });
 }
 
 } // namespace vots::server
