@@ -101,6 +101,31 @@ std::string closedPort() {
     return std::to_string(ntohs(address.sin_port));
 }
 
+/// A loopback port that takes connections (the kernel completes them) and never answers a byte.
+class SilentPort {
+public:
+    SilentPort() {
+        mSocket = socket(AF_INET, SOCK_STREAM, 0);
+        sockaddr_in address{};
+        address.sin_family = AF_INET;
+        address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+        socklen_t length = sizeof address;
+        if (mSocket < 0 || bind(mSocket, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0 ||
+            listen(mSocket, 16) != 0 ||
+            getsockname(mSocket, reinterpret_cast<sockaddr*>(&address), &length) != 0)
+            throw std::runtime_error("cannot listen on a loopback port");
+        mPort = std::to_string(ntohs(address.sin_port));
+    }
+    ~SilentPort() { close(mSocket); }
+    SilentPort(const SilentPort&) = delete;
+    SilentPort& operator=(const SilentPort&) = delete;
+    const std::string& port() const { return mPort; }
+
+private:
+    int mSocket = -1;
+    std::string mPort;
+};
+
 class ServerPacs : public ::testing::Test {
 protected:
     ServerPacs() {
@@ -214,6 +239,8 @@ TEST_F(ServerPacs, AnOpenedSeriesRendersAsTheSameFilesFromAFolder) {
         ASSERT_TRUE(pacsFrame && folderFrame);
         ASSERT_EQ(pacsFrame->status, 200) << pacsFrame->body;
         ASSERT_EQ(folderFrame->status, 200) << folderFrame->body;
+        EXPECT_EQ(pacsFrame->get_header_value("Content-Type"), "image/png");
+        EXPECT_GT(pacsFrame->body.size(), 200u) << query;
         EXPECT_EQ(pacsFrame->body, folderFrame->body) << query;
     }
 }
@@ -277,6 +304,36 @@ TEST_F(ServerPacs, AServiceThatIsDownAnswers502) {
     const auto seen = openSeries(*c, "down", RAMP_STUDY, RAMP_SERIES);
     ASSERT_FALSE(seen.empty());
     EXPECT_EQ(seen.back()["status"], 502) << seen.back().dump();
+}
+
+TEST_F(ServerPacs, AServiceThatNeverAnswersAnswers504) {
+    SilentPort silent;
+    server::DicomWebService slow = service("slow", silent.port(), true);
+    slow.access.readTimeoutSeconds = 1;
+    LoopbackServer server(options({slow}));
+    auto c = server.client();
+    const auto res = c->Get("/api/pacs/slow/studies?modality=CT");
+    ASSERT_TRUE(res);
+    EXPECT_EQ(res->status, 504) << res->body;
+    const auto body = nlohmann::json::parse(res->body);
+    EXPECT_NE(body["error"].get<std::string>().find("timed out"), std::string::npos) << res->body;
+    const auto seen = openSeries(*c, "slow", RAMP_STUDY, RAMP_SERIES);
+    ASSERT_FALSE(seen.empty());
+    EXPECT_EQ(seen.back()["status"], 504) << seen.back().dump();
+}
+
+TEST_F(ServerPacs, ASeriesOverTheMemoryBudgetIsRefusedBeforeItsPixelsAreAskedFor) {
+    CountingProxy proxy(mDir.path());
+    server::ServerOptions o = options({service("orthanc", proxy.port(), true)});
+    o.memoryBudgetBytes = 1; // less than any process holds: every load is refused
+    LoopbackServer server(o);
+    const auto seen = openSeries(*server.client(), "orthanc", CRANIUM_STUDY, CRANIUM_SERIES);
+    ASSERT_FALSE(seen.empty());
+    EXPECT_EQ(seen.back()["state"], "failed");
+    EXPECT_EQ(seen.back()["status"], 507) << seen.back().dump();
+    EXPECT_NE(seen.back()["error"].get<std::string>().find("memory budget"), std::string::npos);
+    EXPECT_EQ(proxy.seriesRetrieves(CRANIUM_SERIES), 0);
+    EXPECT_TRUE(fs::is_empty(mDir.path() / "cache" / "dicomweb")) << "a refused open left files behind";
 }
 
 TEST_F(ServerPacs, BadRequestsAreRefusedBeforeThePacsIsAsked) {
