@@ -56,7 +56,8 @@ std::vector<server::DicomWebService> dicomWebServicesOf(const ServeDicomWebArgs&
     };
     for (const std::string& text : args.auths) {
         const auto [name, file] = namedValue(text, "--dicomweb-auth");
-        serviceNamed(name, "--dicomweb-auth").access.auth = pacs::readDicomWebAuthFile(file);
+        server::DicomWebService& service = serviceNamed(name, "--dicomweb-auth");
+        service.access.auth = pacs::readDicomWebAuthFile(file);
     }
     for (const std::string& text : args.cas) {
         const auto [name, file] = namedValue(text, "--dicomweb-ca");

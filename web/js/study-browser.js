@@ -15,6 +15,12 @@ export function personName(pn) {
   return given ? `${family}, ${given}` : family;
 }
 
+// What the panel asks for a typed name: a prefix ("doe" finds "Doe^John") unless it holds a wildcard.
+export function namePattern(typed) {
+  const t = String(typed || '').trim();
+  return !t || /[*?]/.test(t) ? t : `${t}*`;
+}
+
 // "20240131" -> "2024-01-31"; anything else as it is.
 export function studyDate(da) {
   const d = String(da || '');
@@ -107,7 +113,7 @@ export function createStudyBrowser({ el, onOpened }) {
     el.studiesNote.textContent = 'Searching…';
     try {
       const studies = await searchStudies(service(), {
-        patientName: el.patientName.value.trim(),
+        patientName: namePattern(el.patientName.value),
         patientId: el.patientId.value.trim(),
         dateFrom: el.dateFrom.value,
         dateTo: el.dateTo.value,

@@ -68,7 +68,7 @@ test('search, list a study\'s series, open one with progress, and see it', async
     const panel = viewer.byId('pacs');
     await panel.waitFor({ state: 'visible' });
 
-    await viewer.byId('pacs-patient-name').fill('Vots*');
+    await viewer.byId('pacs-patient-name').fill('vots'); // a prefix, in any case
     await viewer.byId('pacs-modality').fill('ct');
     await viewer.byId('pacs-search').click();
     const study = viewer.byId('pacs-studies').locator(`li[data-study-uid="${CRANIUM_SERIES}.0"]`);
