@@ -63,6 +63,7 @@ public:
         waitpid(mPid, nullptr, 0);
     }
     std::string port() const { return mPort; }
+    std::string log() const { return readText(mLog); }
     /// Request lines that asked for the series' instances (a retrieve), not its metadata.
     int seriesRetrieves(const std::string& seriesUid) const {
         const std::string log = readText(mLog);
@@ -167,6 +168,15 @@ protected:
         return seen;
     }
 
+    /// The retrieved series' folder holds this process's spool folder alone, and that is empty.
+    bool keptNothing() const {
+        const fs::path root = mDir.path() / "cache" / "dicomweb";
+        const fs::path spool = root / ("spool-" + std::to_string(getpid()));
+        for (const auto& entry : fs::directory_iterator(root))
+            if (entry.path() != spool) return false;
+        return fs::is_empty(spool);
+    }
+
     TempDir mDir;
 };
 
@@ -255,9 +265,16 @@ TEST_F(ServerPacs, ASecondOpenReadsTheKeptSeriesWithoutARetrieve) {
         EXPECT_EQ(seen.back()["fromCache"], false);
     }
     EXPECT_EQ(proxy.seriesRetrieves(CRANIUM_SERIES), 1);
-    // A new server over the same cache folder: the series is announced (unchanged), not retrieved again.
+    // A new server over the same cache folder lists the kept series at once, asking the PACS nothing;
+    // opened again, the series is announced (unchanged), not retrieved again.
+    const std::string requestsBefore = proxy.log();
     LoopbackServer server(options({service("orthanc", proxy.port(), true)}));
     auto c = server.client();
+    const auto listed = c->Get("/api/datasets");
+    ASSERT_TRUE(listed);
+    EXPECT_NE(listed->body.find("orthanc-1_2_826_0_1_3680043_10_1234_202"), std::string::npos)
+        << listed->body;
+    EXPECT_EQ(proxy.log(), requestsBefore);
     const auto seen = openSeries(*c, "orthanc", CRANIUM_STUDY, CRANIUM_SERIES);
     ASSERT_FALSE(seen.empty());
     ASSERT_EQ(seen.back()["state"], "done") << seen.back().dump();
@@ -285,7 +302,7 @@ TEST_F(ServerPacs, RefusedCredentialsAnswer401AndNeverTheSecret) {
     EXPECT_EQ(seen.back()["state"], "failed");
     EXPECT_EQ(seen.back()["status"], 401) << seen.back().dump();
     EXPECT_EQ(seen.back()["dataset"], nullptr);
-    EXPECT_TRUE(fs::is_empty(mDir.path() / "cache" / "dicomweb")) << "a failed open left files behind";
+    EXPECT_TRUE(keptNothing()) << "a failed open left files behind";
 }
 
 TEST_F(ServerPacs, AServiceThatIsDownAnswers502) {
@@ -333,7 +350,7 @@ TEST_F(ServerPacs, ASeriesOverTheMemoryBudgetIsRefusedBeforeItsPixelsAreAskedFor
     EXPECT_EQ(seen.back()["status"], 507) << seen.back().dump();
     EXPECT_NE(seen.back()["error"].get<std::string>().find("memory budget"), std::string::npos);
     EXPECT_EQ(proxy.seriesRetrieves(CRANIUM_SERIES), 0);
-    EXPECT_TRUE(fs::is_empty(mDir.path() / "cache" / "dicomweb")) << "a refused open left files behind";
+    EXPECT_TRUE(keptNothing()) << "a refused open left files behind";
 }
 
 TEST_F(ServerPacs, BadRequestsAreRefusedBeforeThePacsIsAsked) {

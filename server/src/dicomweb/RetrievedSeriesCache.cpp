@@ -7,7 +7,11 @@
 #include <nlohmann/json.hpp>
 #include <zlib.h>
 
+#include <signal.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -18,6 +22,22 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* RECORD_EXTENSION = ".json";
+constexpr const char* SPOOL_PREFIX = "spool-";
+
+/// Removes ROOT/spool-<pid>/ of processes that no longer run: retrieves they left half done.
+void removeStaleSpools(const fs::path& root) {
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(root, ec)) {
+        const std::string name = entry.path().filename().string();
+        if (name.rfind(SPOOL_PREFIX, 0) != 0) continue;
+        const std::string digits = name.substr(std::string(SPOOL_PREFIX).size());
+        if (digits.empty() || digits.size() > 9 ||
+            digits.find_first_not_of("0123456789") != std::string::npos)
+            continue;
+        const pid_t pid = static_cast<pid_t>(std::stol(digits));
+        if (kill(pid, 0) != 0 && errno == ESRCH) fs::remove_all(entry.path(), ec);
+    }
+}
 
 std::uint32_t crcOf(std::uint32_t crc, const std::string& text) {
     return static_cast<std::uint32_t>(
@@ -83,10 +103,14 @@ RetrievedSeriesCache::RetrievedSeriesCache(fs::path root, std::uint64_t budgetBy
         mOwnsRoot = true;
     }
     fs::create_directories(mRoot);
+    removeStaleSpools(mRoot);
+    mSpool = mRoot / (SPOOL_PREFIX + std::to_string(getpid()));
+    fs::create_directories(mSpool);
 }
 
 RetrievedSeriesCache::~RetrievedSeriesCache() {
     std::error_code ignored;
+    fs::remove_all(mSpool, ignored); // empty unless a retrieve failed to clean up after itself
     if (mOwnsRoot) fs::remove_all(mRoot, ignored);
 }
 
@@ -101,10 +125,9 @@ std::optional<fs::path> RetrievedSeriesCache::find(const std::string& seriesUid,
     return mRoot / key;
 }
 
-fs::path RetrievedSeriesCache::keep(const std::string& seriesUid,
-                                    const std::vector<std::string>& sopInstanceUids,
+fs::path RetrievedSeriesCache::keep(const KeptSeries& origin, const std::vector<std::string>& sopInstanceUids,
                                     const pacs::RetrievedSeries& retrieved) {
-    const std::string key = retrievedSeriesKey(seriesUid, sopInstanceUids);
+    const std::string key = retrievedSeriesKey(origin.seriesUid, sopInstanceUids);
     const FolderContent content = readContent(retrieved.folder());
     std::lock_guard lock(mMutex);
     const fs::path folder = mRoot / key;
@@ -115,7 +138,9 @@ fs::path RetrievedSeriesCache::keep(const std::string& seriesUid,
     fs::rename(retrieved.folder(), folder, ec); // the spool folder's owner then finds nothing to remove
     if (ec)
         throw fit::InputError("cannot keep the retrieved series in " + mRoot.string() + ": " + ec.message());
-    const nlohmann::json received = {{"seriesInstanceUid", seriesUid},
+    const nlohmann::json received = {{"service", origin.service},
+                                     {"studyInstanceUid", origin.studyUid},
+                                     {"seriesInstanceUid", origin.seriesUid},
                                      {"instances", content.files},
                                      {"bytes", content.bytes},
                                      {"crc32", content.crc},
@@ -130,6 +155,29 @@ fs::path RetrievedSeriesCache::keep(const std::string& seriesUid,
     if (ec) throw fit::InputError("cannot write " + record.string() + ": " + ec.message());
     trimToBudget(folder);
     return folder;
+}
+
+std::vector<KeptSeries> RetrievedSeriesCache::kept() const {
+    std::lock_guard lock(mMutex);
+    std::vector<std::pair<fs::file_time_type, KeptSeries>> found;
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(mRoot, ec)) {
+        if (entry.path().extension() != RECORD_EXTENSION) continue;
+        fs::path folder = entry.path();
+        folder.replace_extension();
+        std::ifstream in(entry.path());
+        const nlohmann::json record = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+        if (!record.is_object() || !fs::is_directory(folder, ec)) continue;
+        KeptSeries series{record.value("service", ""), record.value("studyInstanceUid", ""),
+                          record.value("seriesInstanceUid", ""), folder};
+        if (series.service.empty() || series.seriesUid.empty()) continue;
+        found.emplace_back(entry.last_write_time(ec), std::move(series));
+    }
+    std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::vector<KeptSeries> out;
+    for (auto& [opened, series] : found)
+        out.push_back(std::move(series));
+    return out;
 }
 
 void RetrievedSeriesCache::trimToBudget(const fs::path& keep) const {

@@ -6,7 +6,7 @@
 
 #include "vots/fit/MemoryBudget.h"
 
-#include <iostream>
+#include <algorithm>
 
 namespace vots::server {
 
@@ -19,7 +19,16 @@ std::string pacsDatasetName(const std::string& service, const std::string& serie
 
 SeriesOpenJobs::SeriesOpenJobs(const std::vector<DicomWebService>& services, RetrievedSeriesCache& cache,
                                DatasetRegistry& registry, MemoryAdmission& memory)
-    : mServices(services), mCache(cache), mRegistry(registry), mMemory(memory) {}
+    : mServices(services), mCache(cache), mRegistry(registry), mMemory(memory) {
+    // A restarted server lists what it keeps, as it was retrieved, so that links to it work at once; an
+    // open from the panel checks it against the PACS again. The most recently opened copy wins.
+    for (const KeptSeries& kept : mCache.kept()) {
+        const bool configured = std::any_of(services.begin(), services.end(),
+                                            [&](const DicomWebService& s) { return s.name == kept.service; });
+        if (configured)
+            mRegistry.offerDicomFolder(pacsDatasetName(kept.service, kept.seriesUid), kept.folder);
+    }
+}
 
 SeriesOpenJobs::~SeriesOpenJobs() {
     std::map<std::uint64_t, std::unique_ptr<Job>> jobs;
@@ -87,7 +96,7 @@ void SeriesOpenJobs::run(Job& job) {
         } else {
             update(job, [](SeriesOpenSnapshot& s) { s.state = "retrieving"; });
             pacs::SeriesRetrieveOptions options;
-            options.spoolParent = mCache.root().string();
+            options.spoolParent = mCache.spoolParent().string();
             options.cancel = &job.cancel;
             options.admit = [&](const fit::VolumeHeaderInfo& grid) {
                 const std::string refused =
@@ -102,7 +111,8 @@ void SeriesOpenJobs::run(Job& job) {
                 });
             };
             const pacs::RetrievedSeries retrieved = pacs::retrieveSeries(series, service.access, options);
-            folder = mCache.keep(series.seriesUid, announced.sopInstanceUids, retrieved);
+            folder = mCache.keep({service.name, series.studyUid, series.seriesUid, {}},
+                                 announced.sopInstanceUids, retrieved);
         }
         update(job, [](SeriesOpenSnapshot& s) { s.state = "loading"; });
         mRegistry.offerDicomFolder(name, *folder);

@@ -36,7 +36,8 @@ struct SeriesOpenSnapshot {
 
 /// Thread-safe. Each open runs on a thread of its own, at most MAX_RUNNING at once (429 beyond); an open
 /// of a series already being opened joins that job. The dataset is named "<service>-<SeriesInstanceUID
-/// with '_' for '.'>" and offered to the registry like a DICOM folder of the data folders.
+/// with '_' for '.'>" and offered to the registry like a DICOM folder of the data folders; so are, on
+/// construction, the series the cache keeps from the services configured.
 class SeriesOpenJobs {
 public:
     static constexpr int MAX_RUNNING = 2;
