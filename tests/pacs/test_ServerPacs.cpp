@@ -339,6 +339,33 @@ TEST_F(ServerPacs, AServiceThatNeverAnswersAnswers504) {
     EXPECT_EQ(seen.back()["status"], 504) << seen.back().dump();
 }
 
+TEST_F(ServerPacs, AnOpenCancelledWhileThePacsIsSilentEndsCancelled) {
+    SilentPort silent;
+    server::DicomWebService slow = service("slow", silent.port(), true);
+    slow.access.readTimeoutSeconds = 2;
+    LoopbackServer server(options({slow}));
+    auto c = server.client();
+    const auto posted =
+        c->Post(("/api/pacs/slow/studies/" + RAMP_STUDY + "/series/" + RAMP_SERIES + "/open").c_str(), "{}",
+                "application/json");
+    ASSERT_TRUE(posted);
+    ASSERT_EQ(posted->status, 202) << posted->body;
+    const std::string id = std::to_string(nlohmann::json::parse(posted->body)["id"].get<std::uint64_t>());
+    const auto cancelled = c->Post(("/api/pacs/opens/" + id + "/cancel").c_str(), "{}", "application/json");
+    ASSERT_TRUE(cancelled);
+    EXPECT_EQ(cancelled->status, 200) << cancelled->body;
+    nlohmann::json open;
+    for (int i = 0; i < 400; ++i) { // the announcement waits out the read timeout, then the open ends
+        open = nlohmann::json::parse(c->Get(("/api/pacs/opens/" + id).c_str())->body);
+        if (open["state"] == "cancelled" || open["state"] == "failed" || open["state"] == "done") break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    EXPECT_EQ(open["state"], "cancelled") << open.dump();
+    EXPECT_EQ(open["status"], nullptr);
+    EXPECT_EQ(open["dataset"], nullptr);
+    EXPECT_TRUE(keptNothing());
+}
+
 TEST_F(ServerPacs, ASeriesOverTheMemoryBudgetIsRefusedBeforeItsPixelsAreAskedFor) {
     CountingProxy proxy(mDir.path());
     server::ServerOptions o = options({service("orthanc", proxy.port(), true)});

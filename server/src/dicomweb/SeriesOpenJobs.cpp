@@ -77,6 +77,15 @@ void SeriesOpenJobs::update(Job& job, const std::function<void(SeriesOpenSnapsho
     change(job.state);
 }
 
+namespace {
+
+/// Between the steps that cannot be stopped midway (the announcement, the load): a cancel ends the open.
+void stopIfCancelled(const std::atomic<bool>& cancel, const pacs::DicomWebSeries& series) {
+    if (cancel) throw HttpError(409, series.describe() + ": the open was cancelled");
+}
+
+} // namespace
+
 void SeriesOpenJobs::run(Job& job) {
     const DicomWebService& service = this->service(job.state.service);
     const pacs::DicomWebSeries series{service.endpoint, job.state.studyUid, job.state.seriesUid};
@@ -86,6 +95,7 @@ void SeriesOpenJobs::run(Job& job) {
         // QIDO and the series' metadata only: enough to know whether the kept copy is still the series.
         const pacs::SeriesAnnouncement announced = pacs::announceSeries(series, service.access);
         update(job, [&](SeriesOpenSnapshot& s) { s.total = announced.instanceCount; });
+        stopIfCancelled(job.cancel, series);
         std::optional<std::filesystem::path> folder =
             mCache.find(series.seriesUid, announced.sopInstanceUids);
         if (folder) {
@@ -114,6 +124,7 @@ void SeriesOpenJobs::run(Job& job) {
             folder = mCache.keep({service.name, series.studyUid, series.seriesUid, {}},
                                  announced.sopInstanceUids, retrieved);
         }
+        stopIfCancelled(job.cancel, series);
         update(job, [](SeriesOpenSnapshot& s) { s.state = "loading"; });
         mRegistry.offerDicomFolder(name, *folder);
         mRegistry.find(name); // loaded now, admitted against the memory budget as any dataset
@@ -126,8 +137,8 @@ void SeriesOpenJobs::run(Job& job) {
         const bool cancelled = job.cancel.load();
         update(job, [&](SeriesOpenSnapshot& s) {
             s.state = cancelled ? "cancelled" : "failed";
-            s.errorStatus = failure.status();
-            s.error = failure.what();
+            s.errorStatus = cancelled ? 0 : failure.status();
+            s.error = cancelled ? "cancelled" : failure.what();
         });
     }
     std::lock_guard lock(mMutex);
