@@ -122,6 +122,7 @@ void runServe(const ServeArgs& a) {
     if (generatedToken) options.accessToken = server::generateAccessToken();
     options.memoryBudgetBytes = resolveMemoryBudget(a.memoryBudget);
     options.dicomWebServices = dicomWebServicesOf(a.dicomWeb);
+    options.retrievedSeriesBytes = static_cast<std::uint64_t>(a.dicomWeb.cacheGb) << 30;
     if (ranks) {
         options.ranks = ranks;
         // --prepare has each rank fit its own cells at the default eps (rank 0 fits nothing whole). The ranks

@@ -37,6 +37,12 @@ void addServeDicomWebOptions(CLI::App& command, ServeDicomWebArgs& args) {
     command.add_option("--dicomweb-ca", args.cas,
                        "NAME=FILE: PEM certificates to verify that https PACS with (repeatable; default: the "
                        "system's)");
+    command
+        .add_option("--dicomweb-cache-gb", args.cacheGb,
+                    "GiB of retrieved PACS series kept in the cache folder's dicomweb/; the least recently "
+                    "opened are removed beyond (the newest always stays)")
+        ->check(CLI::Range(0, 1 << 20))
+        ->capture_default_str();
 }
 
 std::vector<server::DicomWebService> dicomWebServicesOf(const ServeDicomWebArgs& args) {

@@ -16,9 +16,10 @@ struct ServeDicomWebArgs {
     std::vector<std::string> services; // NAME=URL
     std::vector<std::string> auths;    // NAME=FILE
     std::vector<std::string> cas;      // NAME=FILE
+    int cacheGb = 16;                  // GiB of retrieved series kept in the cache folder
 };
 
-/// Adds the three repeatable options to `vots serve`.
+/// Adds the three repeatable options and --dicomweb-cache-gb to `vots serve`.
 void addServeDicomWebOptions(CLI::App& command, ServeDicomWebArgs& args);
 
 /// The services the options name, their auth files read. Throws fit::InputError with one line for a

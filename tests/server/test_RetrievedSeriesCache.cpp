@@ -98,6 +98,20 @@ TEST(RetrievedSeriesCache, KeepsTheNewestSeriesEvenOverTheBudget) {
     EXPECT_TRUE(cache.find("1.2.4", SOPS_B));
 }
 
+TEST(RetrievedSeriesCache, AFolderThatCannotBeMadeFallsBackToATemporaryOne) {
+    vots::test::TempDir dir;
+    dir.write("not-a-folder", "x");
+    fs::path root;
+    {
+        RetrievedSeriesCache cache(dir.path() / "not-a-folder" / "dicomweb", 1 << 20);
+        root = cache.root();
+        EXPECT_NE(root.parent_path(), dir.path() / "not-a-folder");
+        cache.keep(origin("1.2.3"), SOPS_A, spooled(cache, 1, 10));
+        EXPECT_TRUE(cache.find("1.2.3", SOPS_A));
+    }
+    EXPECT_FALSE(fs::exists(root));
+}
+
 TEST(RetrievedSeriesCache, WithoutAFolderUsesATemporaryOneItRemoves) {
     fs::path root;
     {

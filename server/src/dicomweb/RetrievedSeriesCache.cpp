@@ -14,6 +14,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 
@@ -96,13 +97,21 @@ std::string retrievedSeriesKey(const std::string& seriesUid, std::vector<std::st
 
 RetrievedSeriesCache::RetrievedSeriesCache(fs::path root, std::uint64_t budgetBytes)
     : mRoot(std::move(root)), mBudget(budgetBytes) {
+    std::error_code ec;
+    if (!mRoot.empty() && !fs::create_directories(mRoot, ec) && ec) {
+        std::cerr << "vots serve: warning: folder '" << mRoot.string()
+                  << "' for retrieved PACS series is not used (" << ec.message()
+                  << "); they are kept in a temporary folder until the server stops\n";
+        mRoot.clear();
+    }
     if (mRoot.empty()) {
         std::string pattern = (fs::temp_directory_path() / "vots-retrieved-XXXXXX").string();
-        if (!mkdtemp(pattern.data())) throw fit::InputError("cannot make a folder for retrieved series");
+        if (!mkdtemp(pattern.data()))
+            throw fit::InputError("cannot make a temporary folder for retrieved PACS series: " +
+                                  std::string(std::strerror(errno)));
         mRoot = pattern;
         mOwnsRoot = true;
     }
-    fs::create_directories(mRoot);
     removeStaleSpools(mRoot);
     mSpool = mRoot / (SPOOL_PREFIX + std::to_string(getpid()));
     fs::create_directories(mSpool);

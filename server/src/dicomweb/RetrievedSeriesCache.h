@@ -29,7 +29,8 @@ struct KeptSeries {
 /// construction (another server may share the folder).
 class RetrievedSeriesCache {
 public:
-    /// root empty: a private temporary folder, removed with this object.
+    /// root empty, or a folder that cannot be made (logged): a private temporary folder, removed with this
+    /// object.
     RetrievedSeriesCache(std::filesystem::path root, std::uint64_t budgetBytes);
     ~RetrievedSeriesCache();
     RetrievedSeriesCache(const RetrievedSeriesCache&) = delete;

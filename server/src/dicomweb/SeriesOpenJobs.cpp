@@ -53,28 +53,27 @@ SeriesOpenSnapshot SeriesOpenJobs::open(const std::string& serviceName, const st
     service(serviceName); // 404 before anything starts
     std::lock_guard lock(mMutex);
     for (const auto& [id, job] : mJobs) {
-        const SeriesOpenSnapshot& s = job->state;
-        const bool active = s.state != "done" && s.state != "failed" && s.state != "cancelled";
-        if (active && s.service == serviceName && s.seriesUid == seriesUid) return s;
+        const SeriesOpenSnapshot& s = job->visible;
+        if (!s.ended() && s.service == serviceName && s.seriesUid == seriesUid) return s;
     }
     if (mRunning >= MAX_RUNNING)
         throw HttpError(429,
                         std::to_string(MAX_RUNNING) + " series are being opened; try again when one is in");
     auto job = std::make_unique<Job>();
-    job->state.id = mNextId++;
-    job->state.service = serviceName;
-    job->state.studyUid = studyUid;
-    job->state.seriesUid = seriesUid;
+    job->visible.id = mNextId++;
+    job->visible.service = serviceName;
+    job->visible.studyUid = studyUid;
+    job->visible.seriesUid = seriesUid;
     Job& started = *job;
-    mJobs.emplace(started.state.id, std::move(job));
+    mJobs.emplace(started.visible.id, std::move(job));
     ++mRunning;
     started.thread = std::thread([this, &started] { run(started); });
-    return started.state;
+    return started.visible;
 }
 
 void SeriesOpenJobs::update(Job& job, const std::function<void(SeriesOpenSnapshot&)>& change) {
     std::lock_guard lock(mMutex);
-    change(job.state);
+    change(job.visible);
 }
 
 namespace {
@@ -87,11 +86,11 @@ void stopIfCancelled(const std::atomic<bool>& cancel, const pacs::DicomWebSeries
 } // namespace
 
 void SeriesOpenJobs::run(Job& job) {
-    const DicomWebService& service = this->service(job.state.service);
-    const pacs::DicomWebSeries series{service.endpoint, job.state.studyUid, job.state.seriesUid};
+    const DicomWebService& service = this->service(job.visible.service);
+    const pacs::DicomWebSeries series{service.endpoint, job.visible.studyUid, job.visible.seriesUid};
     const std::string name = pacsDatasetName(service.name, series.seriesUid);
     try {
-        update(job, [](SeriesOpenSnapshot& s) { s.state = "announcing"; });
+        update(job, [](SeriesOpenSnapshot& s) { s.state = SeriesOpenState::Announcing; });
         // QIDO and the series' metadata only: enough to know whether the kept copy is still the series.
         const pacs::SeriesAnnouncement announced = pacs::announceSeries(series, service.access);
         update(job, [&](SeriesOpenSnapshot& s) { s.total = announced.instanceCount; });
@@ -104,7 +103,7 @@ void SeriesOpenJobs::run(Job& job) {
                 s.received = s.total;
             });
         } else {
-            update(job, [](SeriesOpenSnapshot& s) { s.state = "retrieving"; });
+            update(job, [](SeriesOpenSnapshot& s) { s.state = SeriesOpenState::Retrieving; });
             pacs::SeriesRetrieveOptions options;
             options.spoolParent = mCache.spoolParent().string();
             options.cancel = &job.cancel;
@@ -125,25 +124,25 @@ void SeriesOpenJobs::run(Job& job) {
                                  announced.sopInstanceUids, retrieved);
         }
         stopIfCancelled(job.cancel, series);
-        update(job, [](SeriesOpenSnapshot& s) { s.state = "loading"; });
+        update(job, [](SeriesOpenSnapshot& s) { s.state = SeriesOpenState::Loading; });
         mRegistry.offerDicomFolder(name, *folder);
         mRegistry.find(name); // loaded now, admitted against the memory budget as any dataset
         update(job, [&](SeriesOpenSnapshot& s) {
             s.dataset = name;
-            s.state = "done";
+            s.state = SeriesOpenState::Done;
         });
     } catch (...) {
         const HttpError failure = pacsFailure(std::current_exception());
         const bool cancelled = job.cancel.load();
         update(job, [&](SeriesOpenSnapshot& s) {
-            s.state = cancelled ? "cancelled" : "failed";
+            s.state = cancelled ? SeriesOpenState::Cancelled : SeriesOpenState::Failed;
             s.errorStatus = cancelled ? 0 : failure.status();
             s.error = cancelled ? "cancelled" : failure.what();
         });
     }
     std::lock_guard lock(mMutex);
     --mRunning;
-    mFinished.push_back(job.state.id);
+    mFinished.push_back(job.visible.id);
     while (mFinished.size() > KEEP_FINISHED) {
         const auto forgotten = mJobs.find(mFinished.front());
         mFinished.pop_front();
@@ -161,14 +160,14 @@ SeriesOpenJobs::Job& SeriesOpenJobs::findLocked(std::uint64_t id) const {
 
 SeriesOpenSnapshot SeriesOpenJobs::snapshot(std::uint64_t id) const {
     std::lock_guard lock(mMutex);
-    return findLocked(id).state;
+    return findLocked(id).visible;
 }
 
 SeriesOpenSnapshot SeriesOpenJobs::cancel(std::uint64_t id) {
     std::lock_guard lock(mMutex);
     Job& job = findLocked(id);
     job.cancel = true;
-    return job.state;
+    return job.visible;
 }
 
 } // namespace vots::server

@@ -4,6 +4,7 @@
 #include "datasets/DatasetRegistry.h"
 #include "datasets/MemoryAdmission.h"
 #include "dicomweb/RetrievedSeriesCache.h"
+#include "vots/fit/EnumNames.h"
 #include "vots/server/Server.h"
 
 #include <atomic>
@@ -19,19 +20,35 @@
 
 namespace vots::server {
 
+/// The steps of an open, in order, and how it ended.
+enum class SeriesOpenState { Queued, Announcing, Retrieving, Loading, Done, Failed, Cancelled };
+inline constexpr auto SERIES_OPEN_STATE_NAMES =
+    fit::nameTable<SeriesOpenState>("series open state", {{SeriesOpenState::Queued, "queued"},
+                                                          {SeriesOpenState::Announcing, "announcing"},
+                                                          {SeriesOpenState::Retrieving, "retrieving"},
+                                                          {SeriesOpenState::Loading, "loading"},
+                                                          {SeriesOpenState::Done, "done"},
+                                                          {SeriesOpenState::Failed, "failed"},
+                                                          {SeriesOpenState::Cancelled, "cancelled"}});
+constexpr const auto& namesOf(SeriesOpenState) {
+    return SERIES_OPEN_STATE_NAMES;
+}
+
 /// What GET /api/pacs/opens/{id} reports.
 struct SeriesOpenSnapshot {
     std::uint64_t id = 0;
     std::string service;
     std::string studyUid;
     std::string seriesUid;
-    std::string state = "queued"; // queued, announcing, retrieving, loading, done, failed, cancelled
-    int received = 0;             // instances received so far
-    int total = 0;                // the series' instances (0 until announced)
-    bool fromCache = false;       // kept on disk from an earlier open: no retrieve
-    std::string dataset;          // the dataset's name once done
-    int errorStatus = 0;          // failed: the HTTP status the failure maps to (401, 404, 502, 504, 507)
+    SeriesOpenState state = SeriesOpenState::Queued;
+    int received = 0;       // instances received so far
+    int total = 0;          // the series' instances (0 until announced)
+    bool fromCache = false; // kept on disk from an earlier open: no retrieve
+    std::string dataset;    // the dataset's name once done
+    int errorStatus = 0;    // failed: the HTTP status the failure maps to (401, 404, 502, 504, 507)
     std::string error;
+
+    bool ended() const { return state >= SeriesOpenState::Done; }
 };
 
 /// Thread-safe. Each open runs on a thread of its own, at most MAX_RUNNING at once (429 beyond); an open
@@ -59,7 +76,7 @@ public:
 
 private:
     struct Job {
-        SeriesOpenSnapshot state;
+        SeriesOpenSnapshot visible; // what the API answers, written under mMutex
         std::atomic<bool> cancel{false};
         std::thread thread;
     };

@@ -84,7 +84,7 @@ nlohmann::json openJson(const SeriesOpenSnapshot& o) {
             {"service", o.service},
             {"studyUid", o.studyUid},
             {"seriesUid", o.seriesUid},
-            {"state", o.state},
+            {"state", std::string(fit::nameOf(o.state))},
             {"received", o.received},
             {"total", o.total},
             {"fromCache", o.fromCache},

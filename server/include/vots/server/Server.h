@@ -57,7 +57,8 @@ struct ServerOptions {
     // frames composited; what it refuses is answered 409. Null: frames are drawn here alone.
     std::shared_ptr<dist::FrameRanks> ranks;
     // PACS to browse (docs/PACS.md); retrieved series are kept in cacheDir/dicomweb (a temporary folder
-    // when cacheDir is empty) within retrievedSeriesBytes, least recently opened removed first.
+    // when cacheDir is empty) within retrievedSeriesBytes (--dicomweb-cache-gb), least recently opened
+    // removed first.
     std::vector<DicomWebService> dicomWebServices;
     std::uint64_t retrievedSeriesBytes = std::uint64_t{16} << 30;
 };
