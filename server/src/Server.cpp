@@ -61,9 +61,9 @@ Server::Impl::Impl(ServerOptions opts)
       registry(options.dataDirs, memory),
       cache(options.cacheDir, options.memoryCacheBytes, options.diskCacheBytes),
       fitJobs(cache, stats, foreground, memory, limitsFrom(options)),
-      retrievedSeries(options.cacheDir.empty() ? fs::path() : options.cacheDir / "dicomweb",
-                      options.retrievedSeriesBytes),
-      seriesOpens(options.dicomWebServices, retrievedSeries, registry, memory),
+      seriesOpens(options.dicomWebServices,
+                  options.cacheDir.empty() ? fs::path() : options.cacheDir / "dicomweb",
+                  options.retrievedSeriesBytes, registry, memory),
       frames(options.frameCacheBytes), renders(options.maxRendersPerClient, "renders"),
       guard(options.allowedHosts, options.accessToken) {
     if (options.withRenderer)

@@ -6,7 +6,6 @@
 #include "connection/GatedHttpServer.h"
 #include "datasets/DatasetRegistry.h"
 #include "datasets/MemoryAdmission.h"
-#include "dicomweb/RetrievedSeriesCache.h"
 #include "dicomweb/SeriesOpenJobs.h"
 #include "fits/FitJobs.h"
 #include "fits/VotSpaceCache.h"
@@ -37,8 +36,7 @@ struct Server::Impl {
     DatasetRegistry registry;
     VotSpaceCache cache;
     FitJobs fitJobs;
-    RetrievedSeriesCache retrievedSeries; // cacheDir/dicomweb
-    SeriesOpenJobs seriesOpens;           // PACS series opened as datasets (joined before the registry goes)
+    SeriesOpenJobs seriesOpens;               // PACS series opened as datasets, kept in cacheDir/dicomweb
     std::unique_ptr<RenderQueue> renderQueue; // null when options.withRenderer is false
     FrameCache frames;                        // encoded /render answers
     ClientQuota renders;                      // /render and /turntable requests in progress per client

@@ -193,6 +193,18 @@ TEST_F(ServerPacs, ListsTheServicesWithoutCredentials) {
     EXPECT_EQ(res->body.find(orthancStateFile("password")), std::string::npos);
 }
 
+TEST_F(ServerPacs, AServerWithoutAPacsListsNoneAndWritesNothingForThem) {
+    LoopbackServer server(options({}));
+    auto c = server.client();
+    const auto res = c->Get("/api/pacs");
+    ASSERT_TRUE(res);
+    EXPECT_EQ(nlohmann::json::parse(res->body)["services"].size(), 0u);
+    const auto search = c->Get("/api/pacs/orthanc/studies");
+    ASSERT_TRUE(search);
+    EXPECT_EQ(search->status, 404) << search->body;
+    EXPECT_FALSE(fs::exists(mDir.path() / "cache" / "dicomweb"));
+}
+
 TEST_F(ServerPacs, SearchesStudiesAndListsTheirSeries) {
     LoopbackServer server(options({service("orthanc", orthancStateFile("port"), true)}));
     auto c = server.client();

@@ -17,12 +17,15 @@ std::string pacsDatasetName(const std::string& service, const std::string& serie
     return name;
 }
 
-SeriesOpenJobs::SeriesOpenJobs(const std::vector<DicomWebService>& services, RetrievedSeriesCache& cache,
+SeriesOpenJobs::SeriesOpenJobs(const std::vector<DicomWebService>& services,
+                               const std::filesystem::path& cacheRoot, std::uint64_t cacheBytes,
                                DatasetRegistry& registry, MemoryAdmission& memory)
-    : mServices(services), mCache(cache), mRegistry(registry), mMemory(memory) {
+    : mServices(services), mRegistry(registry), mMemory(memory) {
+    if (services.empty()) return;
+    mCache = std::make_unique<RetrievedSeriesCache>(cacheRoot, cacheBytes);
     // A restarted server lists what it keeps, as it was retrieved, so that links to it work at once; an
     // open from the panel checks it against the PACS again. The most recently opened copy wins.
-    for (const KeptSeries& kept : mCache.kept()) {
+    for (const KeptSeries& kept : mCache->kept()) {
         const bool configured = std::any_of(services.begin(), services.end(),
                                             [&](const DicomWebService& s) { return s.name == kept.service; });
         if (configured)
@@ -96,7 +99,7 @@ void SeriesOpenJobs::run(Job& job) {
         update(job, [&](SeriesOpenSnapshot& s) { s.total = announced.instanceCount; });
         stopIfCancelled(job.cancel, series);
         std::optional<std::filesystem::path> folder =
-            mCache.find(series.seriesUid, announced.sopInstanceUids);
+            mCache->find(series.seriesUid, announced.sopInstanceUids);
         if (folder) {
             update(job, [&](SeriesOpenSnapshot& s) {
                 s.fromCache = true;
@@ -105,7 +108,7 @@ void SeriesOpenJobs::run(Job& job) {
         } else {
             update(job, [](SeriesOpenSnapshot& s) { s.state = SeriesOpenState::Retrieving; });
             pacs::SeriesRetrieveOptions options;
-            options.spoolParent = mCache.spoolParent().string();
+            options.spoolParent = mCache->spoolParent().string();
             options.cancel = &job.cancel;
             options.admit = [&](const fit::VolumeHeaderInfo& grid) {
                 const std::string refused =
@@ -120,8 +123,8 @@ void SeriesOpenJobs::run(Job& job) {
                 });
             };
             const pacs::RetrievedSeries retrieved = pacs::retrieveSeries(series, service.access, options);
-            folder = mCache.keep({service.name, series.studyUid, series.seriesUid, {}},
-                                 announced.sopInstanceUids, retrieved);
+            folder = mCache->keep({service.name, series.studyUid, series.seriesUid, {}},
+                                  announced.sopInstanceUids, retrieved);
         }
         stopIfCancelled(job.cancel, series);
         update(job, [](SeriesOpenSnapshot& s) { s.state = SeriesOpenState::Loading; });

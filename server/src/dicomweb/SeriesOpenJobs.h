@@ -11,6 +11,7 @@
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -60,8 +61,10 @@ public:
     static constexpr int MAX_RUNNING = 2;
     static constexpr std::size_t KEEP_FINISHED = 32;
 
-    SeriesOpenJobs(const std::vector<DicomWebService>& services, RetrievedSeriesCache& cache,
-                   DatasetRegistry& registry, MemoryAdmission& memory);
+    /// The retrieved series are kept in `cacheRoot` (RetrievedSeriesCache), made only when there are
+    /// services: a server without a PACS writes nothing for them.
+    SeriesOpenJobs(const std::vector<DicomWebService>& services, const std::filesystem::path& cacheRoot,
+                   std::uint64_t cacheBytes, DatasetRegistry& registry, MemoryAdmission& memory);
     ~SeriesOpenJobs(); // cancels every open and joins the threads
 
     /// The service of that name; HttpError 404 for an unknown one.
@@ -85,7 +88,7 @@ private:
     Job& findLocked(std::uint64_t id) const;
 
     const std::vector<DicomWebService>& mServices;
-    RetrievedSeriesCache& mCache;
+    std::unique_ptr<RetrievedSeriesCache> mCache; // null without services
     DatasetRegistry& mRegistry;
     MemoryAdmission& mMemory;
 
