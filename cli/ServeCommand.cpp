@@ -1,6 +1,7 @@
 // `vots serve`: options -> vots::server::Server, then serve until SIGINT/SIGTERM; no HTTP logic here.
 #include "Commands.h"
 #include "MemoryBudgetOption.h"
+#include "ServeDicomWeb.h"
 
 #include "vots/dist/mpi/MpiFrameRanks.h"
 #include "vots/dist/mpi/MpiWorld.h"
@@ -43,6 +44,7 @@ struct ServeArgs {
     std::string memoryBudget; // empty: the default
     int rendersPerClient = server::ServerOptions{}.maxRendersPerClient;
     int fitsPerClient = server::ServerOptions{}.maxFitsPerClient;
+    ServeDicomWebArgs dicomWeb;
 };
 
 /// "host:port" as a URL writes it: an IPv6 address in brackets.
@@ -119,6 +121,8 @@ void runServe(const ServeArgs& a) {
     if (!a.tokenFile.empty()) options.accessToken = server::readAccessTokenFile(a.tokenFile);
     if (generatedToken) options.accessToken = server::generateAccessToken();
     options.memoryBudgetBytes = resolveMemoryBudget(a.memoryBudget);
+    options.dicomWebServices = dicomWebServicesOf(a.dicomWeb);
+    options.retrievedSeriesBytes = static_cast<std::uint64_t>(a.dicomWeb.cacheGb) << 30;
     if (ranks) {
         options.ranks = ranks;
         // --prepare has each rank fit its own cells at the default eps (rank 0 fits nothing whole). The ranks
@@ -155,6 +159,8 @@ void runServe(const ServeArgs& a) {
               << "  memory budget: " << fit::formatBytes(srv.memoryBudget())
               << (a.memoryBudget.empty() ? " (default: 80 % of the memory available)" : "") << "\n"
               << "  " << srv.rendererSummary() << "\n";
+    for (const server::DicomWebService& pacs : options.dicomWebServices)
+        std::cout << "  PACS " << pacs.name << ": " << pacs.endpoint.describe() << "\n";
     if (ranks)
         std::cout << "  ranks: " << world.size() << ", each frame of '" << a.prepare
                   << "' drawn from every rank's z cells and composited here\n";
@@ -219,6 +225,7 @@ void addServeCommand(CLI::App& app) {
                     "viewer's first image is quick (skipped when the data folders lack it; '' for none)")
         ->capture_default_str();
     addMemoryBudgetOption(*cmd, args->memoryBudget);
+    addServeDicomWebOptions(*cmd, args->dicomWeb);
     cmd->add_option("--renders-per-client", args->rendersPerClient,
                     "Renders one client (remote address) may have in progress; more get 429 (0: no limit; "
                     "behind a proxy every user is the proxy's one client)")

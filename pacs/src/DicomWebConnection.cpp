@@ -3,17 +3,18 @@
 
 #include "vots/fit/Error.h"
 
+#include <algorithm>
+
 namespace vots::pacs {
 namespace {
 
 constexpr time_t CONNECT_TIMEOUT_S = 10;
-constexpr time_t READ_TIMEOUT_S = 120;
 constexpr std::size_t MAX_JSON_BYTES = 256u << 20; // a 1000-instance series' full metadata is ~30 MB
 
 } // namespace
 
 DicomWebConnection::DicomWebConnection(const DicomWebEndpoint& endpoint, const DicomWebAccess& access)
-    : mEndpoint(endpoint) {
+    : mEndpoint(endpoint), mReadTimeoutS(std::max(1, access.readTimeoutSeconds)) {
     const bool bracket = endpoint.host.find(':') != std::string::npos;
     const std::string origin = std::string(endpoint.https ? "https://" : "http://") +
                                (bracket ? "[" + endpoint.host + "]" : endpoint.host) + ":" +
@@ -21,7 +22,7 @@ DicomWebConnection::DicomWebConnection(const DicomWebEndpoint& endpoint, const D
     mClient = std::make_unique<httplib::Client>(origin);
     if (!mClient->is_valid()) throw fit::InputError(name() + ": cannot make a client for this address");
     mClient->set_connection_timeout(CONNECT_TIMEOUT_S);
-    mClient->set_read_timeout(READ_TIMEOUT_S);
+    mClient->set_read_timeout(mReadTimeoutS);
     mClient->set_keep_alive(true);
     if (endpoint.https) {
         mClient->enable_server_certificate_verification(true);
@@ -52,6 +53,9 @@ std::string DicomWebConnection::transportProblem(httplib::Error error, const std
         return name() + ": the TLS connection for " + what + " failed (" + httplib::to_string(error) +
                "); check the certificate or --dicomweb-ca";
     case httplib::Error::Read:
+        if (Clock::now() - mLastHeard >= std::chrono::seconds(mReadTimeoutS))
+            return name() + ": " + what + " timed out (no answer for " + std::to_string(mReadTimeoutS) +
+                   " s)";
         return name() + ": the connection broke while reading " + what;
     default:
         return name() + ": " + what + " failed (" + httplib::to_string(error) + ")";
@@ -63,6 +67,7 @@ nlohmann::json DicomWebConnection::getJson(const std::string& resource, const st
     int status = 0;
     bool tooLarge = false;
     const httplib::Headers headers{{"Accept", "application/dicom+json, application/json"}};
+    heardFromService();
     const httplib::Result result = mClient->Get(
         mEndpoint.root + resource, headers,
         [&](const httplib::Response& response) {
@@ -70,6 +75,7 @@ nlohmann::json DicomWebConnection::getJson(const std::string& resource, const st
             return true;
         },
         [&](const char* data, std::size_t size) {
+            heardFromService();
             tooLarge = body.size() + size > MAX_JSON_BYTES;
             if (tooLarge) return false;
             body.append(data, size);
@@ -92,6 +98,7 @@ int DicomWebConnection::getStream(const std::string& resource, const std::string
                                   std::string& failure) {
     int status = 0;
     const httplib::Headers headers{{"Accept", accept}};
+    heardFromService();
     const httplib::Result result = mClient->Get(
         mEndpoint.root + resource, headers,
         [&](const httplib::Response& response) {
@@ -99,7 +106,10 @@ int DicomWebConnection::getStream(const std::string& resource, const std::string
             if (status != 200) return false;
             return begin(response.get_header_value("Content-Type"));
         },
-        receive);
+        [&](const char* data, std::size_t size) {
+            heardFromService();
+            return receive(data, size);
+        });
     if (status == 401 || status == 403) throw fit::InputError(statusProblem(status, "the series"));
     if (status != 0 && status != 200) return status;
     if (!result && result.error() != httplib::Error::Canceled) {
@@ -111,6 +121,7 @@ int DicomWebConnection::getStream(const std::string& resource, const std::string
 
 httplib::Result DicomWebConnection::post(const std::string& resource, const std::string& contentType,
                                          std::size_t length, httplib::ContentProvider provide) {
+    heardFromService();
     return mClient->Post(mEndpoint.root + resource, httplib::Headers{{"Accept", "application/dicom+json"}},
                          length, std::move(provide), contentType);
 }

@@ -7,6 +7,7 @@
 #include <httplib.h>
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <functional>
 #include <memory>
 #include <string>
@@ -43,11 +44,18 @@ public:
 
     /// The line for an answer that is not a success: 401/403 name the credentials, 404 the resource.
     std::string statusProblem(int status, const std::string& what) const;
-    /// The line for a request that got no answer.
+    /// The line for a request that got no answer; a read that failed after the read timeout's silence
+    /// says "timed out".
     std::string transportProblem(httplib::Error error, const std::string& what) const;
 
 private:
+    using Clock = std::chrono::steady_clock;
+    /// Bytes came (or a request began) now: the read timeout's silence counts from here.
+    void heardFromService() { mLastHeard = Clock::now(); }
+
     DicomWebEndpoint mEndpoint;
+    int mReadTimeoutS = 0;
+    Clock::time_point mLastHeard;
     std::unique_ptr<httplib::Client> mClient;
 };
 

@@ -60,8 +60,12 @@ Server::Impl::Impl(ServerOptions opts)
       memory(options.memoryBudgetBytes ? options.memoryBudgetBytes : fit::defaultMemoryBudget()),
       registry(options.dataDirs, memory),
       cache(options.cacheDir, options.memoryCacheBytes, options.diskCacheBytes),
-      fitJobs(cache, stats, foreground, memory, limitsFrom(options)), frames(options.frameCacheBytes),
-      renders(options.maxRendersPerClient, "renders"), guard(options.allowedHosts, options.accessToken) {
+      fitJobs(cache, stats, foreground, memory, limitsFrom(options)),
+      seriesOpens(options.dicomWebServices,
+                  options.cacheDir.empty() ? fs::path() : options.cacheDir / "dicomweb",
+                  options.retrievedSeriesBytes, registry, memory),
+      frames(options.frameCacheBytes), renders(options.maxRendersPerClient, "renders"),
+      guard(options.allowedHosts, options.accessToken) {
     if (options.withRenderer)
         renderQueue = std::make_unique<RenderQueue>(stats, foreground, options.ranks.get());
     // Under mpirun the samples stay with the ranks, each reading its slab: this process holds none.
@@ -148,6 +152,7 @@ Server::Server(ServerOptions options) : mImpl(std::make_unique<Impl>(std::move(o
     installRenderRoute(s);
     installTurntableRoute(s);
     installJobRoutes(s);
+    installPacsRoutes(s);
 
     const std::vector<std::string> names = s.registry.names();
     const std::string& startup = s.options.startupDataset;

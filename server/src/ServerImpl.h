@@ -6,6 +6,7 @@
 #include "connection/GatedHttpServer.h"
 #include "datasets/DatasetRegistry.h"
 #include "datasets/MemoryAdmission.h"
+#include "dicomweb/SeriesOpenJobs.h"
 #include "fits/FitJobs.h"
 #include "fits/VotSpaceCache.h"
 #include "frames/ForegroundActivity.h"
@@ -35,6 +36,7 @@ struct Server::Impl {
     DatasetRegistry registry;
     VotSpaceCache cache;
     FitJobs fitJobs;
+    SeriesOpenJobs seriesOpens;               // PACS series opened as datasets, kept in cacheDir/dicomweb
     std::unique_ptr<RenderQueue> renderQueue; // null when options.withRenderer is false
     FrameCache frames;                        // encoded /render answers
     ClientQuota renders;                      // /render and /turntable requests in progress per client
@@ -50,6 +52,7 @@ void installStatsRoute(Server::Impl& s);     // GET /api/stats
 void installRenderRoute(Server::Impl& s);    // GET /render
 void installTurntableRoute(Server::Impl& s); // GET /turntable
 void installJobRoutes(Server::Impl& s);      // POST /api/fit, GET /api/jobs/{id}, GET /api/jobs/{id}/events
+void installPacsRoutes(Server::Impl& s);     // /api/pacs: searches and the opens of series
 /// Static files from the web folder, answered in the pre-routing step for non-API paths.
 bool serveStatic(const Server::Impl& s, const httplib::Request& req, httplib::Response& res);
 

@@ -1,4 +1,5 @@
-// Thin client for the vots HTTP contract (datasets, render, fit jobs); knows no DOM and no UI state.
+// Thin client for the vots HTTP contract (datasets, render, fit jobs); knows no DOM and no UI state. request() is
+// shared with pacs-api.js.
 import { withToken, withTokenQuery } from './access.js';
 import { DEFAULT_RENDERER } from './contract.js';
 
@@ -30,7 +31,7 @@ async function errorFromResponse(res, what) {
   return new ApiError(`${what}: ${message} (HTTP ${res.status})`, { status: res.status, superseded });
 }
 
-async function request(url, init, what) {
+export async function request(url, init, what) {
   let res;
   try {
     res = await fetch(url, withToken(init));

@@ -17,6 +17,7 @@ import { fitViewToDataset, isVotsDataset } from './kind.js';
 import { showOverlays } from './overlays.js';
 import { attachSlabControl } from './slab-control.js';
 import { statusLine } from './status.js';
+import { createStudyBrowser } from './study-browser.js';
 import { homeCamera, initialView, reconcileRenderer } from './view.js';
 
 const EPS_KEY_SETTLE_MS = 300; // keyboard steps of the eps slider fit once it has rested this long
@@ -319,12 +320,54 @@ window.addEventListener('hashchange', () => {
   ensureFitted();
 });
 
+// A PACS series the study browser opened is a dataset now: list it and show it as if picked.
+async function showOpenedDataset(name) {
+  let listed;
+  try {
+    listed = await fetchDatasets();
+  } catch (e) {
+    banner.show(e.message, 'datasets');
+    return;
+  }
+  datasets = listed.filter((d) => d.fits !== false);
+  fillDatasetPicker(el.dataset, listed);
+  banner.clear('datasets');
+  el.dataset.value = name;
+  el.dataset.dispatchEvent(new Event('change'));
+}
+
+const studyBrowser = createStudyBrowser({
+  el: {
+    root: $('pacs'),
+    form: $('pacs-form'),
+    serviceRow: $('pacs-service-row'),
+    service: $('pacs-service'),
+    patientName: $('pacs-patient-name'),
+    patientId: $('pacs-patient-id'),
+    dateFrom: $('pacs-date-from'),
+    dateTo: $('pacs-date-to'),
+    modality: $('pacs-modality'),
+    accession: $('pacs-accession'),
+    studies: $('pacs-studies'),
+    studiesNote: $('pacs-studies-note'),
+    seriesBox: $('pacs-series-box'),
+    series: $('pacs-series'),
+    progressBox: $('pacs-progress-box'),
+    progress: $('pacs-progress'),
+    progressLabel: $('pacs-progress-label'),
+    cancel: $('pacs-cancel'),
+    error: $('pacs-error'),
+  },
+  onOpened: showOpenedDataset,
+});
+
 // ---------- start ----------
 
 async function start() {
   fillChoices(el);
   adoptToken(location.hash); // before the first request: a server beyond loopback asks for it
   updateStatus();
+  studyBrowser.start();
   let listed;
   try {
     listed = await fetchDatasets();

@@ -183,6 +183,31 @@ DatasetRegistry::DatasetRegistry(const std::vector<fs::path>& dataDirs, MemoryAd
     }
 }
 
+void DatasetRegistry::offerDicomFolder(const std::string& name, const fs::path& folder) {
+    if (!isDatasetName(name))
+        throw HttpError(400, "dataset must be a plain name of letters, digits, '_' and '-'");
+    Entry* entry = nullptr;
+    {
+        std::lock_guard lock(mMutex);
+        auto& slot = mEntries[name];
+        if (!slot) {
+            slot = std::make_unique<Entry>();
+            slot->path = folder;
+            return;
+        }
+        entry = slot.get(); // entries are never removed, so the pointer stays valid
+    }
+    std::lock_guard loadLock(entry->loadMutex);
+    if (entry->path == folder && entry->loadError.empty()) return;
+    std::lock_guard lock(mMutex);
+    entry->path = folder;
+    entry->dicomSeries.clear();
+    entry->isVots = false;
+    entry->dataset.reset();
+    entry->header.reset();
+    entry->loadError.clear();
+}
+
 std::vector<std::string> DatasetRegistry::names() const {
     std::lock_guard lock(mMutex);
     std::vector<std::string> out;

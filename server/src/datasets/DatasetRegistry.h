@@ -85,6 +85,11 @@ public:
     /// process holds none of its samples. Call before the first find().
     void summarizeOnRanks(dist::FrameRanks* ranks) { mRanks = ranks; }
 
+    /// Adds a DICOM folder of one series (a series retrieved from a PACS) under `name`, loaded on its
+    /// first find() like the data folders' own. When `name` is already offered from another folder (the
+    /// series changed on the PACS), it is read from `folder` from now on.
+    void offerDicomFolder(const std::string& name, const std::filesystem::path& folder);
+
     /// All names found, sorted.
     std::vector<std::string> names() const;
     /// The dataset, loading it on first use. Throws HttpError 400 for a name that is not a plain

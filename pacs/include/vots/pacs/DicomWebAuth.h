@@ -17,6 +17,8 @@ struct DicomWebAuth {
 struct DicomWebAccess {
     DicomWebAuth auth;
     std::string caFile; // PEM certificates to verify an https service with; empty: the system's store
+    /// Longest wait for the next bytes of an answer; a longer silence fails as "timed out".
+    int readTimeoutSeconds = 120;
 };
 
 /// Reads an auth file whose one line is "basic USER:PASSWORD" or "bearer TOKEN" (a trailing newline is

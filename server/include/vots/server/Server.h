@@ -1,6 +1,9 @@
 // The Vots HTTP server: routes over a dataset registry, fit jobs, a Vot-Space cache and the render thread.
 #pragma once
 
+#include "vots/pacs/DicomWebAuth.h"
+#include "vots/pacs/DicomWebUrl.h"
+
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -13,6 +16,13 @@ class FrameRanks;
 }
 
 namespace vots::server {
+
+/// A PACS the viewer may browse (`vots serve --dicomweb NAME=URL`): searched and retrieved from under NAME.
+struct DicomWebService {
+    std::string name; // a plain identifier: the API's and the viewer's name for it
+    pacs::DicomWebEndpoint endpoint;
+    pacs::DicomWebAccess access; // never logged or answered
+};
 
 struct ServerOptions {
     std::vector<std::filesystem::path> dataDirs;            // searched in order for volumes
@@ -46,6 +56,11 @@ struct ServerOptions {
     // Under mpirun (dist/mpi's MpiFrameRanks): frames and fits are made through it on every rank, the
     // frames composited; what it refuses is answered 409. Null: frames are drawn here alone.
     std::shared_ptr<dist::FrameRanks> ranks;
+    // PACS to browse (docs/PACS.md); retrieved series are kept in cacheDir/dicomweb (a temporary folder
+    // when cacheDir is empty) within retrievedSeriesBytes (--dicomweb-cache-gb), least recently opened
+    // removed first.
+    std::vector<DicomWebService> dicomWebServices;
+    std::uint64_t retrievedSeriesBytes = std::uint64_t{16} << 30;
 };
 
 /// The folders `vots serve` uses when none are given: ./data (where scripts/fetch-ct puts the Cranium)

@@ -1,0 +1,123 @@
+// The PACS panel against a real Orthanc (the pacs fixture, VOTS_ORTHANC_STATE): search, a study's series,
+// opening one with progress into a dataset the viewer shows, and a refusal shown in the panel.
+// Run by ctest as Pacs.WebStudyBrowser (tests/pacs/CMakeLists.txt); not in run.sh's default spec list.
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import { spawn } from 'node:child_process';
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { artifactPath, withPage } from '../support/browser.mjs';
+import { ViewerPage } from '../pages/ViewerPage.mjs';
+
+const WEB = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..', '..', 'web');
+const BIN = process.env.VOTS_BIN; // set by run.sh when it started the server itself
+const DATA = process.env.VOTS_DATA;
+const STATE = process.env.VOTS_ORTHANC_STATE;
+const CRANIUM_SERIES = '1.2.826.0.1.3680043.10.1234.202';
+const CRANIUM_DATASET = `orthanc-${CRANIUM_SERIES.replaceAll('.', '_')}`;
+
+let server = null;
+
+// `vots serve` with the fixture's Orthanc twice: with its credentials ("orthanc") and without ("nocreds").
+async function startPacsServer() {
+  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'vots-web-pacs-'));
+  const port = fs.readFileSync(path.join(STATE, 'port'), 'utf8').trim();
+  const url = `dicomweb+http://127.0.0.1:${port}/dicom-web`;
+  const child = spawn(BIN, ['serve', '--port', '0', '--data', DATA, '--web', WEB, '--cache-dir', path.join(dir, 'cache'),
+    '--prepare', '', '--no-warm-up', '--dicomweb', `orthanc=${url}`, '--dicomweb-auth', `orthanc=${path.join(STATE, 'auth')}`,
+    '--dicomweb', `nocreds=${url}`], { stdio: ['ignore', 'pipe', 'pipe'] });
+  let output = '';
+  const base = await new Promise((resolve, reject) => {
+    const timer = setTimeout(() => reject(new Error(`no listening line within 60 s:\n${output}`)), 60000);
+    const read = (chunk) => {
+      output += chunk;
+      const m = output.match(/listening on (http:\/\/\S+?)\/\n/);
+      if (m && output.includes('renderer')) {
+        clearTimeout(timer);
+        resolve(m[1]);
+      }
+    };
+    child.stdout.on('data', read);
+    child.stderr.on('data', read);
+    child.on('exit', (code) => reject(new Error(`vots serve exited (${code}):\n${output}`)));
+  });
+  return { base, child, dir, password: fs.readFileSync(path.join(STATE, 'password'), 'utf8').trim() };
+}
+
+before(async () => {
+  if (BIN && DATA && STATE) server = await startPacsServer();
+});
+
+after(() => {
+  if (!server) return;
+  server.child.kill('SIGTERM');
+  fs.rmSync(server.dir, { recursive: true, force: true });
+});
+
+test('search, list a study\'s series, open one with progress, and see it', async (t) => {
+  assert.ok(server, 'needs VOTS_BIN, VOTS_DATA (run.sh) and VOTS_ORTHANC_STATE (the ctest Orthanc fixture)');
+  await withPage(t, async (page) => {
+    const viewer = new ViewerPage(page);
+    const opens = [];
+    page.on('response', async (r) => {
+      if (/\/api\/pacs\/(opens\/\d+|.*\/open)$/.test(new URL(r.url()).pathname)) opens.push(await r.json());
+    });
+    await page.goto(`${server.base}/`);
+    const panel = viewer.byId('pacs');
+    await panel.waitFor({ state: 'visible' });
+
+    await viewer.byId('pacs-patient-name').fill('vots'); // a prefix, in any case
+    await viewer.byId('pacs-modality').fill('ct');
+    await viewer.byId('pacs-search').click();
+    const study = viewer.byId('pacs-studies').locator(`li[data-study-uid="${CRANIUM_SERIES}.0"]`);
+    await study.waitFor({ state: 'visible' });
+    assert.match(await study.textContent(), /Vots, Phantom/);
+    assert.match(await study.textContent(), /1 series, 108 images/);
+    assert.ok(await viewer.byId('pacs-studies').locator('li').count() >= 3, 'the fixture holds three studies');
+
+    await study.click();
+    const series = viewer.byId('pacs-series').locator(`li[data-series-uid="${CRANIUM_SERIES}"]`);
+    await series.waitFor({ state: 'visible' });
+    assert.match(await series.textContent(), /Cranium/);
+    assert.match(await series.textContent(), /CT · 108 images/);
+    await panel.screenshot({ path: artifactPath('pacs-panel.png') });
+
+    await series.getByRole('button', { name: 'Open' }).click();
+    await viewer.byId('pacs-progress-box').waitFor({ state: 'visible' });
+    await page.waitForFunction((name) => document.querySelector('[data-testid="dataset"]').value === name,
+      CRANIUM_DATASET, { timeout: 120000 });
+    await viewer.waitForIdle(120000);
+    assert.match(await viewer.byId('pacs-progress-label').textContent(), /^Opened/);
+    assert.equal(await viewer.byId('pacs-progress').getAttribute('value'), '108');
+    const last = opens.at(-1);
+    assert.equal(last.state, 'done');
+    assert.equal(last.received, 108);
+    assert.equal(last.total, 108);
+    assert.ok(opens.every((o) => o.received <= o.total || o.total === 0), 'progress beyond the series');
+    const frame = await viewer.framePixels();
+    assert.ok(frame.variance > 20, `the opened series' frame looks blank (variance ${frame.variance.toFixed(2)})`);
+    assert.equal((await viewer.hashParams()).dataset, CRANIUM_DATASET);
+    assert.ok(!(await viewer.error.isVisible()), `unexpected error: ${await viewer.error.textContent()}`);
+    await viewer.screenshotPage('pacs-opened-series');
+  });
+});
+
+test('refused credentials show the PACS\'s 401 in the panel, never the password', async (t) => {
+  assert.ok(server, 'needs VOTS_BIN, VOTS_DATA (run.sh) and VOTS_ORTHANC_STATE (the ctest Orthanc fixture)');
+  await withPage(t, async (page) => {
+    const viewer = new ViewerPage(page);
+    await page.goto(`${server.base}/`);
+    await viewer.byId('pacs').waitFor({ state: 'visible' });
+    await viewer.byId('pacs-service').selectOption('nocreds');
+    await viewer.byId('pacs-search').click();
+    const error = viewer.byId('pacs-error');
+    await error.waitFor({ state: 'visible' });
+    const text = await error.textContent();
+    assert.match(text, /refused the credentials/);
+    assert.match(text, /HTTP 401/);
+    assert.ok(!text.includes(server.password), 'the password is shown');
+    assert.equal(await viewer.byId('pacs-studies').locator('li').count(), 0);
+  });
+});

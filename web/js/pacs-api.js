@@ -1,0 +1,72 @@
+// Client of the server's PACS routes (/api/pacs): services, study and series searches, opening a series.
+import { ApiError, request } from './api.js';
+
+const POLL_MS = 250; // an open's progress is asked this often while it retrieves
+
+const servicePath = (service) => `api/pacs/${encodeURIComponent(service)}`;
+
+async function json(url, init, what) {
+  const res = await request(url, { cache: 'no-store', ...init }, what);
+  return res.json();
+}
+
+// [{name, url}]: the PACS `vots serve --dicomweb` named; empty when none.
+export async function fetchPacsServices() {
+  const body = await json('api/pacs', {}, 'Listing the PACS');
+  return Array.isArray(body?.services) ? body.services : [];
+}
+
+// query: {patientName, patientId, dateFrom, dateTo, modality, accessionNumber}; empty fields are left out.
+export async function searchStudies(service, query) {
+  const q = new URLSearchParams();
+  for (const [key, value] of Object.entries(query)) if (value) q.set(key, value);
+  const body = await json(`${servicePath(service)}/studies?${q}`, {}, 'Searching the PACS');
+  return Array.isArray(body?.studies) ? body.studies : [];
+}
+
+export async function fetchStudySeries(service, studyUid) {
+  const body = await json(`${servicePath(service)}/studies/${encodeURIComponent(studyUid)}/series`, {},
+    'Listing the series');
+  return Array.isArray(body?.series) ? body.series : [];
+}
+
+const postJson = { method: 'POST', headers: { 'Content-Type': 'application/json' }, body: '{}' };
+
+export function cancelSeriesOpen(id) {
+  return json(`api/pacs/opens/${encodeURIComponent(id)}/cancel`, postJson, 'Cancelling the retrieve');
+}
+
+// Starts (or joins) the open of a series and polls it. onProgress(open) sees every answer; returns
+// {done, cancel()}: done resolves with the finished open ({dataset, fromCache, ...}) and rejects with an
+// ApiError carrying the failure's status (401, 404, 502, 504, 507) and message; cancel() asks the server
+// to stop, and done then never settles.
+export function followSeriesOpen(service, studyUid, seriesUid, onProgress) {
+  let id = null;
+  let stopped = false;
+  let timer = 0;
+  const done = (async () => {
+    let open = await json(
+      `${servicePath(service)}/studies/${encodeURIComponent(studyUid)}/series/${encodeURIComponent(seriesUid)}/open`,
+      postJson, 'Opening the series');
+    id = open.id;
+    for (;;) {
+      if (stopped) throw new ApiError('Opening the series: cancelled', { aborted: true });
+      onProgress(open);
+      if (open.state === 'done') return open;
+      if (open.state === 'failed' || open.state === 'cancelled') {
+        throw new ApiError(`Opening the series: ${open.error || open.state} (HTTP ${open.status})`,
+          { status: open.status || 0, aborted: open.state === 'cancelled' });
+      }
+      await new Promise((resolve) => { timer = setTimeout(resolve, POLL_MS); });
+      open = await json(`api/pacs/opens/${encodeURIComponent(id)}`, {}, 'Opening the series');
+    }
+  })();
+  return {
+    done,
+    cancel() {
+      stopped = true;
+      clearTimeout(timer);
+      if (id !== null) cancelSeriesOpen(id).catch(() => {}); // it ends as cancelled either way
+    },
+  };
+}
