@@ -67,8 +67,12 @@ cmp -s "$work/index.html" "$index" || fail "GET / is not the installed index.htm
 grep -qF "$marker" "$work/index.html" || fail "GET / lacks the installed copy's marker"
 grep -qi '<html' "$work/index.html" || fail "GET / is not HTML"
 # The module generated from the C++ rules (web/js/contract.js) is installed with the rest of the viewer.
-curl -sf --max-time 30 "$url/js/contract.js" | grep -q '^export const MODES' || fail "the installed viewer lacks js/contract.js"
-curl -sf --max-time 30 "$url/api/datasets" | grep -q '"name":"tiny"' || fail "/api/datasets does not list tiny"
+# Into files, not pipes: grep -q stops reading at its match, and under pipefail curl's broken pipe would fail
+# the check.
+curl -sf --max-time 30 -o "$work/contract.js" "$url/js/contract.js" && grep -q '^export const MODES' "$work/contract.js" ||
+    fail "the installed viewer lacks js/contract.js"
+curl -sf --max-time 30 -o "$work/datasets.json" "$url/api/datasets" && grep -q '"name":"tiny"' "$work/datasets.json" ||
+    fail "/api/datasets does not list tiny"
 curl -sf --max-time 120 -o "$work/tiny.png" "$url/render?dataset=tiny&size=32x32" || fail "/render did not answer 200"
 [[ "$(head -c 8 "$work/tiny.png" | od -An -tx1 | tr -d ' \n')" == 89504e470d0a1a0a ]] || fail "/render is not a PNG"
 # The turntable's encoder is the installed module, loaded from <prefix>/lib/.../vots with the build tree away.
