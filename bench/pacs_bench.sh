@@ -20,7 +20,7 @@ cleanup() {
     ((server)) && kill "$server" 2>/dev/null
     wait 2>/dev/null
     tests/pacs/orthanc.sh stop "$work/orthanc" >/dev/null 2>&1 || true
-    rm -rf "$work"
+    if [[ -n ${VOTS_BENCH_KEEP:-} ]]; then echo "kept $work"; else rm -rf "$work"; fi
 }
 trap cleanup EXIT
 now() { date +%s.%N; }
@@ -32,8 +32,7 @@ series_uid=1.2.826.0.1.3680043.10.1234.700
     >/dev/null
 "$build/tests/vots_write_dicom" "$work/folder/bench" --input "$work/scaled.nhdr" --series-uid "$series_uid" \
     --description "bench $slices" >/dev/null
-extent_z=$(sed -n 's/^space directions:.*(\([^)]*\))$/\1/p' "$work/scaled.nhdr" |
-    awk -F, -v n="$slices" '{ printf "%.6f", $3 * (n - 1) }')
+extent_z=$(awk -v n="$slices" '/^spacings:/ { printf "%.6f", $4 * (n - 1) }' "$work/scaled.nhdr")
 rm -f "$work"/scaled.*
 tests/pacs/orthanc.sh start "$work/orthanc"
 port=$(cat "$work/orthanc/port")
@@ -97,12 +96,13 @@ report pacs "$start" "orthanc-${series_uid//./_}"
 stop_server
 
 # The sweep: THICKNESS 10 mm, the step that makes about SWEEP_SLABS slabs along the series' z extent.
-step=$(echo "($extent_z - 10) / ($sweep_slabs - 1.5)" | bc -l)
+step=$(printf '%.4f' "$(echo "($extent_z - 10) / ($sweep_slabs - 1.5)" | bc -l)")
 sweep=(--view inferior --slab-sweep "10,$step" --size "$size")
 mkdir -p "$work/sweep"
 /usr/bin/time -f '%e s %M KB' -o "$work/time-folder" "$vots" render "$work/folder/bench" "${sweep[@]}" \
-    -o "$work/sweep/%04d.dcm" 2>/dev/null
+    -o "$work/sweep/%04d.dcm" 2>"$work/sweep-folder.log" || { cat "$work/sweep-folder.log"; exit 1; }
 printf 'sweep of %s slabs to a folder: %s\n' "$(find "$work/sweep" -name '*.dcm' | wc -l)" "$(cat "$work/time-folder")"
 /usr/bin/time -f '%e s %M KB' -o "$work/time-pacs" "$vots" render "$work/folder/bench" "${sweep[@]}" \
-    -o "dicomweb+http://127.0.0.1:$port/dicom-web" --dicomweb-auth "$auth" 2>"$work/sweep.log"
+    -o "dicomweb+http://127.0.0.1:$port/dicom-web" --dicomweb-auth "$auth" 2>"$work/sweep.log" ||
+    { cat "$work/sweep.log"; exit 1; }
 printf 'sweep stored on the PACS: %s (%s)\n' "$(cat "$work/time-pacs")" "$(grep -o 'stored [0-9]* images' "$work/sweep.log")"
