@@ -1,5 +1,6 @@
 // The server's PACS browser against the real Orthanc of the pacs fixture: searches, opening a series as a
 // dataset (progress, the same images as the folder, the disk cache), and the statuses of failures.
+#include "JobPolling.h"
 #include "LoopbackServer.h"
 #include "OrthancState.h"
 #include "TempDir.h"
@@ -145,27 +146,13 @@ protected:
         return o;
     }
 
-    /// POSTs the open and polls it until it ends (about two minutes at most); returns every answer seen.
+    /// POSTs the open and polls it until it ends; returns every answer seen.
     static std::vector<nlohmann::json> openSeries(httplib::Client& c, const std::string& service,
                                                   const std::string& study, const std::string& series) {
         const auto posted =
             c.Post(("/api/pacs/" + service + "/studies/" + study + "/series/" + series + "/open").c_str(),
                    "{}", "application/json");
-        EXPECT_TRUE(posted);
-        if (!posted) return {};
-        EXPECT_EQ(posted->status, 202) << posted->body;
-        std::vector<nlohmann::json> seen{nlohmann::json::parse(posted->body)};
-        const std::string poll = "/api/pacs/opens/" + std::to_string(seen.back()["id"].get<std::uint64_t>());
-        for (int i = 0; i < 2400; ++i) {
-            const std::string state = seen.back()["state"];
-            if (state == "done" || state == "failed" || state == "cancelled") break;
-            std::this_thread::sleep_for(std::chrono::milliseconds(50));
-            const auto res = c.Get(poll.c_str());
-            EXPECT_TRUE(res && res->status == 200);
-            if (!res) break;
-            seen.push_back(nlohmann::json::parse(res->body));
-        }
-        return seen;
+        return pollJob(c, posted, "/api/pacs/opens/");
     }
 
     /// The retrieved series' folder holds this process's spool folder alone, and that is empty.
