@@ -55,9 +55,9 @@ protected:
 
     /// Opens the send-source series as a dataset (PACS panel's open) and expects it done.
     static void openSendSource(httplib::Client& c) {
-        const auto posted = c.Post(
-            ("/api/pacs/orthanc/studies/" + SEND_STUDY + "/series/" + SEND_SERIES + "/open").c_str(), "{}",
-            "application/json");
+        const auto posted =
+            c.Post(("/api/pacs/orthanc/studies/" + SEND_STUDY + "/series/" + SEND_SERIES + "/open").c_str(),
+                   "{}", "application/json");
         const auto seen = pollJob(c, posted, "/api/pacs/opens/");
         ASSERT_FALSE(seen.empty());
         ASSERT_EQ(seen.back()["state"], "done") << seen.back().dump();
@@ -65,9 +65,12 @@ protected:
     }
 
     static nlohmann::json sweepBody() {
-        return {{"dataset", SEND_DATASET}, {"cam", "az=0,el=0,zoom=1,pan=0:0,proj=ortho,fov=30"},
-                {"mode", "mip"},           {"thickness", 10},
-                {"step", 5},               {"size", "48x40"},
+        return {{"dataset", SEND_DATASET},
+                {"cam", "az=0,el=0,zoom=1,pan=0:0,proj=ortho,fov=30"},
+                {"mode", "mip"},
+                {"thickness", 10},
+                {"step", 5},
+                {"size", "48x40"},
                 {"eps", "1%"}};
     }
 

@@ -21,7 +21,8 @@ SweepStoreJobs::~SweepStoreJobs() {
 SweepStoreSnapshot SweepStoreJobs::start(SweepStoreSnapshot initial, Work work) {
     std::lock_guard lock(mMutex);
     if (mRunning >= MAX_RUNNING)
-        throw HttpError(429, std::to_string(MAX_RUNNING) + " sweeps are being sent; try again when one is in");
+        throw HttpError(429,
+                        std::to_string(MAX_RUNNING) + " sweeps are being sent; try again when one is in");
     auto job = std::make_unique<Job>();
     job->visible = std::move(initial);
     job->visible.id = mNextId++;

@@ -34,9 +34,9 @@ struct SweepStoreSnapshot {
     std::string dataset;
     std::string description; // the series' SeriesDescription, e.g. "MIP 10 mm / 5 mm axial"
     SweepStoreState state = SweepStoreState::Queued;
-    int drawn = 0;  // slabs drawn so far
-    int total = 0;  // slabs of the sweep
-    int stored = 0; // done: the images the PACS says it stored
+    int drawn = 0;       // slabs drawn so far
+    int total = 0;       // slabs of the sweep
+    int stored = 0;      // done: the images the PACS says it stored
     int errorStatus = 0; // failed: the HTTP status the failure maps to (pacsFailure)
     std::string error;
 

@@ -88,12 +88,12 @@ render::SlabSweepPlan planFor(const StoreRequest& r, const Dataset& dataset) {
     } catch (const fit::InputError& e) {
         throw HttpError(400, e.what());
     }
-    const std::int64_t pixels =
-        static_cast<std::int64_t>(plan.slabs.size()) * r.frame.width * r.frame.height;
+    const std::int64_t pixels = static_cast<std::int64_t>(plan.slabs.size()) * r.frame.width * r.frame.height;
     if (pixels > MAX_PIXELS)
-        throw HttpError(400, std::to_string(plan.slabs.size()) + " slabs at " + std::to_string(r.frame.width) +
-                                 "x" + std::to_string(r.frame.height) + " are more than " +
-                                 std::to_string(MAX_PIXELS) + " pixels: a thicker step or a smaller size");
+        throw HttpError(400, std::to_string(plan.slabs.size()) + " slabs at " +
+                                 std::to_string(r.frame.width) + "x" + std::to_string(r.frame.height) +
+                                 " are more than " + std::to_string(MAX_PIXELS) +
+                                 " pixels: a thicker step or a smaller size");
     return plan;
 }
 
@@ -146,14 +146,15 @@ std::uint64_t storeIdFrom(const httplib::Request& req) {
 
 void installPacsStoreRoute(Server::Impl& s) {
     s.http.Post(R"(/api/pacs/([A-Za-z0-9_-]{1,64})/store)", [&s](const httplib::Request& req,
-                                                                  httplib::Response& res) {
+                                                                 httplib::Response& res) {
         const DicomWebService& service = s.seriesOpens.service(req.matches[1].str());
         StoreRequest request = parseStoreRequest(req.body);
         if (s.options.ranks) throw HttpError(409, "a sweep is sent from one process, not under mpirun");
         const auto dataset = s.registry.find(request.frame.dataset);
         if (dataset->kind != DatasetKind::Volume || !fit::isDicomFolder(dataset->path.string()))
-            throw HttpError(409, "dataset '" + dataset->name +
-                                     "' is not a DICOM series: a sweep stored on a PACS joins its source's study");
+            throw HttpError(409,
+                            "dataset '" + dataset->name +
+                                "' is not a DICOM series: a sweep stored on a PACS joins its source's study");
         render::SlabSweepPlan plan = planFor(request, *dataset);
         if (!s.renderQueue || !s.renderQueue->hasContext())
             throw HttpError(503, s.renderQueue ? "rendering is unavailable: " + s.renderQueue->contextError()

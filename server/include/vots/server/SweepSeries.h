@@ -26,8 +26,8 @@ struct DrawnSlab {
 /// What a sweep's series is made of besides its slabs.
 struct SweepSeriesSource {
     render::SlabSweepSpacing spacing;
-    render::FrameRequest first;                // camera, size, mode and window of every slab
-    std::array<float, 2> fullRange{0, 0};      // the volume's samples: the window unless `first` names one
+    render::FrameRequest first;                 // camera, size, mode and window of every slab
+    std::array<float, 2> fullRange{0, 0};       // the volume's samples: the window unless `first` names one
     std::optional<fit::DicomIdentity> identity; // the source's patient and study; nullopt: not DICOM
 };
 
