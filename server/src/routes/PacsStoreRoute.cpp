@@ -134,6 +134,16 @@ SweepStoreJobs::Work sendWork(Server::Impl& s, const DicomWebService& service, S
     };
 }
 
+/// The patient and study the sweep joins: the dataset's own DICOM files, already read once to load it, so
+/// a failure is the server's (500).
+fit::DicomIdentity sourceIdentity(const Dataset& dataset) {
+    try {
+        return fit::readDicomIdentity(dataset.path.string(), dataset.dicomSeries);
+    } catch (const fit::InputError& e) {
+        throw HttpError(500, "cannot read the identity of dataset '" + dataset.name + "': " + e.what());
+    }
+}
+
 std::uint64_t storeIdFrom(const httplib::Request& req) {
     try {
         return std::stoull(req.matches[1].str());
@@ -159,8 +169,7 @@ void installPacsStoreRoute(Server::Impl& s) {
         if (!s.renderQueue || !s.renderQueue->hasContext())
             throw HttpError(503, s.renderQueue ? "rendering is unavailable: " + s.renderQueue->contextError()
                                                : "rendering is disabled");
-        SweepSeriesSource source{request.spacing, request.frame, dataset->range,
-                                 fit::readDicomIdentity(dataset->path.string(), dataset->dicomSeries)};
+        SweepSeriesSource source{request.spacing, request.frame, dataset->range, sourceIdentity(*dataset)};
         // Asked now, so refused credentials or a service that is down cost one answer, not a sweep drawn
         // first: the smallest search the service answers.
         try {

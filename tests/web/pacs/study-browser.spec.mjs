@@ -134,8 +134,11 @@ test('a PACS dataset\'s view is sent back as a slab sweep with progress and a re
     });
     await page.goto(`${server.base}/`);
     await viewer.byId('pacs').waitFor({ state: 'visible' });
+    const folderDataset = await viewer.byId('dataset').evaluate(
+      (select) => [...select.options].map((o) => o.value).find((name) => !name.startsWith('orthanc-')));
+    await viewer.byId('dataset').selectOption(folderDataset);
     await viewer.waitForIdle(120000);
-    assert.ok(await viewer.byId('pacs-send').isHidden(), 'Send to PACS offered for a dataset of the data folder');
+    assert.ok(await viewer.byId('pacs-send').isHidden(), `Send to PACS offered for ${folderDataset} of the data folder`);
 
     await viewer.byId('pacs-search').click();
     const study = viewer.byId('pacs-studies').locator(`li[data-study-uid="${SEND_SERIES}.0"]`);
@@ -165,6 +168,7 @@ test('a PACS dataset\'s view is sent back as a slab sweep with progress and a re
     assert.equal(text, `Stored ${last.total} images: MIP 10 mm / 4 mm coronal (on orthanc)`);
     assert.ok(stores.every((s) => s.drawn <= s.total), 'progress beyond the sweep');
     assert.ok(await viewer.byId('pacs-send-error').isHidden(), await viewer.byId('pacs-send-error').textContent());
-    await viewer.byId('pacs').screenshot({ path: artifactPath('pacs-send.png') });
+    await section.scrollIntoViewIfNeeded();
+    await section.screenshot({ path: artifactPath('pacs-send.png') });
   });
 });
