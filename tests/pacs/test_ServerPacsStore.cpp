@@ -43,9 +43,10 @@ std::set<std::string> seriesOfTheSendStudy() {
 
 class ServerPacsStore : public ::testing::Test {
 protected:
+    ServerPacsStore() { fs::create_directories(mDir.path() / "data"); }
+
     server::ServerOptions options(bool withCredentials) const {
         server::ServerOptions o;
-        fs::create_directories(mDir.path() / "data");
         o.dataDirs = {mDir.path() / "data"};
         o.cacheDir = mDir.path() / "cache";
         o.warmUpFits = false;
@@ -108,6 +109,11 @@ TEST_F(ServerPacsStore, ASweepJoinsTheSourcesStudyAsOneNewSeries) {
 }
 
 TEST_F(ServerPacsStore, BadRequestsAreRefusedBeforeAnythingIsDrawn) {
+    std::string ramp(8 * 8 * 8, '\0');
+    for (std::size_t i = 0; i < ramp.size(); ++i)
+        ramp[i] = static_cast<char>(i % 200);
+    mDir.write("data/plain.nrrd",
+               "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 8 8 8\nencoding: raw\n\n" + ramp);
     LoopbackServer server(options(true));
     auto c = server.client();
     openSendSource(*c);
@@ -129,6 +135,7 @@ TEST_F(ServerPacsStore, BadRequestsAreRefusedBeforeAnythingIsDrawn) {
     const std::string store = "/api/pacs/orthanc/store";
     EXPECT_EQ(status("/api/pacs/nowhere/store", sweepBody().dump()), 404);
     EXPECT_EQ(status(store, with("dataset", "no_such_dataset")), 404);
+    EXPECT_EQ(status(store, with("dataset", "plain")), 409); // not DICOM: no study to join
     EXPECT_EQ(status(store, "not json"), 400);
     EXPECT_EQ(status(store, "[1,2]"), 400);
     EXPECT_EQ(status(store, without("thickness")), 400);
