@@ -5,13 +5,16 @@
 #include "OrthancState.h"
 #include "TempDir.h"
 
+#include "vots/fit/DicomSeries.h"
 #include "vots/pacs/QidoSearch.h"
+#include "vots/pacs/SeriesRetrieve.h"
 
 #include <gtest/gtest.h>
 #include <httplib.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <array>
 #include <filesystem>
 #include <set>
 
@@ -106,6 +109,21 @@ TEST_F(ServerPacsStore, ASweepJoinsTheSourcesStudyAsOneNewSeries) {
     EXPECT_EQ(added[0].instanceCount, total);
     EXPECT_EQ(added[0].description, "MIP 10 mm / 5 mm coronal");
     EXPECT_EQ(added[0].modality, "CT");
+
+    // Read back: a series of the source's study with one image per slab at the view's size, whose MIPs
+    // through the whole sphere reach its brightest sample (less what the pixel rays miss of the peak).
+    const pacs::RetrievedSeries stored =
+        pacs::retrieveSeries({orthancEndpoint(), SEND_STUDY, added[0].seriesUid}, orthancAccess());
+    EXPECT_EQ(fit::readDicomIdentity(stored.folder()).studyInstanceUid, SEND_STUDY);
+    const fit::Volume sweep = fit::loadDicomSeries(stored.folder());
+    EXPECT_EQ(sweep.dims, (std::array<int, 3>{48, 40, total}));
+    const auto datasets = nlohmann::json::parse(c->Get("/api/datasets")->body)["datasets"];
+    const auto source = std::find_if(datasets.begin(), datasets.end(),
+                                     [](const nlohmann::json& d) { return d["name"] == SEND_DATASET; });
+    ASSERT_NE(source, datasets.end());
+    const float lo = (*source)["range"][0], hi = (*source)["range"][1];
+    EXPECT_LE(sweep.valueRange()[1], hi + 0.01f * (hi - lo));
+    EXPECT_GE(sweep.valueRange()[1], hi - 0.05f * (hi - lo));
 }
 
 TEST_F(ServerPacsStore, BadRequestsAreRefusedBeforeAnythingIsDrawn) {
