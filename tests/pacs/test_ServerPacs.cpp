@@ -1,5 +1,6 @@
 // The server's PACS browser against the real Orthanc of the pacs fixture: searches, opening a series as a
 // dataset (progress, the same images as the folder, the disk cache), and the statuses of failures.
+#include "FaultProxy.h"
 #include "JobPolling.h"
 #include "LoopbackServer.h"
 #include "OrthancState.h"
@@ -11,10 +12,7 @@
 
 #include <arpa/inet.h>
 #include <netinet/in.h>
-#include <signal.h>
-#include <spawn.h>
 #include <sys/socket.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -24,8 +22,6 @@
 #include <iterator>
 #include <thread>
 
-extern char** environ;
-
 namespace {
 
 namespace fs = std::filesystem;
@@ -34,52 +30,6 @@ using namespace vots::test;
 
 const std::string RAMP_STUDY = std::string(RAMP_SERIES) + ".0";
 const std::string CRANIUM_STUDY = std::string(CRANIUM_SERIES) + ".0";
-
-std::string readText(const fs::path& file) {
-    std::ifstream in(file);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-/// tests/pacs/fault_proxy.py passing everything to Orthanc, logging each request line.
-class CountingProxy {
-public:
-    explicit CountingProxy(const fs::path& folder) : mLog(folder / "proxy.log") {
-        const std::string portFile = (folder / "proxy_port").string();
-        std::vector<std::string> args = {
-            "python3",     VOTS_FAULT_PROXY, "--target", orthancStateFile("port"),
-            "--port-file", portFile,         "--log",    mLog.string()};
-        std::vector<char*> argv;
-        for (std::string& a : args)
-            argv.push_back(a.data());
-        argv.push_back(nullptr);
-        if (posix_spawnp(&mPid, "python3", nullptr, nullptr, argv.data(), environ) != 0)
-            throw std::runtime_error("cannot start the fault proxy");
-        for (int i = 0; i < 200 && !fs::exists(portFile); ++i)
-            std::this_thread::sleep_for(std::chrono::milliseconds(50));
-        mPort = readText(portFile);
-        if (mPort.empty()) throw std::runtime_error("the fault proxy wrote no port");
-    }
-    ~CountingProxy() {
-        kill(mPid, SIGTERM);
-        waitpid(mPid, nullptr, 0);
-    }
-    std::string port() const { return mPort; }
-    std::string log() const { return readText(mLog); }
-    /// Request lines that asked for the series' instances (a retrieve), not its metadata.
-    int seriesRetrieves(const std::string& seriesUid) const {
-        const std::string log = readText(mLog);
-        const std::string line = "/series/" + seriesUid + " HTTP/1.1";
-        int count = 0;
-        for (auto at = log.find(line); at != std::string::npos; at = log.find(line, at + 1))
-            ++count;
-        return count;
-    }
-
-private:
-    fs::path mLog;
-    pid_t mPid = -1;
-    std::string mPort;
-};
 
 server::DicomWebService service(const std::string& name, const std::string& port, bool withCredentials) {
     server::DicomWebService s;
@@ -255,7 +205,7 @@ TEST_F(ServerPacs, AnOpenedSeriesRendersAsTheSameFilesFromAFolder) {
 }
 
 TEST_F(ServerPacs, ASecondOpenReadsTheKeptSeriesWithoutARetrieve) {
-    CountingProxy proxy(mDir.path());
+    FaultProxy proxy(mDir.path());
     {
         LoopbackServer server(options({service("orthanc", proxy.port(), true)}));
         const auto seen = openSeries(*server.client(), "orthanc", CRANIUM_STUDY, CRANIUM_SERIES);
@@ -366,7 +316,7 @@ TEST_F(ServerPacs, AnOpenCancelledWhileThePacsIsSilentEndsCancelled) {
 }
 
 TEST_F(ServerPacs, ASeriesOverTheMemoryBudgetIsRefusedBeforeItsPixelsAreAskedFor) {
-    CountingProxy proxy(mDir.path());
+    FaultProxy proxy(mDir.path());
     server::ServerOptions o = options({service("orthanc", proxy.port(), true)});
     o.memoryBudgetBytes = 1; // less than any process holds: every load is refused
     LoopbackServer server(o);

@@ -1,5 +1,6 @@
 // The viewer's Send to PACS (POST /api/pacs/{name}/store) against the real Orthanc of the pacs fixture: a
 // PACS series' sweep joins its study as one new series, and bad requests are refused before any drawing.
+#include "FaultProxy.h"
 #include "JobPolling.h"
 #include "LoopbackServer.h"
 #include "OrthancState.h"
@@ -29,10 +30,11 @@ const std::string SEND_SERIES = "1.2.826.0.1.3680043.10.1234.207";
 const std::string SEND_STUDY = SEND_SERIES + ".0";
 const std::string SEND_DATASET = "orthanc-1_2_826_0_1_3680043_10_1234_207";
 
-server::DicomWebService orthanc(bool withCredentials) {
+/// The fixture's Orthanc as the server's PACS "orthanc", at its own port or another's (a proxy's).
+server::DicomWebService orthanc(bool withCredentials, const std::string& port = orthancStateFile("port")) {
     server::DicomWebService s;
     s.name = "orthanc";
-    s.endpoint = orthancEndpoint();
+    s.endpoint = pacs::parseDicomWebEndpoint("dicomweb+http://127.0.0.1:" + port + "/dicom-web");
     if (withCredentials) s.access = orthancAccess();
     return s;
 }
@@ -48,12 +50,12 @@ class ServerPacsStore : public ::testing::Test {
 protected:
     ServerPacsStore() { fs::create_directories(mDir.path() / "data"); }
 
-    server::ServerOptions options(bool withCredentials) const {
+    server::ServerOptions options(const server::DicomWebService& service) const {
         server::ServerOptions o;
         o.dataDirs = {mDir.path() / "data"};
         o.cacheDir = mDir.path() / "cache";
         o.warmUpFits = false;
-        o.dicomWebServices = {orthanc(withCredentials)};
+        o.dicomWebServices = {service};
         return o;
     }
 
@@ -82,7 +84,7 @@ protected:
 };
 
 TEST_F(ServerPacsStore, ASweepJoinsTheSourcesStudyAsOneNewSeries) {
-    LoopbackServer server(options(true));
+    LoopbackServer server(options(orthanc(true)));
     auto c = server.client();
     openSendSource(*c);
     const std::set<std::string> before = seriesOfTheSendStudy();
@@ -132,7 +134,7 @@ TEST_F(ServerPacsStore, BadRequestsAreRefusedBeforeAnythingIsDrawn) {
         ramp[i] = static_cast<char>(i % 200);
     mDir.write("data/plain.nrrd",
                "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 8 8 8\nencoding: raw\n\n" + ramp);
-    LoopbackServer server(options(true));
+    LoopbackServer server(options(orthanc(true)));
     auto c = server.client();
     openSendSource(*c);
     const std::set<std::string> before = seriesOfTheSendStudy();
@@ -173,10 +175,10 @@ TEST_F(ServerPacsStore, BadRequestsAreRefusedBeforeAnythingIsDrawn) {
 TEST_F(ServerPacsStore, RefusedCredentialsAnswer401BeforeAnythingIsDrawn) {
     // The series is opened with the credentials; the server that sends it has none.
     {
-        LoopbackServer opener(options(true));
+        LoopbackServer opener(options(orthanc(true)));
         openSendSource(*opener.client());
     }
-    LoopbackServer server(options(false));
+    LoopbackServer server(options(orthanc(false)));
     auto c = server.client();
     const std::set<std::string> before = seriesOfTheSendStudy();
     const auto res = c->Post("/api/pacs/orthanc/store", sweepBody().dump(), "application/json");
@@ -186,6 +188,25 @@ TEST_F(ServerPacsStore, RefusedCredentialsAnswer401BeforeAnythingIsDrawn) {
               std::string::npos)
         << res->body;
     EXPECT_EQ(res->body.find(orthancStateFile("password")), std::string::npos);
+    EXPECT_EQ(seriesOfTheSendStudy(), before);
+}
+
+TEST_F(ServerPacsStore, AStoreThePacsRefusesEndsFailedWith502AndStoresNothing) {
+    const FaultProxy proxy(mDir.path(), {"--refuse-store"});
+    LoopbackServer server(options(orthanc(true, proxy.port())));
+    auto c = server.client();
+    openSendSource(*c); // the proxy passes the retrieve
+    const std::set<std::string> before = seriesOfTheSendStudy();
+    const auto posted = c->Post("/api/pacs/orthanc/store", sweepBody().dump(), "application/json");
+    const auto seen = pollJob(*c, posted, "/api/pacs/stores/");
+    ASSERT_FALSE(seen.empty());
+    const nlohmann::json& last = seen.back();
+    ASSERT_EQ(last["state"], "failed") << last.dump();
+    EXPECT_EQ(last["status"], 502) << last.dump();
+    EXPECT_FALSE(last["error"].get<std::string>().empty());
+    EXPECT_EQ(last["drawn"], last["total"]); // every slab was drawn; the store was refused
+    EXPECT_EQ(last["stored"], 0);
+    EXPECT_NE(proxy.log().find("REFUSED"), std::string::npos) << proxy.log();
     EXPECT_EQ(seriesOfTheSendStudy(), before);
 }
 
