@@ -4,10 +4,10 @@
 #include "TurntableOutput.h"
 
 #include "vots/fit/Error.h"
-#include "vots/pacs/DerivedSeries.h"
 #include "vots/pacs/QidoSearch.h"
 #include "vots/pacs/SpoolFolder.h"
 #include "vots/pacs/StowStore.h"
+#include "vots/server/SweepSeries.h"
 
 #include <algorithm>
 #include <cctype>
@@ -41,15 +41,6 @@ SweepFormat formatOf(const std::string& output) {
     if (endsWith(output, ".dcm")) return SweepFormat::Dicom;
     if (endsWith(output, ".png")) return SweepFormat::Png;
     throw bad("must end in .dcm (a DICOM series) or .png (display images)");
-}
-
-pacs::DerivedImage derivedImage(render::FloatImage frame, const render::SweepSlab& slab) {
-    pacs::DerivedImage image;
-    image.width = frame.width;
-    image.height = frame.height;
-    image.pixels = std::move(frame.pixels);
-    image.firstPixelCentre = slab.firstPixelCentre;
-    return image;
 }
 
 } // namespace
@@ -97,20 +88,7 @@ void writeSlabSweep(const SlabSweepOutput& output, const render::SlabSweepPlan& 
         writer.finish();
         return;
     }
-    pacs::DerivedSeries series;
-    series.source = source;
-    series.description = render::sweepDescription(first.mode, output.spacing, plan.plane.normal);
-    series.geometry.rowDirection = plan.plane.rowDirection;
-    series.geometry.columnDirection = plan.plane.columnDirection;
-    series.geometry.pixelSpacingMm = plan.plane.pixelSpacingMm;
-    series.geometry.sliceThicknessMm = output.spacing.thicknessMm;
-    series.geometry.spacingBetweenSlicesMm = output.spacing.stepMm;
-    const render::DisplaySettings window = render::displayFor(first, fullRange);
-    series.window = std::array<double, 2>{window.level, window.width};
-    // Every value either renderer can draw: the Vots' bounds reach past the samples by up to eps.
-    const std::array<float, 2> drawable = renderer.valueRange();
-    series.valueRange =
-        std::array<double, 2>{std::min(drawable[0], fullRange[0]), std::max(drawable[1], fullRange[1])};
+    const server::SweepSeriesSource from{output.spacing, first, fullRange, source};
     // A series for a PACS goes to a private spool folder first, removed however the store ends.
     std::optional<pacs::SpoolFolder> spool;
     if (output.format == SweepFormat::DicomWeb) spool.emplace();
@@ -118,18 +96,15 @@ void writeSlabSweep(const SlabSweepOutput& output, const render::SlabSweepPlan& 
     std::vector<std::string> paths;
     for (std::size_t k = 0; k < plan.slabs.size(); ++k)
         paths.push_back(framePath(pattern, static_cast<int>(k)));
-    const std::string description = series.description;
-    pacs::DerivedSeriesWriter writer(std::move(series), paths);
-    for (const render::SweepSlab& slab : plan.slabs) {
-        render::FloatImage frame = renderer.render(first.camera, first.width, first.height,
-                                                   render::RenderOptions{first.mode, slab.slab});
-        writer.add(derivedImage(std::move(frame), slab));
-    }
-    writer.finish();
+    server::writeSweepSeries(from, plan, paths, [&](const render::SweepSlab& slab) {
+        return server::DrawnSlab{renderer.render(first.camera, first.width, first.height,
+                                                 render::RenderOptions{first.mode, slab.slab}),
+                                 renderer.valueRange()};
+    });
     if (!spool) return;
     const pacs::StoreReport report = pacs::storeInstances(output.store, output.access, paths);
-    std::cerr << "vots: stored " << report.stored << " images (" << description << ") on "
-              << output.store.describe() << "\n";
+    std::cerr << "vots: stored " << report.stored << " images (" << server::sweepSeriesDescription(from, plan)
+              << ") on " << output.store.describe() << "\n";
 }
 
 } // namespace vots::cli

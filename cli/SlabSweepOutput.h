@@ -43,7 +43,7 @@ render::SlabSweepPlan planSweep(const SlabSweepOutput& output, const render::Fra
                                 const render::SceneBounds& bounds);
 
 /// Draws every slab of the plan with `first`'s camera, size, mode and display settings and writes them: the
-/// float frames from `renderer` as a derived DICOM series (pacs::writeDerivedSeries; the source's identity
+/// float frames from `renderer` as a derived DICOM series (server::writeSweepSeries; the source's identity
 /// where it is DICOM, the window over `fullRange` unless the frame names one), or the windowed images from
 /// `drawRgba` as PNGs. All or nothing: a series for a PACS is written to a spool folder first and stored
 /// in one STOW-RS request, which the service takes or refuses instance by instance (a refusal is an error).

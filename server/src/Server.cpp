@@ -153,6 +153,7 @@ Server::Server(ServerOptions options) : mImpl(std::make_unique<Impl>(std::move(o
     installTurntableRoute(s);
     installJobRoutes(s);
     installPacsRoutes(s);
+    installPacsStoreRoute(s);
 
     const std::vector<std::string> names = s.registry.names();
     const std::string& startup = s.options.startupDataset;

@@ -7,6 +7,7 @@
 #include "datasets/DatasetRegistry.h"
 #include "datasets/MemoryAdmission.h"
 #include "dicomweb/SeriesOpenJobs.h"
+#include "dicomweb/SweepStoreJobs.h"
 #include "fits/FitJobs.h"
 #include "fits/VotSpaceCache.h"
 #include "frames/ForegroundActivity.h"
@@ -38,6 +39,7 @@ struct Server::Impl {
     FitJobs fitJobs;
     SeriesOpenJobs seriesOpens;               // PACS series opened as datasets, kept in cacheDir/dicomweb
     std::unique_ptr<RenderQueue> renderQueue; // null when options.withRenderer is false
+    SweepStoreJobs sweepStores;               // slab sweeps sent to a PACS; their frames use renderQueue
     FrameCache frames;                        // encoded /render answers
     ClientQuota renders;                      // /render and /turntable requests in progress per client
     RequestGuard guard;                       // Host, token and cross-site checks before any route
@@ -53,6 +55,7 @@ void installRenderRoute(Server::Impl& s);    // GET /render
 void installTurntableRoute(Server::Impl& s); // GET /turntable
 void installJobRoutes(Server::Impl& s);      // POST /api/fit, GET /api/jobs/{id}, GET /api/jobs/{id}/events
 void installPacsRoutes(Server::Impl& s);     // /api/pacs: searches and the opens of series
+void installPacsStoreRoute(Server::Impl& s); // POST /api/pacs/{name}/store, GET /api/pacs/stores/{id}
 /// Static files from the web folder, answered in the pre-routing step for non-API paths.
 bool serveStatic(const Server::Impl& s, const httplib::Request& req, httplib::Response& res);
 

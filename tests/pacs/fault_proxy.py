@@ -4,6 +4,7 @@
 One request per connection (it asks Orthanc to close), then one of these faults:
   --cut N            drop the connection after N bytes of a multipart answer (a retrieve)
   --refuse-series    answer 503 to a series-level retrieve (GET .../series/UID), pass everything else
+  --refuse-store     answer 503 to a store (STOW-RS: POST .../studies) without reading its body
   --stall N          send N bytes of a multipart answer, then nothing more until the client hangs up
   --garble           break the part headers of multipart answers ("Content-Type application/dicom")
   (none)             pass everything unchanged
@@ -20,6 +21,7 @@ import ssl
 import threading
 
 SERIES_RETRIEVE = re.compile(rb"^GET [^ ]*/studies/[0-9.]+/series/[0-9.]+ HTTP/1\.[01]$")
+STORE = re.compile(rb"^POST [^ ]*/studies HTTP/1\.[01]$")
 
 
 def read_head(sock):
@@ -40,7 +42,9 @@ class Handler(socketserver.BaseRequestHandler):
         if head is None:
             return
         lines = head.split(b"\r\n")
-        if options.refuse_series and SERIES_RETRIEVE.match(lines[0]):
+        if (options.refuse_series and SERIES_RETRIEVE.match(lines[0])) or (
+            options.refuse_store and STORE.match(lines[0])
+        ):
             self.server.log(lines[0], "REFUSED")
             self.request.sendall(b"HTTP/1.1 503 Service Unavailable\r\nContent-Length: 0\r\nConnection: close\r\n\r\n")
             return
@@ -95,6 +99,7 @@ def main():
     parser.add_argument("--port-file", required=True)
     parser.add_argument("--cut", type=int)
     parser.add_argument("--refuse-series", action="store_true")
+    parser.add_argument("--refuse-store", action="store_true")
     parser.add_argument("--garble", action="store_true")
     parser.add_argument("--stall", type=int)
     parser.add_argument("--log")

@@ -24,6 +24,11 @@ mkdir -p "$series"
 "$tool" "$series/sweep-source" --synthetic sphere --dims 32,32,24 --series-uid 1.2.826.0.1.3680043.10.1234.206 \
     --description sweep-source
 
+# The source of the sweeps the server sends (test_ServerPacsStore.cpp, the viewer's spec), in a study of its
+# own: the series counts of the others stay as their tests expect them.
+"$tool" "$series/send-source" --synthetic sphere --dims 32,32,24 --series-uid 1.2.826.0.1.3680043.10.1234.207 \
+    --description send-source
+
 port=$(cat "$state/port")
 for file in "$series"/*/*; do
     curl -fsS -u "vots:$(cat "$state/password")" -X POST --data-binary "@$file" \

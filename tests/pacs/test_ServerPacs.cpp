@@ -1,5 +1,7 @@
 // The server's PACS browser against the real Orthanc of the pacs fixture: searches, opening a series as a
 // dataset (progress, the same images as the folder, the disk cache), and the statuses of failures.
+#include "FaultProxy.h"
+#include "JobPolling.h"
 #include "LoopbackServer.h"
 #include "OrthancState.h"
 #include "TempDir.h"
@@ -10,10 +12,7 @@
 
 #include <arpa/inet.h>
 #include <netinet/in.h>
-#include <signal.h>
-#include <spawn.h>
 #include <sys/socket.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -23,8 +22,6 @@
 #include <iterator>
 #include <thread>
 
-extern char** environ;
-
 namespace {
 
 namespace fs = std::filesystem;
@@ -33,52 +30,6 @@ using namespace vots::test;
 
 const std::string RAMP_STUDY = std::string(RAMP_SERIES) + ".0";
 const std::string CRANIUM_STUDY = std::string(CRANIUM_SERIES) + ".0";
-
-std::string readText(const fs::path& file) {
-    std::ifstream in(file);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-/// tests/pacs/fault_proxy.py passing everything to Orthanc, logging each request line.
-class CountingProxy {
-public:
-    explicit CountingProxy(const fs::path& folder) : mLog(folder / "proxy.log") {
-        const std::string portFile = (folder / "proxy_port").string();
-        std::vector<std::string> args = {
-            "python3",     VOTS_FAULT_PROXY, "--target", orthancStateFile("port"),
-            "--port-file", portFile,         "--log",    mLog.string()};
-        std::vector<char*> argv;
-        for (std::string& a : args)
-            argv.push_back(a.data());
-        argv.push_back(nullptr);
-        if (posix_spawnp(&mPid, "python3", nullptr, nullptr, argv.data(), environ) != 0)
-            throw std::runtime_error("cannot start the fault proxy");
-        for (int i = 0; i < 200 && !fs::exists(portFile); ++i)
-            std::this_thread::sleep_for(std::chrono::milliseconds(50));
-        mPort = readText(portFile);
-        if (mPort.empty()) throw std::runtime_error("the fault proxy wrote no port");
-    }
-    ~CountingProxy() {
-        kill(mPid, SIGTERM);
-        waitpid(mPid, nullptr, 0);
-    }
-    std::string port() const { return mPort; }
-    std::string log() const { return readText(mLog); }
-    /// Request lines that asked for the series' instances (a retrieve), not its metadata.
-    int seriesRetrieves(const std::string& seriesUid) const {
-        const std::string log = readText(mLog);
-        const std::string line = "/series/" + seriesUid + " HTTP/1.1";
-        int count = 0;
-        for (auto at = log.find(line); at != std::string::npos; at = log.find(line, at + 1))
-            ++count;
-        return count;
-    }
-
-private:
-    fs::path mLog;
-    pid_t mPid = -1;
-    std::string mPort;
-};
 
 server::DicomWebService service(const std::string& name, const std::string& port, bool withCredentials) {
     server::DicomWebService s;
@@ -145,27 +96,13 @@ protected:
         return o;
     }
 
-    /// POSTs the open and polls it until it ends (about two minutes at most); returns every answer seen.
+    /// POSTs the open and polls it until it ends; returns every answer seen.
     static std::vector<nlohmann::json> openSeries(httplib::Client& c, const std::string& service,
                                                   const std::string& study, const std::string& series) {
         const auto posted =
             c.Post(("/api/pacs/" + service + "/studies/" + study + "/series/" + series + "/open").c_str(),
                    "{}", "application/json");
-        EXPECT_TRUE(posted);
-        if (!posted) return {};
-        EXPECT_EQ(posted->status, 202) << posted->body;
-        std::vector<nlohmann::json> seen{nlohmann::json::parse(posted->body)};
-        const std::string poll = "/api/pacs/opens/" + std::to_string(seen.back()["id"].get<std::uint64_t>());
-        for (int i = 0; i < 2400; ++i) {
-            const std::string state = seen.back()["state"];
-            if (state == "done" || state == "failed" || state == "cancelled") break;
-            std::this_thread::sleep_for(std::chrono::milliseconds(50));
-            const auto res = c.Get(poll.c_str());
-            EXPECT_TRUE(res && res->status == 200);
-            if (!res) break;
-            seen.push_back(nlohmann::json::parse(res->body));
-        }
-        return seen;
+        return pollJob(c, posted, "/api/pacs/opens/");
     }
 
     /// The retrieved series' folder holds this process's spool folder alone, and that is empty.
@@ -268,7 +205,7 @@ TEST_F(ServerPacs, AnOpenedSeriesRendersAsTheSameFilesFromAFolder) {
 }
 
 TEST_F(ServerPacs, ASecondOpenReadsTheKeptSeriesWithoutARetrieve) {
-    CountingProxy proxy(mDir.path());
+    FaultProxy proxy(mDir.path());
     {
         LoopbackServer server(options({service("orthanc", proxy.port(), true)}));
         const auto seen = openSeries(*server.client(), "orthanc", CRANIUM_STUDY, CRANIUM_SERIES);
@@ -379,7 +316,7 @@ TEST_F(ServerPacs, AnOpenCancelledWhileThePacsIsSilentEndsCancelled) {
 }
 
 TEST_F(ServerPacs, ASeriesOverTheMemoryBudgetIsRefusedBeforeItsPixelsAreAskedFor) {
-    CountingProxy proxy(mDir.path());
+    FaultProxy proxy(mDir.path());
     server::ServerOptions o = options({service("orthanc", proxy.port(), true)});
     o.memoryBudgetBytes = 1; // less than any process holds: every load is refused
     LoopbackServer server(o);

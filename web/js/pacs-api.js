@@ -70,3 +70,23 @@ export function followSeriesOpen(service, studyUid, seriesUid, onProgress) {
     },
   };
 }
+
+// Sends a slab sweep of the view to the PACS (POST /api/pacs/{service}/store) and polls it until it ends.
+// body: {dataset, cam, mode, thickness, step, size, renderer, eps, window}. onProgress(store) sees every
+// answer; resolves with the finished store ({stored, description}); rejects with an ApiError carrying the
+// status (400, 401, 404, 409, 502, 504) and message.
+export async function sendSweep(service, body, onProgress) {
+  let store = await json(`${servicePath(service)}/store`,
+    { method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(body) },
+    'Sending to the PACS');
+  for (;;) {
+    onProgress(store);
+    if (store.state === 'done') return store;
+    if (store.state === 'failed') {
+      throw new ApiError(`Sending to the PACS: ${store.error || 'failed'} (HTTP ${store.status})`,
+        { status: store.status || 0 });
+    }
+    await new Promise((resolve) => { setTimeout(resolve, POLL_MS); });
+    store = await json(`api/pacs/stores/${encodeURIComponent(store.id)}`, {}, 'Sending to the PACS');
+  }
+}

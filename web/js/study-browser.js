@@ -43,8 +43,9 @@ function node(tag, text, className) {
   return e;
 }
 
-// el: the panel's elements (see index.html, #pacs). onOpened(datasetName) runs once a series is a dataset.
-export function createStudyBrowser({ el, onOpened }) {
+// el: the panel's elements (see index.html, #pacs). onOpened(datasetName) runs once a series is a dataset;
+// onServices(names) once the server has named its PACS.
+export function createStudyBrowser({ el, onOpened, onServices = () => {} }) {
   let following = null; // the open being followed: {cancel()}
   let searchToken = 0; // answers of a superseded search or series listing are dropped
 
@@ -192,6 +193,7 @@ export function createStudyBrowser({ el, onOpened }) {
         showError(e.message);
         return;
       }
+      onServices(services.map((s) => s.name));
       if (!services.length) return;
       el.service.replaceChildren(...services.map((s) => {
         const option = new Option(s.name, s.name);

@@ -15,6 +15,7 @@ import { createHashWriter, formatHash, parseHash } from './hash.js';
 import { attachInput } from './input.js';
 import { fitViewToDataset, isVotsDataset } from './kind.js';
 import { showOverlays } from './overlays.js';
+import { createPacsSend } from './pacs-send.js';
 import { attachSlabControl } from './slab-control.js';
 import { statusLine } from './status.js';
 import { createStudyBrowser } from './study-browser.js';
@@ -113,6 +114,7 @@ const fits = createFits({
   onReady(eps) {
     frames.useEps(eps);
     syncDownloads(el.downloads, frames.viewParams());
+    pacsSend.sync();
     frames.schedule();
   },
   onChange: updateStatus,
@@ -165,6 +167,7 @@ function syncPanel() {
   if (ds) syncControls(el, ds, view);
   slabControl.sync();
   showViewOverlays();
+  pacsSend.sync();
 }
 
 function ensureFitted() {
@@ -336,6 +339,24 @@ async function showOpenedDataset(name) {
   el.dataset.dispatchEvent(new Event('change'));
 }
 
+const pacsSend = createPacsSend({
+  el: {
+    root: $('pacs-send'),
+    what: $('pacs-send-what'),
+    thickness: $('pacs-send-thickness'),
+    step: $('pacs-send-step'),
+    note: $('pacs-send-note'),
+    send: $('pacs-send-button'),
+    progressBox: $('pacs-send-progress-box'),
+    progress: $('pacs-send-progress'),
+    label: $('pacs-send-progress-label'),
+    result: $('pacs-send-result'),
+    error: $('pacs-send-error'),
+  },
+  viewParams: () => frames.viewParams(),
+  slab: () => view.slab,
+});
+
 const studyBrowser = createStudyBrowser({
   el: {
     root: $('pacs'),
@@ -359,6 +380,7 @@ const studyBrowser = createStudyBrowser({
     error: $('pacs-error'),
   },
   onOpened: showOpenedDataset,
+  onServices: (names) => pacsSend.setServices(names),
 });
 
 // ---------- start ----------

@@ -55,6 +55,7 @@ std::shared_ptr<const Dataset> loadDataset(const std::string& name, const fs::pa
     dataset->fitBytes = dataset->loadAndFitBytes > held ? dataset->loadAndFitBytes - held : 0;
     dataset->name = name;
     dataset->path = path;
+    dataset->dicomSeries = dicomSeries;
     describeRange(*dataset, volume->valueRange());
     dataset->contentCrc = volume->contentCrc();
     dataset->volume = std::move(volume);

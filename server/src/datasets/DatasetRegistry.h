@@ -38,6 +38,7 @@ constexpr const auto& namesOf(DatasetKind) {
 struct Dataset {
     std::string name;           // file stem, a plain identifier
     std::filesystem::path path; // the file it came from
+    std::string dicomSeries;    // the SeriesInstanceUID when `path` is a DICOM folder of several series
     DatasetKind kind = DatasetKind::Volume;
     std::shared_ptr<const fit::Volume> volume; // Volume kind only; null for Vots
     std::shared_ptr<const fit::VotSpace>

@@ -137,6 +137,7 @@ RenderResult RenderQueue::draw(Renderers& r, const RenderJob& job) {
     const ForegroundMark mark(mForeground, Foreground::Frame); // warm-ups and cache files wait meanwhile
     const auto start = std::chrono::steady_clock::now();
     if (job.onRanks) {
+        if (job.values) throw std::logic_error("a frame in data units on the ranks");
         if (!mRanks) throw std::logic_error("a frame on the ranks on a queue without them");
         dist::DrawRequest request = *job.onRanks;
         request.frame = p;
@@ -170,11 +171,17 @@ RenderResult RenderQueue::draw(Renderers& r, const RenderJob& job) {
         }
         result.votCount = job.space->vots.size();
     }
-    render::RgbaImage image = render::renderFrame(p, r.vots.get(), r.grid.get(), job.valueRange);
+    if (job.values) {
+        render::Renderer& renderer =
+            p.renderer == render::RendererKind::Grid ? static_cast<render::Renderer&>(*r.grid) : *r.vots;
+        result.values = renderer.render(p.camera, p.width, p.height, render::RenderOptions{p.mode, p.slab});
+        result.drawable = renderer.valueRange();
+    } else {
+        result.image = render::renderFrame(p, r.vots.get(), r.grid.get(), job.valueRange);
+    }
     result.frameMs =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     mStats.addFrame(result.frameMs);
-    result.image = std::move(image);
     return result;
 }
 

@@ -37,11 +37,16 @@ struct RenderJob {
     // Set when the ranks draw the frame (dist::FrameRanks): its request. `space` is then null, or a .vots
     // dataset's (only its count and meta are read: the ranks draw their own Vots of the file).
     std::optional<dist::DrawRequest> onRanks;
+    // Set for a frame kept in data units (a slab of a sweep stored as DICOM): RenderResult::values, no
+    // display pass. Not on the ranks.
+    bool values = false;
 };
 
 struct RenderResult {
-    render::RgbaImage image;  // encoded to PNG by the waiting handler, so the render thread only renders
-    double frameMs = 0.0;     // render + display pass on the GPU, without PNG encoding
+    render::RgbaImage image;   // encoded to PNG by the waiting handler, so the render thread only renders
+    render::FloatImage values; // RenderJob::values: the frame in data units instead of `image`
+    std::array<float, 2> drawable{0, 0}; // RenderJob::values: every value the renderer can draw
+    double frameMs = 0.0;                // render + display pass on the GPU, without PNG encoding
     std::size_t votCount = 0; // Vots in the Vot-Space drawn (0 for reference); under mpirun, all ranks'
     double fitMs = 0.0; // under mpirun: the slowest rank's fit the frame was drawn from (made now or before)
 };

@@ -1,5 +1,5 @@
 // The PACS panel against a real Orthanc (the pacs fixture, VOTS_ORTHANC_STATE): search, a study's series,
-// opening one with progress into a dataset the viewer shows, and a refusal shown in the panel.
+// opening one with progress into a dataset the viewer shows, a refusal shown in the panel, and Send to PACS.
 // Run by ctest as Pacs.WebStudyBrowser (tests/pacs/CMakeLists.txt); not in run.sh's default spec list.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
@@ -17,6 +17,8 @@ const DATA = process.env.VOTS_DATA;
 const STATE = process.env.VOTS_ORTHANC_STATE;
 const CRANIUM_SERIES = '1.2.826.0.1.3680043.10.1234.202';
 const CRANIUM_DATASET = `orthanc-${CRANIUM_SERIES.replaceAll('.', '_')}`;
+const SEND_SERIES = '1.2.826.0.1.3680043.10.1234.207'; // pacs_setup.sh's send-source, in a study of its own
+const SEND_DATASET = `orthanc-${SEND_SERIES.replaceAll('.', '_')}`;
 
 let server = null;
 
@@ -119,5 +121,54 @@ test('refused credentials show the PACS\'s 401 in the panel, never the password'
     assert.match(text, /HTTP 401/);
     assert.ok(!text.includes(server.password), 'the password is shown');
     assert.equal(await viewer.byId('pacs-studies').locator('li').count(), 0);
+  });
+});
+
+test('a PACS dataset\'s view is sent back as a slab sweep with progress and a result line', async (t) => {
+  assert.ok(server, 'needs VOTS_BIN, VOTS_DATA (run.sh) and VOTS_ORTHANC_STATE (the ctest Orthanc fixture)');
+  await withPage(t, async (page) => {
+    const viewer = new ViewerPage(page);
+    const stores = [];
+    page.on('response', async (r) => {
+      if (/\/api\/pacs\/(stores\/\d+|[^/]+\/store)$/.test(new URL(r.url()).pathname)) stores.push(await r.json());
+    });
+    await page.goto(`${server.base}/`);
+    await viewer.byId('pacs').waitFor({ state: 'visible' });
+    const folderDataset = await viewer.byId('dataset').evaluate(
+      (select) => [...select.options].map((o) => o.value).find((name) => !name.startsWith('orthanc-')));
+    await viewer.byId('dataset').selectOption(folderDataset);
+    await viewer.waitForIdle(120000);
+    assert.ok(await viewer.byId('pacs-send').isHidden(), `Send to PACS offered for ${folderDataset} of the data folder`);
+
+    await viewer.byId('pacs-search').click();
+    const study = viewer.byId('pacs-studies').locator(`li[data-study-uid="${SEND_SERIES}.0"]`);
+    await study.waitFor({ state: 'visible' });
+    await study.click();
+    const series = viewer.byId('pacs-series').locator(`li[data-series-uid="${SEND_SERIES}"]`);
+    await series.getByRole('button', { name: 'Open' }).click();
+    await page.waitForFunction((name) => document.querySelector('[data-testid="dataset"]').value === name,
+      SEND_DATASET, { timeout: 120000 });
+    await viewer.waitForIdle(120000);
+
+    const section = viewer.byId('pacs-send');
+    await section.waitFor({ state: 'visible' });
+    assert.equal(await viewer.byId('pacs-send-thickness').inputValue(), '10');
+    assert.equal(await viewer.byId('pacs-send-step').inputValue(), '5');
+    assert.match(await viewer.byId('pacs-send-what').textContent(), /^MIP · .* → orthanc$/);
+    await viewer.byId('pacs-send-step').fill('4');
+    await viewer.byId('pacs-send-button').click();
+    const result = viewer.byId('pacs-send-result');
+    await page.waitForFunction(() => /^Stored/.test(document.querySelector('[data-testid="pacs-send-result"]').textContent),
+      undefined, { timeout: 120000 });
+    const text = await result.textContent();
+    const last = stores.at(-1);
+    assert.equal(last.state, 'done');
+    assert.ok(last.total > 1, `a sweep of ${last.total} slabs`);
+    assert.equal(last.stored, last.total);
+    assert.equal(text, `Stored ${last.total} images: MIP 10 mm / 4 mm coronal (on orthanc)`);
+    assert.ok(stores.every((s) => s.drawn <= s.total), 'progress beyond the sweep');
+    assert.ok(await viewer.byId('pacs-send-error').isHidden(), await viewer.byId('pacs-send-error').textContent());
+    await section.scrollIntoViewIfNeeded();
+    await section.screenshot({ path: artifactPath('pacs-send.png') });
   });
 });

@@ -1,0 +1,72 @@
+// SweepStoreJobs: the threads of the sends, their visible state, and the finished ones forgotten in turn.
+#include "dicomweb/SweepStoreJobs.h"
+
+#include "HttpError.h"
+#include "dicomweb/PacsFailure.h"
+
+namespace vots::server {
+
+SweepStoreJobs::~SweepStoreJobs() {
+    std::map<std::uint64_t, std::unique_ptr<Job>> jobs;
+    {
+        std::lock_guard lock(mMutex);
+        for (auto& [id, job] : mJobs)
+            job->stop = true;
+        jobs.swap(mJobs);
+    }
+    for (auto& [id, job] : jobs)
+        if (job->thread.joinable()) job->thread.join();
+}
+
+SweepStoreSnapshot SweepStoreJobs::start(SweepStoreSnapshot initial, Work work) {
+    std::lock_guard lock(mMutex);
+    if (mRunning >= MAX_RUNNING)
+        throw HttpError(429,
+                        std::to_string(MAX_RUNNING) + " sweeps are being sent; try again when one is in");
+    auto job = std::make_unique<Job>();
+    job->visible = std::move(initial);
+    job->visible.id = mNextId++;
+    job->visible.state = SweepStoreState::Queued;
+    Job& started = *job;
+    mJobs.emplace(started.visible.id, std::move(job));
+    ++mRunning;
+    started.thread = std::thread([this, &started, work = std::move(work)] { run(started, work); });
+    return started.visible;
+}
+
+void SweepStoreJobs::run(Job& job, const Work& work) {
+    const Update update = [this, &job](const std::function<void(SweepStoreSnapshot&)>& change) {
+        std::lock_guard lock(mMutex);
+        change(job.visible);
+    };
+    try {
+        work(update, job.stop);
+        update([](SweepStoreSnapshot& s) { s.state = SweepStoreState::Done; });
+    } catch (...) {
+        const HttpError failure = pacsFailure(std::current_exception());
+        update([&](SweepStoreSnapshot& s) {
+            s.state = SweepStoreState::Failed;
+            s.errorStatus = failure.status();
+            s.error = failure.what();
+        });
+    }
+    std::lock_guard lock(mMutex);
+    --mRunning;
+    mFinished.push_back(job.visible.id);
+    while (mFinished.size() > KEEP_FINISHED) {
+        const auto forgotten = mJobs.find(mFinished.front());
+        mFinished.pop_front();
+        if (forgotten == mJobs.end()) continue;
+        forgotten->second->thread.join(); // finished: it ended right after its last update
+        mJobs.erase(forgotten);
+    }
+}
+
+SweepStoreSnapshot SweepStoreJobs::snapshot(std::uint64_t id) const {
+    std::lock_guard lock(mMutex);
+    const auto it = mJobs.find(id);
+    if (it == mJobs.end()) throw HttpError(404, "unknown sweep store " + std::to_string(id));
+    return it->second->visible;
+}
+
+} // namespace vots::server
