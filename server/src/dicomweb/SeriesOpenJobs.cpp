@@ -2,6 +2,7 @@
 #include "dicomweb/SeriesOpenJobs.h"
 
 #include "HttpError.h"
+#include "dicomweb/JobThreads.h"
 #include "dicomweb/PacsFailure.h"
 
 #include "vots/fit/MemoryBudget.h"
@@ -34,15 +35,7 @@ SeriesOpenJobs::SeriesOpenJobs(const std::vector<DicomWebService>& services,
 }
 
 SeriesOpenJobs::~SeriesOpenJobs() {
-    std::map<std::uint64_t, std::unique_ptr<Job>> jobs;
-    {
-        std::lock_guard lock(mMutex);
-        for (auto& [id, job] : mJobs)
-            job->cancel = true;
-        jobs.swap(mJobs);
-    }
-    for (auto& [id, job] : jobs)
-        if (job->thread.joinable()) job->thread.join();
+    stopAndJoinJobs(mMutex, mJobs, &Job::cancel);
 }
 
 const DicomWebService& SeriesOpenJobs::service(const std::string& name) const {
@@ -145,14 +138,7 @@ void SeriesOpenJobs::run(Job& job) {
     }
     std::lock_guard lock(mMutex);
     --mRunning;
-    mFinished.push_back(job.visible.id);
-    while (mFinished.size() > KEEP_FINISHED) {
-        const auto forgotten = mJobs.find(mFinished.front());
-        mFinished.pop_front();
-        if (forgotten == mJobs.end()) continue;
-        forgotten->second->thread.join(); // finished: it ended right after its last update
-        mJobs.erase(forgotten);
-    }
+    forgetFinishedJobs(mJobs, mFinished, job.visible.id, KEEP_FINISHED);
 }
 
 SeriesOpenJobs::Job& SeriesOpenJobs::findLocked(std::uint64_t id) const {

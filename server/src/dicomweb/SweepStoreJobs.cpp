@@ -2,20 +2,13 @@
 #include "dicomweb/SweepStoreJobs.h"
 
 #include "HttpError.h"
+#include "dicomweb/JobThreads.h"
 #include "dicomweb/PacsFailure.h"
 
 namespace vots::server {
 
 SweepStoreJobs::~SweepStoreJobs() {
-    std::map<std::uint64_t, std::unique_ptr<Job>> jobs;
-    {
-        std::lock_guard lock(mMutex);
-        for (auto& [id, job] : mJobs)
-            job->stop = true;
-        jobs.swap(mJobs);
-    }
-    for (auto& [id, job] : jobs)
-        if (job->thread.joinable()) job->thread.join();
+    stopAndJoinJobs(mMutex, mJobs, &Job::stop);
 }
 
 SweepStoreSnapshot SweepStoreJobs::start(SweepStoreSnapshot initial, Work work) {
@@ -52,14 +45,7 @@ void SweepStoreJobs::run(Job& job, const Work& work) {
     }
     std::lock_guard lock(mMutex);
     --mRunning;
-    mFinished.push_back(job.visible.id);
-    while (mFinished.size() > KEEP_FINISHED) {
-        const auto forgotten = mJobs.find(mFinished.front());
-        mFinished.pop_front();
-        if (forgotten == mJobs.end()) continue;
-        forgotten->second->thread.join(); // finished: it ended right after its last update
-        mJobs.erase(forgotten);
-    }
+    forgetFinishedJobs(mJobs, mFinished, job.visible.id, KEEP_FINISHED);
 }
 
 SweepStoreSnapshot SweepStoreJobs::snapshot(std::uint64_t id) const {

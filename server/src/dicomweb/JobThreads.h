@@ -1,0 +1,46 @@
+// The thread-per-job bookkeeping the PACS opens and sends share: forgetting finished jobs, joining at the end.
+#pragma once
+
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <map>
+#include <memory>
+#include <mutex>
+
+namespace vots::server {
+
+/// Jobs by id; each Job has a `std::thread thread`.
+template <class Job> using JobsById = std::map<std::uint64_t, std::unique_ptr<Job>>;
+
+/// Records `finishedId` as finished and forgets the oldest finished jobs beyond `keep`, joining their
+/// threads: they ended right after their last update. Call under the jobs' lock, from the finishing job.
+template <class Job>
+void forgetFinishedJobs(JobsById<Job>& jobs, std::deque<std::uint64_t>& finished, std::uint64_t finishedId,
+                        std::size_t keep) {
+    finished.push_back(finishedId);
+    while (finished.size() > keep) {
+        const auto forgotten = jobs.find(finished.front());
+        finished.pop_front();
+        if (forgotten == jobs.end()) continue;
+        forgotten->second->thread.join();
+        jobs.erase(forgotten);
+    }
+}
+
+/// Sets every job's `stop` flag and joins every thread, outside the lock (a job's last update takes it).
+template <class Job>
+void stopAndJoinJobs(std::mutex& mutex, JobsById<Job>& jobs, std::atomic<bool> Job::*stop) {
+    JobsById<Job> stopping;
+    {
+        std::lock_guard lock(mutex);
+        for (auto& [id, job] : jobs)
+            (*job).*stop = true;
+        stopping.swap(jobs);
+    }
+    for (auto& [id, job] : stopping)
+        if (job->thread.joinable()) job->thread.join();
+}
+
+} // namespace vots::server
