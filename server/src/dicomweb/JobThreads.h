@@ -1,4 +1,5 @@
-// The thread-per-job bookkeeping the PACS opens and sends share: forgetting finished jobs, joining at the end.
+// The thread-per-job bookkeeping the PACS opens and sends share: forgetting finished jobs, joining at the
+// end.
 #pragma once
 
 #include <atomic>
