@@ -4,6 +4,8 @@
 # 300 slabs written to a folder and stored back on the PACS with STOW-RS.
 #
 # Usage: bench/pacs_bench.sh [SLICES [SWEEP_SLABS]]   (defaults 1000 and 300; VOTS_BUILD default build/ci)
+# VOTS_BENCH_ROUNDS=N repeats the folder and the PACS opens N times, alternately, and prints the medians and
+# their ratio; VOTS_BENCH_FIRST_IMAGE_ONLY=1 leaves out the Vot frame (a fit) and the sweep.
 # The series is the Cranium (scripts/fetch-ct) resampled to 512x512xSLICES int16 with noise (make_scaled_volume)
 # and written as DICOM by the tests' GDCM writer; Orthanc runs on loopback (tests/pacs/orthanc.sh). Needs the
 # tests built (vots_write_dicom) and about 3 x 0.5 GB of disk per 1000 slices under $TMPDIR.
@@ -64,36 +66,58 @@ stop_server() {
     wait "$server" 2>/dev/null || true
     server=0
 }
+first_images=() # "LABEL SECONDS" per open
 report() { # report LABEL START DATASET
-    local grid vots
+    local grid vots first
     grid=$(frame "$3" "renderer=grid")
-    printf '%-7s first image (grid) %6.2f s (HTTP %s)' "$1" "$(since "$2")" "$grid"
-    vots=$(frame "$3" "eps=2%25")
-    printf '  first Vot frame %6.2f s (HTTP %s)  peak %s MiB\n' "$(since "$2")" "$vots" "$(peak_mib)"
+    first=$(since "$2")
+    first_images+=("$1 $first")
+    printf '%-7s first image (grid) %6.2f s (HTTP %s)' "$1" "$first" "$grid"
+    if [[ -z ${VOTS_BENCH_FIRST_IMAGE_ONLY:-} ]]; then
+        vots=$(frame "$3" "eps=2%25")
+        printf '  first Vot frame %6.2f s (HTTP %s)' "$(since "$2")" "$vots"
+    fi
+    printf '  peak %s MiB\n' "$(peak_mib)"
 }
+median() { sort -n | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 
+mkdir -p "$work/empty"
+for ((round = 1; round <= ${VOTS_BENCH_ROUNDS:-1}; ++round)); do
 # The folder: the clock starts at the first request, which loads the series.
 serve "$work/folder.log" --data "$work/folder"
 report folder "$(now)" bench
 stop_server
 
-# The PACS: the clock starts at the open (announce, retrieve, load), as the viewer's "Open" does.
-mkdir -p "$work/empty"
+# The PACS: the clock starts at the open (announce, retrieve, load), as the viewer's "Open" does. A fresh
+# cache folder each time: the series is retrieved, never read from a kept copy.
 serve "$work/pacs.log" --data "$work/empty" --dicomweb "orthanc=dicomweb+http://127.0.0.1:$port/dicom-web" \
     --dicomweb-auth "orthanc=$auth"
 start=$(now)
 open=$(curl -sf -X POST "$base/api/pacs/orthanc/studies/$series_uid.0/series/$series_uid/open" \
     -H 'Content-Type: application/json' -d '{}')
 id=$(echo "$open" | sed -n 's/.*"id":\([0-9]*\).*/\1/p')
+# Each state's first sight (polled every 0.05 s) says where the open's time goes.
 state=
+seen=
 until [[ $state == done || $state == failed || $state == cancelled ]]; do
-    sleep 0.1
+    sleep 0.05
     state=$(curl -sf "$base/api/pacs/opens/$id" | sed -n 's/.*"state":"\([a-z]*\)".*/\1/p')
+    if [[ $state != "${seen##* }" ]]; then
+        seen="$seen $state"
+        printf -v stages '%s %s %.2f s' "${stages:-}" "$state" "$(since "$start")"
+    fi
 done
 [[ $state == done ]] || { curl -s "$base/api/pacs/opens/$id"; exit 1; }
-printf 'pacs    opened (retrieved, loaded) %6.2f s\n' "$(since "$start")"
+printf 'pacs    opened (retrieved, loaded) %6.2f s; states first seen:%s\n' "$(since "$start")" "$stages"
+stages=
 report pacs "$start" "orthanc-${series_uid//./_}"
 stop_server
+done
+folder_median=$(printf '%s\n' "${first_images[@]}" | awk '$1 == "folder" { print $2 }' | median)
+pacs_median=$(printf '%s\n' "${first_images[@]}" | awk '$1 == "pacs" { print $2 }' | median)
+printf 'first image, median of %s: folder %.2f s, pacs %.2f s, ratio %.2f\n' "${VOTS_BENCH_ROUNDS:-1}" \
+    "$folder_median" "$pacs_median" "$(echo "$pacs_median / $folder_median" | bc -l)"
+[[ -z ${VOTS_BENCH_FIRST_IMAGE_ONLY:-} ]] || exit 0
 
 # The sweep: THICKNESS 10 mm, the step that makes about SWEEP_SLABS slabs along the series' z extent.
 step=$(printf '%.4f' "$(echo "($extent_z - 10) / ($sweep_slabs - 1.5)" | bc -l)")

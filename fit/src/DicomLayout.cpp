@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <map>
 
 namespace vots::fit::detail {
@@ -111,8 +112,8 @@ void checkAlike(const std::vector<DicomSliceHeader>& slices) {
     }
 }
 
-/// Integral rescales keep integer samples integral; the smallest integer type holding every value keeps
-/// the memory of `vots fit` low (a 12-bit CT with intercept -1024 stays int16).
+} // namespace
+
 ScalarType valueTypeOf(const std::vector<DicomSliceHeader>& slices) {
     double lo = INFINITY, hi = -INFINITY;
     bool integral = true;
@@ -132,12 +133,15 @@ ScalarType valueTypeOf(const std::vector<DicomSliceHeader>& slices) {
     return ScalarType::Float32;
 }
 
-} // namespace
-
 DicomSeriesLayout layoutDicomSeries(const std::string& folder, const std::string& seriesUid) {
+    return layoutOfSlices(pickSeries(folder, seriesUid), folder);
+}
+
+DicomSeriesLayout layoutOfSlices(std::vector<DicomSliceHeader> series, const std::string& folder) {
     DicomSeriesLayout layout;
-    layout.slices = pickSeries(folder, seriesUid);
+    layout.slices = std::move(series);
     std::vector<DicomSliceHeader>& slices = layout.slices;
+    if (slices.empty()) throwInputError(folder, "holds no DICOM images");
     checkAlike(slices);
 
     const auto& o = slices.front().orientation;
@@ -181,6 +185,27 @@ DicomSeriesLayout layoutDicomSeries(const std::string& folder, const std::string
     layout.patientAxes = {row, column, normal};
     layout.valueType = valueTypeOf(slices);
     return layout;
+}
+
+/// The folder's own name, also for "dir/" and ".".
+std::string folderName(const std::string& folder) {
+    std::filesystem::path path = std::filesystem::path(folder).lexically_normal();
+    if (path.filename().empty()) path = path.parent_path();
+    std::error_code ec;
+    const std::filesystem::path absolute = std::filesystem::absolute(path, ec);
+    return ec ? path.filename().string() : absolute.lexically_normal().filename().string();
+}
+
+Volume gridOfLayout(const DicomSeriesLayout& layout, const std::string& folder) {
+    Volume volume;
+    volume.dims = layout.dims;
+    volume.spacing = layout.spacing;
+    volume.origin = layout.origin;
+    volume.patientAxes = layout.patientAxes;
+    volume.orientationKnown = true;
+    volume.sourceType = layout.valueType;
+    volume.name = folderName(folder);
+    return volume;
 }
 
 } // namespace vots::fit::detail

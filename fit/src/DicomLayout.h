@@ -25,4 +25,14 @@ struct DicomSeriesLayout {
 /// orientation, evenly spaced positions. Throws InputError with one line naming the problem.
 DicomSeriesLayout layoutDicomSeries(const std::string& folder, const std::string& seriesUid);
 
+/// The same for the headers of one series' files, read already; `folder` names where they are in messages.
+DicomSeriesLayout layoutOfSlices(std::vector<DicomSliceHeader> slices, const std::string& folder);
+
+/// The smallest type that holds every rescaled value of these slices: integral rescales keep integer
+/// samples integral, so a 12-bit CT with intercept -1024 stays int16 (the memory of `vots fit` stays low).
+ScalarType valueTypeOf(const std::vector<DicomSliceHeader>& slices);
+
+/// The series' grid as loadDicomSeries gives it (named after the folder), without samples.
+Volume gridOfLayout(const DicomSeriesLayout& layout, const std::string& folder);
+
 } // namespace vots::fit::detail

@@ -74,6 +74,8 @@ bool hasDicomSignature(const std::string& path) {
     return in.gcount() == sizeof bytes && std::string(bytes + 128, 4) == "DICM";
 }
 
+} // namespace
+
 std::optional<DicomSliceHeader> readSliceHeader(const std::string& path) {
     gdcm::Reader reader;
     reader.SetFileName(path.c_str());
@@ -120,6 +122,8 @@ std::optional<DicomSliceHeader> readSliceHeader(const std::string& path) {
     slice.fileSize = regularFileSize(path);
     return slice;
 }
+
+namespace {
 
 /// The fixed-size part of a header, as it crosses the pipe from the child (same program, same layout).
 struct HeaderNumbers {
@@ -178,6 +182,23 @@ DicomSliceHeader headerFrom(const HeaderNumbers& n, const std::string& path, std
 
 } // namespace
 
+void sendSliceHeader(const std::optional<DicomSliceHeader>& slice, ChildSender& child) {
+    const HeaderNumbers numbers = slice ? numbersFrom(*slice) : HeaderNumbers{};
+    child.send(&numbers, sizeof numbers);
+    child.send(slice ? slice->seriesUid : std::string());
+    child.send(slice ? slice->seriesDescription : std::string());
+}
+
+std::optional<DicomSliceHeader> receiveSliceHeader(const std::string& path, ParentReceiver& parent) {
+    HeaderNumbers numbers;
+    parent.nextInto(reinterpret_cast<char*>(&numbers), sizeof numbers);
+    const std::vector<char> uid = parent.next();
+    const std::vector<char> description = parent.next();
+    if (numbers.present == 0) return std::nullopt;
+    return headerFrom(numbers, path, std::string(uid.begin(), uid.end()),
+                      std::string(description.begin(), description.end()));
+}
+
 void quietGdcm() {
     static const bool done = [] {
         gdcm::Trace::SetDebug(false);
@@ -207,23 +228,13 @@ std::vector<DicomSliceHeader> scanDicomFolder(const std::string& folder) {
         [&](ChildSender& child) {
             for (const std::string& file : files) {
                 child.announce(file);
-                const std::optional<DicomSliceHeader> slice = readSliceHeader(file);
-                const HeaderNumbers numbers = slice ? numbersFrom(*slice) : HeaderNumbers{};
-                child.send(&numbers, sizeof numbers);
-                child.send(slice ? slice->seriesUid : std::string());
-                child.send(slice ? slice->seriesDescription : std::string());
+                sendSliceHeader(readSliceHeader(file), child);
             }
         },
         [&](ParentReceiver& parent) {
-            for (const std::string& file : files) {
-                HeaderNumbers numbers;
-                parent.nextInto(reinterpret_cast<char*>(&numbers), sizeof numbers);
-                const std::vector<char> uid = parent.next();
-                const std::vector<char> description = parent.next();
-                if (numbers.present != 0)
-                    slices.push_back(headerFrom(numbers, file, std::string(uid.begin(), uid.end()),
-                                                std::string(description.begin(), description.end())));
-            }
+            for (const std::string& file : files)
+                if (std::optional<DicomSliceHeader> slice = receiveSliceHeader(file, parent))
+                    slices.push_back(std::move(*slice));
         },
         childLimitsHolding(largestFile));
     return slices;

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,18 @@ struct DicomSliceHeader {
     std::uint64_t pixelDataOffset = 0;                   // where the pixel values start in the file
     std::uint64_t fileSize = 0;
 };
+
+class ChildSender;
+class ParentReceiver;
+
+/// The header of one file; nullopt for a file that is not a DICOM image (skipped). Throws InputError for
+/// a DICOM file that cannot be parsed. GDCM may abort on a damaged file: call it in a child (DicomChild.h).
+std::optional<DicomSliceHeader> readSliceHeader(const std::string& path);
+
+/// In the child: sends what readSliceHeader gave (nullopt too) for receiveSliceHeader in the parent.
+void sendSliceHeader(const std::optional<DicomSliceHeader>& slice, ChildSender& child);
+/// In the parent: the header the child sent for the file at `path`.
+std::optional<DicomSliceHeader> receiveSliceHeader(const std::string& path, ParentReceiver& parent);
 
 /// Every DICOM image in the folder (not recursive), in file-name order; other files are skipped. GDCM
 /// runs in a child process (DicomChild.h). Throws InputError for a folder that cannot be read, or a file

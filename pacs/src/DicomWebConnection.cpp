@@ -1,8 +1,6 @@
 // The authenticated HTTP(S) client of a DICOMweb service, and the words for its failures.
 #include "DicomWebConnection.h"
 
-#include "vots/fit/Error.h"
-
 #include <algorithm>
 
 namespace vots::pacs {
@@ -20,7 +18,8 @@ DicomWebConnection::DicomWebConnection(const DicomWebEndpoint& endpoint, const D
                                (bracket ? "[" + endpoint.host + "]" : endpoint.host) + ":" +
                                std::to_string(endpoint.port);
     mClient = std::make_unique<httplib::Client>(origin);
-    if (!mClient->is_valid()) throw fit::InputError(name() + ": cannot make a client for this address");
+    if (!mClient->is_valid())
+        throw PacsError(PacsFailure::Unreachable, name() + ": cannot make a client for this address");
     mClient->set_connection_timeout(CONNECT_TIMEOUT_S);
     mClient->set_read_timeout(mReadTimeoutS);
     mClient->set_keep_alive(true);
@@ -33,32 +32,39 @@ DicomWebConnection::DicomWebConnection(const DicomWebEndpoint& endpoint, const D
     if (access.auth.kind == DicomWebAuth::Kind::Bearer) mClient->set_bearer_token_auth(access.auth.secret);
 }
 
-std::string DicomWebConnection::statusProblem(int status, const std::string& what) const {
+PacsError DicomWebConnection::statusError(int status, const std::string& what) const {
     const std::string code = " (HTTP " + std::to_string(status) + ")";
     if (status == 401)
-        return name() + ": the PACS refused the credentials for " + what + code + "; check --dicomweb-auth";
-    if (status == 403) return name() + ": the PACS forbids " + what + " to these credentials" + code;
-    if (status == 404) return name() + ": " + what + " not found" + code;
-    return name() + ": the PACS answered " + what + " with an error" + code;
+        return {PacsFailure::Unauthorized,
+                name() + ": the PACS refused the credentials for " + what + code + "; check --dicomweb-auth"};
+    if (status == 403)
+        return {PacsFailure::Unauthorized,
+                name() + ": the PACS forbids " + what + " to these credentials" + code};
+    if (status == 404) return {PacsFailure::NotFound, name() + ": " + what + " not found" + code};
+    return {PacsFailure::Refused, name() + ": the PACS answered " + what + " with an error" + code};
 }
 
-std::string DicomWebConnection::transportProblem(httplib::Error error, const std::string& what) const {
+PacsError DicomWebConnection::transportError(httplib::Error error, const std::string& what) const {
     switch (error) {
     case httplib::Error::Connection:
-        return name() + ": cannot connect to " + mEndpoint.host + ":" + std::to_string(mEndpoint.port) +
-               " for " + what + " (nothing answers there)";
+        return {PacsFailure::Unreachable, name() + ": cannot connect to " + mEndpoint.host + ":" +
+                                              std::to_string(mEndpoint.port) + " for " + what +
+                                              " (nothing answers there)"};
     case httplib::Error::SSLConnection:
     case httplib::Error::SSLLoadingCerts:
     case httplib::Error::SSLServerVerification:
-        return name() + ": the TLS connection for " + what + " failed (" + httplib::to_string(error) +
-               "); check the certificate or --dicomweb-ca";
+        return {PacsFailure::Unreachable, name() + ": the TLS connection for " + what + " failed (" +
+                                              httplib::to_string(error) +
+                                              "); check the certificate or --dicomweb-ca"};
     case httplib::Error::Read:
         if (Clock::now() - mLastHeard >= std::chrono::seconds(mReadTimeoutS))
-            return name() + ": " + what + " timed out (no answer for " + std::to_string(mReadTimeoutS) +
-                   " s)";
-        return name() + ": the connection broke while reading " + what;
+            return {PacsFailure::TimedOut, name() + ": " + what + " timed out (no answer for " +
+                                               std::to_string(mReadTimeoutS) + " s)"};
+        return {PacsFailure::Cut, name() + ": the connection broke while reading " + what};
+    case httplib::Error::Canceled:
+        return {PacsFailure::Cancelled, name() + ": " + what + " was cancelled"};
     default:
-        return name() + ": " + what + " failed (" + httplib::to_string(error) + ")";
+        return {PacsFailure::Cut, name() + ": " + what + " failed (" + httplib::to_string(error) + ")"};
     }
 }
 
@@ -82,20 +88,20 @@ nlohmann::json DicomWebConnection::getJson(const std::string& resource, const st
             return true;
         });
     if (tooLarge)
-        throw fit::InputError(name() + ": " + what + " is larger than " +
-                              std::to_string(MAX_JSON_BYTES >> 20) + " MB");
-    if (!result) throw fit::InputError(transportProblem(result.error(), what));
+        throw PacsError(PacsFailure::TooBig, name() + ": " + what + " is larger than " +
+                                                 std::to_string(MAX_JSON_BYTES >> 20) + " MB");
+    if (!result) throw transportError(result.error(), what);
     if (status == 204 || (status == 200 && body.empty())) return nlohmann::json::array();
-    if (status != 200) throw fit::InputError(statusProblem(status, what));
+    if (status != 200) throw statusError(status, what);
     nlohmann::json json = nlohmann::json::parse(body, nullptr, /*allow_exceptions=*/false);
-    if (json.is_discarded()) throw fit::InputError(name() + ": " + what + " is not JSON");
+    if (json.is_discarded()) throw PacsError(PacsFailure::Malformed, name() + ": " + what + " is not JSON");
     return json;
 }
 
 int DicomWebConnection::getStream(const std::string& resource, const std::string& accept,
                                   const std::function<bool(const std::string&)>& begin,
                                   const std::function<bool(const char*, std::size_t)>& receive,
-                                  std::string& failure) {
+                                  std::optional<PacsError>& failure) {
     int status = 0;
     const httplib::Headers headers{{"Accept", accept}};
     heardFromService();
@@ -110,10 +116,10 @@ int DicomWebConnection::getStream(const std::string& resource, const std::string
             heardFromService();
             return receive(data, size);
         });
-    if (status == 401 || status == 403) throw fit::InputError(statusProblem(status, "the series"));
+    if (status == 401 || status == 403) throw statusError(status, "the series");
     if (status != 0 && status != 200) return status;
     if (!result && result.error() != httplib::Error::Canceled) {
-        failure = transportProblem(result.error(), "the series");
+        failure = transportError(result.error(), "the series");
         return status;
     }
     return status;

@@ -3,6 +3,7 @@
 
 #include "vots/pacs/DicomWebAuth.h"
 #include "vots/pacs/DicomWebUrl.h"
+#include "vots/pacs/PacsError.h"
 
 #include <httplib.h>
 #include <nlohmann/json.hpp>
@@ -10,12 +11,13 @@
 #include <chrono>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace vots::pacs {
 
-/// Every failure is a fit::InputError whose one line names the service and the problem in words (never
-/// the credentials, which only the request headers carry).
+/// Every failure is a PacsError whose one line names the service and the problem in words (never the
+/// credentials, which only the request headers carry).
 class DicomWebConnection {
 public:
     DicomWebConnection(const DicomWebEndpoint& endpoint, const DicomWebAccess& access);
@@ -30,7 +32,8 @@ public:
     /// `begin` and `receive` return false to stop reading (they must not throw through the client).
     int getStream(const std::string& resource, const std::string& accept,
                   const std::function<bool(const std::string& contentType)>& begin,
-                  const std::function<bool(const char*, std::size_t)>& receive, std::string& failure);
+                  const std::function<bool(const char*, std::size_t)>& receive,
+                  std::optional<PacsError>& failure);
 
     /// POST ROOT + `resource` with a body of `length` bytes from `provide`, returning the answer.
     httplib::Result post(const std::string& resource, const std::string& contentType, std::size_t length,
@@ -42,11 +45,11 @@ public:
     /// "dicomweb+http://HOST:PORT/ROOT".
     std::string name() const { return mEndpoint.describe(); }
 
-    /// The line for an answer that is not a success: 401/403 name the credentials, 404 the resource.
-    std::string statusProblem(int status, const std::string& what) const;
-    /// The line for a request that got no answer; a read that failed after the read timeout's silence
-    /// says "timed out".
-    std::string transportProblem(httplib::Error error, const std::string& what) const;
+    /// The failure of an answer that is not a success: 401/403 name the credentials, 404 the resource.
+    PacsError statusError(int status, const std::string& what) const;
+    /// The failure of a request that got no answer; a read that failed after the read timeout's silence
+    /// "timed out".
+    PacsError transportError(httplib::Error error, const std::string& what) const;
 
 private:
     using Clock = std::chrono::steady_clock;

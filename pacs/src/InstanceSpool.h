@@ -2,6 +2,7 @@
 #pragma once
 
 #include "vots/pacs/MultipartSplitter.h"
+#include "vots/pacs/PacsError.h"
 
 #include <atomic>
 #include <cstdio>
@@ -16,8 +17,10 @@ namespace vots::pacs {
 /// The spool of one retrieve, shared by its streams: names the files and counts the complete instances.
 class InstanceSpool {
 public:
+    /// `progress` gets the instances complete and `total`, `received` each complete file (either may be
+    /// empty), in order.
     InstanceSpool(std::string folder, int total, std::function<void(int, int)> progress,
-                  const std::atomic<bool>* cancel);
+                  std::function<void(const std::string&)> received, const std::atomic<bool>* cancel);
 
     /// A new file name in the folder; thread-safe.
     std::string newFilePath();
@@ -31,6 +34,7 @@ private:
     std::string mFolder;
     int mTotal;
     std::function<void(int, int)> mProgress;
+    std::function<void(const std::string&)> mReceived;
     const std::atomic<bool>* mCancel;
     mutable std::mutex mMutex;
     int mNextFile = 0;
@@ -52,18 +56,22 @@ public:
     /// The answer has ended: false when its closing boundary never came (a cut stream).
     bool finish();
     const std::string& problem() const { return mProblem; }
+    /// The problem with its kind (a cut answer, a malformed one, a cancel, a spool file not written).
+    PacsError error() const { return {mProblemKind, mProblem}; }
 
 private:
     void openPart(const PartHeaders& headers);
     void writePart(const char* data, std::size_t size);
     void closePart();
     void discardOpenPart() noexcept;
+    void fail(const std::exception& e, PacsFailure otherwise);
 
     InstanceSpool& mSpool;
     std::optional<MultipartSplitter> mSplitter;
     std::FILE* mFile = nullptr;
     std::string mPath;
     std::string mProblem;
+    PacsFailure mProblemKind = PacsFailure::Malformed;
 };
 
 } // namespace vots::pacs

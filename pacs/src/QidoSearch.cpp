@@ -33,8 +33,9 @@ std::vector<StudySummary> searchStudies(const DicomWebEndpoint& endpoint, const 
                                         const StudyQuery& q) {
     for (const std::string* date : {&q.studyDateFrom, &q.studyDateTo})
         if (!date->empty() && !isDate(*date))
-            throw fit::InputError("study date '" + date->substr(0, 40) + "' is not YYYYMMDD");
-    if (q.limit < 1) throw fit::InputError("a study search needs a limit of at least 1");
+            throw PacsError(PacsFailure::BadRequest,
+                            "study date '" + date->substr(0, 40) + "' is not YYYYMMDD");
+    if (q.limit < 1) throw PacsError(PacsFailure::BadRequest, "a study search needs a limit of at least 1");
     std::string query;
     addParameter(query, "PatientName", q.patientName);
     addParameter(query, "PatientID", q.patientId);
@@ -49,7 +50,8 @@ std::vector<StudySummary> searchStudies(const DicomWebEndpoint& endpoint, const 
     DicomWebConnection connection(endpoint, access);
     const nlohmann::json answer = connection.getJson("/studies" + query, "the study search");
     if (!answer.is_array())
-        throw fit::InputError(connection.name() + ": the study search did not answer a list");
+        throw PacsError(PacsFailure::Malformed,
+                        connection.name() + ": the study search did not answer a list");
     std::vector<StudySummary> studies;
     for (const nlohmann::json& d : answer) {
         StudySummary s;
@@ -72,13 +74,14 @@ std::vector<SeriesSummary> searchSeries(const DicomWebEndpoint& endpoint, const 
     if (studyUid.empty() || studyUid.size() > 64 ||
         !std::all_of(studyUid.begin(), studyUid.end(),
                      [](char c) { return c == '.' || (c >= '0' && c <= '9'); }))
-        throw fit::InputError("the study UID '" + studyUid.substr(0, 80) +
-                              "' is not a DICOM UID (digits and dots)");
+        throw PacsError(PacsFailure::BadRequest, "the study UID '" + studyUid.substr(0, 80) +
+                                                     "' is not a DICOM UID (digits and dots)");
     DicomWebConnection connection(endpoint, access);
     const nlohmann::json answer = connection.getJson(
         "/studies/" + studyUid + "/series?includefield=0008103E&includefield=00201209", "the series search");
     if (!answer.is_array())
-        throw fit::InputError(connection.name() + ": the series search did not answer a list");
+        throw PacsError(PacsFailure::Malformed,
+                        connection.name() + ": the series search did not answer a list");
     std::vector<SeriesSummary> series;
     for (const nlohmann::json& d : answer) {
         SeriesSummary s;

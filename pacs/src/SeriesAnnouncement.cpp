@@ -3,27 +3,22 @@
 #include "DicomWebConnection.h"
 #include "SeriesResources.h"
 
+#include "vots/fit/DicomSeries.h"
 #include "vots/fit/Error.h"
 #include "vots/pacs/SeriesRetrieve.h"
 
-#include <cmath>
 #include <utility>
 
 namespace vots::pacs {
 namespace {
 
-/// The type fit's DICOM reader gives these samples: integral rescales stay integers, as in
-/// fit/src/DicomLayout.
+/// The type fit's DICOM reader gives these samples.
 fit::ScalarType announcedType(const nlohmann::json& instance) {
-    const double slope = dicomNumber(instance, "00281053").value_or(1.0);
-    const double intercept = dicomNumber(instance, "00281052").value_or(0.0);
-    const double bitsAllocated = dicomNumber(instance, "00280100").value_or(16.0);
-    const bool pixelsSigned = dicomNumber(instance, "00280103").value_or(0.0) == 1.0;
-    const bool integral = slope == std::round(slope) && intercept == std::round(intercept);
-    if (!integral || bitsAllocated > 16) return fit::ScalarType::Float32;
-    if (bitsAllocated <= 8 && !pixelsSigned && slope == 1.0 && intercept == 0.0)
-        return fit::ScalarType::UInt8;
-    return fit::ScalarType::Int16;
+    double bitsStored = dicomNumber(instance, "00280101").value_or(16.0);
+    if (!(bitsStored >= 1 && bitsStored <= 32)) bitsStored = 16; // the reader checks the files' own
+    return fit::dicomSampleType(
+        static_cast<int>(bitsStored), dicomNumber(instance, "00280103").value_or(0.0) == 1.0,
+        dicomNumber(instance, "00281053").value_or(1.0), dicomNumber(instance, "00281052").value_or(0.0));
 }
 
 /// Whether an instance's metadata holds its image attributes: Orthanc's "SeriesMetadata": "Extrapolate"
@@ -37,9 +32,10 @@ std::pair<int, int> imageSizeOf(const nlohmann::json& instance, const DicomWebSe
                                 const std::string& sop) {
     const auto r = dicomNumber(instance, "00280010"), c = dicomNumber(instance, "00280011");
     if (!r || !c || *r <= 0 || *c <= 0)
-        throw fit::InputError(series.describe() + ": instance " + sop + " is not an image (SOP class " +
-                              dicomString(instance, "00080016") +
-                              ", no Rows and Columns); a volume needs images only");
+        throw PacsError(PacsFailure::NotImages, series.describe() + ": instance " + sop +
+                                                    " is not an image (SOP class " +
+                                                    dicomString(instance, "00080016") +
+                                                    ", no Rows and Columns); a volume needs images only");
     return {static_cast<int>(*r), static_cast<int>(*c)};
 }
 
@@ -49,17 +45,19 @@ SeriesAnnouncement announceSeries(DicomWebConnection& connection, const DicomWeb
     const std::string unknown = series.describe() + ": no such series on the PACS";
     const nlohmann::json found =
         connection.getJson(seriesSearchResource(series) + "&includefield=00201209", "the series search");
-    if (!found.is_array() || found.empty()) throw fit::InputError(unknown);
+    if (!found.is_array() || found.empty()) throw PacsError(PacsFailure::NotFound, unknown);
     const nlohmann::json metadata =
         connection.getJson(seriesResource(series) + "/metadata", "the series' metadata");
-    if (!metadata.is_array() || metadata.empty()) throw fit::InputError(unknown + " (it has no instances)");
+    if (!metadata.is_array() || metadata.empty())
+        throw PacsError(PacsFailure::NotFound, unknown + " (it has no instances)");
 
     SeriesAnnouncement a;
     std::pair<int, int> size{0, 0};
     for (const nlohmann::json& instance : metadata) {
         const std::string sop = dicomString(instance, "00080018");
         if (sop.empty())
-            throw fit::InputError(series.describe() + ": an instance's metadata has no SOPInstanceUID");
+            throw PacsError(PacsFailure::Malformed,
+                            series.describe() + ": an instance's metadata has no SOPInstanceUID");
         a.sopInstanceUids.push_back(sop);
         if (!hasFullMetadata(instance)) continue; // the folder reader checks what the metadata leaves out
         const std::pair<int, int> its = imageSizeOf(instance, series, sop);
@@ -67,9 +65,10 @@ SeriesAnnouncement announceSeries(DicomWebConnection& connection, const DicomWeb
             size = its;
             a.grid.sourceType = announcedType(instance);
         } else if (its != size) {
-            throw fit::InputError(series.describe() + ": mixed image sizes in the series (" +
-                                  std::to_string(size.second) + "x" + std::to_string(size.first) + " and " +
-                                  std::to_string(its.second) + "x" + std::to_string(its.first) + ")");
+            throw PacsError(PacsFailure::NotImages,
+                            series.describe() + ": mixed image sizes in the series (" +
+                                std::to_string(size.second) + "x" + std::to_string(size.first) + " and " +
+                                std::to_string(its.second) + "x" + std::to_string(its.first) + ")");
         }
     }
     if (size.first == 0) {
@@ -78,7 +77,8 @@ SeriesAnnouncement announceSeries(DicomWebConnection& connection, const DicomWeb
                                                             a.sopInstanceUids.front() + "/metadata",
                                                         "an instance's metadata");
         if (!first.is_array() || first.empty())
-            throw fit::InputError(series.describe() + ": the first instance's metadata is empty");
+            throw PacsError(PacsFailure::Malformed,
+                            series.describe() + ": the first instance's metadata is empty");
         size = imageSizeOf(first.front(), series, a.sopInstanceUids.front());
         a.grid.sourceType = announcedType(first.front());
     }

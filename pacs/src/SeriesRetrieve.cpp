@@ -12,26 +12,29 @@
 #include <gdcmReader.h>
 
 #include <algorithm>
+#include <optional>
 #include <set>
 #include <thread>
 
 namespace vots::pacs {
 namespace {
 
-/// One multipart GET into the spool; empty when every part of a complete answer is in, else why not.
-std::string retrieveInto(DicomWebConnection& connection, const std::string& resource, InstanceSpool& spool) {
+/// One multipart GET into the spool; nullopt when every part of a complete answer is in, else why not.
+std::optional<PacsError> retrieveInto(DicomWebConnection& connection, const std::string& resource,
+                                      InstanceSpool& spool) {
     SpoolStream stream(spool);
-    std::string failure;
+    std::optional<PacsError> failure;
     const int status = connection.getStream(
         resource, DICOM_MULTIPART_ACCEPT, [&](const std::string& type) { return stream.begin(type); },
         [&](const char* data, std::size_t size) { return stream.receive(data, size); }, failure);
-    if (!stream.problem().empty()) return stream.problem();
-    if (status != 200) return failure.empty() ? connection.statusProblem(status, "the request") : failure;
-    if (!failure.empty()) {
+    if (!stream.problem().empty()) return stream.error();
+    if (status != 200) return failure ? *failure : connection.statusError(status, "the request");
+    if (failure) {
         stream.finish(); // removes a half-written part
         return failure;
     }
-    return stream.finish() ? std::string() : stream.problem();
+    if (!stream.finish()) return stream.error();
+    return std::nullopt;
 }
 
 /// The SOPInstanceUID of a received instance, read from its header alone; empty when unreadable.
@@ -61,32 +64,37 @@ std::vector<std::string> missingInstances(const SeriesAnnouncement& announced, c
     return missing;
 }
 
-/// Fetches `missing` one request each, `inFlight` at a time; empty, or the first failure.
-std::string retrieveEach(const DicomWebSeries& series, const DicomWebAccess& access,
-                         const std::vector<std::string>& missing, InstanceSpool& spool, int inFlight,
-                         CancelWatch& watch) {
+/// Fetches `missing` one request each, `inFlight` at a time; nullopt, or the first failure.
+std::optional<PacsError> retrieveEach(const DicomWebSeries& series, const DicomWebAccess& access,
+                                      const std::vector<std::string>& missing, InstanceSpool& spool,
+                                      int inFlight, CancelWatch& watch) {
     std::atomic<std::size_t> next{0};
     std::mutex failureMutex;
-    std::string failure;
+    std::optional<PacsError> failure;
     const auto failed = [&] {
         std::lock_guard lock(failureMutex);
-        return !failure.empty();
+        return failure.has_value();
     };
     const auto worker = [&] {
         try {
             DicomWebConnection connection(series.endpoint, access);
             const WatchedConnection watched(watch, connection);
             for (std::size_t i = next++; i < missing.size() && !failed(); i = next++) {
-                const std::string problem =
+                const std::optional<PacsError> problem =
                     retrieveInto(connection, seriesResource(series) + "/instances/" + missing[i], spool);
-                if (!problem.empty()) {
+                if (problem) {
                     std::lock_guard lock(failureMutex);
-                    if (failure.empty()) failure = "instance " + missing[i] + ": " + problem;
+                    if (!failure)
+                        failure =
+                            PacsError(problem->kind(), "instance " + missing[i] + ": " + problem->what());
                 }
             }
+        } catch (const PacsError& e) {
+            std::lock_guard lock(failureMutex);
+            if (!failure) failure = e;
         } catch (const std::exception& e) {
             std::lock_guard lock(failureMutex);
-            if (failure.empty()) failure = e.what();
+            if (!failure) failure = PacsError(PacsFailure::Cut, e.what());
         }
     };
     const int threads = std::clamp(inFlight, 1, std::max(1, static_cast<int>(missing.size())));
@@ -107,7 +115,8 @@ RetrievedSeries retrieveSeries(const DicomWebSeries& series, const DicomWebAcces
     if (options.admit) options.admit(announced.grid);
 
     RetrievedSeries retrieved{SpoolFolder(options.spoolParent)};
-    InstanceSpool spool(retrieved.folder(), announced.instanceCount, options.progress, options.cancel);
+    InstanceSpool spool(retrieved.folder(), announced.instanceCount, options.progress, options.received,
+                        options.cancel);
     const std::string name = series.describe();
     CancelWatch watch(options.cancel);
     {
@@ -115,32 +124,41 @@ RetrievedSeries retrieveSeries(const DicomWebSeries& series, const DicomWebAcces
         // (Orthanc: 1 s).
         DicomWebConnection pixels(series.endpoint, access);
         const WatchedConnection watched(watch, pixels);
-        retrieved.seriesProblem = retrieveInto(pixels, seriesResource(series), spool);
+        if (const std::optional<PacsError> problem = retrieveInto(pixels, seriesResource(series), spool))
+            retrieved.seriesProblem = problem->what();
     }
-    if (spool.cancelled()) throw fit::InputError(name + ": the retrieve was cancelled");
+    const PacsError cancelled(PacsFailure::Cancelled, name + ": the retrieve was cancelled");
+    if (spool.cancelled()) throw cancelled;
     if (!retrieved.seriesProblem.empty() || spool.completedCount() < announced.instanceCount) {
         if (retrieved.seriesProblem.empty()) retrieved.seriesProblem = "the answer lacked instances";
         retrieved.perInstance = true;
         const std::vector<std::string> missing = missingInstances(announced, spool);
-        const std::string problem =
+        const std::optional<PacsError> problem =
             retrieveEach(series, access, missing, spool, options.instancesInFlight, watch);
-        if (spool.cancelled()) throw fit::InputError(name + ": the retrieve was cancelled");
-        if (!problem.empty())
-            throw fit::InputError(name + ": the series retrieve failed (" + retrieved.seriesProblem +
-                                  "), and so did the retrieve of its instances one by one (" + problem + ")");
+        if (spool.cancelled()) throw cancelled;
+        if (problem)
+            throw PacsError(problem->kind(), name + ": the series retrieve failed (" +
+                                                 retrieved.seriesProblem +
+                                                 "), and so did the retrieve of its instances one by one (" +
+                                                 problem->what() + ")");
     }
     retrieved.instanceCount = spool.completedCount();
     if (retrieved.instanceCount < announced.instanceCount)
-        throw fit::InputError(name + ": received " + std::to_string(retrieved.instanceCount) +
-                              " of the series' " + std::to_string(announced.instanceCount) + " instances");
+        throw PacsError(PacsFailure::Cut, name + ": received " + std::to_string(retrieved.instanceCount) +
+                                              " of the series' " + std::to_string(announced.instanceCount) +
+                                              " instances");
     // Abbreviated metadata cannot tell images from other instances; the reader would skip the others.
     int images = 0;
-    for (const fit::DicomSeriesSummary& found : fit::listDicomSeries(retrieved.folder()))
-        images += found.sliceCount;
+    if (options.countImages)
+        images = options.countImages();
+    else
+        for (const fit::DicomSeriesSummary& found : fit::listDicomSeries(retrieved.folder()))
+            images += found.sliceCount;
     if (images != retrieved.instanceCount)
-        throw fit::InputError(name + ": " + std::to_string(retrieved.instanceCount - images) +
-                              " of the series' " + std::to_string(retrieved.instanceCount) +
-                              " instances are not an image; a volume needs images only");
+        throw PacsError(PacsFailure::NotImages,
+                        name + ": " + std::to_string(retrieved.instanceCount - images) + " of the series' " +
+                            std::to_string(retrieved.instanceCount) +
+                            " instances are not an image; a volume needs images only");
     return retrieved;
 }
 

@@ -1,6 +1,7 @@
 // STOW-RS: the files streamed as one multipart body, and the service's answer read for failed instances.
 #include "vots/pacs/StowStore.h"
 
+#include "CancelWatch.h"
 #include "DicomJson.h"
 #include "DicomWebConnection.h"
 
@@ -44,15 +45,15 @@ std::string failureOf(const nlohmann::json& answer, int& failedCount) {
 } // namespace
 
 StoreReport storeInstances(const DicomWebEndpoint& endpoint, const DicomWebAccess& access,
-                           const std::vector<std::string>& files) {
-    if (files.empty()) throw fit::InputError("nothing to store on " + endpoint.describe());
+                           const std::vector<std::string>& files, const std::atomic<bool>* cancel) {
+    if (files.empty()) throw PacsError(PacsFailure::BadRequest, "nothing to store on " + endpoint.describe());
     const std::string boundary = newBoundary();
     std::vector<BodyPiece> pieces;
     std::size_t length = 0;
     for (const std::string& file : files) {
         std::error_code ec;
         const auto size = std::filesystem::file_size(file, ec);
-        if (ec) throw fit::InputError("cannot store " + file + ": " + ec.message());
+        if (ec) throw PacsError(PacsFailure::Local, "cannot store " + file + ": " + ec.message());
         pieces.push_back({"--" + boundary + "\r\nContent-Type: application/dicom\r\n\r\n", {}, 0});
         pieces.push_back({{}, file, static_cast<std::size_t>(size)});
         pieces.push_back({"\r\n", {}, 0});
@@ -69,6 +70,7 @@ StoreReport storeInstances(const DicomWebEndpoint& endpoint, const DicomWebAcces
     std::string readProblem;
     std::vector<char> buffer(1 << 16);
     const auto provide = [&](std::size_t offset, std::size_t, httplib::DataSink& sink) {
+        if (cancel && *cancel) return false;
         while (piece < pieces.size() && offset >= pieceStart + pieces[piece].size) {
             pieceStart += pieces[piece].size;
             ++piece;
@@ -91,18 +93,26 @@ StoreReport storeInstances(const DicomWebEndpoint& endpoint, const DicomWebAcces
     };
 
     DicomWebConnection connection(endpoint, access);
-    const httplib::Result result = connection.post(
-        "/studies", "multipart/related; type=\"application/dicom\"; boundary=" + boundary, length, provide);
+    CancelWatch watch(cancel); // also ends the wait for the answer once the body is sent
+    const httplib::Result result = [&] {
+        const WatchedConnection watched(watch, connection);
+        return connection.post("/studies",
+                               "multipart/related; type=\"application/dicom\"; boundary=" + boundary, length,
+                               provide);
+    }();
+    if (cancel && *cancel)
+        throw PacsError(PacsFailure::Cancelled, connection.name() + ": the store was cancelled");
     if (!readProblem.empty())
-        throw fit::InputError("cannot store on " + connection.name() + ": " + readProblem);
-    if (!result) throw fit::InputError(connection.transportProblem(result.error(), "the store"));
+        throw PacsError(PacsFailure::Local, "cannot store on " + connection.name() + ": " + readProblem);
+    if (!result) throw connection.transportError(result.error(), "the store");
     const nlohmann::json answer = nlohmann::json::parse(result->body, nullptr, false);
     int failedCount = 0;
     const std::string failure = answer.is_discarded() ? std::string() : failureOf(answer, failedCount);
     if (!failure.empty())
-        throw fit::InputError(connection.name() + ": the PACS refused " + std::to_string(failedCount) +
-                              " of " + std::to_string(files.size()) + " instances; " + failure);
-    if (result->status != 200) throw fit::InputError(connection.statusProblem(result->status, "the store"));
+        throw PacsError(PacsFailure::Refused, connection.name() + ": the PACS refused " +
+                                                  std::to_string(failedCount) + " of " +
+                                                  std::to_string(files.size()) + " instances; " + failure);
+    if (result->status != 200) throw connection.statusError(result->status, "the store");
     StoreReport report;
     if (answer.is_object() && answer.contains("00081199") && answer["00081199"].contains("Value"))
         report.stored = static_cast<int>(answer["00081199"]["Value"].size());

@@ -210,4 +210,34 @@ TEST_F(ServerPacsStore, AStoreThePacsRefusesEndsFailedWith502AndStoresNothing) {
     EXPECT_EQ(seriesOfTheSendStudy(), before);
 }
 
+TEST_F(ServerPacsStore, ASendCancelledWhileDrawingEndsCancelledAndStoresNothing) {
+    LoopbackServer server(options(orthanc(true)));
+    auto c = server.client();
+    openSendSource(*c);
+    const std::set<std::string> before = seriesOfTheSendStudy();
+    nlohmann::json body = sweepBody(); // many slabs, so that the cancel comes while they are drawn
+    body["thickness"] = 1;
+    body["step"] = 0.05;
+    body["size"] = "256x256";
+    const auto posted = c->Post("/api/pacs/orthanc/store", body.dump(), "application/json");
+    ASSERT_TRUE(posted);
+    ASSERT_EQ(posted->status, 202) << posted->body;
+    const std::string id = std::to_string(nlohmann::json::parse(posted->body)["id"].get<std::uint64_t>());
+    const auto cancelled = c->Post(("/api/pacs/stores/" + id + "/cancel").c_str(), "{}", "application/json");
+    ASSERT_TRUE(cancelled);
+    EXPECT_EQ(cancelled->status, 200) << cancelled->body;
+    const auto seen = pollJob(*c, posted, "/api/pacs/stores/");
+    ASSERT_FALSE(seen.empty());
+    const nlohmann::json& last = seen.back();
+    ASSERT_EQ(last["state"], "cancelled") << last.dump();
+    EXPECT_EQ(last["status"], nullptr) << last.dump();
+    EXPECT_LT(last["drawn"].get<int>(), last["total"].get<int>());
+    EXPECT_EQ(last["stored"], 0);
+    EXPECT_EQ(seriesOfTheSendStudy(), before);
+
+    const auto unknown = c->Post("/api/pacs/stores/999999/cancel", "{}", "application/json");
+    ASSERT_TRUE(unknown);
+    EXPECT_EQ(unknown->status, 404) << unknown->body;
+}
+
 } // namespace

@@ -71,22 +71,46 @@ export function followSeriesOpen(service, studyUid, seriesUid, onProgress) {
   };
 }
 
+export function cancelSweepSend(id) {
+  return json(`api/pacs/stores/${encodeURIComponent(id)}/cancel`, postJson, 'Cancelling the send');
+}
+
 // Sends a slab sweep of the view to the PACS (POST /api/pacs/{service}/store) and polls it until it ends.
 // body: {dataset, cam, mode, thickness, step, size, renderer, eps, window}. onProgress(store) sees every
-// answer; resolves with the finished store ({stored, description}); rejects with an ApiError carrying the
-// status (400, 401, 404, 409, 502, 504) and message.
-export async function sendSweep(service, body, onProgress) {
-  let store = await json(`${servicePath(service)}/store`,
-    { method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(body) },
-    'Sending to the PACS');
-  for (;;) {
-    onProgress(store);
-    if (store.state === 'done') return store;
-    if (store.state === 'failed') {
-      throw new ApiError(`Sending to the PACS: ${store.error || 'failed'} (HTTP ${store.status})`,
-        { status: store.status || 0 });
+// answer. Returns {done, cancel()}: done resolves with the finished store ({stored, description}) and
+// rejects with an ApiError carrying the status (400, 401, 404, 409, 502, 504) and message, or `aborted`
+// once cancel() has asked the server to stop (nothing is stored then).
+export function sendSweep(service, body, onProgress) {
+  let id = null;
+  let stopped = false;
+  let timer = 0;
+  const cancelled = () => new ApiError('Sending to the PACS: cancelled', { aborted: true });
+  const done = (async () => {
+    let store = await json(`${servicePath(service)}/store`,
+      { method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(body) },
+      'Sending to the PACS');
+    id = store.id;
+    if (stopped) cancelSweepSend(id).catch(() => {});
+    for (;;) {
+      if (stopped) throw cancelled();
+      onProgress(store);
+      if (store.state === 'done') return store;
+      if (store.state === 'cancelled') throw cancelled();
+      if (store.state === 'failed') {
+        throw new ApiError(`Sending to the PACS: ${store.error || 'failed'} (HTTP ${store.status})`,
+          { status: store.status || 0 });
+      }
+      await new Promise((resolve) => { timer = setTimeout(resolve, POLL_MS); });
+      if (stopped) throw cancelled();
+      store = await json(`api/pacs/stores/${encodeURIComponent(store.id)}`, {}, 'Sending to the PACS');
     }
-    await new Promise((resolve) => { setTimeout(resolve, POLL_MS); });
-    store = await json(`api/pacs/stores/${encodeURIComponent(store.id)}`, {}, 'Sending to the PACS');
-  }
+  })();
+  return {
+    done,
+    cancel() {
+      stopped = true;
+      clearTimeout(timer);
+      if (id !== null) cancelSweepSend(id).catch(() => {}); // it ends as cancelled either way
+    },
+  };
 }

@@ -35,7 +35,7 @@ export function sweepRefusal(params) {
 // (frames.viewParams: null before the first fit); slab() the view's slab or null.
 export function createPacsSend({ el, viewParams, slab }) {
   let services = [];
-  let sending = false;
+  let sending = null; // the send in flight: {done, cancel()}
   let thicknessEdited = false;
 
   const service = () => pacsServiceOf(viewParams()?.dataset, services);
@@ -63,7 +63,8 @@ export function createPacsSend({ el, viewParams, slab }) {
     const refusal = sweepRefusal(params);
     el.note.textContent = refusal;
     el.note.hidden = !refusal;
-    el.send.disabled = sending || Boolean(refusal);
+    el.send.disabled = Boolean(sending) || Boolean(refusal);
+    el.cancel.hidden = !sending;
   }
 
   async function send() {
@@ -77,35 +78,36 @@ export function createPacsSend({ el, viewParams, slab }) {
       showError('Thickness and step are numbers of mm above 0.');
       return;
     }
-    sending = true;
-    sync();
-    el.progressBox.hidden = false;
-    el.result.textContent = '';
     const show = (store) => {
       el.progress.max = Math.max(1, store.total);
       el.progress.value = store.state === 'drawing' ? store.drawn : (store.state === 'queued' ? 0 : el.progress.max);
       el.label.textContent = sendProgressText(store);
     };
+    el.progressBox.hidden = false;
+    el.result.textContent = '';
+    sending = sendSweep(target, {
+      dataset: params.dataset,
+      cam: params.cam,
+      mode: params.mode,
+      thickness,
+      step,
+      size: `${params.size.w}x${params.size.h}`,
+      renderer: params.renderer,
+      eps: String(params.eps),
+      ...(params.degree !== undefined ? { degree: String(params.degree) } : {}),
+      window: `${params.window.level},${params.window.width}`,
+    }, show);
+    sync();
     try {
-      const done = await sendSweep(target, {
-        dataset: params.dataset,
-        cam: params.cam,
-        mode: params.mode,
-        thickness,
-        step,
-        size: `${params.size.w}x${params.size.h}`,
-        renderer: params.renderer,
-        eps: String(params.eps),
-        ...(params.degree !== undefined ? { degree: String(params.degree) } : {}),
-        window: `${params.window.level},${params.window.width}`,
-      }, show);
+      const done = await sending.done;
       el.progressBox.hidden = true;
       el.result.textContent = `${sendProgressText(done)} (on ${target})`;
     } catch (e) {
       el.progressBox.hidden = true;
-      showError(e.message);
+      if (e.aborted) el.result.textContent = 'Send cancelled: nothing stored.';
+      else showError(e.message);
     } finally {
-      sending = false;
+      sending = null;
       sync();
     }
   }
@@ -113,6 +115,7 @@ export function createPacsSend({ el, viewParams, slab }) {
   el.thickness.addEventListener('input', () => { thicknessEdited = true; });
   el.step.value = String(DEFAULT_STEP_MM);
   el.send.addEventListener('click', send);
+  el.cancel.addEventListener('click', () => sending?.cancel());
 
   return {
     setServices(names) {

@@ -347,6 +347,7 @@ const pacsSend = createPacsSend({
     step: $('pacs-send-step'),
     note: $('pacs-send-note'),
     send: $('pacs-send-button'),
+    cancel: $('pacs-send-cancel'),
     progressBox: $('pacs-send-progress-box'),
     progress: $('pacs-send-progress'),
     label: $('pacs-send-progress-label'),

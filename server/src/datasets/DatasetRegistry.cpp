@@ -44,11 +44,11 @@ void describeRange(Dataset& dataset, std::array<float, 2> range) {
     dataset.presets = windowPresets(range, dataset.isCt);
 }
 
-std::shared_ptr<const Dataset> loadDataset(const std::string& name, const fs::path& path,
-                                           const std::string& dicomSeries,
-                                           const fit::VolumeHeaderInfo& header) {
-    auto volume = std::make_shared<fit::Volume>(
-        fit::loadVolume(path.string(), std::nullopt, DATASET_STORAGE, dicomSeries));
+/// The dataset of a volume loaded from `path`.
+std::shared_ptr<const Dataset> datasetOfVolume(const std::string& name, const fs::path& path,
+                                               const std::string& dicomSeries,
+                                               const fit::VolumeHeaderInfo& header,
+                                               std::shared_ptr<const fit::Volume> volume) {
     auto dataset = std::make_shared<Dataset>();
     dataset->loadAndFitBytes = fit::estimateLoadAndFitBytes(header, DATASET_STORAGE);
     const std::uint64_t held = fit::estimateLoadedVolumeBytes(header, DATASET_STORAGE);
@@ -60,6 +60,14 @@ std::shared_ptr<const Dataset> loadDataset(const std::string& name, const fs::pa
     dataset->contentCrc = volume->contentCrc();
     dataset->volume = std::move(volume);
     return dataset;
+}
+
+std::shared_ptr<const Dataset> loadDataset(const std::string& name, const fs::path& path,
+                                           const std::string& dicomSeries,
+                                           const fit::VolumeHeaderInfo& header) {
+    return datasetOfVolume(name, path, dicomSeries, header,
+                           std::make_shared<fit::Volume>(
+                               fit::loadVolume(path.string(), std::nullopt, DATASET_STORAGE, dicomSeries)));
 }
 
 /// Under mpirun: the ranks read the samples, each its z cells' planes; this process reads the grid from the
@@ -207,6 +215,27 @@ void DatasetRegistry::offerDicomFolder(const std::string& name, const fs::path& 
     entry->dataset.reset();
     entry->header.reset();
     entry->loadError.clear();
+}
+
+void DatasetRegistry::offerLoadedDicomFolder(const std::string& name, const fs::path& folder,
+                                             fit::Volume volume) {
+    offerDicomFolder(name, folder);
+    if (mRanks) return; // the ranks read the folder themselves
+    Entry* entry = nullptr;
+    {
+        std::lock_guard lock(mMutex);
+        entry = mEntries.at(name).get();
+    }
+    fit::VolumeHeaderInfo header;
+    for (int a = 0; a < 3; ++a)
+        header.dims[a] = static_cast<std::uint64_t>(volume.dims[a]);
+    header.sourceType = volume.sourceType;
+    std::lock_guard loadLock(entry->loadMutex);
+    auto dataset =
+        datasetOfVolume(name, folder, {}, header, std::make_shared<fit::Volume>(std::move(volume)));
+    std::lock_guard lock(mMutex);
+    entry->header = header;
+    entry->dataset = std::move(dataset);
 }
 
 std::vector<std::string> DatasetRegistry::names() const {

@@ -90,6 +90,10 @@ public:
     /// first find() like the data folders' own. When `name` is already offered from another folder (the
     /// series changed on the PACS), it is read from `folder` from now on.
     void offerDicomFolder(const std::string& name, const std::filesystem::path& folder);
+    /// The same with the folder's series read already (as its files arrived from the PACS), in
+    /// DATASET_STORAGE: find() answers it without reading the folder again.
+    void offerLoadedDicomFolder(const std::string& name, const std::filesystem::path& folder,
+                                fit::Volume volume);
 
     /// All names found, sorted.
     std::vector<std::string> names() const;

@@ -1,20 +1,33 @@
-// The pacs module's failures as HTTP statuses, read from the words of its one-line messages
-// (pacs/src/DicomWebConnection.cpp: statusProblem and transportProblem).
+// The pacs module's failures as HTTP statuses, by their kind.
 #include "dicomweb/PacsFailure.h"
 
-#include <string>
+#include "vots/pacs/PacsError.h"
 
 namespace vots::server {
 namespace {
 
-bool has(const std::string& text, const char* part) {
-    return text.find(part) != std::string::npos;
-}
-
-int statusOf(const std::string& message) {
-    if (has(message, "(HTTP 401)") || has(message, "(HTTP 403)")) return 401;
-    if (has(message, "(HTTP 404)") || has(message, "no such series on the PACS")) return 404;
-    if (has(message, "Timeout") || has(message, "timed out")) return 504;
+int statusOf(pacs::PacsFailure kind) {
+    switch (kind) {
+    case pacs::PacsFailure::Unauthorized:
+        return 401;
+    case pacs::PacsFailure::NotFound:
+        return 404;
+    case pacs::PacsFailure::TimedOut:
+        return 504;
+    case pacs::PacsFailure::Cancelled:
+        return 409;
+    case pacs::PacsFailure::BadRequest:
+        return 400;
+    case pacs::PacsFailure::Local:
+        return 500;
+    case pacs::PacsFailure::Unreachable:
+    case pacs::PacsFailure::Refused:
+    case pacs::PacsFailure::Cut:
+    case pacs::PacsFailure::Malformed:
+    case pacs::PacsFailure::NotImages:
+    case pacs::PacsFailure::TooBig:
+        return 502;
+    }
     return 502;
 }
 
@@ -25,8 +38,10 @@ HttpError pacsFailure(std::exception_ptr error) {
         std::rethrow_exception(error);
     } catch (const HttpError& e) {
         return e;
+    } catch (const pacs::PacsError& e) {
+        return HttpError(statusOf(e.kind()), e.what());
     } catch (const std::exception& e) {
-        return HttpError(statusOf(e.what()), e.what());
+        return HttpError(502, e.what());
     } catch (...) {
         return HttpError(502, "the PACS request failed");
     }

@@ -2,6 +2,8 @@
 // series' instance list, and trimmed least recently opened first.
 #include "dicomweb/RetrievedSeriesCache.h"
 
+#include "LeastRecentlyUsed.h"
+
 #include "vots/fit/Error.h"
 
 #include <nlohmann/json.hpp>
@@ -190,30 +192,20 @@ std::vector<KeptSeries> RetrievedSeriesCache::kept() const {
 }
 
 void RetrievedSeriesCache::trimToBudget(const fs::path& keep) const {
-    struct Kept {
-        fs::path folder;
-        fs::file_time_type opened;
-        std::uint64_t bytes = 0;
-    };
-    std::vector<Kept> kept;
-    std::uint64_t total = 0;
+    std::vector<CachedOnDisk> kept;
     std::error_code ec;
     for (const auto& entry : fs::directory_iterator(mRoot, ec)) {
         if (entry.path().extension() != RECORD_EXTENSION) continue;
         fs::path folder = entry.path();
         folder.replace_extension();
-        Kept k{folder, entry.last_write_time(ec), folderBytes(folder)};
-        total += k.bytes;
-        kept.push_back(std::move(k));
+        kept.push_back({folder, entry.last_write_time(ec), folderBytes(folder)});
     }
-    std::sort(kept.begin(), kept.end(), [](const Kept& a, const Kept& b) { return a.opened < b.opened; });
-    for (const Kept& k : kept) {
-        if (total <= mBudget) break;
-        if (k.folder == keep) continue;
-        fs::remove(k.folder.string() + RECORD_EXTENSION, ec); // the record first: never a half-removed hit
-        fs::remove_all(k.folder, ec);
-        total -= k.bytes;
-    }
+    trimLeastRecentlyUsed(std::move(kept), mBudget, keep, [](const CachedOnDisk& k) {
+        std::error_code ignored;
+        fs::remove(k.path.string() + RECORD_EXTENSION, ignored); // the record first: never a half-removed hit
+        fs::remove_all(k.path, ignored);
+        return true;
+    });
 }
 
 } // namespace vots::server

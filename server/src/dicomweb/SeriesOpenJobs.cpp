@@ -5,6 +5,7 @@
 #include "dicomweb/JobThreads.h"
 #include "dicomweb/PacsFailure.h"
 
+#include "vots/fit/DicomIntake.h"
 #include "vots/fit/MemoryBudget.h"
 
 #include <algorithm>
@@ -93,6 +94,7 @@ void SeriesOpenJobs::run(Job& job) {
         stopIfCancelled(job.cancel, series);
         std::optional<std::filesystem::path> folder =
             mCache->find(series.seriesUid, announced.sopInstanceUids);
+        bool readAlready = false;
         if (folder) {
             update(job, [&](SeriesOpenSnapshot& s) {
                 s.fromCache = true;
@@ -100,14 +102,22 @@ void SeriesOpenJobs::run(Job& job) {
             });
         } else {
             update(job, [](SeriesOpenSnapshot& s) { s.state = SeriesOpenState::Retrieving; });
+            // Each instance is decoded as it arrives, so the volume is in shortly after the last one.
+            std::optional<MemoryReservation> reserved;
+            std::optional<fit::DicomSeriesIntake> intake;
+            fit::DicomIntakeResult read;
             pacs::SeriesRetrieveOptions options;
             options.spoolParent = mCache->spoolParent().string();
             options.cancel = &job.cancel;
             options.admit = [&](const fit::VolumeHeaderInfo& grid) {
-                const std::string refused =
-                    mMemory.refusal(fit::estimateLoadAndFitBytes(grid, DATASET_STORAGE),
-                                    "series " + series.seriesUid + " (" + grid.describe() + ")");
-                if (!refused.empty()) throw HttpError(507, refused);
+                reserved = mMemory.admit(fit::estimateLoadAndFitBytes(grid, DATASET_STORAGE),
+                                         "series " + series.seriesUid + " (" + grid.describe() + ")");
+                intake.emplace(grid, DATASET_STORAGE);
+            };
+            options.received = [&](const std::string& path) { intake->add(path); };
+            options.countImages = [&] {
+                read = intake->finish(name);
+                return read.images;
             };
             options.progress = [&](int received, int total) {
                 update(job, [&](SeriesOpenSnapshot& s) {
@@ -118,10 +128,15 @@ void SeriesOpenJobs::run(Job& job) {
             const pacs::RetrievedSeries retrieved = pacs::retrieveSeries(series, service.access, options);
             folder = mCache->keep({service.name, series.studyUid, series.seriesUid, {}},
                                   announced.sopInstanceUids, retrieved);
+            if (read.volume) {
+                read.volume->name = folder->filename().string(); // as the folder's reader names it
+                mRegistry.offerLoadedDicomFolder(name, *folder, std::move(*read.volume));
+                readAlready = true;
+            }
         }
         stopIfCancelled(job.cancel, series);
         update(job, [](SeriesOpenSnapshot& s) { s.state = SeriesOpenState::Loading; });
-        mRegistry.offerDicomFolder(name, *folder);
+        if (!readAlready) mRegistry.offerDicomFolder(name, *folder);
         mRegistry.find(name); // loaded now, admitted against the memory budget as any dataset
         update(job, [&](SeriesOpenSnapshot& s) {
             s.dataset = name;

@@ -37,10 +37,11 @@ void SweepStoreJobs::run(Job& job, const Work& work) {
         update([](SweepStoreSnapshot& s) { s.state = SweepStoreState::Done; });
     } catch (...) {
         const HttpError failure = pacsFailure(std::current_exception());
+        const bool cancelled = job.cancelled.load();
         update([&](SweepStoreSnapshot& s) {
-            s.state = SweepStoreState::Failed;
-            s.errorStatus = failure.status();
-            s.error = failure.what();
+            s.state = cancelled ? SweepStoreState::Cancelled : SweepStoreState::Failed;
+            s.errorStatus = cancelled ? 0 : failure.status();
+            s.error = cancelled ? "cancelled" : failure.what();
         });
     }
     std::lock_guard lock(mMutex);
@@ -48,11 +49,25 @@ void SweepStoreJobs::run(Job& job, const Work& work) {
     forgetFinishedJobs(mJobs, mFinished, job.visible.id, KEEP_FINISHED);
 }
 
-SweepStoreSnapshot SweepStoreJobs::snapshot(std::uint64_t id) const {
-    std::lock_guard lock(mMutex);
+SweepStoreJobs::Job& SweepStoreJobs::findLocked(std::uint64_t id) const {
     const auto it = mJobs.find(id);
     if (it == mJobs.end()) throw HttpError(404, "unknown sweep store " + std::to_string(id));
-    return it->second->visible;
+    return *it->second;
+}
+
+SweepStoreSnapshot SweepStoreJobs::snapshot(std::uint64_t id) const {
+    std::lock_guard lock(mMutex);
+    return findLocked(id).visible;
+}
+
+SweepStoreSnapshot SweepStoreJobs::cancel(std::uint64_t id) {
+    std::lock_guard lock(mMutex);
+    Job& job = findLocked(id);
+    if (!job.visible.ended()) {
+        job.cancelled = true;
+        job.stop = true;
+    }
+    return job.visible;
 }
 
 } // namespace vots::server

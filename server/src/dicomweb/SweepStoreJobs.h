@@ -16,13 +16,14 @@
 namespace vots::server {
 
 /// The steps of a send, in order, and how it ended.
-enum class SweepStoreState { Queued, Drawing, Storing, Done, Failed };
+enum class SweepStoreState { Queued, Drawing, Storing, Done, Failed, Cancelled };
 inline constexpr auto SWEEP_STORE_STATE_NAMES =
     fit::nameTable<SweepStoreState>("sweep store state", {{SweepStoreState::Queued, "queued"},
                                                           {SweepStoreState::Drawing, "drawing"},
                                                           {SweepStoreState::Storing, "storing"},
                                                           {SweepStoreState::Done, "done"},
-                                                          {SweepStoreState::Failed, "failed"}});
+                                                          {SweepStoreState::Failed, "failed"},
+                                                          {SweepStoreState::Cancelled, "cancelled"}});
 constexpr const auto& namesOf(SweepStoreState) {
     return SWEEP_STORE_STATE_NAMES;
 }
@@ -65,14 +66,20 @@ public:
     SweepStoreSnapshot start(SweepStoreSnapshot initial, Work work);
     /// HttpError 404 for an unknown or forgotten id.
     SweepStoreSnapshot snapshot(std::uint64_t id) const;
+    /// Stops a send: between slabs while drawing, the request in flight while storing (nothing is
+    /// stored then, as STOW-RS stores a request's instances only once it has them all). It ends
+    /// cancelled, unless it ended first. HttpError 404 as snapshot.
+    SweepStoreSnapshot cancel(std::uint64_t id);
 
 private:
     struct Job {
         SweepStoreSnapshot visible; // written under mMutex
         std::atomic<bool> stop{false};
+        std::atomic<bool> cancelled{false}; // stopped by cancel(), not by the server's end
         std::thread thread;
     };
     void run(Job& job, const Work& work);
+    Job& findLocked(std::uint64_t id) const;
 
     mutable std::mutex mMutex;
     std::uint64_t mNextId = 1;

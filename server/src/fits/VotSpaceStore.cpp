@@ -4,6 +4,8 @@
 #include "fits/CacheMeta.h"
 #include "fits/StaleTemporaries.h"
 
+#include "LeastRecentlyUsed.h"
+
 #include "vots/fit/VotSpaceFile.h"
 #include "vots/meta/VotSpaceRead.h"
 
@@ -77,27 +79,18 @@ void VotSpaceStore::write(const FitKey& key, const fit::VotSpace& space,
 }
 
 void VotSpaceStore::trimToBudget(const fs::path& keep) const {
-    struct File {
-        fs::path path;
-        fs::file_time_type used;
-        std::uintmax_t bytes = 0;
-    };
-    std::vector<File> files;
-    std::uintmax_t total = 0;
+    std::vector<CachedOnDisk> files;
     std::error_code ec;
     for (const auto& entry : fs::directory_iterator(mDir, ec)) {
         if (entry.path().extension() != ".vots" || !entry.is_regular_file(ec)) continue;
-        File file{entry.path(), entry.last_write_time(ec), entry.file_size(ec)};
+        CachedOnDisk file{entry.path(), entry.last_write_time(ec), entry.file_size(ec)};
         if (ec) continue; // removed meanwhile by another writer's trim
-        total += file.bytes;
         files.push_back(std::move(file));
     }
-    std::sort(files.begin(), files.end(), [](const File& a, const File& b) { return a.used < b.used; });
-    for (const File& file : files) {
-        if (total <= mBudget) break;
-        if (file.path == keep) continue;
-        if (fs::remove(file.path, ec)) total -= file.bytes;
-    }
+    trimLeastRecentlyUsed(std::move(files), mBudget, keep, [](const CachedOnDisk& file) {
+        std::error_code ignored;
+        return fs::remove(file.path, ignored);
+    });
 }
 
 std::vector<VotSpaceStore::Entry> VotSpaceStore::entries() const {

@@ -3,6 +3,7 @@
 #include "HttpError.h"
 #include "ServerImpl.h"
 #include "dicomweb/PacsFailure.h"
+#include "dicomweb/SearchAccess.h"
 #include "routes/HttpJson.h"
 
 #include "vots/pacs/QidoSearch.h"
@@ -111,31 +112,31 @@ void installPacsRoutes(Server::Impl& s) {
         sendJson(res, 200, {{"services", services}});
     });
 
-    s.http.Get(R"(/api/pacs/([A-Za-z0-9_-]{1,64})/studies)",
-               [&s](const httplib::Request& req, httplib::Response& res) {
-                   const DicomWebService& service = s.seriesOpens.service(req.matches[1].str());
-                   pacs::StudyQuery query;
-                   query.patientName = fieldParam(req, "patientName");
-                   query.patientId = fieldParam(req, "patientId");
-                   query.studyDateFrom = dateParam(req, "dateFrom");
-                   query.studyDateTo = dateParam(req, "dateTo");
-                   query.modality = fieldParam(req, "modality");
-                   query.accessionNumber = fieldParam(req, "accessionNumber");
-                   query.limit = limitParam(req);
-                   const auto studies =
-                       askPacs([&] { return pacs::searchStudies(service.endpoint, service.access, query); });
-                   nlohmann::json out = nlohmann::json::array();
-                   for (const pacs::StudySummary& study : studies)
-                       out.push_back(studyJson(study));
-                   sendJson(res, 200, {{"studies", out}});
-               });
+    s.http.Get(R"(/api/pacs/([A-Za-z0-9_-]{1,64})/studies)", [&s](const httplib::Request& req,
+                                                                  httplib::Response& res) {
+        const DicomWebService& service = s.seriesOpens.service(req.matches[1].str());
+        pacs::StudyQuery query;
+        query.patientName = fieldParam(req, "patientName");
+        query.patientId = fieldParam(req, "patientId");
+        query.studyDateFrom = dateParam(req, "dateFrom");
+        query.studyDateTo = dateParam(req, "dateTo");
+        query.modality = fieldParam(req, "modality");
+        query.accessionNumber = fieldParam(req, "accessionNumber");
+        query.limit = limitParam(req);
+        const auto studies =
+            askPacs([&] { return pacs::searchStudies(service.endpoint, searchAccess(service), query); });
+        nlohmann::json out = nlohmann::json::array();
+        for (const pacs::StudySummary& study : studies)
+            out.push_back(studyJson(study));
+        sendJson(res, 200, {{"studies", out}});
+    });
 
     s.http.Get(R"(/api/pacs/([A-Za-z0-9_-]{1,64})/studies/([0-9.]{1,64})/series)",
                [&s](const httplib::Request& req, httplib::Response& res) {
                    const DicomWebService& service = s.seriesOpens.service(req.matches[1].str());
                    const std::string study = req.matches[2].str();
-                   const auto series =
-                       askPacs([&] { return pacs::searchSeries(service.endpoint, service.access, study); });
+                   const auto series = askPacs(
+                       [&] { return pacs::searchSeries(service.endpoint, searchAccess(service), study); });
                    nlohmann::json out = nlohmann::json::array();
                    for (const pacs::SeriesSummary& one : series)
                        out.push_back(seriesJson(one));

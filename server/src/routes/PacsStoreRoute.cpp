@@ -3,6 +3,7 @@
 #include "HttpError.h"
 #include "ServerImpl.h"
 #include "dicomweb/PacsFailure.h"
+#include "dicomweb/SearchAccess.h"
 #include "frames/RenderFrames.h"
 #include "routes/HttpJson.h"
 
@@ -118,7 +119,7 @@ SweepStoreJobs::Work sendWork(Server::Impl& s, const DicomWebService& service, S
         const pacs::SpoolFolder spool;
         const std::vector<std::string> paths = spoolPaths(spool, plan.slabs.size());
         const auto drawSlab = [&](const render::SweepSlab& slab) {
-            if (stop) throw HttpError(503, "server is stopping");
+            if (stop) throw HttpError(409, "the send was stopped");
             RenderJob job = prepared.job;
             static_cast<render::FrameRequest&>(job.params) = render::sweepFrame(request.frame, slab);
             job.values = true;
@@ -129,7 +130,7 @@ SweepStoreJobs::Work sendWork(Server::Impl& s, const DicomWebService& service, S
             update([&](SweepStoreSnapshot& snap) { snap.drawn = static_cast<int>(drawn); });
         });
         update([](SweepStoreSnapshot& snap) { snap.state = SweepStoreState::Storing; });
-        const pacs::StoreReport report = pacs::storeInstances(service.endpoint, service.access, paths);
+        const pacs::StoreReport report = pacs::storeInstances(service.endpoint, service.access, paths, &stop);
         update([&](SweepStoreSnapshot& snap) { snap.stored = report.stored; });
     };
 }
@@ -175,7 +176,7 @@ void installPacsStoreRoute(Server::Impl& s) {
         try {
             pacs::StudyQuery probe;
             probe.limit = 1;
-            (void)pacs::searchStudies(service.endpoint, service.access, probe);
+            (void)pacs::searchStudies(service.endpoint, searchAccess(service), probe);
         } catch (...) {
             throw pacsFailure(std::current_exception());
         }
@@ -192,6 +193,11 @@ void installPacsStoreRoute(Server::Impl& s) {
     s.http.Get(R"(/api/pacs/stores/(\d{1,20}))", [&s](const httplib::Request& req, httplib::Response& res) {
         sendJson(res, 200, storeJson(s.sweepStores.snapshot(storeIdFrom(req))));
     });
+
+    s.http.Post(R"(/api/pacs/stores/(\d{1,20})/cancel)",
+                [&s](const httplib::Request& req, httplib::Response& res) {
+                    sendJson(res, 200, storeJson(s.sweepStores.cancel(storeIdFrom(req))));
+                });
 }
 
 } // namespace vots::server

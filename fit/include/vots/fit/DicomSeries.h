@@ -54,6 +54,10 @@ VolumeHeaderInfo dicomSeriesHeaderInfo(const std::string& folder, const std::str
 /// file, read by GDCM in a child process. Throws InputError as dicomSeriesHeaderInfo does.
 DicomIdentity readDicomIdentity(const std::string& folder, const std::string& seriesUid = {});
 
+/// The type the samples of images with this pixel format and rescale load into: the smallest that holds
+/// every rescaled value; integral rescales stay integers (a 12-bit CT with intercept -1024 stays int16).
+ScalarType dicomSampleType(int bitsStored, bool pixelsSigned, double slope, double intercept);
+
 /// Loads the series: values in real units (RescaleSlope/Intercept), slices ordered by
 /// ImagePositionPatient along the slice normal, spacing from PixelSpacing and the slice positions,
 /// orientation from ImageOrientationPatient. Compressed transfer syntaxes GDCM decodes are read.

@@ -31,6 +31,12 @@ struct SeriesRetrieveOptions {
     std::function<void(const fit::VolumeHeaderInfo&)> admit;
     /// Instances received so far and the series' count; called from the retrieving threads, in order.
     std::function<void(int received, int total)> progress;
+    /// Each instance's file as soon as it is complete in the spool folder (from the retrieving threads, one
+    /// at a time), so that a reader may start on it while the rest arrive.
+    std::function<void(const std::string& path)> received;
+    /// How many of the instances received are images, asked once all are in; empty: the spool folder's
+    /// headers are read for it. A series needs images only.
+    std::function<int()> countImages;
     /// Set from any thread to stop the retrieve, which then throws fit::InputError.
     const std::atomic<bool>* cancel = nullptr;
     int instancesInFlight = 4; // per-instance requests at once when the series request fails

@@ -4,6 +4,7 @@
 #include "vots/pacs/DicomWebAuth.h"
 #include "vots/pacs/DicomWebUrl.h"
 
+#include <atomic>
 #include <string>
 #include <vector>
 
@@ -16,7 +17,10 @@ struct StoreReport {
 /// POSTs `files` to ROOT/studies as one multipart/related; type="application/dicom" body, streamed from
 /// the files. Throws fit::InputError with one line when the request fails or the service refuses any
 /// instance (FailedSOPSequence: the first failed SOPInstanceUID and its FailureReason, and how many failed).
+/// `cancel`, set from any thread, ends the request in flight (PacsFailure::Cancelled): the body is cut
+/// before its end, so a DICOMweb service, which stores a request's instances once it has them all,
+/// stores none.
 StoreReport storeInstances(const DicomWebEndpoint& endpoint, const DicomWebAccess& access,
-                           const std::vector<std::string>& files);
+                           const std::vector<std::string>& files, const std::atomic<bool>* cancel = nullptr);
 
 } // namespace vots::pacs
