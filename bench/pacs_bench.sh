@@ -73,6 +73,10 @@ report() { # report LABEL START DATASET
     first=$(since "$2")
     first_images+=("$1 $first")
     printf '%-7s first image (grid) %6.2f s (HTTP %s)' "$1" "$first" "$grid"
+    local again
+    again=$(now)
+    grid=$(curl -s -o /dev/null -w '%{http_code}' "$base/render?dataset=$3&size=$size&cam=az%3D60%2Cel%3D10&renderer=grid")
+    printf ', the next %.2f s (HTTP %s)' "$(since "$again")" "$grid"
     if [[ -z ${VOTS_BENCH_FIRST_IMAGE_ONLY:-} ]]; then
         vots=$(frame "$3" "eps=2%25")
         printf '  first Vot frame %6.2f s (HTTP %s)' "$(since "$2")" "$vots"

@@ -1,5 +1,6 @@
 // fit::DicomSeriesIntake, which reads a series from the PACS as its files arrive: the same volume as the
 // folder reader in any arrival order, another grid handed back to the folder reader, damaged files refused.
+#include "FolderFiles.h"
 #include "SampleVolume.h"
 #include "TempDir.h"
 #include "dicom/DicomSeriesWriter.h"
@@ -22,14 +23,6 @@ namespace {
 using namespace vots;
 using namespace vots::test;
 namespace fs = std::filesystem;
-
-std::vector<std::string> filesOf(const std::string& folder) {
-    std::vector<std::string> files;
-    for (const auto& entry : fs::directory_iterator(folder))
-        files.push_back(entry.path().string());
-    std::sort(files.begin(), files.end());
-    return files;
-}
 
 fit::VolumeHeaderInfo gridOf(const fit::Volume& volume) {
     fit::VolumeHeaderInfo header;

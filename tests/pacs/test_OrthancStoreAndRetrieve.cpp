@@ -1,4 +1,5 @@
 // STOW-RS into the real Orthanc of the pacs fixture, and WADO-RS retrieves back: bytes, progress, spool.
+#include "FolderFiles.h"
 #include "OrthancState.h"
 #include "SampleVolume.h"
 #include "TempDir.h"
@@ -21,14 +22,6 @@ namespace {
 using namespace vots::pacs;
 using namespace vots::test;
 namespace fs = std::filesystem;
-
-std::vector<std::string> filesOf(const std::string& folder) {
-    std::vector<std::string> files;
-    for (const auto& entry : fs::directory_iterator(folder))
-        files.push_back(entry.path().string());
-    std::sort(files.begin(), files.end());
-    return files;
-}
 
 TEST(OrthancStoreAndRetrieve, StoredSeriesComesBackSampleForSample) {
     TempDir dir;

@@ -32,85 +32,60 @@ export async function fetchStudySeries(service, studyUid) {
 
 const postJson = { method: 'POST', headers: { 'Content-Type': 'application/json' }, body: '{}' };
 
-export function cancelSeriesOpen(id) {
-  return json(`api/pacs/opens/${encodeURIComponent(id)}/cancel`, postJson, 'Cancelling the retrieve');
+// Starts a server job (start() gives its 202 answer) and polls `${jobsPath}/{id}` until it ends.
+// onProgress(job) sees every answer. Returns {done, cancel()}: done resolves with the finished job and
+// rejects with an ApiError carrying the failure's status and message, or `aborted` once cancel() has
+// asked the server to stop it (POST `${jobsPath}/{id}/cancel`).
+function followJob(start, jobsPath, what, onProgress) {
+  let id = null;
+  let stopped = false;
+  let timer = 0;
+  const cancelled = () => new ApiError(`${what}: cancelled`, { aborted: true });
+  const cancelOnServer = () => {
+    // It ends as cancelled either way.
+    json(`${jobsPath}/${encodeURIComponent(id)}/cancel`, postJson, `${what}: cancelling`).catch(() => {});
+  };
+  const done = (async () => {
+    let job = await start();
+    id = job.id;
+    if (stopped) cancelOnServer();
+    for (;;) {
+      if (stopped) throw cancelled();
+      onProgress(job);
+      if (job.state === 'done') return job;
+      if (job.state === 'failed' || job.state === 'cancelled') {
+        throw new ApiError(`${what}: ${job.error || job.state} (HTTP ${job.status})`,
+          { status: job.status || 0, aborted: job.state === 'cancelled' });
+      }
+      await new Promise((resolve) => { timer = setTimeout(resolve, POLL_MS); });
+      if (stopped) throw cancelled();
+      job = await json(`${jobsPath}/${encodeURIComponent(id)}`, {}, what);
+    }
+  })();
+  return {
+    done,
+    cancel() {
+      stopped = true;
+      clearTimeout(timer);
+      if (id !== null) cancelOnServer();
+    },
+  };
 }
 
-// Starts (or joins) the open of a series and polls it. onProgress(open) sees every answer; returns
-// {done, cancel()}: done resolves with the finished open ({dataset, fromCache, ...}) and rejects with an
-// ApiError carrying the failure's status (401, 404, 502, 504, 507) and message; cancel() asks the server
-// to stop, and done then never settles.
+// Starts (or joins) the open of a series and follows it (followJob). done resolves with the finished open
+// ({dataset, fromCache, ...}); its failures carry 401, 404, 502, 504 or 507.
 export function followSeriesOpen(service, studyUid, seriesUid, onProgress) {
-  let id = null;
-  let stopped = false;
-  let timer = 0;
-  const done = (async () => {
-    let open = await json(
-      `${servicePath(service)}/studies/${encodeURIComponent(studyUid)}/series/${encodeURIComponent(seriesUid)}/open`,
-      postJson, 'Opening the series');
-    id = open.id;
-    for (;;) {
-      if (stopped) throw new ApiError('Opening the series: cancelled', { aborted: true });
-      onProgress(open);
-      if (open.state === 'done') return open;
-      if (open.state === 'failed' || open.state === 'cancelled') {
-        throw new ApiError(`Opening the series: ${open.error || open.state} (HTTP ${open.status})`,
-          { status: open.status || 0, aborted: open.state === 'cancelled' });
-      }
-      await new Promise((resolve) => { timer = setTimeout(resolve, POLL_MS); });
-      open = await json(`api/pacs/opens/${encodeURIComponent(id)}`, {}, 'Opening the series');
-    }
-  })();
-  return {
-    done,
-    cancel() {
-      stopped = true;
-      clearTimeout(timer);
-      if (id !== null) cancelSeriesOpen(id).catch(() => {}); // it ends as cancelled either way
-    },
-  };
+  return followJob(() => json(
+    `${servicePath(service)}/studies/${encodeURIComponent(studyUid)}/series/${encodeURIComponent(seriesUid)}/open`,
+    postJson, 'Opening the series'), 'api/pacs/opens', 'Opening the series', onProgress);
 }
 
-export function cancelSweepSend(id) {
-  return json(`api/pacs/stores/${encodeURIComponent(id)}/cancel`, postJson, 'Cancelling the send');
-}
-
-// Sends a slab sweep of the view to the PACS (POST /api/pacs/{service}/store) and polls it until it ends.
-// body: {dataset, cam, mode, thickness, step, size, renderer, eps, window}. onProgress(store) sees every
-// answer. Returns {done, cancel()}: done resolves with the finished store ({stored, description}) and
-// rejects with an ApiError carrying the status (400, 401, 404, 409, 502, 504) and message, or `aborted`
-// once cancel() has asked the server to stop (nothing is stored then).
+// Sends a slab sweep of the view to the PACS (POST /api/pacs/{service}/store) and follows it (followJob).
+// body: {dataset, cam, mode, thickness, step, size, renderer, eps, window}. done resolves with the finished
+// store ({stored, description}); its failures carry 400, 401, 404, 409, 502 or 504. A cancelled send
+// stores nothing.
 export function sendSweep(service, body, onProgress) {
-  let id = null;
-  let stopped = false;
-  let timer = 0;
-  const cancelled = () => new ApiError('Sending to the PACS: cancelled', { aborted: true });
-  const done = (async () => {
-    let store = await json(`${servicePath(service)}/store`,
-      { method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(body) },
-      'Sending to the PACS');
-    id = store.id;
-    if (stopped) cancelSweepSend(id).catch(() => {});
-    for (;;) {
-      if (stopped) throw cancelled();
-      onProgress(store);
-      if (store.state === 'done') return store;
-      if (store.state === 'cancelled') throw cancelled();
-      if (store.state === 'failed') {
-        throw new ApiError(`Sending to the PACS: ${store.error || 'failed'} (HTTP ${store.status})`,
-          { status: store.status || 0 });
-      }
-      await new Promise((resolve) => { timer = setTimeout(resolve, POLL_MS); });
-      if (stopped) throw cancelled();
-      store = await json(`api/pacs/stores/${encodeURIComponent(store.id)}`, {}, 'Sending to the PACS');
-    }
-  })();
-  return {
-    done,
-    cancel() {
-      stopped = true;
-      clearTimeout(timer);
-      if (id !== null) cancelSweepSend(id).catch(() => {}); // it ends as cancelled either way
-    },
-  };
+  return followJob(() => json(`${servicePath(service)}/store`,
+    { method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(body) },
+    'Sending to the PACS'), 'api/pacs/stores', 'Sending to the PACS', onProgress);
 }

@@ -2,6 +2,8 @@
 // end.
 #pragma once
 
+#include "HttpError.h"
+
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
@@ -9,11 +11,21 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <string>
 
 namespace vots::server {
 
 /// Jobs by id; each Job has a `std::thread thread`.
 template <class Job> using JobsById = std::map<std::uint64_t, std::unique_ptr<Job>>;
+
+/// The job `id`, or HttpError 404 "unknown <what> <id>" for an unknown or forgotten one. Call under the
+/// jobs' lock.
+template <class Job>
+Job& findJobLocked(const JobsById<Job>& jobs, std::uint64_t id, const std::string& what) {
+    const auto it = jobs.find(id);
+    if (it == jobs.end()) throw HttpError(404, "unknown " + what + " " + std::to_string(id));
+    return *it->second;
+}
 
 /// Records `finishedId` as finished and forgets the oldest finished jobs beyond `keep`, joining their
 /// threads: they ended right after their last update. Call under the jobs' lock, from the finishing job.

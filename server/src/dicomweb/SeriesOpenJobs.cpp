@@ -156,20 +156,14 @@ void SeriesOpenJobs::run(Job& job) {
     forgetFinishedJobs(mJobs, mFinished, job.visible.id, KEEP_FINISHED);
 }
 
-SeriesOpenJobs::Job& SeriesOpenJobs::findLocked(std::uint64_t id) const {
-    const auto it = mJobs.find(id);
-    if (it == mJobs.end()) throw HttpError(404, "unknown series open " + std::to_string(id));
-    return *it->second;
-}
-
 SeriesOpenSnapshot SeriesOpenJobs::snapshot(std::uint64_t id) const {
     std::lock_guard lock(mMutex);
-    return findLocked(id).visible;
+    return findJobLocked(mJobs, id, "series open").visible;
 }
 
 SeriesOpenSnapshot SeriesOpenJobs::cancel(std::uint64_t id) {
     std::lock_guard lock(mMutex);
-    Job& job = findLocked(id);
+    Job& job = findJobLocked(mJobs, id, "series open");
     job.cancel = true;
     return job.visible;
 }

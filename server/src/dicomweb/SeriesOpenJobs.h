@@ -85,7 +85,6 @@ private:
     };
     void run(Job& job);
     void update(Job& job, const std::function<void(SeriesOpenSnapshot&)>& change);
-    Job& findLocked(std::uint64_t id) const;
 
     const std::vector<DicomWebService>& mServices;
     std::unique_ptr<RetrievedSeriesCache> mCache; // null without services

@@ -49,20 +49,14 @@ void SweepStoreJobs::run(Job& job, const Work& work) {
     forgetFinishedJobs(mJobs, mFinished, job.visible.id, KEEP_FINISHED);
 }
 
-SweepStoreJobs::Job& SweepStoreJobs::findLocked(std::uint64_t id) const {
-    const auto it = mJobs.find(id);
-    if (it == mJobs.end()) throw HttpError(404, "unknown sweep store " + std::to_string(id));
-    return *it->second;
-}
-
 SweepStoreSnapshot SweepStoreJobs::snapshot(std::uint64_t id) const {
     std::lock_guard lock(mMutex);
-    return findLocked(id).visible;
+    return findJobLocked(mJobs, id, "sweep store").visible;
 }
 
 SweepStoreSnapshot SweepStoreJobs::cancel(std::uint64_t id) {
     std::lock_guard lock(mMutex);
-    Job& job = findLocked(id);
+    Job& job = findJobLocked(mJobs, id, "sweep store");
     if (!job.visible.ended()) {
         job.cancelled = true;
         job.stop = true;

@@ -79,7 +79,6 @@ private:
         std::thread thread;
     };
     void run(Job& job, const Work& work);
-    Job& findLocked(std::uint64_t id) const;
 
     mutable std::mutex mMutex;
     std::uint64_t mNextId = 1;

@@ -119,7 +119,7 @@ SweepStoreJobs::Work sendWork(Server::Impl& s, const DicomWebService& service, S
         const pacs::SpoolFolder spool;
         const std::vector<std::string> paths = spoolPaths(spool, plan.slabs.size());
         const auto drawSlab = [&](const render::SweepSlab& slab) {
-            if (stop) throw HttpError(409, "the send was stopped");
+            if (stop) throw HttpError(503, "server is stopping"); // or cancelled: the job says which
             RenderJob job = prepared.job;
             static_cast<render::FrameRequest&>(job.params) = render::sweepFrame(request.frame, slab);
             job.values = true;

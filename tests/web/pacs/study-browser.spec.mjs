@@ -170,5 +170,24 @@ test('a PACS dataset\'s view is sent back as a slab sweep with progress and a re
     assert.ok(await viewer.byId('pacs-send-error').isHidden(), await viewer.byId('pacs-send-error').textContent());
     await section.scrollIntoViewIfNeeded();
     await section.screenshot({ path: artifactPath('pacs-send.png') });
+
+    // A send of many slabs, cancelled while they are drawn: it ends cancelled and the panel says so.
+    assert.ok(await viewer.byId('pacs-send-cancel').isHidden(), 'Cancel offered with no send running');
+    await viewer.byId('pacs-send-step').fill('0.05');
+    await viewer.byId('pacs-send-button').click();
+    await viewer.byId('pacs-send-cancel').waitFor({ state: 'visible' });
+    await page.waitForFunction(() => /^Drawing/.test(
+      document.querySelector('[data-testid="pacs-send-progress-label"]').textContent), undefined, { timeout: 120000 });
+    await viewer.byId('pacs-send-cancel').click();
+    await page.waitForFunction(() => /cancelled/.test(document.querySelector('[data-testid="pacs-send-result"]').textContent),
+      undefined, { timeout: 60000 });
+    assert.equal(await result.textContent(), 'Send cancelled: nothing stored.');
+    assert.ok(await viewer.byId('pacs-send-cancel').isHidden(), 'Cancel still offered after the send ended');
+    assert.ok(await viewer.byId('pacs-send-error').isHidden(), await viewer.byId('pacs-send-error').textContent());
+    const id = stores.at(-1).id;
+    const ended = await page.evaluate(async (storeId) => (await fetch(`api/pacs/stores/${storeId}`)).json(), id);
+    assert.equal(ended.state, 'cancelled');
+    assert.ok(ended.drawn < ended.total, `all ${ended.total} slabs drawn before the cancel`);
+    assert.equal(ended.stored, 0);
   });
 });
