@@ -288,6 +288,22 @@ TEST_F(ServerPacs, AServiceThatNeverAnswersAnswers504) {
     EXPECT_EQ(seen.back()["status"], 504) << seen.back().dump();
 }
 
+TEST_F(ServerPacs, ASearchGivesUpOnASilentPacsLongBeforeTheRetrievesTimeout) {
+    SilentPort silent;
+    const server::DicomWebService slow = service("slow", silent.port(), true); // the retrieve's 120 s
+    ASSERT_GT(slow.access.readTimeoutSeconds, 60);
+    LoopbackServer server(options({slow}));
+    auto c = server.client();
+    c->set_read_timeout(150, 0);
+    const auto start = std::chrono::steady_clock::now();
+    const auto res = c->Get("/api/pacs/slow/studies?modality=CT");
+    const auto waited = std::chrono::steady_clock::now() - start;
+    ASSERT_TRUE(res);
+    EXPECT_EQ(res->status, 504) << res->body;
+    EXPECT_NE(res->body.find("timed out (no answer for 15 s)"), std::string::npos) << res->body;
+    EXPECT_LT(waited, std::chrono::seconds(60)); // the search's own bound, not the retrieve's
+}
+
 TEST_F(ServerPacs, AnOpenCancelledWhileThePacsIsSilentEndsCancelled) {
     SilentPort silent;
     server::DicomWebService slow = service("slow", silent.port(), true);

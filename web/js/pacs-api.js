@@ -40,6 +40,7 @@ function followJob(start, jobsPath, what, onProgress) {
   let id = null;
   let stopped = false;
   let timer = 0;
+  let wake = () => {};
   const cancelled = () => new ApiError(`${what}: cancelled`, { aborted: true });
   const cancelOnServer = () => {
     // It ends as cancelled either way.
@@ -57,7 +58,10 @@ function followJob(start, jobsPath, what, onProgress) {
         throw new ApiError(`${what}: ${job.error || job.state} (HTTP ${job.status})`,
           { status: job.status || 0, aborted: job.state === 'cancelled' });
       }
-      await new Promise((resolve) => { timer = setTimeout(resolve, POLL_MS); });
+      await new Promise((resolve) => {
+        wake = resolve;
+        timer = setTimeout(resolve, POLL_MS);
+      });
       if (stopped) throw cancelled();
       job = await json(`${jobsPath}/${encodeURIComponent(id)}`, {}, what);
     }
@@ -67,6 +71,7 @@ function followJob(start, jobsPath, what, onProgress) {
     cancel() {
       stopped = true;
       clearTimeout(timer);
+      wake(); // done settles (aborted) now, not at the next poll
       if (id !== null) cancelOnServer();
     },
   };

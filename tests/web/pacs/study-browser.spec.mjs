@@ -173,7 +173,7 @@ test('a PACS dataset\'s view is sent back as a slab sweep with progress and a re
 
     // A send of many slabs, cancelled while they are drawn: it ends cancelled and the panel says so.
     assert.ok(await viewer.byId('pacs-send-cancel').isHidden(), 'Cancel offered with no send running');
-    await viewer.byId('pacs-send-step').fill('0.05');
+    await viewer.byId('pacs-send-step').fill('0.15'); // about 140 slabs: under the sweep's pixel bound
     await viewer.byId('pacs-send-button').click();
     await viewer.byId('pacs-send-cancel').waitFor({ state: 'visible' });
     await page.waitForFunction(() => /^Drawing/.test(
@@ -185,7 +185,16 @@ test('a PACS dataset\'s view is sent back as a slab sweep with progress and a re
     assert.ok(await viewer.byId('pacs-send-cancel').isHidden(), 'Cancel still offered after the send ended');
     assert.ok(await viewer.byId('pacs-send-error').isHidden(), await viewer.byId('pacs-send-error').textContent());
     const id = stores.at(-1).id;
-    const ended = await page.evaluate(async (storeId) => (await fetch(`api/pacs/stores/${storeId}`)).json(), id);
+    // The panel settles at once; the server's send ends at its next slab.
+    const ended = await page.evaluate(async (storeId) => {
+      for (let i = 0; i < 600; i += 1) {
+        const store = await (await fetch(`api/pacs/stores/${storeId}`)).json();
+        if (!['queued', 'drawing', 'storing'].includes(store.state)) return store;
+        await new Promise((resolve) => { setTimeout(resolve, 100); });
+      }
+      return null;
+    }, id);
+    assert.ok(ended, 'the cancelled send never ended');
     assert.equal(ended.state, 'cancelled');
     assert.ok(ended.drawn < ended.total, `all ${ended.total} slabs drawn before the cancel`);
     assert.equal(ended.stored, 0);
