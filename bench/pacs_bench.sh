@@ -68,11 +68,12 @@ stop_server() {
 }
 first_images=() # "LABEL SECONDS" per open
 report() { # report LABEL START DATASET
-    local grid vots first
+    local grid vots first asked
+    asked=$(now)
     grid=$(frame "$3" "renderer=grid")
     first=$(since "$2")
     first_images+=("$1 $first")
-    printf '%-7s first image (grid) %6.2f s (HTTP %s)' "$1" "$first" "$grid"
+    printf '%-7s first image (grid) %6.2f s (HTTP %s; the request %.2f s)' "$1" "$first" "$grid" "$(since "$asked")"
     local again
     again=$(now)
     grid=$(curl -s -o /dev/null -w '%{http_code}' "$base/render?dataset=$3&size=$size&cam=az%3D60%2Cel%3D10&renderer=grid")
