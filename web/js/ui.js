@@ -27,6 +27,7 @@ const $ = (id) => document.getElementById(id);
 const el = {
   view: $('view'),
   image: $('image'),
+  draftCanvas: $('draft'),
   status: $('status'),
   error: $('error'),
   errorText: $('error-text'),
@@ -102,7 +103,7 @@ function draft() {
   frames.schedule({ draft: true });
 }
 const frames = createFrames({
-  viewEl: el.view, image: el.image, view, banner, showFacts, isMoving: input.isMoving, onChange: updateStatus,
+  viewEl: el.view, image: el.image, draftCanvas: el.draftCanvas, view, banner, showFacts, isMoving: input.isMoving, onChange: updateStatus,
 });
 const fits = createFits({
   progress: { box: el.fitProgress, bar: el.progress, label: el.progressLabel },
