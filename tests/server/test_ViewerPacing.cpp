@@ -56,6 +56,24 @@ TEST(ViewerPacing, NoMoreInFlightThanAcknowledged) {
     EXPECT_EQ(pacing.inFlight(), 1u);
 }
 
+TEST(ViewerPacing, AStillDoesNotWaitForAcknowledgements) {
+    ViewerPacing pacing(2);
+    for (std::uint64_t seq = 1; seq <= 2; ++seq) {
+        pacing.offer(viewNumber(seq));
+        ASSERT_TRUE(pacing.next());
+        pacing.sent();
+    }
+    pacing.offer(viewNumber(3));
+    EXPECT_FALSE(pacing.next()) << "a draft waits for an ack";
+    pacing.offer(viewNumber(4, true));
+    const auto still = pacing.next();
+    ASSERT_TRUE(still);
+    EXPECT_EQ(still->seq, 4u);
+    EXPECT_TRUE(still->still);
+    pacing.offer(viewNumber(5, true));
+    EXPECT_FALSE(pacing.next()) << "still one draw at a time";
+}
+
 TEST(DraftSizer, HoldsTheBudgetWithinItsScaleLimits) {
     DraftSizer sizer(30.0);
     EXPECT_EQ(sizer.draftSize(1000, 800), std::make_pair(500, 400)) << "half before any measurement";

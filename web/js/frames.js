@@ -38,7 +38,7 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
   let streamPending = null; // {seq, preview}: the newest view sent on the socket and not shown yet
   let streamSentKey = null; // what was sent last ("draft URL" or "still URL"): a repeat sends nothing
   let shownSeq = 0; // the socket frame shown last: an older one arriving later is not shown
-  const sentUrls = new Map(); // seq -> the /render URL of the view sent (what a frame shows)
+  const sentUrls = new Map(); // seq -> {url: the /render URL of the view sent, sentAt: performance.now()}
 
   function frameSize(draft) {
     const r = viewEl.getBoundingClientRect();
@@ -112,7 +112,7 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
   }
 
   async function send(url, draft) {
-    const mine = { url, draft, controller: new AbortController() };
+    const mine = { url, draft, controller: new AbortController(), sentAt: performance.now() };
     const preview = previewing(); // a grid frame in place of Vots still being fitted: it says nothing of them
     inflight = mine;
     if (!draft) draftPending = false;
@@ -122,6 +122,7 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
       if (inflight !== mine) return;
       if (!(await showPng(frame.blob, url, draft, () => inflight === mine))) return;
       image.dataset.transport = 'render';
+      announceFrame({ sentAt: mine.sentAt, still: !draft, transport: 'render' });
       lastFrame = { w: Number(image.dataset.width), h: Number(image.dataset.height), frameMs: frame.frameMs };
       if (!preview) {
         showFacts({
@@ -143,6 +144,15 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
       }
       onChange();
     }
+  }
+
+  // A "vots:frame" event on the image once a frame is on screen: {sentAt (when its view was asked for,
+  // performance.now()), width, height, still, transport}; bench/stream_drag.mjs times the drag with it.
+  function announceFrame(detail) {
+    const shownSize = draftCanvas.hidden
+      ? { width: Number(image.dataset.width), height: Number(image.dataset.height) }
+      : { width: draftCanvas.width, height: draftCanvas.height };
+    image.dispatchEvent(new CustomEvent('vots:frame', { detail: { ...detail, ...shownSize } }));
   }
 
   // Shows a PNG (or any image) blob as the frame of `url`; false when current() says it is stale by then.
@@ -211,15 +221,16 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
     if (key === streamSentKey || (!draft && url === shownUrl)) return onChange();
     streamSentKey = key;
     const seq = socket.sendView(viewParamsRecord(params), !draft);
-    sentUrls.set(seq, url);
+    sentUrls.set(seq, { url, sentAt: performance.now() });
     streamPending = { seq, preview: previewing() };
     onChange();
   }
 
   async function showStreamFrame(header, blob) {
-    const url = sentUrls.get(header.seq);
+    const sent = sentUrls.get(header.seq);
     for (const seq of sentUrls.keys()) if (seq < header.seq) sentUrls.delete(seq); // drawn no more
-    if (header.seq < shownSeq || url === undefined) return;
+    if (header.seq < shownSeq || sent === undefined) return;
+    const { url } = sent;
     const current = () => header.seq >= shownSeq;
     try {
       if (header.still) {
@@ -241,6 +252,7 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
     }
     shownSeq = header.seq;
     image.dataset.transport = 'socket';
+    announceFrame({ sentAt: sent.sentAt, still: header.still, transport: 'socket' });
     lastFrame = { w: header.width, h: header.height, frameMs: header.frameMs };
     const preview = streamPending ? streamPending.preview : previewing();
     if (streamPending && header.seq >= streamPending.seq) streamPending = null;

@@ -9,7 +9,10 @@ void ViewerPacing::offer(PendingView view) {
 }
 
 std::optional<PendingView> ViewerPacing::next() {
-    if (!mWaiting || mDrawing || inFlight() >= mMaxInFlight) return std::nullopt;
+    if (!mWaiting || mDrawing) return std::nullopt;
+    // A still goes without waiting for acknowledgements: the page waits for it alone, and it is at most
+    // one frame more than the limit.
+    if (!mWaiting->still && inFlight() >= mMaxInFlight) return std::nullopt;
     std::optional<PendingView> view = std::move(mWaiting);
     mWaiting.reset();
     mDrawing = true;

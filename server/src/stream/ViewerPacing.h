@@ -25,8 +25,8 @@ public:
 
     /// The page's newest view; replaces one that was waiting (counted in dropped()).
     void offer(PendingView view);
-    /// The view to draw now, or none: nothing waits, one is being drawn, or the page has not
-    /// acknowledged enough. A view taken is being drawn until sent() or failed().
+    /// The view to draw now, or none: nothing waits, one is being drawn, or (for a draft) the page has
+    /// not acknowledged enough. A view taken is being drawn until sent() or failed().
     std::optional<PendingView> next();
     /// The view being drawn went out as a frame: its number (1, 2, ...).
     std::uint64_t sent();
