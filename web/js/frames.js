@@ -147,7 +147,8 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
   }
 
   // A "vots:frame" event on the image once a frame is on screen: {sentAt (when its view was asked for,
-  // performance.now()), width, height, still, transport}; bench/stream_drag.mjs times the drag with it.
+  // performance.now()), width, height, still, transport, drawMs (the server's, socket frames only)};
+  // bench/stream_drag.mjs times the drag with it.
   function announceFrame(detail) {
     const shownSize = draftCanvas.hidden
       ? { width: Number(image.dataset.width), height: Number(image.dataset.height) }
@@ -252,7 +253,7 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
     }
     shownSeq = header.seq;
     image.dataset.transport = 'socket';
-    announceFrame({ sentAt: sent.sentAt, still: header.still, transport: 'socket' });
+    announceFrame({ sentAt: sent.sentAt, still: header.still, transport: 'socket', drawMs: header.drawMs });
     lastFrame = { w: header.width, h: header.height, frameMs: header.frameMs };
     const preview = streamPending ? streamPending.preview : previewing();
     if (streamPending && header.seq >= streamPending.seq) streamPending = null;
