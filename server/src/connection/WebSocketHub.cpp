@@ -18,6 +18,7 @@
 #include <map>
 #include <mutex>
 #include <thread>
+#include <vector>
 
 namespace vots::server {
 namespace beast = boost::beast;
@@ -52,9 +53,8 @@ struct WebSocketHub::State {
     const Admit admit;
     const Open open;
     std::atomic<std::size_t> openCount{0};
-    std::mutex mutex; // stopped
+    std::mutex mutex; // all below but io: a session's last owner can be a draw thread, which then ends it
     bool stopped = false;
-    // io thread only (or after it has been joined):
     std::map<Session*, std::weak_ptr<Session>> sessions;
     std::map<std::string, std::size_t> perAddress;
     // Last: destroyed first, with the handlers (and so the sessions) it still holds.
@@ -69,12 +69,11 @@ namespace {
 
 class Session final : public WebSocketPeer, public std::enable_shared_from_this<Session> {
 public:
+    /// The hub has counted it (State::admitted) before it is made.
     Session(WebSocketHub::State& hub, tcp::socket socket, std::string address)
-        : mHub(hub), mWs(beast::tcp_stream(std::move(socket))), mAddress(std::move(address)) {
-        ++mHub.perAddress[mAddress];
-        ++mHub.openCount;
-    }
+        : mHub(hub), mWs(beast::tcp_stream(std::move(socket))), mAddress(std::move(address)) {}
     ~Session() override {
+        std::lock_guard lock(mHub.mutex);
         mHub.sessions.erase(this);
         if (--mHub.perAddress[mAddress] == 0) mHub.perAddress.erase(mAddress);
         --mHub.openCount;
@@ -233,16 +232,26 @@ void WebSocketHub::State::adoptNow(ArrivedRequest request) {
     if (const auto refused = admit(view)) return refuseUpgrade(fd, refused->status, refused->message);
     if (!websocket::is_upgrade(head))
         return refuseUpgrade(fd, 400, "this path takes a WebSocket upgrade only");
-    if (openCount.load() >= limits.maxSockets)
-        return refuseUpgrade(fd, 503, "too many viewer sockets open; try again later");
-    if (const auto it = perAddress.find(request.peerAddress);
-        it != perAddress.end() && it->second >= limits.maxSocketsPerAddress)
-        return refuseUpgrade(fd, 429, "too many viewer sockets from this address");
     tcp::socket socket(io);
     socket.assign(protocolOf(fd), fd, ec);
     if (ec) return refuseUpgrade(fd, 500, "cannot take over the socket");
-    auto session = std::make_shared<Session>(*this, std::move(socket), request.peerAddress);
-    sessions[session.get()] = session;
+    std::shared_ptr<Session> session;
+    {
+        std::lock_guard lock(mutex);
+        const auto it = perAddress.find(request.peerAddress);
+        if (openCount.load() >= limits.maxSockets ||
+            (it != perAddress.end() && it->second >= limits.maxSocketsPerAddress)) {
+            const bool full = openCount.load() >= limits.maxSockets;
+            socket.release(ec); // the fd is ours again, to answer and close
+            return refuseUpgrade(fd, full ? 503 : 429,
+                                 full ? "too many viewer sockets open; try again later"
+                                      : "too many viewer sockets from this address");
+        }
+        ++perAddress[request.peerAddress];
+        ++openCount;
+        session = std::make_shared<Session>(*this, std::move(socket), request.peerAddress);
+        sessions[session.get()] = session;
+    }
     session->accept(parser.release(), std::move(view));
 }
 
@@ -275,8 +284,14 @@ void WebSocketHub::stop() {
         mState->stopped = true;
     }
     net::post(mState->io, [state = mState.get()] {
-        for (auto& [raw, weak] : state->sessions)
-            if (const auto session = weak.lock()) session->close(GOING_AWAY_CLOSE, "the server stops");
+        std::vector<std::shared_ptr<Session>> open;
+        {
+            std::lock_guard lock(state->mutex);
+            for (auto& [raw, weak] : state->sessions)
+                if (auto session = weak.lock()) open.push_back(std::move(session));
+        }
+        for (const auto& session : open)
+            session->close(GOING_AWAY_CLOSE, "the server stops");
         state->work.reset();
     });
     const auto deadline = Clock::now() + STOP_GRACE;
