@@ -26,17 +26,29 @@ function recordSocketFrames(page) {
   return frames;
 }
 
+// The /render URLs the page asks for from now on.
+function recordRenders(page) {
+  const renders = [];
+  page.on('request', (r) => {
+    if (r.url().includes('/render?')) renders.push(r.url());
+  });
+  return renders;
+}
+
+// The viewer on the socket transport, idle on its first full frame.
+async function openIdle(page, dataset) {
+  const viewer = new ViewerPage(page);
+  await viewer.open({ dataset, cam: START_CAM }, { transport: 'socket' });
+  await viewer.waitForIdle();
+  return viewer;
+}
+
 test('a drag shows drafts over the socket and the still after release is /render\'s PNG', async (t) => {
   const ds = await pickDataset();
   await withPage(t, async (page) => {
     const frames = recordSocketFrames(page);
-    const renders = [];
-    page.on('request', (r) => {
-      if (r.url().includes('/render?')) renders.push(r.url());
-    });
-    const viewer = new ViewerPage(page);
-    await viewer.open({ dataset: ds.name, cam: START_CAM }, { transport: 'socket' });
-    await viewer.waitForIdle();
+    const renders = recordRenders(page);
+    const viewer = await openIdle(page, ds.name);
     const rendersBefore = renders.length;
     const framesBefore = frames.length;
 
@@ -75,13 +87,8 @@ test('a page whose socket is refused shows its frames through /render', async (t
   await withPage(t, async (page) => {
     // The socket opens and is closed at once, as a proxy that does not pass WebSockets would.
     await page.routeWebSocket(/\/api\/stream/, (ws) => ws.close({ code: 1011, reason: 'refused' }));
-    const renders = [];
-    page.on('request', (r) => {
-      if (r.url().includes('/render?')) renders.push(r.url());
-    });
-    const viewer = new ViewerPage(page);
-    await viewer.open({ dataset: ds.name, cam: START_CAM }, { transport: 'socket' });
-    await viewer.waitForIdle();
+    const renders = recordRenders(page);
+    const viewer = await openIdle(page, ds.name);
     await viewer.drag(100, 0);
     await viewer.waitForIdle();
     const transport = await page.evaluate(() => document.querySelector('[data-testid="image"]').dataset.transport);
