@@ -6,7 +6,10 @@
 
 #include "vots/render/Jpeg.h"
 
+#include <atomic>
+#include <chrono>
 #include <string>
+#include <thread>
 #include <tuple>
 #include <vector>
 
@@ -156,6 +159,40 @@ TEST_F(ServerViewerStream, BrokenMessagesCloseTheSocketWithTheirCode) {
     ASSERT_TRUE(socket.handshakeOk());
     ASSERT_TRUE(socket.sendText(viewMessage(1, false)));
     EXPECT_EQ(readFrame(socket).header["frame"], 1);
+}
+
+TEST_F(ServerViewerStream, ABusyViewerDoesNotHoldBackAnother) {
+    // A: a page that acknowledges every frame at once and always has a new view: it keeps the render
+    // thread busy for as long as it runs.
+    WebSocketClient busy(sServer->port(), "/api/stream");
+    ASSERT_TRUE(busy.handshakeOk());
+    std::atomic<int> busyFrames{0};
+    std::atomic<bool> stop{false};
+    std::thread dragging([&] {
+        std::uint64_t seq = 1;
+        busy.sendText(viewMessage(seq, false, "az=" + std::to_string(seq), "128x96"));
+        while (!stop) {
+            const Frame frame = readFrame(busy);
+            if (frame.bytes.empty()) return;
+            ++busyFrames;
+            ++seq;
+            busy.sendText(ackMessage(frame.header["frame"].get<std::uint64_t>()));
+            busy.sendText(viewMessage(seq, false, "az=" + std::to_string(seq), "128x96"));
+        }
+    });
+    while (busyFrames < 3)
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+
+    // B: one view; its frame comes after at most the busy page's frame being drawn and the one after.
+    WebSocketClient other(sServer->port(), "/api/stream");
+    ASSERT_TRUE(other.handshakeOk());
+    const int before = busyFrames;
+    ASSERT_TRUE(other.sendText(viewMessage(1, false, "az=77")));
+    EXPECT_EQ(readFrame(other).header["seq"], 1);
+    const int meanwhile = busyFrames - before;
+    stop = true;
+    dragging.join();
+    EXPECT_LE(meanwhile, 3) << "the busy page got " << meanwhile << " frames while the other waited for one";
 }
 
 TEST(ServerViewerStreamGuard, TheUpgradePassesHostOriginAndToken) {
