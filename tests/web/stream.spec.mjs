@@ -98,3 +98,36 @@ test('a page whose socket is refused shows its frames through /render', async (t
     assert.ok(frame.variance > 20, `frame looks blank: luminance variance ${frame.variance.toFixed(2)}`);
   });
 });
+
+test('while zooming over the socket the scale bar follows the frame shown, not the hand', async (t) => {
+  const ds = await pickDataset();
+  await withPage(t, async (page) => {
+    const viewer = await openIdle(page, ds.name);
+    // The bar as drawn at each frame (after the page's own listener, registered first) and at each pointer
+    // move (before the page's handler sees it, so it shows what the last move left), with the zoom of the
+    // frame then on screen.
+    await page.evaluate(() => {
+      window.__bars = [];
+      let frameZoom = null;
+      const sample = () => {
+        const bar = document.querySelector('[data-testid="scalebar"]');
+        if (frameZoom !== null) window.__bars.push({ zoom: frameZoom, mm: Number(bar.dataset.mm), px: Number(bar.dataset.px) });
+      };
+      document.querySelector('[data-testid="image"]').addEventListener('vots:frame', (e) => {
+        frameZoom = e.detail.view.cam.zoom;
+        sample();
+      });
+      document.querySelector('#view').addEventListener('pointermove', sample, { capture: true });
+    });
+    await viewer.drag(0, -150, { button: 'right' });
+    await viewer.waitForIdle();
+    const bars = await page.evaluate(() => window.__bars);
+    assert.ok(bars.length >= 3, `expected several frames during the zoom, got ${bars.length}`);
+    const zooms = new Set(bars.map((b) => b.zoom));
+    assert.ok(bars.length >= 10, `expected samples at the pointer moves too, got ${bars.length}`);
+    assert.ok(zooms.size >= 2, 'the zoom did not change between frames');
+    // Pixels per mm grow with the zoom of the frame's own camera: one ratio for every frame shown.
+    const ratios = bars.map((b) => b.px / b.mm / b.zoom);
+    for (const r of ratios) assert.ok(Math.abs(r / ratios[0] - 1) < 1e-3, `scale bar off its frame: ${JSON.stringify(bars)}`);
+  });
+});

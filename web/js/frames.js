@@ -38,7 +38,7 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
   let streamPending = null; // {seq, preview}: the newest view sent on the socket and not shown yet
   let streamSentKey = null; // what was sent last ("draft URL" or "still URL"): a repeat sends nothing
   let shownSeq = 0; // the socket frame shown last: an older one arriving later is not shown
-  const sentUrls = new Map(); // seq -> {url: the /render URL of the view sent, sentAt: performance.now()}
+  const sentUrls = new Map(); // seq -> {url: its /render URL, sentAt: performance.now(), view: a copy}
 
   function frameSize(draft) {
     const r = viewEl.getBoundingClientRect();
@@ -112,7 +112,7 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
   }
 
   async function send(url, draft) {
-    const mine = { url, draft, controller: new AbortController(), sentAt: performance.now() };
+    const mine = { url, draft, controller: new AbortController(), sentAt: performance.now(), view: structuredClone(view) };
     const preview = previewing(); // a grid frame in place of Vots still being fitted: it says nothing of them
     inflight = mine;
     if (!draft) draftPending = false;
@@ -122,7 +122,7 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
       if (inflight !== mine) return;
       if (!(await showPng(frame.blob, url, draft, () => inflight === mine))) return;
       image.dataset.transport = 'render';
-      announceFrame({ sentAt: mine.sentAt, still: !draft, transport: 'render' });
+      announceFrame({ sentAt: mine.sentAt, view: mine.view, still: !draft, transport: 'render' });
       lastFrame = { w: Number(image.dataset.width), h: Number(image.dataset.height), frameMs: frame.frameMs };
       if (!preview) {
         showFacts({
@@ -147,8 +147,8 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
   }
 
   // A "vots:frame" event on the image once a frame is on screen: {sentAt (when its view was asked for,
-  // performance.now()), width, height, still, transport, drawMs (the server's, socket frames only)};
-  // bench/stream_drag.mjs times the drag with it.
+  // performance.now()), view (a copy of the view it shows), width, height, still, transport, drawMs (the
+  // server's, socket frames only)}. The overlays follow it (ui.js); bench/stream_drag.mjs times drags.
   function announceFrame(detail) {
     const shownSize = draftCanvas.hidden
       ? { width: Number(image.dataset.width), height: Number(image.dataset.height) }
@@ -222,7 +222,7 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
     if (key === streamSentKey || (!draft && url === shownUrl)) return onChange();
     streamSentKey = key;
     const seq = socket.sendView(viewParamsRecord(params), !draft);
-    sentUrls.set(seq, { url, sentAt: performance.now() });
+    sentUrls.set(seq, { url, sentAt: performance.now(), view: structuredClone(view) });
     streamPending = { seq, preview: previewing() };
     onChange();
   }
@@ -253,7 +253,7 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
     }
     shownSeq = header.seq;
     image.dataset.transport = 'socket';
-    announceFrame({ sentAt: sent.sentAt, still: header.still, transport: 'socket', drawMs: header.drawMs });
+    announceFrame({ sentAt: sent.sentAt, view: sent.view, still: header.still, transport: 'socket', drawMs: header.drawMs });
     lastFrame = { w: header.width, h: header.height, frameMs: header.frameMs };
     const preview = streamPending ? streamPending.preview : previewing();
     if (streamPending && header.seq >= streamPending.seq) streamPending = null;
