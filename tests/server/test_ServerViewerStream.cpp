@@ -8,6 +8,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <memory>
 #include <string>
 #include <thread>
 #include <tuple>
@@ -193,6 +194,29 @@ TEST_F(ServerViewerStream, ABusyViewerDoesNotHoldBackAnother) {
     stop = true;
     dragging.join();
     EXPECT_LE(meanwhile, 3) << "the busy page got " << meanwhile << " frames while the other waited for one";
+}
+
+TEST_F(ServerViewerStream, OneAddressOpensAtMost32Sockets) {
+    std::vector<std::unique_ptr<WebSocketClient>> open;
+    for (int i = 0; i < 32; ++i) {
+        open.push_back(std::make_unique<WebSocketClient>(sServer->port(), "/api/stream"));
+        ASSERT_TRUE(open.back()->handshakeOk()) << "socket " << i;
+    }
+    const auto res = client()->Get("/api/stream", {{"Upgrade", "websocket"},
+                                                   {"Connection", "Upgrade"},
+                                                   {"Sec-WebSocket-Key", "dGhlIHNhbXBsZSBub25jZQ=="},
+                                                   {"Sec-WebSocket-Version", "13"}});
+    ASSERT_TRUE(res);
+    EXPECT_EQ(res->status, 429) << res->body;
+    open.clear(); // closed without a close frame, as a tab that is killed
+    // The server notices the closes on its own thread: a socket opens again soon after.
+    bool reopened = false;
+    for (int i = 0; i < 100 && !reopened; ++i) {
+        WebSocketClient again(sServer->port(), "/api/stream");
+        reopened = again.handshakeOk();
+        if (!reopened) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    EXPECT_TRUE(reopened);
 }
 
 TEST(ServerViewerStreamGuard, TheUpgradePassesHostOriginAndToken) {
