@@ -202,6 +202,7 @@ TEST_F(ServerViewerStream, OneAddressOpensAtMost32Sockets) {
         open.push_back(std::make_unique<WebSocketClient>(sServer->port(), "/api/stream"));
         ASSERT_TRUE(open.back()->handshakeOk()) << "socket " << i;
     }
+    EXPECT_GE(bodyJson(client()->Get("/api/stats"))["connections"]["viewerSockets"].get<int>(), 32);
     const auto res = client()->Get("/api/stream", {{"Upgrade", "websocket"},
                                                    {"Connection", "Upgrade"},
                                                    {"Sec-WebSocket-Key", "dGhlIHNhbXBsZSBub25jZQ=="},
