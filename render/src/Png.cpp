@@ -7,6 +7,8 @@
 // smaller (bench/RESULTS.md, "PNG encoding", has the figures).
 #include "vots/render/Png.h"
 
+#include "OpaqueChannels.h"
+
 #include "vots/fit/AtomicFile.h"
 #include "vots/fit/Error.h"
 
@@ -59,21 +61,6 @@ constexpr int PNG_FILTER_UP = 2;
 void configureStb() {
     static std::once_flag once;
     std::call_once(once, [] { stbi_write_force_png_filter = PNG_FILTER_UP; });
-}
-
-// The pixels as grey (one channel) when r == g == b everywhere, else as RGB.
-std::vector<std::uint8_t> opaqueChannels(const RgbaImage& image, int& channels) {
-    const std::vector<std::uint8_t>& rgba = image.pixels;
-    bool grey = true;
-    for (std::size_t i = 0; grey && i < rgba.size(); i += 4)
-        grey = rgba[i] == rgba[i + 1] && rgba[i] == rgba[i + 2];
-    channels = grey ? 1 : 3;
-    std::vector<std::uint8_t> out;
-    out.reserve(rgba.size() / 4 * static_cast<std::size_t>(channels));
-    for (std::size_t i = 0; i < rgba.size(); i += 4)
-        out.insert(out.end(), rgba.begin() + static_cast<std::ptrdiff_t>(i),
-                   rgba.begin() + static_cast<std::ptrdiff_t>(i) + channels);
-    return out;
 }
 
 } // namespace

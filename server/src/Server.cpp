@@ -47,6 +47,13 @@ httplib::Server::HandlerResponse refuse(httplib::Response& res, const Refusal& r
     return httplib::Server::HandlerResponse::Handled;
 }
 
+std::optional<Refusal> screenTarget(const httplib::Request& req) {
+    if (req.target.size() > MAX_TARGET_CHARS) return Refusal{414, "request target too long"};
+    if (isHostileTarget(req.target) || req.path.find('\0') != std::string::npos)
+        return Refusal{400, "path-like or encoded characters ('..', backslash, NUL) are not accepted"};
+    return std::nullopt;
+}
+
 // listen() again on a listening socket only changes its backlog (Linux, BSD).
 void raiseListenBacklog(const Server::Impl& s) {
     const int sock = s.listenSocket.load();
@@ -54,6 +61,12 @@ void raiseListenBacklog(const Server::Impl& s) {
 }
 
 } // namespace
+
+std::optional<Refusal> screenApiRequest(const Server::Impl& s, const httplib::Request& req) {
+    if (auto refused = screenTarget(req)) return refused;
+    if (auto refused = s.guard.checkHost(req)) return refused;
+    return s.guard.checkApi(req);
+}
 
 Server::Impl::Impl(ServerOptions opts)
     : options(std::move(opts)),
@@ -114,19 +127,12 @@ Server::Server(ServerOptions options) : mImpl(std::make_unique<Impl>(std::move(o
     // Every request passes here first: hostile targets and foreign Host names are refused before any
     // route sees them, API requests pass the token and cross-site checks, and other paths are static files.
     http.set_pre_routing_handler([&s](const httplib::Request& req, httplib::Response& res) {
-        if (req.target.size() > MAX_TARGET_CHARS) {
-            sendError(res, 414, "request target too long");
-            return httplib::Server::HandlerResponse::Handled;
-        }
-        if (isHostileTarget(req.target) || req.path.find('\0') != std::string::npos) {
-            sendError(res, 400, "path-like or encoded characters ('..', backslash, NUL) are not accepted");
-            return httplib::Server::HandlerResponse::Handled;
-        }
-        if (const auto refused = s.guard.checkHost(req)) return refuse(res, *refused);
         if (isApiPath(req.path)) {
-            if (const auto refused = s.guard.checkApi(req)) return refuse(res, *refused);
+            if (const auto refused = screenApiRequest(s, req)) return refuse(res, *refused);
             return httplib::Server::HandlerResponse::Unhandled;
         }
+        if (const auto refused = screenTarget(req)) return refuse(res, *refused);
+        if (const auto refused = s.guard.checkHost(req)) return refuse(res, *refused);
         // The viewer's own files need no token: they hold nothing secret, and the page has to load to
         // read the token from its URL.
         if (req.method != "GET" && req.method != "HEAD") {
@@ -154,6 +160,9 @@ Server::Server(ServerOptions options) : mImpl(std::make_unique<Impl>(std::move(o
     installJobRoutes(s);
     installPacsRoutes(s);
     installPacsStoreRoute(s);
+    s.viewers = std::make_unique<ViewerStreams>(s);
+    http.takeUpgrades(isViewerStreamRequest,
+                      [&s](ArrivedRequest request) { s.viewers->adopt(std::move(request)); });
 
     const std::vector<std::string> names = s.registry.names();
     const std::string& startup = s.options.startupDataset;
@@ -200,6 +209,7 @@ void Server::stop() {
     mImpl->fitJobs.shutdown(); // handlers waiting on fits are answered at once
     mImpl->http.stop();
     mImpl->http.stopConnections(); // waiting connections closed, running handlers and streams joined
+    if (mImpl->viewers) mImpl->viewers->stop(); // sockets closed, their draws finished
 }
 
 std::string Server::rendererSummary() const {

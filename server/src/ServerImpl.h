@@ -15,6 +15,7 @@
 #include "frames/RenderQueue.h"
 #include "routes/Params.h"
 #include "security/RequestGuard.h"
+#include "stream/ViewerStreams.h"
 #include "vots/server/Server.h"
 
 #include <httplib.h>
@@ -44,8 +45,9 @@ struct Server::Impl {
     ClientQuota renders;                      // /render and /turntable requests in progress per client
     RequestGuard guard;                       // Host, token and cross-site checks before any route
     std::atomic<int> listenSocket{-1};        // the socket httplib binds, so its backlog can be raised
-    std::thread readyingStartup; // readyStartupDataset(options.startupDataset); joined by ~Server
-    GatedHttpServer http;        // destroyed first: no handler runs after the rest is gone
+    std::thread readyingStartup;            // readyStartupDataset(options.startupDataset); joined by ~Server
+    std::unique_ptr<ViewerStreams> viewers; // GET /api/stream's sockets; after the parts their frames use
+    GatedHttpServer http;                   // destroyed first: no handler runs after the rest is gone
 };
 
 // Route installers, one file each.
@@ -56,6 +58,9 @@ void installTurntableRoute(Server::Impl& s); // GET /turntable
 void installJobRoutes(Server::Impl& s);      // POST /api/fit, GET /api/jobs/{id}, GET /api/jobs/{id}/events
 void installPacsRoutes(Server::Impl& s);     // /api/pacs: searches and the opens of series
 void installPacsStoreRoute(Server::Impl& s); // POST /api/pacs/{name}/store, GET /api/pacs/stores/{id}
+/// The checks an API request passes before its route (target 414/400, Host 421, token 401, cross-site
+/// 403, JSON 415): the pre-routing handler's for API paths, and the viewer socket's at its upgrade.
+std::optional<Refusal> screenApiRequest(const Server::Impl& s, const httplib::Request& req);
 /// Static files from the web folder, answered in the pre-routing step for non-API paths.
 bool serveStatic(const Server::Impl& s, const httplib::Request& req, httplib::Response& res);
 

@@ -81,6 +81,16 @@ for i, query in enumerate([
         '{"dataset":"x","eps":7.5}']):
     put("fuzz_render_query", "query%d.txt" % i, query)
 
+# The viewer socket's messages (docs/API.md, "Viewer socket").
+for i, message in enumerate([
+        '{"type":"view","seq":1,"still":false,"params":{"dataset":"cranium","cam":"az=30,el=20","size":"1140x900",'
+        '"eps":"2%","mode":"mip","window":"300,1500","colormap":"grey"}}',
+        '{"type":"view","seq":18446744073709551615,"still":true,"params":{"dataset":"x","slab":"0.1:0.5"}}',
+        '{"type":"ack","frame":3}',
+        '{"type":"view","seq":2,"params":{"dataset":"x","size":"0x0"}}',
+        '[{"type":"ack"}]']):
+    put("fuzz_stream_message", "message%d.txt" % i, message)
+
 # multipart/related bodies: byte 0 picks the chunk size, byte 1 the boundary "012345" (5 -> 6 characters).
 def multipart(parts, close=True, preamble=b""):
     body = preamble

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# Hostile connections: 8 clients rendering with and without 1,000 idle connections and 200 event-stream
-# watchers; their /render p99 must stay within 20 % and every /api/* request under 100 ms.
+# Hostile connections: 8 clients rendering with and without 1,000 idle connections, 200 event-stream
+# watchers and 200 idle viewer sockets; their /render p99 must stay within 20 % and every /api/* request
+# under 100 ms.
 #
-# Usage: tests/reliability/hostile.sh [--idle N] [--watchers N] [--renderers N] [--seconds S per phase]
+# Usage: tests/reliability/hostile.sh [--idle N] [--watchers N] [--idle-sockets N] [--renderers N]
+#        [--seconds S per phase]
 # Builds build/rel (Release) unless VOTS_BIN names a binary. Fails on any error answer that is not a JSON
 # 4xx/5xx, a missed goal, or a dead server.
 set -euo pipefail

@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Hostile-connection load against a running `vots serve` on 127.0.0.1 (driven by hostile.sh and soak.sh).
 
-goal: 8 clients rendering (a new camera angle per request), with and without 1,000 idle connections and
-200 event-stream watchers; probes /api/* every 100 ms. Both phases keep one fit running (a new eps when one
+goal: 8 clients rendering (a new camera angle per request), with and without 1,000 idle connections,
+200 event-stream watchers and 200 idle viewer sockets (WebSockets on /api/stream that never send); probes /api/* every 100 ms. Both phases keep one fit running (a new eps when one
 ends), so the only difference between them is the hostile connections; the watchers watch that fit.
 soak: the same parts mixed for --seconds, plus eps changes and clients that disconnect mid-answer;
 samples the server's RSS and open descriptors. Exits 1 on any failure (see the summary it prints).
@@ -21,6 +21,7 @@ p.add_argument("--fit-eps", type=float, default=0.7, help="percent; long fits ke
 p.add_argument("--renderers", type=int, default=8)
 p.add_argument("--idle", type=int, default=1000)
 p.add_argument("--watchers", type=int, default=200)
+p.add_argument("--idle-sockets", type=int, default=200, help="viewer WebSockets that are opened and never used")
 p.add_argument("--seconds", type=float, default=30)
 p.add_argument("--sample-seconds", type=float, default=30)
 p.add_argument("--errors-only", action="store_true", help="report the latency goals but fail only on errors")
@@ -140,6 +141,8 @@ class Hostiles:
         self.due = []  # when closed watchers come back: a browser's EventSource retries after 3 s
         self.open_idle_count = multiprocessing.Value("q", 0)
         self.watcher_count = multiprocessing.Value("q", 0)
+        self.socket_count = multiprocessing.Value("q", 0)
+        self.sockets_opened = 0  # spreads the viewer sockets over source addresses
         self.reopen_count = multiprocessing.Value("q", 0)
         self.stop = multiprocessing.Event()
         self.ready = multiprocessing.Event()
@@ -160,6 +163,11 @@ class Hostiles:
                 self.open_watcher()
             except OSError as e:
                 fail(f"watcher: {e}")
+        for i in range(a.idle_sockets):
+            try:
+                self.open_viewer_socket()
+            except OSError as e:
+                fail(f"viewer socket {i}: {e}")
         self.ready.set()
         self.loop()
         for key in list(self.sel.get_map().values()):
@@ -170,6 +178,10 @@ class Hostiles:
     @property
     def watchers(self):
         return self.watcher_count.value
+
+    @property
+    def viewer_sockets(self):
+        return self.socket_count.value
 
     @property
     def reopened(self):
@@ -215,6 +227,28 @@ class Hostiles:
         self.sel.register(s, selectors.EVENT_READ, bytearray())
         self.watcher_count.value += 1
 
+    def open_viewer_socket(self):
+        """A viewer's WebSocket that is upgraded and then left silent (32 at most per address: spread)."""
+        self.sockets_opened += 1
+        source = f"127.0.3.{self.sockets_opened % 250 + 1}"
+        s = socket.create_connection(("127.0.0.1", a.port), source_address=(source, 0), timeout=30)
+        s.sendall((f"GET /api/stream HTTP/1.1\r\nHost: 127.0.0.1:{a.port}\r\nUpgrade: websocket\r\n"
+                   "Connection: Upgrade\r\nSec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\n"
+                   "Sec-WebSocket-Version: 13\r\n\r\n").encode())
+        head = b""
+        while b"\r\n\r\n" not in head and len(head) < 4096:
+            chunk = s.recv(4096)
+            if not chunk:
+                break
+            head += chunk
+        if not head.startswith(b"HTTP/1.1 101"):
+            s.close()
+            fail(f"viewer socket answered {head[:40]!r}")
+            return
+        s.setblocking(False)
+        self.sel.register(s, selectors.EVENT_READ, "socket")
+        self.socket_count.value += 1
+
     def loop(self):
         last_refresh = time.monotonic()
         while not self.stop.is_set():
@@ -226,6 +260,16 @@ class Hostiles:
                     continue
                 except OSError:
                     data = b""
+                if key.data == "socket":
+                    if not data:  # closed by the server (idle for a minute): open another
+                        self.sel.unregister(s)
+                        s.close()
+                        self.socket_count.value -= 1
+                        try:
+                            self.open_viewer_socket()
+                        except OSError as e:
+                            fail(f"viewer socket: {e}")
+                    continue  # a ping: left unanswered, as a frozen page would
                 if data:
                     if len(key.data) < 16:
                         key.data.extend(data)
@@ -276,7 +320,8 @@ def phase(name, seconds, fits, hostiles=None):
         t.join()
     extra = ""
     if hostiles:
-        extra = f", idle {hostiles.idle_open} (reopened {hostiles.reopened}), watchers {hostiles.watchers}"
+        extra = (f", idle {hostiles.idle_open} (reopened {hostiles.reopened}), watchers {hostiles.watchers}, "
+                 f"viewer sockets {hostiles.viewer_sockets}")
     print(f"{name}: renders {len(renders)}, p50 {percentile(renders, 50) * 1000:.0f} ms, "
           f"p99 {percentile(renders, 99) * 1000:.0f} ms; /api/* {len(probes)}, p50 {percentile(probes, 50) * 1000:.1f} ms, "
           f"p99 {percentile(probes, 99) * 1000:.1f} ms, max {max(probes or [0]) * 1000:.1f} ms; fits started {fits.started}{extra}", flush=True)

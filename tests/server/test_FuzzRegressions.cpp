@@ -1,8 +1,10 @@
-// Replays the fuzz seeds and crashes of fuzz_camera and fuzz_render_query: each parses or is refused cleanly.
+// Replays the fuzz seeds and crashes of fuzz_camera, fuzz_render_query and fuzz_stream_message: each parses
+// or is refused cleanly.
 #include "FuzzCorpus.h"
 
 #include "HttpError.h"
 #include "routes/Params.h"
+#include "stream/StreamMessages.h"
 #include "vots/fit/Error.h"
 #include "vots/render/CameraText.h"
 
@@ -43,6 +45,37 @@ TEST(FuzzRegressions, RenderQueryAndFitBody) {
             EXPECT_EQ(e.status(), 400);
         }
     }
+}
+
+TEST(FuzzRegressions, StreamMessage) {
+    const auto inputs = fuzzInputs("fuzz_stream_message");
+    ASSERT_FALSE(inputs.empty());
+    int views = 0, acks = 0, closes = 0, refusals = 0;
+    for (const auto& [name, text] : inputs) {
+        SCOPED_TRACE(name);
+        try {
+            const auto message = vots::server::parseClientMessage(text);
+            if (const auto* view = std::get_if<vots::server::ViewMessage>(&message)) {
+                ++views;
+                EXPECT_TRUE(
+                    vots::server::isDatasetName(vots::server::parseRenderParams(view->query).dataset));
+            } else {
+                ++acks;
+            }
+        } catch (const vots::server::ProtocolError& e) {
+            ++closes;
+            EXPECT_TRUE(e.code() == vots::server::CloseCode::InvalidPayload ||
+                        e.code() == vots::server::CloseCode::Policy);
+        } catch (const vots::server::HttpError& e) {
+            ++refusals;
+            EXPECT_EQ(e.status(), 400);
+        }
+    }
+    // The seeds cover every outcome.
+    EXPECT_GT(views, 0);
+    EXPECT_GT(acks, 0);
+    EXPECT_GT(closes, 0);
+    EXPECT_GT(refusals, 0);
 }
 
 } // namespace

@@ -67,6 +67,11 @@ function viewQuery(p) {
   return q;
 }
 
+// The /render parameters as the viewer socket's view message carries them ({name: string}).
+export function viewParamsRecord(p) {
+  return Object.fromEntries(viewQuery(p));
+}
+
 // Builds the /render URL; parameter order is fixed so equal states give byte-equal URLs.
 export function renderUrl(p) {
   return `render?${viewQuery(p)}`;

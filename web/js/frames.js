@@ -1,18 +1,24 @@
-// Frames: the /render request for the view, one in flight at a time, drafts while moving, the shown image.
-import { ApiError, fetchFrame, renderUrl } from './api.js';
+// Frames: the view's frames over the viewer socket (stream.js), else one /render request in flight at a
+// time; drafts while moving, the exact frame once still, the shown image.
+import { ApiError, fetchFrame, renderUrl, viewParamsRecord } from './api.js';
 import { formatCamera } from './camera.js';
 import { DEFAULT_RENDERER, GRID_MODES, MAX_SERVED_SIDE } from './contract.js';
 import { formatSlab } from './slab.js';
 import { fmtExact } from './format.js';
+import { openViewerSocket } from './stream.js';
 
 const MAX_FRAME_PX = Math.min(2048, MAX_SERVED_SIDE); // longest side of a requested frame, in device pixels
 const DRAFT_DIVISOR = 3; // frames while dragging are this much smaller, scaled up by CSS
 const RESIZE_SETTLE_MS = 100; // a frame for the new view size once resizing pauses this long
 
+// ?transport=render in the page's URL keeps to GET /render (the benchmark's baseline).
+const SOCKET_WANTED = new URLSearchParams(window.location.search).get('transport') !== 'render';
+
 // view: the view object the wiring owns (read at request time). banner: createBanner's object.
 // showFacts({votCount, fitSeconds}) shows what a frame's headers say; isMoving() tells whether a drag or
 // wheel is still going (then the next frame is a draft too); onChange() runs whenever the status may differ.
-export function createFrames({ viewEl, image, view, banner, showFacts, isMoving, onChange }) {
+// draftCanvas: where the socket's JPEG drafts are drawn (over the image, hidden once the still is shown).
+export function createFrames({ viewEl, image, draftCanvas, view, banner, showFacts, isMoving, onChange }) {
   // One random id per page: the server answers 409 "superseded" to our older requests.
   const clientId = [...crypto.getRandomValues(new Uint8Array(8))].map((b) => b.toString(16).padStart(2, '0')).join('');
   let renderEps = null; // eps used for frames: the target once its fit is done, else the previous one
@@ -27,6 +33,12 @@ export function createFrames({ viewEl, image, view, banner, showFacts, isMoving,
   let shownObjectUrl = null;
   let lastFrame = null; // {w, h, frameMs}
   let resizeTimer = 0;
+  let socket = null; // the viewer socket once open; null: frames come from GET /render
+  let socketTried = false;
+  let streamPending = null; // {seq, preview}: the newest view sent on the socket and not shown yet
+  let streamSentKey = null; // what was sent last ("draft URL" or "still URL"): a repeat sends nothing
+  let shownSeq = 0; // the socket frame shown last: an older one arriving later is not shown
+  const sentUrls = new Map(); // seq -> {url: its /render URL, sentAt: performance.now(), view: a copy}
 
   function frameSize(draft) {
     const r = viewEl.getBoundingClientRect();
@@ -81,6 +93,8 @@ export function createFrames({ viewEl, image, view, banner, showFacts, isMoving,
     rafId = 0;
     if (!view.dataset || (renderEps === null && !previewing())) return onChange();
     const draft = wantDraft;
+    openSocketOnce();
+    if (socket) return streamFlush(draft);
     const url = frameUrl(draft);
     if (inflight) {
       if (inflight.url === url) return onChange();
@@ -98,7 +112,7 @@ export function createFrames({ viewEl, image, view, banner, showFacts, isMoving,
   }
 
   async function send(url, draft) {
-    const mine = { url, draft, controller: new AbortController() };
+    const mine = { url, draft, controller: new AbortController(), sentAt: performance.now(), view: structuredClone(view) };
     const preview = previewing(); // a grid frame in place of Vots still being fitted: it says nothing of them
     inflight = mine;
     if (!draft) draftPending = false;
@@ -106,29 +120,10 @@ export function createFrames({ viewEl, image, view, banner, showFacts, isMoving,
     try {
       const frame = await fetchFrame(url, mine.controller.signal);
       if (inflight !== mine) return;
-      const objectUrl = URL.createObjectURL(frame.blob);
-      const probe = new Image();
-      probe.src = objectUrl;
-      try {
-        await probe.decode();
-      } catch {
-        URL.revokeObjectURL(objectUrl);
-        throw new ApiError('Rendering: the server sent an image the browser cannot decode');
-      }
-      if (inflight !== mine) {
-        URL.revokeObjectURL(objectUrl);
-        return;
-      }
-      image.src = objectUrl;
-      image.dataset.quality = draft ? 'draft' : 'full';
-      image.dataset.frameUrl = url;
-      image.dataset.renderer = new URLSearchParams(url.split('?')[1]).get('renderer') || DEFAULT_RENDERER;
-      image.dataset.width = String(probe.naturalWidth);
-      image.dataset.height = String(probe.naturalHeight);
-      if (shownObjectUrl) URL.revokeObjectURL(shownObjectUrl);
-      shownObjectUrl = objectUrl;
-      shownUrl = url;
-      lastFrame = { w: probe.naturalWidth, h: probe.naturalHeight, frameMs: frame.frameMs };
+      if (!(await showPng(frame.blob, url, draft, () => inflight === mine))) return;
+      image.dataset.transport = 'render';
+      announceFrame({ sentAt: mine.sentAt, view: mine.view, still: !draft, transport: 'render' });
+      lastFrame = { w: Number(image.dataset.width), h: Number(image.dataset.height), frameMs: frame.frameMs };
       if (!preview) {
         showFacts({
           votCount: frame.votCount !== null ? frame.votCount : undefined,
@@ -149,6 +144,122 @@ export function createFrames({ viewEl, image, view, banner, showFacts, isMoving,
       }
       onChange();
     }
+  }
+
+  // A "vots:frame" event on the image once a frame is on screen: {sentAt (when its view was asked for,
+  // performance.now()), view (a copy of the view it shows), width, height, still, transport, drawMs (the
+  // server's, socket frames only)}. The overlays follow it (ui.js); bench/stream_drag.mjs times drags.
+  function announceFrame(detail) {
+    const shownSize = draftCanvas.hidden
+      ? { width: Number(image.dataset.width), height: Number(image.dataset.height) }
+      : { width: draftCanvas.width, height: draftCanvas.height };
+    image.dispatchEvent(new CustomEvent('vots:frame', { detail: { ...detail, ...shownSize } }));
+  }
+
+  // Shows a PNG (or any image) blob as the frame of `url`; false when current() says it is stale by then.
+  async function showPng(blob, url, draft, current) {
+    const objectUrl = URL.createObjectURL(blob);
+    const probe = new Image();
+    probe.src = objectUrl;
+    try {
+      await probe.decode();
+    } catch {
+      URL.revokeObjectURL(objectUrl);
+      throw new ApiError('Rendering: the server sent an image the browser cannot decode');
+    }
+    if (!current()) {
+      URL.revokeObjectURL(objectUrl);
+      return false;
+    }
+    image.src = objectUrl;
+    image.dataset.quality = draft ? 'draft' : 'full';
+    image.dataset.frameUrl = url;
+    image.dataset.renderer = new URLSearchParams(url.split('?')[1]).get('renderer') || DEFAULT_RENDERER;
+    image.dataset.width = String(probe.naturalWidth);
+    image.dataset.height = String(probe.naturalHeight);
+    if (shownObjectUrl) URL.revokeObjectURL(shownObjectUrl);
+    shownObjectUrl = objectUrl;
+    shownUrl = url;
+    draftCanvas.hidden = true;
+    return true;
+  }
+
+  // The socket opens with the first frame; until it is open (and if it never opens, or closes) frames
+  // come from GET /render.
+  function openSocketOnce() {
+    if (socketTried || !SOCKET_WANTED) return;
+    socketTried = true;
+    const opening = openViewerSocket({
+      onFrame: showStreamFrame,
+      onError: (message) => {
+        if (streamPending && message.seq >= streamPending.seq) streamPending = null;
+        banner.show(`Rendering: ${message.error} (HTTP ${message.status})`, 'render');
+        onChange();
+      },
+      onDown: () => {
+        socket = null;
+        streamPending = null;
+        streamSentKey = null;
+        schedule({ draft: isMoving() });
+      },
+    });
+    opening.ready.then((open) => {
+      if (!open) return;
+      socket = opening;
+      if (inflight) {
+        inflight.controller.abort(); // its frame would land after the socket's newer ones
+        inflight = null;
+      }
+      schedule({ draft: isMoving() });
+    });
+  }
+
+  // The view at full size goes out; the server draws drafts at the size its frame budget allows.
+  function streamFlush(draft) {
+    const params = frameParams(false, undefined);
+    const url = renderUrl(params);
+    const key = `${draft ? 'draft' : 'still'} ${url}`;
+    if (key === streamSentKey || (!draft && url === shownUrl)) return onChange();
+    streamSentKey = key;
+    const seq = socket.sendView(viewParamsRecord(params), !draft);
+    sentUrls.set(seq, { url, sentAt: performance.now(), view: structuredClone(view) });
+    streamPending = { seq, preview: previewing() };
+    onChange();
+  }
+
+  async function showStreamFrame(header, blob) {
+    const sent = sentUrls.get(header.seq);
+    for (const seq of sentUrls.keys()) if (seq < header.seq) sentUrls.delete(seq); // drawn no more
+    if (header.seq < shownSeq || sent === undefined) return;
+    const { url } = sent;
+    const current = () => header.seq >= shownSeq;
+    try {
+      if (header.still) {
+        if (!(await showPng(blob, url, false, current))) return;
+      } else {
+        const bitmap = await createImageBitmap(blob);
+        if (!current()) return bitmap.close();
+        draftCanvas.width = bitmap.width;
+        draftCanvas.height = bitmap.height;
+        draftCanvas.getContext('2d').drawImage(bitmap, 0, 0);
+        bitmap.close();
+        draftCanvas.hidden = false;
+        image.dataset.quality = 'draft';
+        shownUrl = `draft ${url}`;
+      }
+    } catch (e) {
+      banner.show(e.message || 'Rendering: the server sent an image the browser cannot decode', 'render');
+      return;
+    }
+    shownSeq = header.seq;
+    image.dataset.transport = 'socket';
+    announceFrame({ sentAt: sent.sentAt, view: sent.view, still: header.still, transport: 'socket', drawMs: header.drawMs });
+    lastFrame = { w: header.width, h: header.height, frameMs: header.frameMs };
+    const preview = streamPending ? streamPending.preview : previewing();
+    if (streamPending && header.seq >= streamPending.seq) streamPending = null;
+    if (!preview && header.still) showFacts({ votCount: header.votCount, fitSeconds: header.fitSeconds });
+    banner.clear('render');
+    onChange();
   }
 
   new ResizeObserver(() => {
@@ -174,7 +285,7 @@ export function createFrames({ viewEl, image, view, banner, showFacts, isMoving,
     },
     // Whether the frames now come from the grid in place of the Vots that are still being fitted.
     previewing,
-    busy: () => Boolean(inflight || rafId || resizeTimer || draftPending),
+    busy: () => Boolean(inflight || rafId || resizeTimer || draftPending || streamPending),
     // The full-quality frame's parameters without the page's id (for download links), null before a fit.
     viewParams: () => (view.dataset && renderEps !== null ? frameParams(false, undefined) : null),
     hasShownFrame: () => shownUrl !== null,

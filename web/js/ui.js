@@ -27,6 +27,7 @@ const $ = (id) => document.getElementById(id);
 const el = {
   view: $('view'),
   image: $('image'),
+  draftCanvas: $('draft'),
   status: $('status'),
   error: $('error'),
   errorText: $('error-text'),
@@ -93,16 +94,15 @@ const input = attachInput({
   },
 });
 
-// A change while a gesture goes on: the hash throttled, the overlays now, a draft frame.
+// A change while a gesture goes on: the hash throttled, a draft frame; the overlays follow the frames shown.
 function draft() {
   slabControl.sync(); // first: it keeps the slab inside the volume, which the hash then says
   writeHash({ now: false });
   syncViewButtons(el.viewButtons, view.cam);
-  showViewOverlays();
   frames.schedule({ draft: true });
 }
 const frames = createFrames({
-  viewEl: el.view, image: el.image, view, banner, showFacts, isMoving: input.isMoving, onChange: updateStatus,
+  viewEl: el.view, image: el.image, draftCanvas: el.draftCanvas, view, banner, showFacts, isMoving: input.isMoving, onChange: updateStatus,
 });
 const fits = createFits({
   progress: { box: el.fitProgress, bar: el.progress, label: el.progressLabel },
@@ -156,6 +156,9 @@ const cine = createCine({
     el.cine.textContent = running ? 'Stop cine' : 'Cine';
   },
 });
+
+// The labels and bars of the frame on screen, not of a camera the hand has moved on from.
+el.image.addEventListener('vots:frame', (e) => showOverlays(el, e.detail.view, currentDataset()));
 
 function showViewOverlays() {
   showOverlays(el, view, currentDataset());

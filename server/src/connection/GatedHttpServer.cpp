@@ -68,6 +68,13 @@ void GatedHttpServer::stopConnections() {
     if (mStreams) mStreams->joinAll();  // streams end with their job, or at once once stop() has run
 }
 
+void GatedHttpServer::takeUpgrades(std::function<bool(const std::string&, const std::string&)> isUpgrade,
+                                   std::function<void(ArrivedRequest)> take) {
+    std::lock_guard lock(mUpgradeMutex);
+    mIsUpgrade = std::move(isUpgrade);
+    mTakeUpgrade = std::move(take);
+}
+
 std::size_t GatedHttpServer::waitingConnections() const {
     return mGate ? mGate->waiting() : 0;
 }
@@ -85,6 +92,10 @@ bool GatedHttpServer::process_and_close_socket(socket_t sock) {
 }
 
 void GatedHttpServer::route(ArrivedRequest request) {
+    {
+        std::lock_guard lock(mUpgradeMutex);
+        if (mIsUpgrade && mIsUpgrade(request.method, request.target)) return mTakeUpgrade(std::move(request));
+    }
     auto shared = std::make_shared<ArrivedRequest>(std::move(request));
     if (isEventStreamRequest(shared->method, shared->target)) {
         if (!mStreams->tryStart([this, shared] { serve(*shared); })) {

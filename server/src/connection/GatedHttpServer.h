@@ -11,6 +11,7 @@
 
 #include <atomic>
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -33,6 +34,11 @@ public:
     /// After stop(): closes waiting connections, then waits for the handlers and streams running.
     void stopConnections();
 
+    /// Requests for which isUpgrade(method, target) holds go to `take` (on the gate's thread: it must only
+    /// hand them on) instead of a worker: the WebSocket upgrades. Call before listen_after_bind().
+    void takeUpgrades(std::function<bool(const std::string&, const std::string&)> isUpgrade,
+                      std::function<void(ArrivedRequest)> take);
+
     std::size_t waitingConnections() const;
     std::size_t runningStreams() const;
 
@@ -47,6 +53,10 @@ private:
     bool mStopped = false;
     std::unique_ptr<httplib::ThreadPool> mWorkers;
     std::unique_ptr<StreamThreads> mStreams;
+    // Its own lock: stopConnections() holds mMutex while it joins the gate thread, which routes.
+    std::mutex mUpgradeMutex;
+    std::function<bool(const std::string&, const std::string&)> mIsUpgrade;
+    std::function<void(ArrivedRequest)> mTakeUpgrade;
     std::unique_ptr<ConnectionGate> mGate; // after the workers: stopped first, it feeds them
 };
 

@@ -24,12 +24,14 @@ export class ViewerPage {
     this.projection = this.byId('projection');
   }
 
-  // hash: an object of URL-hash parameters or a ready string starting with '#'.
-  async open(hash = '') {
+  // hash: an object of URL-hash parameters or a ready string starting with '#'. transport: 'render' keeps
+  // the page on GET /render (what most specs observe, request by request); 'socket', the default viewer,
+  // frames over GET /api/stream (stream.spec.mjs). VOTS_TEST_TRANSPORT=socket runs every spec's page on it.
+  async open(hash = '', { transport = process.env.VOTS_TEST_TRANSPORT || 'render' } = {}) {
     const text = typeof hash === 'string'
       ? hash
       : '#' + Object.entries(hash).map(([k, v]) => `${k}=${encodeURIComponent(v)}`).join('&');
-    await this.page.goto(`${BASE_URL}/${text}`);
+    await this.page.goto(`${BASE_URL}/${transport === 'render' ? '?transport=render' : ''}${text}`);
   }
 
   viewButton(name) {

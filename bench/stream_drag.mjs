@@ -1,0 +1,113 @@
+// Benchmark: a drag in headless Chromium at 1400x900 over the viewer socket and over GET /render, same run.
+//
+//   VOTS_URL=http://127.0.0.1:8080 node bench/stream_drag.mjs [dataset] [runs] [drag ms]
+// For each transport (alternating, so both see the same machine load) and run: frames/s shown while the
+// mouse moves and their median size, release to the full-resolution lossless frame, and pointer move to
+// the first frame that shows it (p50, p90). Medians over the runs. Needs a running `vots serve` and
+// tests/web/node_modules (tests/web/run.sh installs it).
+import { withPage } from '../tests/web/support/browser.mjs';
+import { ViewerPage } from '../tests/web/pages/ViewerPage.mjs';
+
+const dataset = process.argv[2] || 'cranium';
+const runs = Number(process.argv[3] || 5);
+const dragMs = Number(process.argv[4] || 2000);
+const MOVE_EVERY_MS = 16; // a 60 Hz mouse
+// The two pages start at different cameras, and each invocation elsewhere, so that no frame is met in the
+// server's frame cache (an earlier run's, or the other page's).
+const START_AZ = Math.round((Date.now() / 1000) % 3600) / 10;
+const CAMS = {
+  socket: `az=${START_AZ},el=15,zoom=1,pan=0:0,proj=ortho,fov=30`,
+  render: `az=${START_AZ + 90},el=10,zoom=1,pan=0:0,proj=ortho,fov=30`,
+};
+
+const median = (xs) => {
+  const s = [...xs].sort((a, b) => a - b);
+  return s.length ? s[Math.floor(s.length / 2)] : NaN;
+};
+const quantile = (xs, q) => {
+  const s = [...xs].sort((a, b) => a - b);
+  return s.length ? s[Math.min(s.length - 1, Math.floor(q * s.length))] : NaN;
+};
+
+// One drag: the page records its pointer moves and the frames it shows (vots:frame); returns the figures.
+async function dragOnce(page, viewer, run) {
+  await page.evaluate(() => {
+    const view = document.querySelector('#view');
+    const img = document.querySelector('[data-testid="image"]');
+    window.__bench = { moves: [], frames: [], up: null };
+    if (window.__benchListening) return; // once per page: each drag only resets what they record
+    window.__benchListening = true;
+    view.addEventListener('pointermove', () => window.__bench.moves.push(performance.now()), { capture: true });
+    view.addEventListener('pointerup', () => { window.__bench.up = performance.now(); }, { capture: true });
+    img.addEventListener('vots:frame', (e) => window.__bench.frames.push({ ...e.detail, shownAt: performance.now() }));
+  });
+  const box = await viewer.image.boundingBox();
+  const x = box.x + box.width / 2;
+  const y = box.y + box.height / 2;
+  await page.mouse.move(x, y);
+  await page.mouse.down();
+  const steps = Math.round(dragMs / MOVE_EVERY_MS);
+  const start = Date.now();
+  for (let i = 1; i <= steps; i++) {
+    // Each drag ends at a camera not drawn before (no frame-cache hit for the exact frame).
+    const reach = 150 + 23 * run;
+    await page.mouse.move(x + reach * (i / steps), y + 40 * Math.sin((2 * Math.PI * i) / steps));
+    const wait = start + i * MOVE_EVERY_MS - Date.now();
+    if (wait > 0) await page.waitForTimeout(wait);
+  }
+  await page.mouse.up();
+  await viewer.waitForIdle(120000);
+  const { moves, frames, up } = await page.evaluate(() => window.__bench);
+  const duringDrag = frames.filter((f) => f.shownAt >= moves[0] && f.shownAt <= up && !f.still);
+  const still = frames.find((f) => f.still && f.shownAt >= up);
+  // A move is shown by the first frame whose view was asked for after it.
+  const latencies = [];
+  for (const m of moves) {
+    const f = frames.find((fr) => fr.sentAt >= m);
+    if (f) latencies.push(f.shownAt - m);
+  }
+  return {
+    fps: (duringDrag.length * 1000) / (up - moves[0]),
+    width: median(duringDrag.map((f) => f.width)),
+    height: median(duringDrag.map((f) => f.height)),
+    releaseMs: still ? still.shownAt - up : NaN,
+    fullSize: still ? `${still.width}x${still.height}` : '?',
+    p50: quantile(latencies, 0.5),
+    p90: quantile(latencies, 0.9),
+    transport: still?.transport || frames.at(-1)?.transport,
+    stillDrawMs: still?.drawMs,
+  };
+}
+
+const results = { socket: [], render: [] };
+const pages = {};
+const fakeTest = { name: 'stream-drag-bench' };
+await withPage(fakeTest, async (socketPage) => {
+  await withPage(fakeTest, async (renderPage) => {
+    for (const [transport, page] of [['socket', socketPage], ['render', renderPage]]) {
+      await page.setViewportSize({ width: 1400, height: 900 });
+      const viewer = new ViewerPage(page);
+      await viewer.open({ dataset, cam: CAMS[transport] }, { transport });
+      await viewer.waitForIdle(600000);
+      pages[transport] = { page, viewer };
+    }
+    for (let i = 0; i < runs; i++) {
+      for (const transport of ['socket', 'render']) {
+        const { page, viewer } = pages[transport];
+        const r = await dragOnce(page, viewer, i);
+        results[transport].push(r);
+        console.log(`${transport} run ${i + 1}: ${r.fps.toFixed(1)} frames/s at ${r.width}x${r.height} ` +
+          `(full ${r.fullSize}), release -> lossless ${r.releaseMs.toFixed(0)} ms, move -> frame p50 ` +
+          `${r.p50.toFixed(0)} ms p90 ${r.p90.toFixed(0)} ms [${r.transport}` +
+          `${r.stillDrawMs === undefined ? '' : `, still drawn in ${r.stillDrawMs.toFixed(0)} ms`}]`);
+      }
+    }
+  });
+});
+for (const transport of ['socket', 'render']) {
+  const rs = results[transport];
+  console.log(`median ${transport}: ${median(rs.map((r) => r.fps)).toFixed(1)} frames/s at ` +
+    `${median(rs.map((r) => r.width))}x${median(rs.map((r) => r.height))}, release -> lossless ` +
+    `${median(rs.map((r) => r.releaseMs)).toFixed(0)} ms, move -> frame p50 ${median(rs.map((r) => r.p50)).toFixed(0)} ms ` +
+    `over ${rs.length} drags`);
+}

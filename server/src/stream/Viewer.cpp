@@ -1,0 +1,143 @@
+// Viewer: parses the page's messages, draws the latest view on a pool thread, sends frame and header.
+#include "stream/Viewer.h"
+
+#include "HttpError.h"
+#include "ServerImpl.h"
+#include "frames/RenderFrames.h"
+#include "routes/HttpJson.h"
+#include "stream/StreamMessages.h"
+#include "vots/render/FrameRequest.h"
+#include "vots/render/Jpeg.h"
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+
+namespace vots::server {
+namespace {
+
+std::string sizerKey(const RenderParams& p) {
+    return p.dataset + '|' + std::string(render::renderModeName(p.mode)) + '|' +
+           std::string(render::rendererName(p.renderer));
+}
+
+} // namespace
+
+Viewer::Viewer(ViewerContext& context, std::weak_ptr<WebSocketPeer> peer, std::string address)
+    : mContext(context), mPeer(std::move(peer)), mAddress(std::move(address)) {}
+
+void Viewer::onText(std::string text) {
+    ClientMessage message;
+    try {
+        message = parseClientMessage(text);
+    } catch (const ProtocolError& e) {
+        return closeWith(static_cast<std::uint16_t>(e.code()), e.what());
+    }
+    if (const auto* ack = std::get_if<AckMessage>(&message)) {
+        std::lock_guard lock(mMutex);
+        if (!mPacing.acknowledge(ack->frame))
+            return closeWith(static_cast<std::uint16_t>(CloseCode::Policy), "ack of a frame not sent");
+        return pumpLocked();
+    }
+    auto& view = std::get<ViewMessage>(message);
+    PendingView pending;
+    pending.seq = view.seq;
+    pending.still = view.still;
+    try {
+        pending.params = parseRenderParams(view.query);
+    } catch (const HttpError& e) {
+        return sendError(view.seq, e.status(), e.what());
+    }
+    pending.params.client.clear(); // one draw at a time per viewer: nothing of its own to supersede
+    std::lock_guard lock(mMutex);
+    mPacing.offer(std::move(pending));
+    pumpLocked();
+}
+
+void Viewer::onClosed() {
+    std::lock_guard lock(mMutex);
+    mClosed = true;
+}
+
+void Viewer::pumpLocked() {
+    if (mClosed) return;
+    auto view = mPacing.next();
+    if (!view) return;
+    mContext.runDraw([self = shared_from_this(), view = std::move(*view)] { self->draw(view); });
+}
+
+void Viewer::draw(const PendingView& view) {
+    using Ms = std::chrono::duration<double, std::milli>;
+    const auto start = std::chrono::steady_clock::now();
+    Server::Impl& s = mContext.server;
+    nlohmann::json header{{"type", "frame"}, {"seq", view.seq}, {"still", view.still}};
+    std::string bytes;
+    try {
+        {
+            std::lock_guard lock(mMutex);
+            if (mClosed) return;
+        }
+        const PreparedRender prepared = prepareRender(s, view.params, mAddress);
+        const RenderParams& full = view.params;
+        if (view.still) {
+            // Through the frame cache: the same bytes as GET /render for these parameters.
+            const auto frame = cachedFrame(s, prepared, full, nullptr);
+            bytes = frame->png;
+            header.update({{"format", "image/png"},
+                           {"width", full.width},
+                           {"height", full.height},
+                           {"frameMs", frame->frameMs},
+                           {"votCount", frame->votCount},
+                           {"fitSeconds", frame->fitSeconds}});
+        } else {
+            std::pair<int, int> size;
+            {
+                std::lock_guard lock(mMutex);
+                size = mSizers.try_emplace(sizerKey(full), DRAFT_BUDGET_MS)
+                           .first->second.draftSize(full.width, full.height);
+            }
+            RenderJob job = prepared.job;
+            job.params.width = size.first;
+            job.params.height = size.second;
+            const RenderResult result = s.renderQueue->render(std::move(job)); // throws HttpError
+            const std::vector<std::uint8_t> jpeg = render::encodeJpeg(result.image, DRAFT_QUALITY);
+            bytes.assign(jpeg.begin(), jpeg.end());
+            header.update({{"format", "image/jpeg"},
+                           {"width", size.first},
+                           {"height", size.second},
+                           {"frameMs", result.frameMs},
+                           {"votCount", result.votCount}});
+            std::lock_guard lock(mMutex);
+            mSizers.at(sizerKey(full))
+                .observe(size.first, size.second, Ms(std::chrono::steady_clock::now() - start).count());
+        }
+    } catch (...) {
+        const HttpFailure failure = httpFailureOf(std::current_exception(), "viewer socket frame failed");
+        sendError(view.seq, failure.status, failure.message);
+        std::lock_guard lock(mMutex);
+        mPacing.failed();
+        return pumpLocked();
+    }
+    const auto peer = mPeer.lock();
+    std::lock_guard lock(mMutex);
+    header["frame"] = mPacing.sent();
+    header["drawMs"] = Ms(std::chrono::steady_clock::now() - start).count();
+    if (peer) {
+        // Header then image: the hub sends a socket's messages in order.
+        peer->sendText(header.dump());
+        peer->sendBinary(std::move(bytes));
+    }
+    pumpLocked();
+}
+
+void Viewer::sendError(std::uint64_t seq, int status, const std::string& message) {
+    if (const auto peer = mPeer.lock())
+        peer->sendText(
+            nlohmann::json{{"type", "error"}, {"seq", seq}, {"status", status}, {"error", message}}.dump());
+}
+
+void Viewer::closeWith(std::uint16_t code, const std::string& reason) {
+    if (const auto peer = mPeer.lock()) peer->close(code, reason);
+}
+
+} // namespace vots::server

@@ -1,0 +1,54 @@
+// One viewer's socket (GET /api/stream): the page's views in, frames out, paced by its acknowledgements;
+// drafts are JPEG sized to a frame-time budget, stills the exact PNG of /render (docs/API.md, "Viewer
+// socket").
+#pragma once
+
+#include "connection/WebSocketHub.h"
+#include "stream/DraftSizer.h"
+#include "stream/ViewerPacing.h"
+#include "vots/server/Server.h"
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+
+namespace vots::server {
+
+/// What every viewer shares: the server's parts, and where draws run (a pool, never the socket thread).
+struct ViewerContext {
+    Server::Impl& server;
+    std::function<void(std::function<void()>)> runDraw;
+};
+
+class Viewer final : public WebSocketHandler, public std::enable_shared_from_this<Viewer> {
+public:
+    // Two: one frame drawn while the page decodes the last, and no queue of old frames anywhere.
+    static constexpr std::size_t MAX_IN_FLIGHT = 2;
+    // From the queue to the JPEG: ~30 frames/s when the render thread is this viewer's alone.
+    static constexpr double DRAFT_BUDGET_MS = 30.0;
+    // trame sends 50-60 while interacting; 70 keeps thin bone edges and text in the frame readable.
+    static constexpr int DRAFT_QUALITY = 70;
+
+    Viewer(ViewerContext& context, std::weak_ptr<WebSocketPeer> peer, std::string address);
+
+    void onText(std::string text) override;
+    void onClosed() override;
+
+private:
+    void pumpLocked();
+    void draw(const PendingView& view);
+    void sendError(std::uint64_t seq, int status, const std::string& message);
+    void closeWith(std::uint16_t code, const std::string& reason);
+
+    ViewerContext& mContext;
+    const std::weak_ptr<WebSocketPeer> mPeer;
+    const std::string mAddress;
+    std::mutex mMutex;
+    ViewerPacing mPacing{MAX_IN_FLIGHT};
+    std::map<std::string, DraftSizer> mSizers; // by dataset, mode and renderer: their frames cost differently
+    bool mClosed = false;
+};
+
+} // namespace vots::server

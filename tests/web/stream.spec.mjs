@@ -1,0 +1,133 @@
+// The viewer socket (GET /api/stream): a drag shows JPEG drafts over the socket, the still after release is
+// /render's PNG byte for byte, and a page whose socket is refused falls back to /render.
+import { test } from 'node:test';
+import assert from 'node:assert/strict';
+import { withPage, pickDataset, BASE_URL } from './support/browser.mjs';
+import { ViewerPage } from './pages/ViewerPage.mjs';
+
+const START_CAM = 'az=10,el=5,zoom=1,pan=0:0,proj=ortho,fov=30';
+
+// Every frame the page receives on its viewer socket: {header, bytes} in order.
+function recordSocketFrames(page) {
+  const frames = [];
+  page.on('websocket', (ws) => {
+    if (!ws.url().includes('/api/stream')) return;
+    let header = null;
+    ws.on('framereceived', ({ payload }) => {
+      if (typeof payload === 'string') {
+        const message = JSON.parse(payload);
+        if (message.type === 'frame') header = message;
+      } else if (header) {
+        frames.push({ header, bytes: Buffer.from(payload) });
+        header = null;
+      }
+    });
+  });
+  return frames;
+}
+
+// The /render URLs the page asks for from now on.
+function recordRenders(page) {
+  const renders = [];
+  page.on('request', (r) => {
+    if (r.url().includes('/render?')) renders.push(r.url());
+  });
+  return renders;
+}
+
+// The viewer on the socket transport, idle on its first full frame.
+async function openIdle(page, dataset) {
+  const viewer = new ViewerPage(page);
+  await viewer.open({ dataset, cam: START_CAM }, { transport: 'socket' });
+  await viewer.waitForIdle();
+  return viewer;
+}
+
+test('a drag shows drafts over the socket and the still after release is /render\'s PNG', async (t) => {
+  const ds = await pickDataset();
+  await withPage(t, async (page) => {
+    const frames = recordSocketFrames(page);
+    const renders = recordRenders(page);
+    const viewer = await openIdle(page, ds.name);
+    const rendersBefore = renders.length;
+    const framesBefore = frames.length;
+
+    await viewer.drag(150, -80);
+    await viewer.waitForIdle();
+
+    const during = frames.slice(framesBefore);
+    const drafts = during.filter((f) => !f.header.still);
+    assert.ok(drafts.length >= 2, `expected several drafts over the socket, got ${drafts.length}`);
+    for (const d of drafts) {
+      assert.equal(d.header.format, 'image/jpeg');
+      assert.deepEqual([...d.bytes.subarray(0, 2)], [0xff, 0xd8], 'a draft that is no JPEG');
+    }
+    assert.equal(renders.length, rendersBefore, `the drag went through /render: ${renders.slice(rendersBefore)}`);
+    const still = during.at(-1);
+    assert.ok(still.header.still, 'the last frame after release is not the still');
+    assert.equal(still.header.format, 'image/png');
+
+    const shown = await page.evaluate(() => {
+      const img = document.querySelector('[data-testid="image"]');
+      return { url: img.dataset.frameUrl, transport: img.dataset.transport, draftHidden: document.querySelector('#draft').hidden };
+    });
+    assert.equal(shown.transport, 'socket');
+    assert.ok(shown.draftHidden, 'the draft canvas still covers the still');
+    const res = await page.request.get(`${BASE_URL}/${shown.url}`);
+    assert.equal(res.status(), 200);
+    const png = await res.body();
+    assert.ok(png.equals(still.bytes), `the still (${still.bytes.length} bytes) differs from /render's PNG (${png.length})`);
+    const size = new URL(shown.url, BASE_URL).searchParams.get('size');
+    assert.equal(`${still.header.width}x${still.header.height}`, size);
+  });
+});
+
+test('a page whose socket is refused shows its frames through /render', async (t) => {
+  const ds = await pickDataset();
+  await withPage(t, async (page) => {
+    // The socket opens and is closed at once, as a proxy that does not pass WebSockets would.
+    await page.routeWebSocket(/\/api\/stream/, (ws) => ws.close({ code: 1011, reason: 'refused' }));
+    const renders = recordRenders(page);
+    const viewer = await openIdle(page, ds.name);
+    await viewer.drag(100, 0);
+    await viewer.waitForIdle();
+    const transport = await page.evaluate(() => document.querySelector('[data-testid="image"]').dataset.transport);
+    assert.equal(transport, 'render');
+    assert.ok(renders.length >= 2, `expected /render frames, saw ${renders.length}`);
+    const frame = await viewer.framePixels();
+    assert.ok(frame.variance > 20, `frame looks blank: luminance variance ${frame.variance.toFixed(2)}`);
+  });
+});
+
+test('while zooming over the socket the scale bar follows the frame shown, not the hand', async (t) => {
+  const ds = await pickDataset();
+  await withPage(t, async (page) => {
+    const viewer = await openIdle(page, ds.name);
+    // The bar as drawn at each frame (after the page's own listener, registered first) and at each pointer
+    // move (before the page's handler sees it, so it shows what the last move left), with the zoom of the
+    // frame then on screen.
+    await page.evaluate(() => {
+      window.__bars = [];
+      let frameZoom = null;
+      const sample = () => {
+        const bar = document.querySelector('[data-testid="scalebar"]');
+        if (frameZoom !== null) window.__bars.push({ zoom: frameZoom, mm: Number(bar.dataset.mm), px: Number(bar.dataset.px) });
+      };
+      document.querySelector('[data-testid="image"]').addEventListener('vots:frame', (e) => {
+        frameZoom = e.detail.view.cam.zoom;
+        sample();
+      });
+      document.querySelector('#view').addEventListener('pointermove', sample, { capture: true });
+    });
+    await viewer.drag(0, -150, { button: 'right' });
+    await viewer.waitForIdle();
+    const bars = await page.evaluate(() => window.__bars);
+    assert.ok(bars.length >= 3, `expected several frames during the zoom, got ${bars.length}`);
+    const zooms = new Set(bars.map((b) => b.zoom));
+    assert.ok(bars.length >= 10, `expected samples at the pointer moves too, got ${bars.length}`);
+    assert.ok(zooms.size >= 2, 'the zoom did not change between frames');
+    // Pixels per mm grow with the zoom of the frame's own camera: one ratio for every frame shown.
+    const ratios = bars.map((b) => b.px / b.mm / b.zoom);
+    for (const r of ratios) assert.ok(Math.abs(r / ratios[0] - 1) < 1e-3, `scale bar off its frame: ${JSON.stringify(bars)}`);
+  });
+});
