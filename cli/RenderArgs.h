@@ -40,6 +40,7 @@ struct RenderArgs {
     std::string volume;
     std::string memoryBudget;     // empty: the default
     std::string series;           // DICOM SeriesInstanceUID; empty: the folder's only series
+    std::optional<int> frame;     // of a 4D file; empty: frame 0
     RawArgs raw;                  // the layout of a headerless volume (INPUT, or --volume of a .vots input)
     std::optional<int> turntable; // frames of a turn about the vertical axis; nullopt: one frame
     std::optional<double> elevation; // the turn's elevation; nullopt: the camera's

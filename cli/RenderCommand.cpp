@@ -3,6 +3,7 @@
 #include "Args.h"
 #include "Commands.h"
 #include "DicomWebInput.h"
+#include "FrameOption.h"
 #include "MemoryBudgetOption.h"
 #include "RawOptions.h"
 #include "RenderArgs.h"
@@ -57,7 +58,9 @@ RenderVolume loadRenderVolume(const std::string& named, const RenderArgs& a, con
         false);
     return input.reading([&] {
         checkVolumeFitsBudget(input.path(), c.raw, a.memoryBudget, a.series);
-        RenderVolume loaded{fit::loadVolume(input.path(), c.raw, fit::SampleStorage::Float, a.series), {}};
+        const int frame = frameToRead(input.path(), c.raw, a.series, a.frame);
+        RenderVolume loaded{fit::loadVolume(input.path(), c.raw, fit::SampleStorage::Float, a.series, frame),
+                            {}};
         if (withIdentity && fit::isDicomFolder(input.path()))
             loaded.identity = fit::readDicomIdentity(input.path(), a.series);
         return loaded;
@@ -206,6 +209,7 @@ void addRenderCommand(CLI::App& app) {
                   "Print the frame's render and composite milliseconds on stderr (the slowest rank's)");
     addMemoryBudgetOption(*cmd, args->memoryBudget);
     addSeriesOption(*cmd, args->series);
+    addFrameOption(*cmd, args->frame);
     addRawOptions(*cmd, args->raw);
     addDicomWebOptions(*cmd, args->dicomWeb);
     cmd->callback([args] { runRenderCommand(*args); });
