@@ -5,7 +5,7 @@
 # their records into it with MPI-IO, rank 0 renames it), renders alike in one process and
 # on N ranks; the gzip input (each rank streams its planes alone) gives the same Vots; a DICOM series of
 # the same samples (each rank decodes only its slices) verifies; a focus sphere across the border of two ranks' cells
-# verifies; a failure on one rank ends all (fit and render).
+# verifies; a NaN (no data) on one rank fits as in one process; a failure on one rank ends all (fit and render).
 # Usage: tests/mpi/mpi_fit.sh VOTS_BINARY GZIP_NRRD_VOLUME VOTS_WRITE_DICOM_BINARY
 set -euo pipefail
 vots=$1 gzipped=$2 write_dicom=$3
