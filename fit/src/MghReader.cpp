@@ -18,21 +18,8 @@ using namespace detail;
 
 // Everything but the samples, from the header.
 Volume gridOf(const std::string& path, const MghInfo& info) {
-    Volume volume;
-    volume.dims = info.shape.dims;
-    volume.spacing = info.spacing;
-    volume.origin = info.origin;
-    volume.patientAxes = info.axes;
-    volume.orientationKnown = true;
-    volume.sourceType = info.type;
-    volume.name = fileStem(path);
-    return volume;
-}
-
-bool isGzipped(const std::string& path) {
-    const std::uint64_t fileSize = regularFileSize(path);
-    const std::vector<unsigned char> magic = readFileBytes(path, 0, fileSize < 2 ? 0 : 2);
-    return hasGzipMagic(magic.data(), magic.size());
+    return gridWithoutSamples(info.shape.dims, info.spacing, info.origin, info.axes, info.type,
+                              fileStem(path));
 }
 
 std::uint64_t frameOffset(const std::string& path, const MghInfo& info, int frame) {
@@ -56,12 +43,12 @@ StoredSamples storedPlain(const std::string& path, int frame) {
 } // namespace
 
 std::optional<StoredSamples> detail::storedMghSamples(const std::string& path, int frame) {
-    if (isGzipped(path)) return std::nullopt;
+    if (isGzipFile(path)) return std::nullopt;
     return storedPlain(path, frame);
 }
 
 std::optional<GzipSamples> detail::gzipMghSamples(const std::string& path, int frame) {
-    if (!isGzipped(path)) return std::nullopt;
+    if (!isGzipFile(path)) return std::nullopt;
     Inflater inflater(path, path, 0);
     const std::vector<unsigned char> header = inflater.readExactly(MGH_HEADER_BYTES);
     const MghInfo info = parseMghHeader(path, header.data());

@@ -22,22 +22,8 @@ using namespace detail;
 
 // Everything but the samples, from the header.
 Volume gridOf(const std::string& path, const NiftiInfo& info) {
-    Volume volume;
-    volume.dims = info.shape.dims;
-    volume.spacing = info.spacing;
-    volume.origin = info.origin;
-    if (info.axes) {
-        volume.patientAxes = *info.axes;
-        volume.orientationKnown = true;
-    }
-    volume.sourceType = info.type;
-    volume.name = fileStem(path);
-    return volume;
-}
-
-bool isGzipped(const std::string& path, std::uint64_t fileSize) {
-    const std::vector<unsigned char> magic = readFileBytes(path, 0, fileSize < 2 ? 0 : 2);
-    return hasGzipMagic(magic.data(), magic.size());
+    return gridWithoutSamples(info.shape.dims, info.spacing, info.origin, info.axes, info.type,
+                              fileStem(path));
 }
 
 StoredSamples storedPlain(const std::string& path, std::uint64_t fileSize, int frame) {
@@ -66,13 +52,12 @@ StoredSamples storedPlain(const std::string& path, std::uint64_t fileSize, int f
 } // namespace
 
 std::optional<StoredSamples> detail::storedNiftiSamples(const std::string& path, int frame) {
-    const std::uint64_t fileSize = regularFileSize(path);
-    if (isGzipped(path, fileSize)) return std::nullopt;
-    return storedPlain(path, fileSize, frame);
+    if (isGzipFile(path)) return std::nullopt;
+    return storedPlain(path, regularFileSize(path), frame);
 }
 
 std::optional<GzipSamples> detail::gzipNiftiSamples(const std::string& path, int frame) {
-    if (!isGzipped(path, regularFileSize(path))) return std::nullopt;
+    if (!isGzipFile(path)) return std::nullopt;
     // The header is the stream's first bytes; the samples start at vox_offset of the decompressed file.
     Inflater inflater(path, path, 0);
     std::vector<unsigned char> header = inflater.readExactly(4);
@@ -105,9 +90,7 @@ void detail::applyScaling(const std::string& path, std::vector<float>& values, d
 }
 
 Volume loadNifti(const std::string& path, SampleStorage storage, int frame) {
-    const std::uint64_t fileSize = regularFileSize(path);
-    if (!isGzipped(path, fileSize))
-        return readStoredVolume(path, storedPlain(path, fileSize, frame), storage);
+    if (auto stored = storedNiftiSamples(path, frame)) return readStoredVolume(path, *stored, storage);
     const GzipSamples stored = *gzipNiftiSamples(path, frame);
     return readGzipPlanes(path, stored, 0, stored.grid.dims[2] - 1, storage);
 }

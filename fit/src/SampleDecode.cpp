@@ -80,6 +80,22 @@ std::optional<ScalarType> findScalarType(const std::string& text) {
     return findNamed<ScalarType>(normaliseTypeText(text));
 }
 
+Volume gridWithoutSamples(const std::array<int, 3>& dims, const std::array<double, 3>& spacing,
+                          const std::array<double, 3>& origin, const std::optional<PatientAxes>& axes,
+                          ScalarType type, std::string name) {
+    Volume volume;
+    volume.dims = dims;
+    volume.spacing = spacing;
+    volume.origin = origin;
+    if (axes) {
+        volume.patientAxes = *axes;
+        volume.orientationKnown = true;
+    }
+    volume.sourceType = type;
+    volume.name = std::move(name);
+    return volume;
+}
+
 CheckedShape checkShape(const std::string& path, const std::array<long long, 3>& dims, ScalarType type) {
     CheckedShape shape;
     std::uint64_t samples = 1;

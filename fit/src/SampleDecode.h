@@ -1,6 +1,7 @@
 // Private: sample type sizes and spellings, size limits, and bytes -> float decoding for every reader.
 #pragma once
 
+#include "vots/fit/PatientAxes.h"
 #include "vots/fit/Volume.h"
 #include "vots/fit/VolumeLoad.h"
 
@@ -30,6 +31,11 @@ std::size_t scalarTypeSize(ScalarType type);
 /// Every spelling we accept ("uint8", "uchar", "unsigned char", "short", "float32", "double", ...),
 /// case-insensitive; nullopt when unknown.
 std::optional<ScalarType> findScalarType(const std::string& text);
+
+/// A volume's grid without samples, as a header states it; `axes` nullopt: orientation unknown.
+Volume gridWithoutSamples(const std::array<int, 3>& dims, const std::array<double, 3>& spacing,
+                          const std::array<double, 3>& origin, const std::optional<PatientAxes>& axes,
+                          ScalarType type, std::string name);
 
 /// Checks that each dimension is positive and the sample count and byte size stay under the caps.
 CheckedShape checkShape(const std::string& path, const std::array<long long, 3>& dims, ScalarType type);
