@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -80,6 +81,45 @@ TEST(CliFrames, NanSamplesAreNoDataAndAllNanIsBadInput) {
     std::ofstream(allNan, std::ios::binary) << nrrd;
     expectBadInput(dir, {"fit", allNan, "-o", dir.file("n.vots"), "--eps", "1"},
                    "all 64 samples are NaN or Inf");
+}
+
+} // namespace
+} // namespace vots::test
+
+namespace vots::test {
+namespace {
+
+// `--frames all`: one image per frame at one camera; with a fixed window each is the image of that
+// frame alone.
+TEST(CliFrames, FramesAllDrawsEveryFrameAsEachAlone) {
+    TempDir dir;
+    const std::string pattern = dir.file("%03d.png");
+    const std::vector<std::string> common{"--renderer", "grid", "--window", "5300,600", "--size", "48x40"};
+    std::vector<std::string> args{"render", FUNCTIONAL, "--frames", "all", "-o", pattern};
+    args.insert(args.end(), common.begin(), common.end());
+    const CliResult r = runVots(args);
+    ASSERT_EQ(r.exitCode, 0) << describe(args, r);
+    for (int frame = 0; frame < 20; ++frame) {
+        char name[16];
+        std::snprintf(name, sizeof name, "%03d.png", frame);
+        ASSERT_TRUE(std::filesystem::exists(dir.file(name))) << name;
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir.file("020.png")));
+    for (const int frame : {0, 7, 19}) {
+        const std::string alone = dir.file("alone.png");
+        std::vector<std::string> one{"render", FUNCTIONAL, "--frame", std::to_string(frame), "-o", alone};
+        one.insert(one.end(), common.begin(), common.end());
+        ASSERT_EQ(runVots(one).exitCode, 0);
+        char name[16];
+        std::snprintf(name, sizeof name, "%03d.png", frame);
+        EXPECT_EQ(slurpText(dir.file(name)), slurpText(alone)) << "frame " << frame;
+    }
+    EXPECT_NE(slurpText(dir.file("000.png")), slurpText(dir.file("019.png")));
+    expectBadInput(dir, {"render", FUNCTIONAL, "--frames", "some", "-o", dir.file("%03d.x.png")},
+                   "only 'all'");
+    expectBadInput(dir,
+                   {"render", FUNCTIONAL, "--frames", "all", "--frame", "1", "-o", dir.file("%03d.y.png")},
+                   "not with --frame");
 }
 
 } // namespace
