@@ -266,10 +266,10 @@ void runFitCommand(const FitArgs& a) {
 void addFitCommand(CLI::App& app) {
     auto args = std::make_shared<FitArgs>();
     CLI::App* cmd = app.add_subcommand("fit", "Fit a Vot-Space to a volume and write it to a .vots file");
-    cmd->add_option(
-           "INPUT", args->input,
-           "Volume file: .nrrd/.nhdr, .nii/.nii.gz, .mhd/.mha, a folder of DICOM files, a series on a PACS "
-           "(dicomweb+http(s)://HOST:PORT/ROOT/studies/STUDY/series/SERIES), or raw with --raw-*")
+    cmd->add_option("INPUT", args->input,
+                    "Volume file: .nrrd/.nhdr, .nii/.nii.gz, .mgh/.mgz, .mhd/.mha, a folder of DICOM files, "
+                    "a series on a PACS "
+                    "(dicomweb+http(s)://HOST:PORT/ROOT/studies/STUDY/series/SERIES), or raw with --raw-*")
         ->required();
     cmd->add_option("-o,--output", args->output, "Vot-Space file to write (replaced atomically)")->required();
     cmd->add_option("--eps", args->eps,
