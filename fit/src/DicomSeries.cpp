@@ -5,7 +5,6 @@
 #include "DicomChild.h"
 #include "DicomLayout.h"
 #include "InputFile.h"
-#include "SampleDecode.h"
 #include "StoredSamples.h"
 
 #include <gdcmImage.h>
@@ -166,8 +165,15 @@ namespace {
 
 /// The series' grid as loadDicomSeries gives it, without samples.
 Volume gridOfLayout(const DicomSeriesLayout& layout, const std::string& folder) {
-    return detail::gridWithoutSamples(layout.dims, layout.spacing, layout.origin, layout.patientAxes,
-                                      layout.valueType, folderName(folder));
+    Volume volume;
+    volume.dims = layout.dims;
+    volume.spacing = layout.spacing;
+    volume.origin = layout.origin;
+    volume.patientAxes = layout.patientAxes;
+    volume.orientationKnown = true;
+    volume.sourceType = layout.valueType;
+    volume.name = folderName(folder);
+    return volume;
 }
 
 /// Fills `into` (a grid of planes [first, last]) with those slices, in the storage asked for.
