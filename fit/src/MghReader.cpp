@@ -16,12 +16,6 @@ namespace {
 
 using namespace detail;
 
-// Everything but the samples, from the header.
-Volume gridOf(const std::string& path, const MghInfo& info) {
-    return gridWithoutSamples(info.shape.dims, info.spacing, info.origin, info.axes, info.type,
-                              fileStem(path));
-}
-
 std::uint64_t frameOffset(const std::string& path, const MghInfo& info, int frame) {
     checkFrame(path, frame, info.frames);
     return MGH_HEADER_BYTES + static_cast<std::uint64_t>(frame) * info.shape.bytes;
@@ -33,7 +27,7 @@ StoredSamples storedPlain(const std::string& path, int frame) {
     // Every frame must be there, whichever is read (optional scan parameters and tags may follow).
     checkFileHolds(path, MGH_HEADER_BYTES, static_cast<std::size_t>(info.frames * info.shape.bytes));
     StoredSamples stored;
-    stored.grid = gridOf(path, info);
+    stored.grid = gridOfHeader(path, info);
     stored.type = info.type;
     stored.bigEndian = true;
     stored.pieces.push_back({path, frameOffset(path, info, frame), info.shape.bytes});
@@ -53,7 +47,7 @@ std::optional<GzipSamples> detail::gzipMghSamples(const std::string& path, int f
     const std::vector<unsigned char> header = inflater.readExactly(MGH_HEADER_BYTES);
     const MghInfo info = parseMghHeader(path, header.data());
     GzipSamples stored;
-    stored.grid = gridOf(path, info);
+    stored.grid = gridOfHeader(path, info);
     stored.type = info.type;
     stored.bigEndian = true;
     // The stream goes on after the samples (scan parameters, tags): its end is not checked.

@@ -20,12 +20,6 @@ namespace {
 
 using namespace detail;
 
-// Everything but the samples, from the header.
-Volume gridOf(const std::string& path, const NiftiInfo& info) {
-    return gridWithoutSamples(info.shape.dims, info.spacing, info.origin, info.axes, info.type,
-                              fileStem(path));
-}
-
 StoredSamples storedPlain(const std::string& path, std::uint64_t fileSize, int frame) {
     if (fileSize < NIFTI1_HEADER_BYTES)
         throwInputError(path, "too short for a NIfTI header (" + std::to_string(fileSize) + " bytes)");
@@ -40,7 +34,7 @@ StoredSamples storedPlain(const std::string& path, std::uint64_t fileSize, int f
     // The whole payload must be there, whichever frame is read: a short file is refused alike for all.
     checkFileHolds(path, info.voxOffset, static_cast<std::size_t>(expected - info.voxOffset));
     StoredSamples stored;
-    stored.grid = gridOf(path, info);
+    stored.grid = gridOfHeader(path, info);
     stored.type = info.type;
     stored.bigEndian = info.bigEndian;
     stored.pieces.push_back({path, frameOffset(path, info, frame), info.shape.bytes});
@@ -65,7 +59,7 @@ std::optional<GzipSamples> detail::gzipNiftiSamples(const std::string& path, int
     header.insert(header.end(), rest.begin(), rest.end());
     const NiftiInfo info = parseNiftiHeader(path, header.data());
     GzipSamples stored;
-    stored.grid = gridOf(path, info);
+    stored.grid = gridOfHeader(path, info);
     stored.type = info.type;
     stored.bigEndian = info.bigEndian;
     const bool lastFrame = static_cast<std::uint64_t>(frame) + 1 == info.frames;

@@ -5,6 +5,8 @@
 #include "vots/fit/Volume.h"
 #include "vots/fit/VolumeLoad.h"
 
+#include "InputFile.h"
+
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -36,6 +38,13 @@ std::optional<ScalarType> findScalarType(const std::string& text);
 Volume gridWithoutSamples(const std::array<int, 3>& dims, const std::array<double, 3>& spacing,
                           const std::array<double, 3>& origin, const std::optional<PatientAxes>& axes,
                           ScalarType type, std::string name);
+
+/// gridWithoutSamples of a parsed header (NiftiInfo, MghInfo: shape, spacing, origin, axes, type), named
+/// after the file.
+template <class HeaderInfo> Volume gridOfHeader(const std::string& path, const HeaderInfo& info) {
+    return gridWithoutSamples(info.shape.dims, info.spacing, info.origin, info.axes, info.type,
+                              fileStem(path));
+}
 
 /// Checks that each dimension is positive and the sample count and byte size stay under the caps.
 CheckedShape checkShape(const std::string& path, const std::array<long long, 3>& dims, ScalarType type);
