@@ -2,6 +2,7 @@
 #include "Args.h"
 #include "Commands.h"
 #include "DicomWebInput.h"
+#include "FrameOption.h"
 #include "MemoryBudgetOption.h"
 #include "ProgressLine.h"
 #include "RawOptions.h"
@@ -48,7 +49,8 @@ struct FitArgs {
     bool progress = false;
     std::string memoryBudget; // empty: the default
     RawArgs raw;
-    std::string series; // DICOM SeriesInstanceUID; empty: the folder's only series
+    std::string series;       // DICOM SeriesInstanceUID; empty: the folder's only series
+    std::optional<int> frame; // of a 4D file; empty: frame 0
     DicomWebOptions dicomWeb;
 };
 
@@ -148,6 +150,7 @@ std::string fitMetaFor(const FitArgs& a, const std::string& source, const fit::V
     record.stats = result.stats;
     record.maxError = maxError;
     record.backgroundFill = result.space.backgroundFill;
+    record.frame = a.frame;
     const std::string meta = meta::buildFitMeta(record);
     return ranks ? metaOfRanks(meta, range, *ranks) : meta;
 }
@@ -176,7 +179,9 @@ void runFit(const FitArgs& a) {
     const fit::Volume volume = input.reading([&] {
         checkVolumeFitsBudget(input.path(), checked.raw, a.memoryBudget, a.series,
                               fit::SampleStorage::Source);
-        fit::Volume loaded = fit::loadVolume(input.path(), checked.raw, fit::SampleStorage::Source, a.series);
+        const int frame = frameToRead(input.path(), checked.raw, a.series, a.frame);
+        fit::Volume loaded =
+            fit::loadVolume(input.path(), checked.raw, fit::SampleStorage::Source, a.series, frame);
         if (input.fromPacs()) loaded.name = input.volumeName();
         return loaded;
     });
@@ -205,6 +210,8 @@ void runFitOnRanks(const dist::MpiWorld& world, const FitArgs& a) {
     fit::PlanesOfGrid read;
     world.allOrNone([&] {
         checked = checkArgs(a);
+        if (a.frame && *a.frame != 0)
+            throw fit::InputError("--frame other than 0 is not supported under mpirun yet");
         if (world.rank() == 0) checkOutput(a);
         cells = dist::fitCellsOfRank(world, fit::volumeHeaderInfo(a.input, checked.raw, a.series).dims[2]);
         const auto planes = static_cast<std::uint64_t>(cells.end - cells.first + 1);
@@ -259,10 +266,10 @@ void runFitCommand(const FitArgs& a) {
 void addFitCommand(CLI::App& app) {
     auto args = std::make_shared<FitArgs>();
     CLI::App* cmd = app.add_subcommand("fit", "Fit a Vot-Space to a volume and write it to a .vots file");
-    cmd->add_option(
-           "INPUT", args->input,
-           "Volume file: .nrrd/.nhdr, .nii/.nii.gz, .mhd/.mha, a folder of DICOM files, a series on a PACS "
-           "(dicomweb+http(s)://HOST:PORT/ROOT/studies/STUDY/series/SERIES), or raw with --raw-*")
+    cmd->add_option("INPUT", args->input,
+                    "Volume file: .nrrd/.nhdr, .nii/.nii.gz, .mgh/.mgz, .mhd/.mha, a folder of DICOM files, "
+                    "a series on a PACS "
+                    "(dicomweb+http(s)://HOST:PORT/ROOT/studies/STUDY/series/SERIES), or raw with --raw-*")
         ->required();
     cmd->add_option("-o,--output", args->output, "Vot-Space file to write (replaced atomically)")->required();
     cmd->add_option("--eps", args->eps,
@@ -290,6 +297,7 @@ void addFitCommand(CLI::App& app) {
     addMemoryBudgetOption(*cmd, args->memoryBudget);
     addRawOptions(*cmd, args->raw);
     addSeriesOption(*cmd, args->series);
+    addFrameOption(*cmd, args->frame);
     addDicomWebOptions(*cmd, args->dicomWeb);
     cmd->callback([args] { runFitCommand(*args); });
 }

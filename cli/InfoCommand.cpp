@@ -81,6 +81,8 @@ json toJson(const std::string& path, const fit::VotSpace& s, const meta::FitMeta
         {"eps_varies", s.epsVaries},
         {"background", std::isfinite(s.background) ? json(s.background) : json(nullptr)},
         {"background_fill", orNull(meta.backgroundFill)},
+        {"frame", orNull(meta.frame)},
+        {"non_finite_samples", meta.nonFiniteSamples},
         {"vot_count", s.vots.size()},
         {"vots_per_sample", sum.perSample},
         {"vots_per_nonbackground_cell", orNull(sum.perNonBackgroundCell)},
@@ -112,6 +114,10 @@ void printText(const std::string& path, const fit::VotSpace& s, const meta::FitM
     row("degree") << s.degree << " (header)";
     if (meta.requestedDegree) o << ", " << *meta.requestedDegree << " requested";
     o << "\n";
+    if (meta.frame) row("frame") << *meta.frame << " (of a 4D file)\n";
+    if (meta.nonFiniteSamples > 0)
+        row("no data") << formatCount(meta.nonFiniteSamples)
+                       << " samples NaN or Inf (left out as omitted cells are)\n";
     row("eps") << formatNumber(s.eps) << (s.epsVaries ? " (context; varies in space)" : "") << "\n";
     row("background") << (std::isfinite(s.background) ? formatNumber(s.background) : std::string("none"));
     if (meta.backgroundFill)

@@ -81,6 +81,17 @@ CheckedArgs checkArgs(const RenderArgs& a) {
     c.eps = parseEps(a.eps, "--eps");
     if (a.degree < 0 || a.degree > 3) throw fit::InputError("--degree must be 0..3");
     c.raw = rawLayoutFrom(a.raw);
+    if (!a.frames.empty()) {
+        if (a.frames != "all") throw fit::InputError("--frames '" + a.frames + "': only 'all' is known");
+        if (a.frame || a.turntable || !a.slabSweep.empty() || a.elevation)
+            throw fit::InputError(
+                "--frames all draws every frame at one camera: not with --frame, --turntable, "
+                "--slab-sweep or --elevation");
+        c.everyFrame = parseTurntableOutput(a.output);
+        checkOutputFolder(c.everyFrame->format == TurntableFormat::Webm ? c.everyFrame->path
+                                                                        : framePath(c.everyFrame->path, 0));
+        return c;
+    }
     if (!a.slabSweep.empty()) {
         if (a.turntable) throw fit::InputError("give --slab-sweep or --turntable, not both");
         if (a.elevation) throw fit::InputError("--elevation is for --turntable N");

@@ -40,6 +40,8 @@ struct RenderArgs {
     std::string volume;
     std::string memoryBudget;     // empty: the default
     std::string series;           // DICOM SeriesInstanceUID; empty: the folder's only series
+    std::optional<int> frame;     // of a 4D file; empty: frame 0
+    std::string frames;           // "all": every frame of a 4D file, one image each; empty: one frame
     RawArgs raw;                  // the layout of a headerless volume (INPUT, or --volume of a .vots input)
     std::optional<int> turntable; // frames of a turn about the vertical axis; nullopt: one frame
     std::optional<double> elevation; // the turn's elevation; nullopt: the camera's
@@ -53,6 +55,7 @@ struct CheckedArgs {
     std::optional<fit::RawLayout> raw;
     std::optional<TurntableOutput> turntable;
     std::optional<SlabSweepOutput> slabSweep;
+    std::optional<TurntableOutput> everyFrame; // --frames all: written as a turntable's frames are
 };
 
 /// Every option checked (and the output folders), before any load or fit; throws fit::InputError.

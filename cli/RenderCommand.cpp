@@ -3,6 +3,7 @@
 #include "Args.h"
 #include "Commands.h"
 #include "DicomWebInput.h"
+#include "FrameOption.h"
 #include "MemoryBudgetOption.h"
 #include "RawOptions.h"
 #include "RenderArgs.h"
@@ -16,6 +17,7 @@
 #include "vots/fit/DicomSeries.h"
 #include "vots/fit/Error.h"
 #include "vots/fit/Fitter.h"
+#include "vots/fit/VolumeHeader.h"
 #include "vots/fit/VolumeLoad.h"
 #include "vots/fit/VotSpaceFile.h"
 #include "vots/meta/VotSpaceRead.h"
@@ -57,15 +59,50 @@ RenderVolume loadRenderVolume(const std::string& named, const RenderArgs& a, con
         false);
     return input.reading([&] {
         checkVolumeFitsBudget(input.path(), c.raw, a.memoryBudget, a.series);
-        RenderVolume loaded{fit::loadVolume(input.path(), c.raw, fit::SampleStorage::Float, a.series), {}};
+        const int frame = frameToRead(input.path(), c.raw, a.series, a.frame);
+        RenderVolume loaded{fit::loadVolume(input.path(), c.raw, fit::SampleStorage::Float, a.series, frame),
+                            {}};
         if (withIdentity && fit::isDicomFolder(input.path()))
             loaded.identity = fit::readDicomIdentity(input.path(), a.series);
         return loaded;
     });
 }
 
+/// `--frames all`: each frame of a 4D file loaded, fitted (or uploaded for the grid renderer) and drawn at
+/// one camera in turn, with the first frame's value range for all (one window over time), written as a
+/// turntable's frames are (PNG frames or a WebM, all or nothing).
+void renderEveryFrame(const RenderArgs& a, const CheckedArgs& c) {
+    if (pacs::isDicomWebUrl(a.input) || isVotsFile(a.input))
+        throw fit::InputError("--frames all needs a 4D volume file as INPUT");
+    checkVolumeFitsBudget(a.input, c.raw, a.memoryBudget, a.series);
+    const std::uint64_t frames = fit::volumeHeaderInfo(a.input, c.raw, a.series).frames;
+    const auto context = render::EglContext::createOrThrow();
+    TurntableWriter writer(*c.everyFrame, c.frame.width, c.frame.height);
+    std::optional<std::array<float, 2>> range;
+    for (std::uint64_t k = 0; k < frames; ++k) {
+        const fit::Volume volume =
+            fit::loadVolume(a.input, c.raw, fit::SampleStorage::Float, a.series, static_cast<int>(k));
+        if (!range) range = volume.valueRange();
+        std::optional<render::GridRenderer> grid;
+        std::optional<render::VotRenderer> vots;
+        if (c.frame.renderer == render::RendererKind::Grid) {
+            grid.emplace().upload(volume);
+        } else {
+            vots.emplace();
+            server::applyRenderPolicy(*vots);
+            vots->upload(fitForRender(volume, *range, a, c).space);
+        }
+        writer.add(render::renderFrame(c.frame, vots ? &*vots : nullptr, grid ? &*grid : nullptr, range));
+    }
+    writer.finish();
+}
+
 void runRender(const RenderArgs& a) {
     const CheckedArgs c = checkArgs(a);
+    if (c.everyFrame) {
+        renderEveryFrame(a, c);
+        return;
+    }
     const bool inputIsVots = !pacs::isDicomWebUrl(a.input) && isVotsFile(a.input);
     // A derived DICOM series joins the source's patient and study (INPUT or a .vots input's --volume).
     const bool withIdentity = c.slabSweep && c.slabSweep->format != SweepFormat::Png;
@@ -136,6 +173,8 @@ void runRenderCommand(const RenderArgs& a) {
     const dist::MpiWorld& world = dist::MpiWorld::get();
     if (world.distributed() && !a.slabSweep.empty())
         throw fit::InputError("--slab-sweep runs in one process, not under mpirun");
+    if (world.distributed() && !a.frames.empty())
+        throw fit::InputError("--frames all runs in one process, not under mpirun");
     if (world.distributed() && (pacs::isDicomWebUrl(a.input) || pacs::isDicomWebUrl(a.volume)))
         world.allOrNone([] { // one message, from rank 0
             throw fit::InputError(
@@ -206,6 +245,11 @@ void addRenderCommand(CLI::App& app) {
                   "Print the frame's render and composite milliseconds on stderr (the slowest rank's)");
     addMemoryBudgetOption(*cmd, args->memoryBudget);
     addSeriesOption(*cmd, args->series);
+    addFrameOption(*cmd, args->frame);
+    cmd->add_option(
+        "--frames", args->frames,
+        "'all': every frame of a 4D file fitted and drawn at one camera (the first frame's window), "
+        "-o DIR/%03d.png (one PNG per frame) or cine.webm");
     addRawOptions(*cmd, args->raw);
     addDicomWebOptions(*cmd, args->dicomWeb);
     cmd->callback([args] { runRenderCommand(*args); });

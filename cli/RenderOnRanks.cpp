@@ -74,6 +74,8 @@ void readRankInput(const MpiWorld& world, const RenderArgs& a, RankInput& in) {
         in.fitHere = !in.grid;
     }
     if (volumePath.empty()) return;
+    if (a.frame && *a.frame != 0)
+        throw fit::InputError("--frame other than 0 is not supported under mpirun yet");
     // An empty range of cells (more ranks than cells) still reads its one plane: its range counts alike.
     checkPlanesFitBudget(volumePath, in.c.raw, a.memoryBudget, a.series,
                          static_cast<std::uint64_t>(in.cells.end - in.cells.first + 1));

@@ -2,6 +2,7 @@
 #include "Args.h"
 #include "Commands.h"
 #include "DicomWebInput.h"
+#include "FrameOption.h"
 #include "RawOptions.h"
 #include "SeriesOption.h"
 
@@ -25,7 +26,8 @@ struct VerifyArgs {
     std::string file;
     std::string input;
     RawArgs raw;
-    std::string series; // DICOM SeriesInstanceUID; empty: the folder's only series
+    std::string series;       // DICOM SeriesInstanceUID; empty: the folder's only series
+    std::optional<int> frame; // of a 4D file; empty: frame 0
     DicomWebOptions dicomWeb;
 };
 
@@ -40,8 +42,10 @@ void runVerify(const VerifyArgs& a) {
     const auto raw = rawLayoutFrom(a.raw);
     const fit::VotSpace space = meta::readVotSpaceFile(a.file);
     const VolumeInput input(a.input, a.dicomWeb, nullptr, false);
-    const fit::Volume volume = input.reading(
-        [&] { return fit::loadVolume(input.path(), raw, fit::SampleStorage::Float, a.series); });
+    const fit::Volume volume = input.reading([&] {
+        const int frame = frameToRead(input.path(), raw, a.series, a.frame);
+        return fit::loadVolume(input.path(), raw, fit::SampleStorage::Float, a.series, frame);
+    });
     const meta::FitMetaView meta = meta::readFitMeta(space.metaJson);
     const fit::VerifyReport r = fit::verifyVotSpace(space, volume, epsFieldOf(space, meta));
 
@@ -80,6 +84,7 @@ void addVerifyCommand(CLI::App& app) {
         ->required();
     addRawOptions(*cmd, args->raw);
     addSeriesOption(*cmd, args->series);
+    addFrameOption(*cmd, args->frame);
     addDicomWebOptions(*cmd, args->dicomWeb);
     cmd->callback([args] { runVerify(*args); });
 }

@@ -99,8 +99,33 @@ FitCounters::Slot& FitCounters::mine() {
     return mSlots[slot];
 }
 
+bool BoxFitter::holdsNoData(const Box& box) const {
+    if (!mHasNoData) return false;
+    for (int z = box.lo[2]; z <= box.hi[2]; ++z)
+        for (int y = box.lo[1]; y <= box.hi[1]; ++y) {
+            const float* row = mVolume.values.data() + mVolume.indexOf(0, y, z);
+            for (int x = box.lo[0]; x <= box.hi[0]; ++x)
+                if (!std::isfinite(row[x])) return true;
+        }
+    return false;
+}
+
+namespace {
+
+BoxOutcome rejectedForNoData(const Box& box) {
+    BoxOutcome outcome;
+    outcome.exact = true; // no eps accepts it: a cache may answer it without a scan
+    outcome.errCriterion = outcome.errCriterionBound = outcome.errSamples = INFINITY;
+    for (int a = 0; a < 3; ++a)
+        outcome.p[a] = 0.5f * static_cast<float>(box.lo[a] + box.hi[a]);
+    return outcome;
+}
+
+} // namespace
+
 BoxOutcome BoxFitter::fit(const Box& box, const EpsField& eps, FitCounters& counters) const {
     counters.addFit();
+    if (holdsNoData(box)) return rejectedForNoData(box);
     const std::uint32_t mask = basisMask(box, mDegree);
     std::array<int, MONOMIAL_COUNT> basis{};
     int nb = 0;
@@ -235,6 +260,12 @@ BoxOutcome BoxFitter::fit(const Box& box, const EpsField& eps, FitCounters& coun
 void BoxFitter::certify(const Box& box, const EpsField& eps, BoxOutcome& outcome,
                         FitCounters& counters) const {
     counters.addScan();
+    if (holdsNoData(box)) {
+        const auto coefficients = outcome.c;
+        outcome = rejectedForNoData(box);
+        outcome.c = coefficients;
+        return;
+    }
     const bool alwaysAccept = isSingleCell(box);
     const bool varies = eps.varies();
     const double epsMin = eps.minOverBox(box);

@@ -56,7 +56,7 @@ struct BoxOutcome {
 class BoxFitter {
 public:
     BoxFitter(const Volume& volume, int degree, Certify certify)
-        : mVolume(volume), mDegree(degree), mCertify(certify) {}
+        : mVolume(volume), mDegree(degree), mCertify(certify), mHasNoData(volume.nonFiniteCount() > 0) {}
 
     /// Solves the least-squares problem on the box and certifies the float coefficients.
     /// A single-cell box is always accepted: its 8-term trilinear basis is exact (docs/DESIGN.md §2).
@@ -67,9 +67,14 @@ public:
     int degree() const { return mDegree; }
 
 private:
+    /// A box holding a NaN or Inf sample is rejected whatever eps (its error counts as infinite), so the
+    /// generators split it until no Vot holds one (docs/DESIGN.md §4 "Non-finite samples").
+    bool holdsNoData(const Box& box) const;
+
     const Volume& mVolume;
     int mDegree;
     Certify mCertify;
+    bool mHasNoData; // any sample of the volume is NaN or Inf
 };
 
 /// The monomials a box can determine: degree <= N and a_axis < points along that axis; a one-cell

@@ -5,6 +5,9 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
+#include <limits>
+#include <type_traits>
 
 namespace vots::fit {
 namespace {
@@ -32,11 +35,21 @@ struct AxisMasks {
 };
 const AxisMasks AXIS_MASKS;
 
+// A sample that is NaN or Inf: no data (docs/DESIGN.md §4 "Non-finite samples"). Integers never are.
+template <typename T> bool isNoData(T value) {
+    if constexpr (std::is_floating_point_v<T>)
+        return !(std::fabs(value) <= std::numeric_limits<T>::max());
+    else
+        return false;
+}
+
 // The sum of the 8 corner samples of every background cell (isBackground[i] != 0) in the row of cells
-// (j, k), in double: a volume's background can hold billions of samples.
+// (j, k), in double: a volume's background can hold billions of samples. A cell with a non-finite corner
+// counts as `noDataValue` at all 8: its finite corners may be bright data next to the no-data region, and
+// the fill must stay below the threshold as a cell below it would (docs/DESIGN.md §4).
 template <typename T>
 double backgroundCornerSum(const T* values, std::size_t nx, std::size_t nxy, int j, int k,
-                           const std::vector<std::uint8_t>& isBackground) {
+                           const std::vector<std::uint8_t>& isBackground, float noDataValue) {
     const T* p00 = values + static_cast<std::size_t>(k) * nxy + static_cast<std::size_t>(j) * nx;
     const T* p10 = p00 + nx;
     const T* p01 = p00 + nxy;
@@ -45,57 +58,71 @@ double backgroundCornerSum(const T* values, std::size_t nx, std::size_t nxy, int
     for (std::size_t i = 0; i < isBackground.size(); ++i) {
         if (!isBackground[i]) continue;
         double corners = 0.0;
-        for (const T* p : {p00, p10, p01, p11})
+        bool noData = false;
+        for (const T* p : {p00, p10, p01, p11}) {
             corners += double{sampleAsFloat(p[i])} + double{sampleAsFloat(p[i + 1])};
-        sum += corners;
+            noData = noData || isNoData(p[i]) || isNoData(p[i + 1]);
+        }
+        sum += noData ? 8.0 * noDataValue : corners;
     }
     return sum;
 }
 
-// Sets the foreground bits from the samples: a cell is background when all 8 corners are below tau.
-// Slice by slice over contiguous bytes, which the compiler vectorises; two slices of "low" flags are
-// all the scratch it needs (a flag per sample would be as large as the samples). Returns the sum over
-// background cells of the mean of each one's 8 corners (CellMask::backgroundValueSum).
+// Per-sample flags of markForeground: below the threshold, and no data.
+constexpr std::uint8_t LOW = 1, NO_DATA = 2;
+
+// Sets the foreground bits from the samples: a cell is background when all 8 corners are below tau or
+// any corner is no data (NaN, Inf). Slice by slice over contiguous bytes, which the compiler vectorises;
+// two slices of flags are all the scratch it needs (a flag per sample would be as large as the samples).
+// Returns the sum over background cells of the mean of each one's 8 corners
+// (CellMask::backgroundValueSum), a non-finite corner counting as `noDataValue`.
 template <typename T>
 double markForeground(const T* values, const std::array<int, 3>& dims, std::optional<float> background,
-                      const std::array<int, 3>& cells, const auto& setRow) {
+                      const std::array<int, 3>& cells, float noDataValue, const auto& setRow) {
     const std::size_t nx = static_cast<std::size_t>(dims[0]);
     const std::size_t nxy = nx * static_cast<std::size_t>(dims[1]);
     std::vector<std::uint8_t> row(static_cast<std::size_t>(cells[0]), 0);
-    if (!background) {
+    if (!background && !std::is_floating_point_v<T>) {
         for (int k = 0; k < cells[2]; ++k)
             for (int j = 0; j < cells[1]; ++j)
                 setRow(j, k, row.data()); // all zero: no cell is background
         return 0.0;
     }
-    const float tau = *background;
-    std::vector<std::uint8_t> lowBelow(nxy), lowAbove(nxy);
-    auto markLow = [&](int z, std::vector<std::uint8_t>& low) {
+    // Without a threshold nothing is low (no sample is below -inf), but no-data cells are still left out.
+    const float tau = background ? *background : -std::numeric_limits<float>::infinity();
+    std::vector<std::uint8_t> flagsBelow(nxy), flagsAbove(nxy);
+    auto markFlags = [&](int z, std::vector<std::uint8_t>& flags) {
         const T* slice = values + static_cast<std::size_t>(z) * nxy;
-        for (std::size_t n = 0; n < nxy; ++n)
-            low[n] = sampleAsFloat(slice[n]) < tau ? 1 : 0;
+        for (std::size_t n = 0; n < nxy; ++n) {
+            const T v = slice[n];
+            flags[n] =
+                static_cast<std::uint8_t>((sampleAsFloat(v) < tau ? LOW : 0) | (isNoData(v) ? NO_DATA : 0));
+        }
     };
     double cornerSum = 0.0; // over background cells, of their 8 corners
-    markLow(0, lowBelow);
+    markFlags(0, flagsBelow);
     for (int k = 0; k < cells[2]; ++k) {
-        markLow(k + 1, lowAbove);
+        markFlags(k + 1, flagsAbove);
         for (int j = 0; j < cells[1]; ++j) {
-            const std::uint8_t* r00 = lowBelow.data() + static_cast<std::size_t>(j) * nx;
+            const std::uint8_t* r00 = flagsBelow.data() + static_cast<std::size_t>(j) * nx;
             const std::uint8_t* r10 = r00 + nx;
-            const std::uint8_t* r01 = lowAbove.data() + static_cast<std::size_t>(j) * nx;
+            const std::uint8_t* r01 = flagsAbove.data() + static_cast<std::size_t>(j) * nx;
             const std::uint8_t* r11 = r01 + nx;
             bool anyBackground = false;
             for (int i = 0; i < cells[0]; ++i) {
-                const std::uint8_t low =
+                const std::uint8_t all =
                     r00[i] & r00[i + 1] & r10[i] & r10[i + 1] & r01[i] & r01[i + 1] & r11[i] & r11[i + 1];
-                row[static_cast<std::size_t>(i)] = low;
-                anyBackground |= low != 0;
+                const std::uint8_t any =
+                    r00[i] | r00[i + 1] | r10[i] | r10[i + 1] | r01[i] | r01[i + 1] | r11[i] | r11[i + 1];
+                const std::uint8_t omitted = static_cast<std::uint8_t>((all & LOW) | (any & NO_DATA) >> 1);
+                row[static_cast<std::size_t>(i)] = omitted;
+                anyBackground |= omitted != 0;
             }
             setRow(j, k, row.data());
             // Most rows of a volume cut through an object hold no background; those cost nothing more.
-            if (anyBackground) cornerSum += backgroundCornerSum(values, nx, nxy, j, k, row);
+            if (anyBackground) cornerSum += backgroundCornerSum(values, nx, nxy, j, k, row, noDataValue);
         }
-        lowBelow.swap(lowAbove);
+        flagsBelow.swap(flagsAbove);
     }
     return cornerSum / 8.0;
 }
@@ -115,8 +142,12 @@ CellMask::CellMask(const Volume& volume, std::optional<float> background) {
             for (int i = 0; i < mCells[0]; ++i)
                 words[i >> 2] |= std::uint64_t{isBackgroundRow[i] ? 0u : 1u} << (rowBits | (i & 3));
         };
+        // Cells with a non-finite corner count in the fill as the lowest finite sample: no data reads as
+        // the darkest data in a MinIP and the average (docs/DESIGN.md §4 "Non-finite samples").
+        const float noDataValue = volume.isCompact() ? 0.0f : volume.valueRange()[0];
         visitSamples(volume, [&](const auto* values) {
-            mBackgroundValueSum = markForeground(values, volume.dims, background, mCells, setRow);
+            mBackgroundValueSum =
+                markForeground(values, volume.dims, background, mCells, noDataValue, setRow);
         });
     }
     // The 3D prefix sum over words as three 1D passes (x, then y, then z), each over whole rows.

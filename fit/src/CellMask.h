@@ -1,4 +1,4 @@
-// Which cells are background (all 8 corners below the threshold), with fast counts over boxes.
+// Which cells are background (all 8 corners below the threshold, or one NaN/Inf), with fast box counts.
 #pragma once
 
 #include "vots/fit/Box.h"

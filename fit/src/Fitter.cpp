@@ -43,6 +43,10 @@ void validateFitOptions(const Volume& volume, const FitOptions& options) {
             throw InputError("volume needs at least 2 grid points along every axis to form a cell");
     if (volume.heldSamples() != volume.sampleCount())
         throw InputError("volume sample count does not match its dims");
+    // A rank's planes may all be no data (the volume's other planes hold its data); a whole volume not.
+    if (!options.partOfGrid && volume.nonFiniteCount() == volume.sampleCount())
+        throw InputError("all " + std::to_string(volume.sampleCount()) +
+                         " samples are NaN or Inf: the volume holds no data");
     std::array<int, 3> gridDims = volume.dims;
     if (options.partOfGrid) {
         gridDims = options.partOfGrid->gridDims;

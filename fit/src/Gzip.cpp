@@ -32,6 +32,12 @@ struct Inflater::State {
     std::uint64_t notHandedOver() const { return fromFile ? fileLeft : left; }
 };
 
+bool isGzipFile(const std::string& path) {
+    const std::uint64_t fileSize = regularFileSize(path);
+    const std::vector<unsigned char> magic = readFileBytes(path, 0, fileSize < 2 ? 0 : 2);
+    return hasGzipMagic(magic.data(), magic.size());
+}
+
 bool hasGzipMagic(const unsigned char* data, std::size_t size) {
     return size >= 2 && data[0] == 0x1f && data[1] == 0x8b;
 }

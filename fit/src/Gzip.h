@@ -55,4 +55,7 @@ std::vector<unsigned char> inflateExact(const std::string& path, const unsigned 
 /// True when the bytes start with the gzip magic 1f 8b.
 bool hasGzipMagic(const unsigned char* data, std::size_t size);
 
+/// True when the file starts with the gzip magic (a .nii.gz, .mgz); throws for a missing file.
+bool isGzipFile(const std::string& path);
+
 } // namespace vots::fit::detail

@@ -32,7 +32,7 @@ Volume readGzipPlanes(const std::string& path, const GzipSamples& stored, int fi
             std::vector<unsigned char> part = inflater.readExactly(static_cast<std::size_t>(end - begin));
             // The reader of a stream's last bytes checks that it ends there; under mpirun every stream's
             // end is some rank's, so a file the whole load refuses is refused by the ranks together.
-            if (end == pieceEnd) inflater.expectEnd();
+            if (end == pieceEnd && piece.endsStream) inflater.expectEnd();
             if (payload.empty())
                 payload = std::move(part);
             else
@@ -42,7 +42,7 @@ Volume readGzipPlanes(const std::string& path, const GzipSamples& stored, int fi
     }
     // Scaled samples are not integers any more: only unscaled ones stay compact.
     const bool scaled = stored.slope != 0.0;
-    storeSamples(volume, path, payload.data(), count, stored.type, stored.bigEndian,
+    storeSamples(volume, payload.data(), count, stored.type, stored.bigEndian,
                  scaled ? SampleStorage::Float : storage);
     if (scaled) applyScaling(path, volume.values, stored.slope, stored.inter);
     return volume;

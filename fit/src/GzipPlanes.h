@@ -20,6 +20,7 @@ struct GzipPiece {
     std::uint64_t skip = 0;
     std::size_t bytes = 0;
     std::optional<std::uint64_t> packedBytes;
+    bool endsStream = true; // false: more follows (later frames of a 4D file, MGH's trailing tags)
 };
 
 /// A volume file whose payload is gzip or zlib streams, header already checked: the grid and the streams
@@ -37,7 +38,9 @@ struct GzipSamples {
 /// MetaImage's for CompressedData (a zlib stream); nullopt for an uncompressed payload (StoredSamples
 /// reads that by offset).
 std::optional<GzipSamples> gzipNrrdSamples(const std::string& path);
-std::optional<GzipSamples> gzipNiftiSamples(const std::string& path);
+std::optional<GzipSamples> gzipNiftiSamples(const std::string& path, int frame = 0);
+/// FreeSurfer's .mgz (MghReader.cpp); nullopt for an uncompressed .mgh.
+std::optional<GzipSamples> gzipMghSamples(const std::string& path, int frame = 0);
 std::optional<GzipSamples> gzipMetaImageSamples(const std::string& path);
 
 /// Planes [first, last] (first <= last inside the grid), as cutting them out of the whole load gives them.

@@ -118,12 +118,19 @@ std::string volumeExtension(const std::string& path) {
     return dot == std::string::npos ? std::string() : name.substr(dot);
 }
 
+void checkFrame(const std::string& path, int frame, std::uint64_t frames) {
+    if (frame < 0 || static_cast<std::uint64_t>(frame) >= frames)
+        throwInputError(
+            path, "has no frame " + std::to_string(frame) + ": it holds " + std::to_string(frames) +
+                      (frames == 1 ? " frame (0)" : " frames (0 to " + std::to_string(frames - 1) + ")"));
+}
+
 void throwUnknownVolumeFormat(const std::string& path) {
     // Existence first: "no such file" is the more useful message for a mistyped path.
     regularFileSize(path);
     throwInputError(path, "unknown volume format '" + volumeExtension(path) +
-                              "' (expected .nrrd, .nhdr, .nii, .nii.gz, .mhd, .mha, a DICOM folder, or a raw "
-                              "layout)");
+                              "' (expected .nrrd, .nhdr, .nii, .nii.gz, .mgh, .mgz, .mhd, .mha, a DICOM "
+                              "folder, or a raw layout)");
 }
 
 } // namespace vots::fit::detail

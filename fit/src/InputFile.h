@@ -39,6 +39,9 @@ std::string pathBesideHeader(const std::string& headerPath, const std::string& n
 /// Lower-case extension including the dot; ".nii.gz" counts as one extension.
 std::string volumeExtension(const std::string& path);
 
+/// Throws the one error of a frame outside [0, frames) of a 4D file, naming the frames it holds.
+void checkFrame(const std::string& path, int frame, std::uint64_t frames);
+
 /// Throws loadVolume's error for a path that is neither a known format nor a DICOM folder.
 [[noreturn]] void throwUnknownVolumeFormat(const std::string& path);
 

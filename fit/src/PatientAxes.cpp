@@ -60,6 +60,15 @@ std::string patientDirectionName(const std::array<double, 3>& axis) {
     return "";
 }
 
+void rasToLps(PatientAxes& axes, std::array<double, 3>& origin) {
+    auto flip = [](double& v) { v = v == 0.0 ? 0.0 : -v; };
+    for (auto& axis : axes)
+        for (int c = 0; c < 2; ++c)
+            flip(axis[c]);
+    for (int c = 0; c < 2; ++c)
+        flip(origin[c]);
+}
+
 bool isAxisAligned(const PatientAxes& axes) {
     for (const auto& axis : axes)
         if (patientDirectionName(axis).empty()) return false;

@@ -54,35 +54,46 @@ template <> struct UnsignedOfSize<2> { using Type = std::uint16_t; };
 template <> struct UnsignedOfSize<4> { using Type = std::uint32_t; };
 template <> struct UnsignedOfSize<8> { using Type = std::uint64_t; };
 
-// Converts each sample; returns the number of samples that are not finite floats (those become 0).
-template <typename T>
-std::size_t decodeAs(const unsigned char* src, std::size_t count, bool swap, float* dst) {
+// Converts each sample. A non-finite float stays as it is (NaN and Inf are no data, docs/DESIGN.md §4),
+// and a double beyond float range becomes an infinity: converting it would be undefined behaviour.
+template <typename T> void decodeAs(const unsigned char* src, std::size_t count, bool swap, float* dst) {
     using U = typename UnsignedOfSize<sizeof(T)>::Type;
-    std::size_t bad = 0;
     for (std::size_t i = 0; i < count; ++i) {
         U bits;
         std::memcpy(&bits, src + i * sizeof(T), sizeof(T));
         if (swap) bits = byteSwapped(bits);
         const T value = std::bit_cast<T>(bits);
-        if constexpr (std::is_floating_point_v<T>) {
-            // A double beyond float range would be undefined behaviour to convert; count it as bad.
-            const bool finite = std::isfinite(value) &&
-                                std::fabs(static_cast<double>(value)) <= std::numeric_limits<float>::max();
-            if (!finite) {
-                ++bad;
-                dst[i] = 0.0f;
+        if constexpr (std::is_same_v<T, double>) {
+            if (std::fabs(value) > std::numeric_limits<float>::max()) {
+                dst[i] = value < 0 ? -std::numeric_limits<float>::infinity()
+                                   : std::numeric_limits<float>::infinity();
                 continue;
             }
         }
         dst[i] = static_cast<float>(value);
     }
-    return bad;
 }
 
 } // namespace
 
 std::optional<ScalarType> findScalarType(const std::string& text) {
     return findNamed<ScalarType>(normaliseTypeText(text));
+}
+
+Volume gridWithoutSamples(const std::array<int, 3>& dims, const std::array<double, 3>& spacing,
+                          const std::array<double, 3>& origin, const std::optional<PatientAxes>& axes,
+                          ScalarType type, std::string name) {
+    Volume volume;
+    volume.dims = dims;
+    volume.spacing = spacing;
+    volume.origin = origin;
+    if (axes) {
+        volume.patientAxes = *axes;
+        volume.orientationKnown = true;
+    }
+    volume.sourceType = type;
+    volume.name = std::move(name);
+    return volume;
 }
 
 CheckedShape checkShape(const std::string& path, const std::array<long long, 3>& dims, ScalarType type) {
@@ -110,11 +121,10 @@ CheckedShape checkShape(const std::string& path, const std::array<long long, 3>&
     return shape;
 }
 
-std::vector<float> decodeSamples(const std::string& path, const unsigned char* bytes, std::size_t count,
-                                 ScalarType type, bool bigEndian) {
+std::vector<float> decodeSamples(const unsigned char* bytes, std::size_t count, ScalarType type,
+                                 bool bigEndian) {
     std::vector<float> values(count);
     const bool swap = bigEndian != (std::endian::native == std::endian::big);
-    std::size_t bad = 0;
     switch (type) {
     case ScalarType::UInt8:
         decodeAs<std::uint8_t>(bytes, count, swap, values.data());
@@ -135,15 +145,12 @@ std::vector<float> decodeSamples(const std::string& path, const unsigned char* b
         decodeAs<std::int32_t>(bytes, count, swap, values.data());
         break;
     case ScalarType::Float32:
-        bad = decodeAs<float>(bytes, count, swap, values.data());
+        decodeAs<float>(bytes, count, swap, values.data());
         break;
     case ScalarType::Float64:
-        bad = decodeAs<double>(bytes, count, swap, values.data());
+        decodeAs<double>(bytes, count, swap, values.data());
         break;
     }
-    if (bad > 0)
-        throwInputError(path, std::to_string(bad) + " of " + std::to_string(count) +
-                                  " samples are not finite (NaN, Inf or beyond float range)");
     return values;
 }
 
@@ -155,26 +162,17 @@ namespace {
 
 // Decodes samples whose file bytes sit at the start of `dst`'s own memory, from the last to the first:
 // a float is never narrower than the sample it replaces, so each write lands on bytes already read.
-template <typename T> std::size_t decodeInPlace(float* dst, std::size_t count, bool swap) {
+template <typename T> void decodeInPlace(float* dst, std::size_t count, bool swap) {
     using U = typename UnsignedOfSize<sizeof(T)>::Type;
     static_assert(sizeof(T) <= sizeof(float));
     const unsigned char* src = reinterpret_cast<const unsigned char*>(dst);
-    std::size_t bad = 0;
     for (std::size_t i = count; i-- > 0;) {
         U bits;
         std::memcpy(&bits, src + i * sizeof(T), sizeof(T));
         if (swap) bits = byteSwapped(bits);
-        const T value = std::bit_cast<T>(bits);
-        float out = static_cast<float>(value);
-        if constexpr (std::is_floating_point_v<T>) {
-            if (!std::isfinite(value)) {
-                ++bad;
-                out = 0.0f;
-            }
-        }
+        const float out = static_cast<float>(std::bit_cast<T>(bits));
         std::memcpy(reinterpret_cast<unsigned char*>(dst) + i * sizeof(float), &out, sizeof(float));
     }
-    return bad;
 }
 
 // The samples of an 8- or 16-bit file in their own type: fill(data, bytes) writes the file's bytes,
@@ -215,12 +213,12 @@ bool storeCompact(Volume& volume, ScalarType type, std::size_t count, bool bigEn
 
 } // namespace
 
-void readSamples(Volume& volume, const std::string& path, std::size_t count, ScalarType type, bool bigEndian,
-                 SampleStorage storage, const PayloadReader& read) {
+void readSamples(Volume& volume, std::size_t count, ScalarType type, bool bigEndian, SampleStorage storage,
+                 const PayloadReader& read) {
     if (type == ScalarType::Float64) {
         std::vector<unsigned char> payload(count * sizeof(double));
         read(payload.data());
-        storeSamples(volume, path, payload.data(), count, type, bigEndian, storage);
+        storeSamples(volume, payload.data(), count, type, bigEndian, storage);
         return;
     }
     if (keepsCompact(type, storage) &&
@@ -229,7 +227,6 @@ void readSamples(Volume& volume, const std::string& path, std::size_t count, Sca
     std::vector<float> values(count);
     read(reinterpret_cast<unsigned char*>(values.data()));
     const bool swap = bigEndian != (std::endian::native == std::endian::big);
-    std::size_t bad = 0;
     switch (type) {
     case ScalarType::UInt8:
         decodeInPlace<std::uint8_t>(values.data(), count, swap);
@@ -250,22 +247,19 @@ void readSamples(Volume& volume, const std::string& path, std::size_t count, Sca
         decodeInPlace<std::int32_t>(values.data(), count, swap);
         break;
     case ScalarType::Float32:
-        bad = decodeInPlace<float>(values.data(), count, swap);
+        decodeInPlace<float>(values.data(), count, swap);
         break;
     case ScalarType::Float64: // read above
         break;
     }
-    if (bad > 0)
-        throwInputError(path, std::to_string(bad) + " of " + std::to_string(count) +
-                                  " samples are not finite (NaN, Inf or beyond float range)");
     volume.compact = std::monostate{};
     volume.values = std::move(values);
 }
 
-void storeSamples(Volume& volume, const std::string& path, const unsigned char* bytes, std::size_t count,
-                  ScalarType type, bool bigEndian, SampleStorage storage) {
+void storeSamples(Volume& volume, const unsigned char* bytes, std::size_t count, ScalarType type,
+                  bool bigEndian, SampleStorage storage) {
     if (!keepsCompact(type, storage)) {
-        volume.values = decodeSamples(path, bytes, count, type, bigEndian);
+        volume.values = decodeSamples(bytes, count, type, bigEndian);
         return;
     }
     storeCompact(volume, type, count, bigEndian,

@@ -1,8 +1,11 @@
 // Private: sample type sizes and spellings, size limits, and bytes -> float decoding for every reader.
 #pragma once
 
+#include "vots/fit/PatientAxes.h"
 #include "vots/fit/Volume.h"
 #include "vots/fit/VolumeLoad.h"
+
+#include "InputFile.h"
 
 #include <array>
 #include <cstddef>
@@ -31,6 +34,18 @@ std::size_t scalarTypeSize(ScalarType type);
 /// case-insensitive; nullopt when unknown.
 std::optional<ScalarType> findScalarType(const std::string& text);
 
+/// A volume's grid without samples, as a header states it; `axes` nullopt: orientation unknown.
+Volume gridWithoutSamples(const std::array<int, 3>& dims, const std::array<double, 3>& spacing,
+                          const std::array<double, 3>& origin, const std::optional<PatientAxes>& axes,
+                          ScalarType type, std::string name);
+
+/// gridWithoutSamples of a parsed header (NiftiInfo, MghInfo: shape, spacing, origin, axes, type), named
+/// after the file.
+template <class HeaderInfo> Volume gridOfHeader(const std::string& path, const HeaderInfo& info) {
+    return gridWithoutSamples(info.shape.dims, info.spacing, info.origin, info.axes, info.type,
+                              fileStem(path));
+}
+
 /// Checks that each dimension is positive and the sample count and byte size stay under the caps.
 CheckedShape checkShape(const std::string& path, const std::array<long long, 3>& dims, ScalarType type);
 
@@ -44,17 +59,17 @@ template <typename U> U byteSwapped(U value) {
     return out;
 }
 
-/// Decodes `count` samples stored as `type` with the given byte order. Throws InputError naming how
-/// many samples are NaN/Inf (or, for double, beyond float range).
-std::vector<float> decodeSamples(const std::string& path, const unsigned char* bytes, std::size_t count,
-                                 ScalarType type, bool bigEndian);
+/// Decodes `count` samples stored as `type` with the given byte order. NaN and Inf stay (no data); a
+/// double beyond float range becomes an infinity.
+std::vector<float> decodeSamples(const unsigned char* bytes, std::size_t count, ScalarType type,
+                                 bool bigEndian);
 
 /// True when `storage` keeps samples of `type` in Volume::compact.
 bool keepsCompact(ScalarType type, SampleStorage storage);
 
 /// Fills volume.values or volume.compact (as keepsCompact says) from the file's bytes.
-void storeSamples(Volume& volume, const std::string& path, const unsigned char* bytes, std::size_t count,
-                  ScalarType type, bool bigEndian, SampleStorage storage);
+void storeSamples(Volume& volume, const unsigned char* bytes, std::size_t count, ScalarType type,
+                  bool bigEndian, SampleStorage storage);
 
 /// Writes exactly the payload (the file's bytes of all samples) at `destination`.
 using PayloadReader = std::function<void(unsigned char* destination)>;
@@ -62,7 +77,7 @@ using PayloadReader = std::function<void(unsigned char* destination)>;
 /// As storeSamples, but the payload is read straight into the samples' own memory and decoded there,
 /// so loading never holds the volume twice (float64 files, narrowed to float, are the exception).
 /// Only for payloads whose size the file has already proven: the memory is taken before reading.
-void readSamples(Volume& volume, const std::string& path, std::size_t count, ScalarType type, bool bigEndian,
-                 SampleStorage storage, const PayloadReader& read);
+void readSamples(Volume& volume, std::size_t count, ScalarType type, bool bigEndian, SampleStorage storage,
+                 const PayloadReader& read);
 
 } // namespace vots::fit::detail

@@ -46,7 +46,7 @@ Volume readStoredPlanes(const std::string& path, const StoredSamples& stored, in
         static_cast<std::uint64_t>(plane) * static_cast<std::uint64_t>(first) * sampleBytes;
     const bool scaled = stored.slope != 0.0;
     // Scaled samples are not integers any more: only unscaled ones stay compact.
-    readSamples(volume, path, count, stored.type, stored.bigEndian, scaled ? SampleStorage::Float : storage,
+    readSamples(volume, count, stored.type, stored.bigEndian, scaled ? SampleStorage::Float : storage,
                 [&](unsigned char* destination) {
                     readPayloadRange(stored.pieces, from, count * sampleBytes, destination);
                 });

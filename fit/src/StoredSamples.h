@@ -33,7 +33,9 @@ struct StoredSamples {
 /// compressed (gzip, zlib), which cannot be entered at an offset. Throws the reader's InputError for a
 /// malformed header or a file that does not hold exactly the payload the header describes.
 std::optional<StoredSamples> storedNrrdSamples(const std::string& path);
-std::optional<StoredSamples> storedNiftiSamples(const std::string& path);
+/// `frame` picks one 3D volume of a 4D file (NIfTI, MGH); out of range is an InputError naming the count.
+std::optional<StoredSamples> storedNiftiSamples(const std::string& path, int frame = 0);
+std::optional<StoredSamples> storedMghSamples(const std::string& path, int frame = 0);
 std::optional<StoredSamples> storedMetaImageSamples(const std::string& path);
 StoredSamples storedRawSamples(const std::string& path, const RawLayout& layout);
 

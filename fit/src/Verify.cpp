@@ -23,6 +23,14 @@ void checkVot(const Vot& vot, std::size_t index, const Volume& volume, const Eps
         for (int y = b.lo[1]; y <= b.hi[1]; ++y)
             for (int x = b.lo[0]; x <= b.hi[0]; ++x) {
                 const double value = volume.at(x, y, z);
+                if (!std::isfinite(value)) { // no data: no Vot may hold one (a NaN residual passes no test)
+                    ++out.samples;
+                    if (out.violations++ == 0)
+                        out.firstProblem = "Vot " + std::to_string(index) + " holds the non-finite sample (" +
+                                           std::to_string(x) + "," + std::to_string(y) + "," +
+                                           std::to_string(z) + ")";
+                    continue;
+                }
                 const double residual = std::abs(vot.evaluate({double(x), double(y), double(z)}) - value);
                 const double slack = FLOAT_ALLOWANCE * (1.0 + std::abs(value));
                 ++out.samples;
@@ -79,10 +87,14 @@ VerifyReport verifyVotSpace(const VotSpace& space, const Volume& volume,
     for (int k = 0; k < cells[2]; ++k)
         for (int j = 0; j < cells[1]; ++j)
             for (int i = 0; i < cells[0]; ++i) {
-                bool background = true;
-                for (int c = 0; c < 8 && background; ++c)
-                    background = volume.at(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1)) < tau;
-                if (background) continue;
+                // Background: all corners below the threshold, or any corner NaN or Inf (no data).
+                bool allLow = true, anyNoData = false;
+                for (int c = 0; c < 8; ++c) {
+                    const float corner = volume.at(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1));
+                    allLow = allLow && corner < tau;
+                    anyNoData = anyNoData || !std::isfinite(corner);
+                }
+                if (allLow || anyNoData) continue;
                 ++report.nonBackgroundCells;
                 if (!covered[cellIndex(i, j, k)] && report.uncoveredCells++ == 0)
                     report.firstProblem = "cell (" + std::to_string(i) + "," + std::to_string(j) + "," +

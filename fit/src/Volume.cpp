@@ -11,6 +11,8 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace vots::fit {
 
@@ -33,18 +35,27 @@ std::size_t Volume::heldSamples() const {
 
 std::array<float, 2> Volume::valueRange() const {
     const std::size_t count = heldSamples();
-    if (count == 0) return {0.0f, 0.0f};
-    return visitSamples(*this, [count](const auto* samples) -> std::array<float, 2> {
+    const auto range = visitSamples(*this, [count](const auto* samples) -> std::array<float, 2> {
         // A plain min/max the compiler vectorises; std::minmax_element tracks positions and does not (a
-        // fit calls this more than once, on its serial path). NaN samples are skipped alike.
-        float lo = sampleAsFloat(samples[0]), hi = lo;
+        // fit calls this more than once, on its serial path). NaN and Inf samples are no data: skipped.
+        float lo = std::numeric_limits<float>::infinity(), hi = -lo;
         for (std::size_t i = 0; i < count; ++i) {
             const float v = sampleAsFloat(samples[i]);
-            lo = std::min(lo, v);
-            hi = std::max(hi, v);
+            const bool finite = std::fabs(v) <= std::numeric_limits<float>::max();
+            lo = finite ? std::min(lo, v) : lo;
+            hi = finite ? std::max(hi, v) : hi;
         }
         return {lo, hi};
     });
+    if (range[0] > range[1]) return {0.0f, 0.0f}; // no finite sample
+    return range;
+}
+
+std::size_t Volume::nonFiniteCount() const {
+    if (isCompact()) return 0; // integers are always finite
+    return static_cast<std::size_t>(std::count_if(values.begin(), values.end(), [](float v) {
+        return !(std::fabs(v) <= std::numeric_limits<float>::max());
+    }));
 }
 
 namespace {

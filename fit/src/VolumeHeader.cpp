@@ -1,11 +1,13 @@
-// Header-only reading of NRRD, NIfTI-1 and MetaImage files: the announced dims and sample type, no samples.
-// The readers (NrrdReader.cpp, ...) validate everything else when the volume is loaded; this file reads
-// just the fields that size the load, in the same way, so both agree on the grid.
+// Header-only reading of NRRD, NIfTI, MGH and MetaImage files: the announced dims and sample type, no
+// samples. The readers (NrrdReader.cpp, ...) validate everything else when the volume is loaded; this file
+// reads just the fields that size the load, in the same way, so both agree on the grid.
 #include "vots/fit/VolumeHeader.h"
 
 #include "Gzip.h"
 #include "HeaderText.h"
 #include "InputFile.h"
+#include "MghHeader.h"
+#include "NiftiHeader.h"
 #include "SampleDecode.h"
 
 #include "vots/fit/DicomSeries.h"
@@ -23,8 +25,7 @@ namespace {
 using namespace detail;
 
 constexpr std::size_t MAX_TEXT_HEADER_BYTES = std::size_t{1} << 20; // as the NRRD and MetaImage readers
-constexpr std::size_t NIFTI_HEADER_BYTES = 348;
-constexpr std::size_t GZIP_PREFIX_BYTES = std::size_t{1} << 16; // far more than 348 inflated bytes need
+constexpr std::size_t GZIP_PREFIX_BYTES = std::size_t{1} << 16;     // far more than 348 inflated bytes need
 
 std::uint64_t saturatingProduct(std::uint64_t a, std::uint64_t b) {
     if (a != 0 && b > std::numeric_limits<std::uint64_t>::max() / a)
@@ -108,49 +109,42 @@ VolumeHeaderInfo metaImageInfo(const std::string& path) {
     return infoFrom(path, {n[0], n[1], n[2]}, type->second);
 }
 
-// The fixed-offset fields of a NIfTI-1 header in the file's byte order (sizeof_hdr 348 tells which).
-VolumeHeaderInfo niftiInfo(const std::string& path) {
+// The first `count` bytes of the file, inflated when it is gzip (.nii.gz, .mgz).
+std::vector<unsigned char> headerBytes(const std::string& path, std::size_t count) {
     const std::uint64_t fileSize = regularFileSize(path);
     const std::vector<unsigned char> start = readFileBytes(path, 0, fileSize < 2 ? 0 : 2);
-    std::vector<unsigned char> header;
-    if (hasGzipMagic(start.data(), start.size())) {
-        const auto prefix = readFileBytes(
-            path, 0, static_cast<std::size_t>(std::min<std::uint64_t>(fileSize, GZIP_PREFIX_BYTES)));
-        Inflater inflater(path, prefix.data(), prefix.size());
-        header = inflater.readExactly(NIFTI_HEADER_BYTES);
-    } else {
-        if (fileSize < NIFTI_HEADER_BYTES) throwInputError(path, "too short for a NIfTI-1 header");
-        header = readFileBytes(path, 0, NIFTI_HEADER_BYTES);
+    if (!hasGzipMagic(start.data(), start.size())) {
+        if (fileSize < count)
+            throwInputError(path, "too short for its header (" + std::to_string(fileSize) + " bytes)");
+        return readFileBytes(path, 0, count);
     }
-    std::uint32_t sizeofHdr = 0;
-    std::memcpy(&sizeofHdr, header.data(), sizeof sizeofHdr);
-    const bool swap = sizeofHdr != NIFTI_HEADER_BYTES;
-    if (swap && byteSwapped(sizeofHdr) != NIFTI_HEADER_BYTES)
-        throwInputError(path, "not a NIfTI-1 file (sizeof_hdr is not 348)");
-    const auto int16At = [&](std::size_t offset) {
-        std::uint16_t bits = 0;
-        std::memcpy(&bits, header.data() + offset, sizeof bits);
-        return std::bit_cast<std::int16_t>(swap ? byteSwapped(bits) : bits);
-    };
-    const int rank = int16At(40);
-    if (rank < 3 || rank > 7)
-        throwInputError(path, "has " + std::to_string(rank) + " dimensions; only 3D volumes are supported");
-    static const std::map<int, ScalarType> TYPES = {{2, ScalarType::UInt8},    {4, ScalarType::Int16},
-                                                    {8, ScalarType::Int32},    {16, ScalarType::Float32},
-                                                    {64, ScalarType::Float64}, {256, ScalarType::Int8},
-                                                    {512, ScalarType::UInt16}, {768, ScalarType::UInt32}};
-    const auto type = TYPES.find(int16At(70));
-    if (type == TYPES.end())
-        throwInputError(path, "unsupported NIfTI datatype " + std::to_string(int16At(70)));
-    const auto float32At = [&](std::size_t offset) {
-        std::uint32_t bits = 0;
-        std::memcpy(&bits, header.data() + offset, sizeof bits);
-        return static_cast<double>(std::bit_cast<float>(swap ? byteSwapped(bits) : bits));
-    };
-    VolumeHeaderInfo info = infoFrom(path, {int16At(42), int16At(44), int16At(46)}, type->second);
+    const auto prefix = readFileBytes(
+        path, 0, static_cast<std::size_t>(std::min<std::uint64_t>(fileSize, GZIP_PREFIX_BYTES)));
+    Inflater inflater(path, prefix.data(), prefix.size());
+    return inflater.readExactly(count);
+}
+
+// The NIfTI-1 or NIfTI-2 fields that size the load, read as the reader reads them (NiftiHeader.cpp).
+VolumeHeaderInfo niftiInfo(const std::string& path) {
+    const std::vector<unsigned char> first = headerBytes(path, 4);
+    const std::vector<unsigned char> header = headerBytes(path, niftiHeaderBytes(path, first.data()));
+    const NiftiFields fields = readNiftiFields(path, header.data());
+    VolumeHeaderInfo info =
+        infoFrom(path, {fields.dim[1], fields.dim[2], fields.dim[3]}, niftiType(path, fields.datatype));
+    info.frames = niftiFrames(path, fields);
     // As the reader decides: a finite non-zero scl_slope other than the identity (1, 0) scales to floats.
-    const double slope = float32At(112), inter = float32At(116);
-    info.scaled = std::isfinite(slope) && slope != 0.0 && !(slope == 1.0 && inter == 0.0);
+    info.scaled =
+        std::isfinite(fields.slope) && fields.slope != 0.0 && !(fields.slope == 1.0 && fields.inter == 0.0);
+    return info;
+}
+
+// FreeSurfer's header: dims, frames and type.
+VolumeHeaderInfo mghInfo(const std::string& path) {
+    const std::vector<unsigned char> header = headerBytes(path, MGH_HEADER_BYTES);
+    const MghInfo mgh = parseMghHeader(path, header.data());
+    VolumeHeaderInfo info =
+        infoFrom(path, {mgh.shape.dims[0], mgh.shape.dims[1], mgh.shape.dims[2]}, mgh.type);
+    info.frames = mgh.frames;
     return info;
 }
 
@@ -176,11 +170,9 @@ VolumeHeaderInfo volumeHeaderInfo(const std::string& path, const std::optional<R
     const std::string extension = volumeExtension(path);
     if (extension == ".nrrd" || extension == ".nhdr") return nrrdInfo(path);
     if (extension == ".nii" || extension == ".nii.gz") return niftiInfo(path);
+    if (extension == ".mgh" || extension == ".mgz") return mghInfo(path);
     if (extension == ".mhd" || extension == ".mha") return metaImageInfo(path);
-    regularFileSize(path); // "no such file" first, as loadVolume
-    throwInputError(
-        path, "unknown volume format '" + extension +
-                  "' (expected .nrrd, .nhdr, .nii, .nii.gz, .mhd, .mha, a DICOM folder, or a raw layout)");
+    throwUnknownVolumeFormat(path);
 }
 
 } // namespace vots::fit

@@ -62,24 +62,27 @@ namespace {
 
 // The layout of a file whose samples can be read by offset; nullopt for compressed payloads and DICOM.
 std::optional<detail::StoredSamples> storedSamplesOf(const std::string& path,
-                                                     const std::optional<RawLayout>& raw) {
+                                                     const std::optional<RawLayout>& raw, int frame = 0) {
+    const std::string extension = raw || isDicomFolder(path) ? std::string() : detail::volumeExtension(path);
+    if (extension == ".nii" || extension == ".nii.gz") return detail::storedNiftiSamples(path, frame);
+    if (extension == ".mgh" || extension == ".mgz") return detail::storedMghSamples(path, frame);
+    detail::checkFrame(path, frame, 1);
     if (raw) return detail::storedRawSamples(path, *raw);
     if (isDicomFolder(path)) return std::nullopt;
-    const std::string extension = detail::volumeExtension(path);
     if (extension == ".nrrd" || extension == ".nhdr") return detail::storedNrrdSamples(path);
-    if (extension == ".nii" || extension == ".nii.gz") return detail::storedNiftiSamples(path);
     if (extension == ".mhd" || extension == ".mha") return detail::storedMetaImageSamples(path);
     detail::throwUnknownVolumeFormat(path);
 }
 
 // The streams of a gzip NRRD, NIfTI or compressed MetaImage; nullopt for every other file (also an
 // uncompressed one).
-std::optional<detail::GzipSamples> gzipSamplesOf(const std::string& path,
-                                                 const std::optional<RawLayout>& raw) {
+std::optional<detail::GzipSamples> gzipSamplesOf(const std::string& path, const std::optional<RawLayout>& raw,
+                                                 int frame = 0) {
     if (raw || isDicomFolder(path)) return std::nullopt;
     const std::string extension = detail::volumeExtension(path);
     if (extension == ".nrrd" || extension == ".nhdr") return detail::gzipNrrdSamples(path);
-    if (extension == ".nii" || extension == ".nii.gz") return detail::gzipNiftiSamples(path);
+    if (extension == ".nii" || extension == ".nii.gz") return detail::gzipNiftiSamples(path, frame);
+    if (extension == ".mgh" || extension == ".mgz") return detail::gzipMghSamples(path, frame);
     if (extension == ".mhd" || extension == ".mha") return detail::gzipMetaImageSamples(path);
     return std::nullopt;
 }
@@ -93,23 +96,24 @@ bool readsOnlyPlanes(const std::string& path, const std::optional<RawLayout>& ra
 
 PlanesOfGrid loadVolumePlanes(const std::string& path, int first, int last,
                               const std::optional<RawLayout>& raw, SampleStorage storage,
-                              const std::string& dicomSeries) {
+                              const std::string& dicomSeries, int frame) {
     if (!raw && isDicomFolder(path)) {
+        detail::checkFrame(path, frame, 1);
         PlanesOfGrid read;
         read.planes = loadDicomSeriesPlanes(path, first, last, read.whole, dicomSeries, storage);
         return read;
     }
-    if (auto stored = storedSamplesOf(path, raw)) {
+    if (auto stored = storedSamplesOf(path, raw, frame)) {
         Volume planes = detail::readStoredPlanes(path, *stored, first, last, storage);
         return {std::move(planes), std::move(stored->grid)};
     }
-    if (auto stored = gzipSamplesOf(path, raw)) {
+    if (auto stored = gzipSamplesOf(path, raw, frame)) {
         Volume planes = detail::readGzipPlanes(path, *stored, first, last, storage);
         return {std::move(planes), std::move(stored->grid)};
     }
     // What is neither stored by offset nor a gzip/zlib stream (an encoding the readers accept otherwise):
     // loaded whole and cut.
-    const Volume whole = loadVolume(path, raw, storage, dicomSeries);
+    const Volume whole = loadVolume(path, raw, storage, dicomSeries, frame);
     return {planesOf(whole, first, last), gridOf(whole)};
 }
 

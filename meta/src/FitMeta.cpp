@@ -104,6 +104,10 @@ std::string buildFitMeta(const FitProvenance& r) {
     };
     // Only a volume whose file states its orientation gets the key: other files keep their bytes.
     if (vol.orientationKnown) meta["source"]["patient_axes"] = vol.patientAxes;
+    // Only a 4D file's fit and a volume with NaN/Inf samples get these keys.
+    if (r.frame) meta["source"]["frame"] = *r.frame;
+    if (const std::size_t noData = vol.nonFiniteCount(); noData > 0)
+        meta["source"]["non_finite_samples"] = noData;
     // Only a fit that left cells out has a fill; a reader without the key counts them as the threshold.
     if (r.backgroundFill && std::isfinite(*r.backgroundFill)) meta["background_fill"] = *r.backgroundFill;
     if (!r.cacheKey.empty()) meta["key"] = r.cacheKey;
@@ -125,6 +129,9 @@ FitMetaView readFitMeta(const std::string& metaJson) {
     view.method = field<std::string>(j, json::json_pointer("/fit/method"));
     view.cacheKey = field<std::string>(j, json::json_pointer("/key"));
     view.patientAxes = patientAxesField(j, json::json_pointer("/source/patient_axes"));
+    view.frame = field<int>(j, json::json_pointer("/source/frame"));
+    view.nonFiniteSamples =
+        field<std::uint64_t>(j, json::json_pointer("/source/non_finite_samples")).value_or(0);
     // A float was written; anything outside float's range is damage (and would not convert).
     if (const auto fill = field<double>(j, json::json_pointer("/background_fill"));
         fill && std::abs(*fill) <= double{std::numeric_limits<float>::max()})

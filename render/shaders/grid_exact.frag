@@ -16,6 +16,9 @@ uniform vec3 uDims;        // grid points per axis, of the whole volume
 uniform vec3 uChunkOrigin; // the grid point of the chunk's texel 0
 uniform ivec2 uCellZ;      // the cells' z range this chunk owns: [x, y)
 uniform int uMode;         // 0 mip, 1 minip, 2 aip (mean along the clipped ray)
+// What a cell with a NaN or Inf corner (no data) counts as in minip and aip: the lowest finite sample, as
+// the fit's omitted no-data cells do; mip skips such a cell.
+uniform float uNoDataValue;
 
 layout(location = 0) out float outValue;
 
@@ -26,11 +29,14 @@ float corner(ivec3 p) { return float(texelFetch(uVolume, p - ivec3(uChunkOrigin)
 // The trilinear interpolant of cell `cell` along p(u) = local + u dir (local: the segment's entry point
 // relative to the cell's corner) as g(u) = g.x + g.y u + g.z u^2 + g.w u^3.
 // cornerRange: the least and greatest corner, which bound the interpolant anywhere in the cell.
-vec4 cellCubic(ivec3 cell, vec3 local, vec3 dir, out vec2 cornerRange) {
+// noData: some corner is NaN or Inf (then g and cornerRange mean nothing).
+vec4 cellCubic(ivec3 cell, vec3 local, vec3 dir, out vec2 cornerRange, out bool noData) {
     float c000 = corner(cell), c100 = corner(cell + ivec3(1, 0, 0));
     float c010 = corner(cell + ivec3(0, 1, 0)), c110 = corner(cell + ivec3(1, 1, 0));
     float c001 = corner(cell + ivec3(0, 0, 1)), c101 = corner(cell + ivec3(1, 0, 1));
     float c011 = corner(cell + ivec3(0, 1, 1)), c111 = corner(cell + ivec3(1, 1, 1));
+    vec4 low = vec4(c000, c100, c010, c110), high = vec4(c001, c101, c011, c111);
+    noData = any(isnan(low)) || any(isnan(high)) || any(isinf(low)) || any(isinf(high));
     cornerRange = vec2(min(min(min(c000, c100), min(c010, c110)), min(min(c001, c101), min(c011, c111))),
                        max(max(max(c000, c100), max(c010, c110)), max(max(c001, c101), max(c011, c111))));
     // f(x, y, z) = a + bx x + by y + bz z + bxy x y + bxz x z + byz y z + bxyz x y z on the unit cube.
@@ -113,9 +119,13 @@ void main() {
             if (last) tExit = own.y;
             float len = tExit - t;
             vec2 cornerRange;
-            vec4 g = cellCubic(cell, origin + t * dir - vec3(cell), dir, cornerRange);
+            bool noData;
+            vec4 g = cellCubic(cell, origin + t * dir - vec3(cell), dir, cornerRange, noData);
             // A cell whose corners cannot beat the value so far cannot change it: skip its roots.
-            if (uMode == 0) result = cornerRange.y > result ? max(result, cubicMaxOver(g, len)) : result;
+            if (noData) {
+                if (uMode == 1) result = min(result, uNoDataValue);
+                else if (uMode == 2) total += uNoDataValue * len;
+            } else if (uMode == 0) result = cornerRange.y > result ? max(result, cubicMaxOver(g, len)) : result;
             else if (uMode == 1) result = cornerRange.x < result ? min(result, cubicMinOver(g, len)) : result;
             else total += cubicIntegralOver(g, len);
             t = tExit;
@@ -125,8 +135,9 @@ void main() {
         if (uMode == 2) {
             // A ray that only touches the grid (zero length) has its one value as the mean.
             vec2 unused;
-            result = wholeLength > 0.0 ? total / wholeLength
-                                       : cellCubic(cell, origin + t * dir - vec3(cell), dir, unused).x;
+            bool noData;
+            float touch = cellCubic(cell, origin + t * dir - vec3(cell), dir, unused, noData).x;
+            result = wholeLength > 0.0 ? total / wholeLength : (noData ? uNoDataValue : touch);
         }
     }
     outValue = result;

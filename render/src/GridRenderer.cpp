@@ -147,6 +147,7 @@ struct GridRenderer::Impl {
         glProgramUniform3f(p, glGetUniformLocation(p, "uDims"), float(bounds.dims[0]), float(bounds.dims[1]),
                            float(bounds.dims[2]));
         glProgramUniform1i(p, glGetUniformLocation(p, "uMode"), blend.shaderMode);
+        glProgramUniform1f(p, glGetUniformLocation(p, "uNoDataValue"), valueRange[0]);
         setSlabUniforms(p, options.slab, camera, bounds);
         glProgramUniform1i(p, glGetUniformLocation(p, "uVolume"), 0);
         glBindVertexArray(vertexArray.get());

@@ -35,6 +35,23 @@ void expectLoadsOrInputError(const std::string& target, const std::string& exten
     }
 }
 
+// As expectLoadsOrInputError for the 4D targets (fuzz_nifti2, fuzz_mgh): byte 0 picks the frame.
+void expectFrameLoadsOrInputError(const std::string& target, const std::string& extension,
+                                  const std::function<void(const std::string&, int)>& load) {
+    const auto inputs = fuzzInputs(target);
+    ASSERT_FALSE(inputs.empty()) << "no seeds for " << target;
+    for (const auto& [name, bytes] : inputs) {
+        SCOPED_TRACE(target + "/" + name);
+        if (bytes.empty()) continue; // the target ignores it
+        const vots::test::TempDir dir;
+        const std::string path = dir.write("input" + extension, bytes.substr(1));
+        try {
+            load(path, static_cast<unsigned char>(bytes[0]) % 4);
+        } catch (const vots::fit::InputError&) {
+        }
+    }
+}
+
 void decodeOrInputError(const std::vector<std::uint8_t>& bytes) {
     try {
         const auto space = vots::meta::decodeVotSpace(bytes.data(), bytes.size());
@@ -68,6 +85,18 @@ TEST(FuzzRegressions, Nrrd) {
 TEST(FuzzRegressions, Nifti) {
     expectLoadsOrInputError("fuzz_nifti", ".nii",
                             [](const std::string& p) { (void)vots::fit::loadNifti(p); });
+}
+
+TEST(FuzzRegressions, NiftiTwoFrames) {
+    expectFrameLoadsOrInputError("fuzz_nifti2", ".nii", [](const std::string& p, int frame) {
+        (void)vots::fit::loadNifti(p, vots::fit::SampleStorage::Source, frame);
+    });
+}
+
+TEST(FuzzRegressions, MghFrames) {
+    expectFrameLoadsOrInputError("fuzz_mgh", ".mgz", [](const std::string& p, int frame) {
+        (void)vots::fit::loadMgh(p, vots::fit::SampleStorage::Source, frame);
+    });
 }
 
 TEST(FuzzRegressions, DicomFolder) {

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -137,8 +139,10 @@ TEST(VolumeLoadErrors, BadDimensions) {
     expectLoadError(dir.write("neg.nii", niftiHeader(spec) + data), "must be positive");
     spec = {};
     spec.dim[0] = 4;
-    spec.dim[4] = 7; // a time series
-    expectLoadError(dir.write("series.nii", niftiHeader(spec) + data), "only 3D");
+    spec.dim[4] = 7; // a time series whose payload is one frame
+    expectLoadError(dir.write("series.nii", niftiHeader(spec) + data), "truncated");
+    spec.dim[0] = 8; // beyond NIfTI's 7 dimensions
+    expectLoadError(dir.write("rank8.nii", niftiHeader(spec) + data), "only 3D and 4D");
     spec = {};
     spec.dim[0] = 2;
     expectLoadError(dir.write("flat.nii", niftiHeader(spec) + data), "only 3D");
@@ -181,23 +185,38 @@ TEST(VolumeLoadErrors, CorruptCompressedStreams) {
                     "corrupt");
 }
 
-TEST(VolumeLoadErrors, NonFiniteFloatSamplesAreCounted) {
+TEST(VolumeLoad, NonFiniteFloatSamplesLoadAsNoData) {
     TempDir dir;
     std::vector<double> values = vots::test::fixtureValues(ScalarType::Float32);
     values[3] = std::numeric_limits<double>::quiet_NaN();
     values[7] = std::numeric_limits<double>::infinity();
     values[8] = -std::numeric_limits<double>::infinity();
-    const std::string path = dir.write("nan.nrrd", nrrdHeader("float", "raw", "endian: little\n\n") +
-                                                       encode(values, ScalarType::Float32, false));
-    expectLoadError(path, "3 of 60 samples are not finite");
+    const Volume nan = loadVolume(dir.write("nan.nrrd", nrrdHeader("float", "raw", "endian: little\n\n") +
+                                                            encode(values, ScalarType::Float32, false)));
+    EXPECT_EQ(nan.nonFiniteCount(), 3u);
+    EXPECT_TRUE(std::isnan(nan.values[3]));
+    EXPECT_EQ(nan.values[7], std::numeric_limits<float>::infinity());
+    EXPECT_EQ(nan.values[9], static_cast<float>(values[9]));
+    // The range is of the finite samples only.
+    std::vector<double> finite;
+    for (const double v : values)
+        if (std::isfinite(v)) finite.push_back(v);
+    EXPECT_EQ(nan.valueRange()[0], static_cast<float>(*std::min_element(finite.begin(), finite.end())));
+    EXPECT_EQ(nan.valueRange()[1], static_cast<float>(*std::max_element(finite.begin(), finite.end())));
     values = vots::test::fixtureValues(ScalarType::Float64);
-    values[0] = 1e300; // beyond float range
+    values[0] = -1e300; // beyond float range: an infinity, no data
     vots::test::NiftiSpec spec;
     spec.datatype = 64;
     spec.bitpix = 64;
-    expectLoadError(dir.write("range.nii", niftiHeader(spec) + encode(values, ScalarType::Float64, false)),
-                    "1 of 60 samples are not finite");
-    spec = {};
+    const Volume range =
+        loadVolume(dir.write("range.nii", niftiHeader(spec) + encode(values, ScalarType::Float64, false)));
+    EXPECT_EQ(range.values[0], -std::numeric_limits<float>::infinity());
+    EXPECT_EQ(range.nonFiniteCount(), 1u);
+}
+
+TEST(VolumeLoadErrors, ScalingBeyondFloatRange) {
+    TempDir dir;
+    vots::test::NiftiSpec spec;
     spec.sclSlope = 1e38f; // scaling pushes int16 samples beyond float range
     expectLoadError(dir.write("slope.nii", niftiHeader(spec) + int16Data()), "float range");
 }
@@ -223,7 +242,7 @@ TEST(VolumeLoadErrors, UnknownTypesAndEncodings) {
     spec = {};
     spec.magic = std::string("ni1\0", 4);
     expectLoadError(dir.write("pair.nii", niftiHeader(spec) + data), "pair");
-    expectLoadError(dir.write("junk.nii", std::string(400, 'j')), "not a NIfTI-1 file");
+    expectLoadError(dir.write("junk.nii", std::string(400, 'j')), "not a NIfTI file");
     expectLoadError(dir.write("long.mha", "NDims = 3\nDimSize = 5 4 3\nElementType = MET_LONG\n"
                                           "ElementDataFile = LOCAL\n" +
                                               data),

@@ -53,6 +53,46 @@ put("fuzz_nifti", "uint8_le.nii", nifti("<", 2, 8, "B", list(ramp)))
 put("fuzz_nifti", "int16_be_scaled.nii", nifti(">", 4, 16, "h", list(range(-12, 12)), slope=2.0))
 put("fuzz_nifti", "float_gz.nii", gzip.compress(nifti("<", 16, 32, "f", [0.25 * i for i in range(24)])))
 
+# NIfTI-2: 540-byte header, int64 dims and float64 fields; 4D (two frames), little and big endian, gzip,
+# a NaN. The first input byte is the frame fuzz_nifti2 reads.
+
+
+def nifti2(endian, datatype, bitpix, fmt, values, frames=2):
+    h = bytearray(540)
+    struct.pack_into(endian + "i", h, 0, 540)
+    h[4:12] = b"n+2\0\r\n\x1a\n"
+    struct.pack_into(endian + "hh", h, 12, datatype, bitpix)
+    struct.pack_into(endian + "8q", h, 16, 4, 4, 3, 2, frames, 1, 1, 1)
+    struct.pack_into(endian + "8d", h, 104, -1, 1.0, 1.5, 2.0, 1, 1, 1, 1)
+    struct.pack_into(endian + "qdd", h, 168, 544, 0.0, 0.0)
+    struct.pack_into(endian + "ii", h, 344, 1, 1)
+    struct.pack_into(endian + "3d3d", h, 352, 0.1, 0.2, 0.3, 4, 5, 6)
+    struct.pack_into(endian + "12d", h, 400, 1, 0, 0, -5, 0, 1, 0, 6, 0, 0, 1, 7)
+    return bytes(h) + b"\0\0\0\0" + struct.pack(endian + str(len(values)) + fmt, *values)
+
+
+put("fuzz_nifti2", "int16_le_4d.nii", b"\x01" + nifti2("<", 4, 16, "h", list(range(-24, 24))))
+put("fuzz_nifti2", "float_be_nan.nii",
+    b"\x00" + nifti2(">", 16, 32, "f", [float("nan")] + [0.5 * i for i in range(47)]))
+put("fuzz_nifti2", "uint8_gz.nii", b"\x01" + gzip.compress(nifti2("<", 2, 8, "B", list(ramp) * 2)))
+
+# FreeSurfer MGH: big-endian 284-byte header (version, dims, frames, type, dof, goodRASflag, voxel sizes,
+# Mdc, c_ras), samples, then optional scan parameters; plain and gzip (.mgz). First byte: the frame.
+
+
+def mgh(type_code, fmt, values, frames=2, good_ras=1):
+    h = bytearray(284)
+    struct.pack_into(">7i", h, 0, 1, 4, 3, 2, frames, type_code, 0)
+    struct.pack_into(">h", h, 28, good_ras)
+    struct.pack_into(">3f9f3f", h, 30, 1.0, 1.5, 2.0, -1, 0, 0, 0, 0, -1, 0, 1, 0, 10, 20, 30)
+    return bytes(h) + struct.pack(">" + str(len(values)) + fmt, *values) + struct.pack(">4f", 2.0, 0.1, 3.0, 0.0)
+
+
+put("fuzz_mgh", "uchar.mgh", b"\x01" + mgh(0, "B", list(ramp) * 2))
+put("fuzz_mgh", "float_nan.mgh", b"\x00" + mgh(3, "f", [float("nan")] + [0.25 * i for i in range(47)]))
+put("fuzz_mgh", "short_gz.mgz", b"\x01" + gzip.compress(mgh(4, "h", list(range(-24, 24)), good_ras=0)))
+put("fuzz_mgh", "int_1frame.mgh", b"\x00" + mgh(1, "i", list(range(24)), frames=1))
+
 # MetaImage: LOCAL raw, zlib-compressed, big-endian short, and a detached file name.
 put("fuzz_metaimage", "local_raw.mha",
     b"ObjectType = Image\nNDims = 3\nDimSize = 4 3 2\nElementSpacing = 1 1 2\nOffset = 0 1 2\n"

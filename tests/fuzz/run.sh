@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs the libFuzzer targets (preset fuzz) on seeded corpora, two at a time, and prints one summary line each.
 #
-# Usage: tests/fuzz/run.sh [--seconds N] [--runs N] [target...]   (default: all eight, 600 s or 1,000,000 runs)
+# Usage: tests/fuzz/run.sh [--seconds N] [--runs N] [target...]   (default: all ten, 600 s or 1,000,000 runs)
 # Needs: cmake --preset fuzz && cmake --build --preset fuzz -j2, and a `vots` binary for .vots seeds
 # (VOTS_BIN, default build/rel/cli/vots, else build/asan/cli/vots). Logs, corpora and crash artifacts go
 # to build/fuzz/{logs,corpus,artifacts}/<target>/.
@@ -19,10 +19,11 @@ while [[ $# -gt 0 ]]; do
     esac
 done
 [[ ${#targets[@]} -gt 0 ]] ||
-    targets=(fuzz_votspace_reader fuzz_nrrd fuzz_nifti fuzz_metaimage fuzz_dicom fuzz_camera fuzz_render_query fuzz_multipart)
+    targets=(fuzz_votspace_reader fuzz_nrrd fuzz_nifti fuzz_nifti2 fuzz_mgh fuzz_metaimage fuzz_dicom fuzz_camera fuzz_render_query fuzz_multipart)
 
 fuzz=build/fuzz
 volumes=$fuzz/volumes
+nibabel=/usr/lib/python3/dist-packages/nibabel/tests/data # python3-nibabel (scripts/setup)
 mkdir -p "$fuzz"/{logs,corpus,artifacts}
 scripts/make-test-volumes "$volumes"
 
@@ -36,6 +37,11 @@ seed_extra() {
         cp -f "$volumes"/{mri-brain_33x41x25_int16,blobs_64x64x64_uint8,orbital_64x64x64_float32}.nrrd "$dir/" ;;
     fuzz_nifti)
         cp -f "$volumes/mri-brain_33x41x25_int16.nii" "$dir/" ;;
+    fuzz_nifti2) # byte 0: the frame; nibabel's NIfTI-2 example (4D), inflated
+        { printf '\x01'; zcat "$nibabel/example_nifti2.nii.gz"; } >"$dir/example_nifti2.nii" ;;
+    fuzz_mgh) # byte 0: the frame; nibabel's 4D .mgz, as it is and inflated
+        { printf '\x01'; cat "$nibabel/test.mgz"; } >"$dir/test.mgz"
+        { printf '\x01'; zcat "$nibabel/test.mgz"; } >"$dir/test.mgh" ;;
     fuzz_votspace_reader)
         local vots=${VOTS_BIN:-}
         [[ -n $vots ]] || for b in build/rel/cli/vots build/asan/cli/vots; do [[ -x $b ]] && vots=$b && break; done

@@ -5,7 +5,7 @@
 # their records into it with MPI-IO, rank 0 renames it), renders alike in one process and
 # on N ranks; the gzip input (each rank streams its planes alone) gives the same Vots; a DICOM series of
 # the same samples (each rank decodes only its slices) verifies; a focus sphere across the border of two ranks' cells
-# verifies; a failure on one rank ends all (fit and render).
+# verifies; a NaN (no data) on one rank fits as in one process; a failure on one rank ends all (fit and render).
 # Usage: tests/mpi/mpi_fit.sh VOTS_BINARY GZIP_NRRD_VOLUME VOTS_WRITE_DICOM_BINARY
 set -euo pipefail
 vots=$1 gzipped=$2 write_dicom=$3
@@ -101,23 +101,36 @@ for n in 2 3; do
     cmp -s "$work/$n-one.png" "$work/$n-ranks.png" || fail "the $n-rank file renders differently on $n ranks"
 done
 
-# A NaN in the last plane: only the last rank reads it; every rank exits 2, rank 0 names it, no file.
+# A NaN in the last plane is no data (a fit leaves its cells out): 2 ranks fit it as one process does.
 {
     printf 'NRRD0004\ntype: float\ndimension: 3\nsizes: 8 8 10\nencoding: raw\nendian: little\n\n'
     head -c 1280 /dev/zero
     for _ in $(seq 319); do printf '\x00\x00\x80\x3f'; done
     printf '\x00\x00\xc0\x7f'
 } >"$work/nan.nrrd"
-status=0
+"$vots" fit "$work/nan.nrrd" -o "$work/nan-one.vots" --eps 0.1 >"$work/nan-one.txt"
 timeout 120 mpirun --oversubscribe -np 2 "$vots" fit "$work/nan.nrrd" -o "$work/nan.vots" --eps 0.1 \
+    >/dev/null 2>"$work/err" || fail "a NaN on rank 1: $(cat "$work/err")"
+"$vots" verify "$work/nan.vots" "$work/nan.nrrd" >/dev/null || fail "the 2-rank fit of a NaN volume does not verify"
+
+# A gzip payload longer than the header says: only the last rank reads the stream's end; every rank
+# exits 2, rank 0 names it, no file.
+{
+    printf 'NRRD0004\ntype: float\ndimension: 3\nsizes: 8 8 10\nencoding: gzip\nendian: little\n\n'
+    { head -c 1280 /dev/zero; for _ in $(seq 321); do printf '\x00\x00\x80\x3f'; done; } | gzip -c
+} >"$work/long.nrrd"
+status=0
+timeout 120 mpirun --oversubscribe -np 2 "$vots" fit "$work/long.nrrd" -o "$work/long.vots" --eps 0.1 \
     >/dev/null 2>"$work/err" || status=$?
-((status == 2)) || fail "a NaN on rank 1: exit $status, not 2: $(cat "$work/err")"
-grep -q "vots: error: rank 1: .*not finite" "$work/err" || fail "a NaN on rank 1: no clear message: $(cat "$work/err")"
-[[ ! -e $work/nan.vots ]] || fail "a failed fit wrote its output"
+((status == 2)) || fail "a long stream on rank 1: exit $status, not 2: $(cat "$work/err")"
+grep -q "vots: error: rank 1: .*longer than the header says" "$work/err" ||
+    fail "a long stream on rank 1: no clear message: $(cat "$work/err")"
+[[ ! -e $work/long.vots ]] || fail "a failed fit wrote its output"
 status=0 # `vots render VOLUME` reads its ranks' planes alike
-timeout 120 mpirun --oversubscribe -np 2 "$vots" render "$work/nan.nrrd" -o "$work/nan.png" --eps 0.1 \
+timeout 120 mpirun --oversubscribe -np 2 "$vots" render "$work/long.nrrd" -o "$work/long.png" --eps 0.1 \
     --size 32x32 >/dev/null 2>"$work/err" || status=$?
-((status == 2)) || fail "render, a NaN on rank 1: exit $status, not 2: $(cat "$work/err")"
-grep -q "vots: error: rank 1: .*not finite" "$work/err" || fail "render, a NaN on rank 1: $(cat "$work/err")"
-[[ ! -e $work/nan.png ]] || fail "a failed render wrote its output"
+((status == 2)) || fail "render, a long stream on rank 1: exit $status, not 2: $(cat "$work/err")"
+grep -q "vots: error: rank 1: .*longer than the header says" "$work/err" ||
+    fail "render, a long stream on rank 1: $(cat "$work/err")"
+[[ ! -e $work/long.png ]] || fail "a failed render wrote its output"
 echo "mpi_fit: OK"

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <functional>
 #include <iostream>
+#include <limits>
 #include <string>
 
 using namespace vots;
@@ -167,4 +168,52 @@ TEST(GridExact, SlabThickerThanTheVolumeGivesTheWholeImage) {
             const test::ImageComparison c = test::compareImages(a, b, 0.0);
             EXPECT_EQ(c.bitIdentical, a.pixels.size()) << text << " " << renderModeName(mode);
         }
+}
+
+// NaN samples (no data, x >= 15 here): a cell with a NaN corner adds nothing to mip and counts as the
+// lowest finite sample in minip and aip; rays through finite cells only are drawn as without the NaNs.
+TEST(GridExact, CellsWithNanCornersAreNoData) {
+    test::glContext();
+    const std::array<int, 3> dims{21, 17, 25};
+    const auto f = [](int x, int y, int z) { return 0.03 * x - 0.05 * y + 0.02 * z + 0.4; };
+    const fit::Volume whole = test::sampleVolume(dims, f);
+    fit::Volume holed = whole;
+    for (int z = 0; z < dims[2]; ++z)
+        for (int y = 0; y < dims[1]; ++y)
+            for (int x = 15; x < dims[0]; ++x)
+                holed.values[holed.indexOf(x, y, z)] = std::numeric_limits<float>::quiet_NaN();
+    const float lowest = holed.valueRange()[0];
+    EXPECT_FLOAT_EQ(lowest, static_cast<float>(f(0, 16, 0)));
+    GridRenderer a, b;
+    a.upload(whole);
+    b.upload(holed);
+    const Camera cam = parseCamera("anterior"); // rays along y: each image column is one x
+    const int w = 41, h = 37;
+    std::array<FloatImage, 3> full, part;
+    const RenderMode modes[] = {RenderMode::Mip, RenderMode::MinIp, RenderMode::Aip};
+    for (int m = 0; m < 3; ++m) {
+        full[m] = a.render(cam, w, h, modes[m]);
+        part[m] = b.render(cam, w, h, modes[m]);
+    }
+    std::size_t hits = 0, same = 0, noData = 0;
+    for (int py = 0; py < h; ++py)
+        for (int px = 0; px < w; ++px) {
+            for (int m = 0; m < 3; ++m)
+                ASSERT_FALSE(std::isnan(part[m].at(px, py))) << px << "," << py;
+            if (!std::isfinite(full[0].at(px, py))) continue; // the ray misses the grid
+            ++hits;
+            bool equal = true;
+            for (int m = 0; m < 3; ++m)
+                equal = equal && std::abs(part[m].at(px, py) - full[m].at(px, py)) <= 1e-6f;
+            same += equal ? 1 : 0;
+            if (part[0].at(px, py) == -INFINITY) { // every cell of the ray is no data
+                EXPECT_FLOAT_EQ(part[1].at(px, py), lowest);
+                EXPECT_FLOAT_EQ(part[2].at(px, py), lowest);
+                ++noData;
+            }
+        }
+    // 14 of the 20 cells across are finite, 6 no data: rays split about so (the boundary column aside).
+    EXPECT_GT(same, hits / 2);
+    EXPECT_GT(noData, hits / 5);
+    std::cout << hits << " rays: " << same << " as without NaNs, " << noData << " through no data only\n";
 }

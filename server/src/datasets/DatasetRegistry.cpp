@@ -27,7 +27,7 @@ constexpr float CT_MIN_HU = -900.f; // air is about -1000 HU; a minimum this low
 /// The dataset name of a file ("cranium" for cranium.nhdr or cranium.nii.gz), empty if not a volume.
 std::string volumeStem(const fs::path& file) {
     const std::string name = file.filename().string();
-    for (const char* ext : {".nii.gz", ".nrrd", ".nhdr", ".nii", ".mhd", ".mha"}) {
+    for (const char* ext : {".nii.gz", ".nrrd", ".nhdr", ".nii", ".mgh", ".mgz", ".mhd", ".mha"}) {
         const std::string e = ext;
         if (name.size() > e.size() && name.compare(name.size() - e.size(), e.size(), e) == 0)
             return name.substr(0, name.size() - e.size());

@@ -68,9 +68,9 @@ std::map<std::string, render::DisplaySettings> windowPresets(std::array<float, 2
 /// plus the decoded Vots (one fit::Vot per 120-byte record).
 std::uint64_t estimateVotsLoadBytes(std::uint64_t fileBytes);
 
-/// Thread-safe. Scans the folders once at construction for .nrrd/.nhdr/.nii/.nii.gz/.mhd/.mha files,
-/// for subfolders holding DICOM series (dicomDatasetNames) and for .vots files; the first folder that has
-/// a name wins, and within a folder a volume file wins over a DICOM folder, which wins over a .vots file.
+/// Thread-safe. Scans the folders once at construction for .nrrd/.nhdr/.nii/.nii.gz/.mgh/.mgz/.mhd/.mha
+/// files, for subfolders holding DICOM series (dicomDatasetNames) and for .vots files; the first folder that
+/// has a name wins, and within a folder a volume file wins over a DICOM folder, which wins over a .vots file.
 /// Loading happens on the first find() of a name, once `memory` admits the load and fit its header announces.
 /// The datasets of one DICOM folder, name -> SeriesInstanceUID: the folder's name for a single series;
 /// for several, "<folder>-<description>" when every series has a distinct description, else

@@ -103,12 +103,13 @@ private:
 };
 
 /// Checks options against the volume; throws InputError (eps <= 0 or not finite, degree outside
-/// 0..3, focus outside the grid (the whole grid's when partOfGrid is set), empty volume, NaN samples).
+/// 0..3, focus outside the grid (the whole grid's when partOfGrid is set), empty volume, a whole volume
+/// without a finite sample). NaN and Inf samples are no data: their cells are left out like background.
 void validateFitOptions(const Volume& volume, const FitOptions& options);
 
 /// Fits a Vot-Space. Every non-background cell is covered and every grid sample inside a chosen
-/// Vot's box is within eps(sample) of the Vot. A cache, when given, must belong to this volume,
-/// degree and certify mode.
+/// Vot's box is within eps(sample) of the Vot (no Vot's box holds a NaN or Inf sample). A cache, when given,
+/// must belong to this volume, degree and certify mode.
 FitResult fitVotSpace(const Volume& volume, const FitOptions& options, FitCache* cache = nullptr);
 
 /// VotSpace::backgroundFill of a fit with these stats: the mean over its background cells of the

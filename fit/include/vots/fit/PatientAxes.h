@@ -21,6 +21,10 @@ std::optional<PatientAxes> normalizedPatientAxes(const PatientAxes& directions);
 /// else "" (an oblique axis).
 std::string patientDirectionName(const std::array<double, 3>& axis);
 
+/// From RAS (NIfTI's and FreeSurfer's patient space) to our LPS: the first two coordinates of every axis
+/// and of the origin change sign (a zero stays +0).
+void rasToLps(PatientAxes& axes, std::array<double, 3>& origin);
+
 /// Whether every axis is along one patient direction: a signed permutation of L, P, S.
 bool isAxisAligned(const PatientAxes& axes);
 

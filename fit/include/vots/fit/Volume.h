@@ -102,8 +102,11 @@ struct Volume {
             compact);
     }
 
-    /// Smallest and largest sample value; {0,0} for an empty volume.
+    /// Smallest and largest finite sample value; {0,0} for a volume without one. NaN and Inf samples are
+    /// no data (docs/DESIGN.md §4 "Non-finite samples"): every part of a fit skips them.
     std::array<float, 2> valueRange() const;
+    /// How many samples are NaN or Inf.
+    std::size_t nonFiniteCount() const;
     /// CRC-32 of the grid (dims, spacing, origin) and every sample as float, whichever way it is held:
     /// tells a changed file from the one a cached fit was made of.
     std::uint32_t contentCrc() const;

@@ -18,6 +18,8 @@ struct VolumeHeaderInfo {
     ScalarType sourceType = ScalarType::UInt8;
     /// NIfTI scl_slope/scl_inter apply: the samples load as floats, whatever sourceType says.
     bool scaled = false;
+    /// 3D volumes in the file (a 4D NIfTI or MGH file holds several); dims and sizes are of one.
+    std::uint64_t frames = 1;
 
     /// dims[0] * dims[1] * dims[2], saturating at UINT64_MAX instead of wrapping.
     std::uint64_t sampleCount() const;
@@ -27,8 +29,8 @@ struct VolumeHeaderInfo {
     std::string describe() const;
 };
 
-/// Reads only the header (a few KB; for .nii.gz the first 348 inflated bytes), never the samples, so it
-/// costs the same for any announced size. The format follows the extension as in loadVolume; with a raw
+/// Reads only the header (a few KB; for .nii.gz and .mgz the header's inflated bytes), never the samples, so
+/// it costs the same for any announced size. The format follows the extension as in loadVolume; with a raw
 /// layout the layout is the answer. Throws InputError for a header loadVolume would refuse as malformed
 /// (unknown format, missing or non-positive sizes, unsupported type or dimension). A folder is a DICOM
 /// series: the headers of its files (never their pixel data) give the grid and the type it loads into.

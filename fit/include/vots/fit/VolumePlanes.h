@@ -14,9 +14,9 @@ namespace vots::fit {
 Volume planesOf(const Volume& volume, int first, int last);
 
 /// True when loadVolumePlanes holds only the planes' samples: read by offset from NRRD with raw encoding
-/// (attached, detached or several data files), NIfTI .nii, MetaImage without CompressedData and raw
-/// layouts; decompressed from the start of a gzip NRRD's streams or a NIfTI .nii.gz, keeping only the
-/// planes' bytes and stopping after them; a DICOM series decodes only the planes' slice files.
+/// (attached, detached or several data files), NIfTI .nii, MGH .mgh, MetaImage without CompressedData and raw
+/// layouts; decompressed from the start of a gzip NRRD's streams, a NIfTI .nii.gz or an MGH .mgz, keeping
+/// only the planes' bytes and stopping after them; a DICOM series decodes only the planes' slice files.
 /// MetaImage's CompressedData is loaded whole and cut. Reads the header only; throws InputError as
 /// loadVolume does.
 bool readsOnlyPlanes(const std::string& path, const std::optional<RawLayout>& raw = std::nullopt);
@@ -31,11 +31,11 @@ struct PlanesOfGrid {
 Volume gridOf(const Volume& volume);
 
 /// Planes [first, last] of the volume loadVolume would give: the same result as planesOf(loadVolume(...),
-/// first, last), bit for bit, read alone where readsOnlyPlanes says so. Sample checks (NaN, Inf)
-/// see only the planes read. Throws InputError for bad input or planes outside the grid.
+/// first, last), bit for bit, read alone where readsOnlyPlanes says so; `frame` as in loadVolume. Throws
+/// InputError for bad input or planes outside the grid.
 PlanesOfGrid loadVolumePlanes(const std::string& path, int first, int last,
                               const std::optional<RawLayout>& raw = std::nullopt,
                               SampleStorage storage = SampleStorage::Float,
-                              const std::string& dicomSeries = {});
+                              const std::string& dicomSeries = {}, int frame = 0);
 
 } // namespace vots::fit

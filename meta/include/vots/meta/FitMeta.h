@@ -22,6 +22,7 @@ struct FitProvenance {
     double maxError = 0.0; // max of the stored Vots' err
     std::string cacheKey;  // the server's key for the fit (its cache files carry it); empty: no key
     std::optional<float> backgroundFill; // VotSpace::backgroundFill; absent: no key in the block
+    std::optional<int> frame;            // the frame of a 4D file that was fitted; absent: no key
 };
 
 /// The meta block (one JSON object). Files without a cache key have exactly the keys `vots fit` wrote
@@ -40,6 +41,8 @@ struct FitMetaView {
     std::optional<std::string> cacheKey;
     std::optional<fit::PatientAxes> patientAxes; // source.patient_axes: the grid's directions in LPS
     std::optional<float> backgroundFill;         // background_fill: what omitted cells stand for
+    std::optional<int> frame;                    // source.frame: which frame of a 4D file
+    std::uint64_t nonFiniteSamples = 0;          // source.non_finite_samples: NaN/Inf samples (no data)
 };
 
 FitMetaView readFitMeta(const std::string& metaJson);
