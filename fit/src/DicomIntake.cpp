@@ -16,9 +16,11 @@
 #include <cerrno>
 #include <cstring>
 #include <functional>
+#include <latch>
 #include <map>
 #include <mutex>
 #include <thread>
+#include <utility>
 
 namespace vots::fit {
 namespace {
@@ -206,16 +208,29 @@ DicomSeriesIntake::DicomSeriesIntake(const VolumeHeaderInfo& announced, SampleSt
     (void)::fcntl(s.paths[1], F_SETFL, O_NONBLOCK);
     (void)::fcntl(s.paths[1], F_SETPIPE_SZ, 1 << 20); // room for a few thousand paths; less is fine
     const std::uint64_t largest = s.pixels * 4u + HEADER_ROOM_BYTES;
-    s.decoder = std::thread([&s, largest] {
+    // The caller waits here until the child is forked: a fork while the caller's retrieve threads
+    // allocate can leave the child a lock that no thread of it will release (sanitizer allocators are
+    // not fork-safe), and the child would then hang until its silence timeout.
+    std::latch forked(1);
+    s.decoder = std::thread([&s, &forked, largest] {
+        bool told = false;
+        const auto tell = [&] {
+            if (!std::exchange(told, true)) forked.count_down();
+        };
         try {
             detail::runIsolated([&](detail::ChildSender& child) { s.childReads(child); },
-                                [&](detail::ParentReceiver& parent) { s.parentStores(parent); },
+                                [&](detail::ParentReceiver& parent) {
+                                    tell();
+                                    s.parentStores(parent);
+                                },
                                 detail::childLimitsHolding(largest));
         } catch (...) {
             s.failure = std::current_exception();
         }
+        tell();
         s.stopped = true;
     });
+    forked.wait();
 }
 
 DicomSeriesIntake::~DicomSeriesIntake() {
