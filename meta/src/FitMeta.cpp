@@ -102,6 +102,13 @@ std::string buildFitMeta(const FitProvenance& r) {
           {"max_error", finiteOrNull(s.maxError)}}},
         {"max_error", finiteOrNull(r.maxError)},
     };
+    // Only a minimax fit names its norm: a least-squares fit's file keeps the bytes it had before the norm
+    // could be chosen.
+    if (o.norm != fit::FitNorm::Lsq) {
+        meta["fit"]["norm"] = nameOf(o.norm);
+        meta["stats"]["minimax_fits"] = s.minimaxFits;
+        meta["stats"]["minimax_scans"] = s.minimaxScans;
+    }
     // Only a volume whose file states its orientation gets the key: other files keep their bytes.
     if (vol.orientationKnown) meta["source"]["patient_axes"] = vol.patientAxes;
     // Only a fit that left cells out has a fill; a reader without the key counts them as the threshold.
