@@ -104,6 +104,13 @@ std::array<double, MONOMIAL_COUNT> scaledMonomialFactors(const Box& box) {
     return factors;
 }
 
+/// The field times `factor`, focus included.
+EpsField scaledField(const EpsField& field, double factor) {
+    std::optional<FocusRegion> focus = field.focus();
+    if (focus) focus->epsFocus = static_cast<float>(focus->epsFocus * factor);
+    return EpsField(static_cast<float>(field.context() * factor), focus);
+}
+
 /// A certification that rejected the coefficients found less than an earlier one of the same coefficients
 /// may have (it stopped at the first point over a smaller eps): keep the larger lower bounds.
 void keepWhatWasKnown(BoxOutcome& now, const BoxOutcome& before) {
@@ -406,7 +413,7 @@ bool BoxFitter::decideLeastSquares(const Box& box, const EpsField& eps, BoxRecor
     const double epsMin = eps.minOverBox(box);
     const double epsMax = eps.maxOverBox(box);
     // The sample scan goes on past eps as far as the gate needs to know the samples' largest error.
-    const double scanOnTo = singleCell || !minimax ? 0.0 : MINIMAX_GATE * epsMax;
+    const double scanOnTo = singleCell || !minimax ? 0.0 : MINIMAX_GATE * minimaxTarget() * epsMax;
     BoxOutcome& o = record.lsq;
     if (!record.fitted) {
         counters.addFit();
@@ -443,13 +450,11 @@ bool BoxFitter::decideLeastSquares(const Box& box, const EpsField& eps, BoxRecor
     return o.accepted;
 }
 
-bool BoxFitter::decideMinimax(const Box& box, const EpsField& eps, BoxRecord& record,
+bool BoxFitter::decideMinimax(const Box& box, const EpsField& field, BoxRecord& record,
                               FitCounters& counters) const {
     if (isSingleCell(box)) return false; // (the least-squares polynomial is exact there)
-    const double epsMin = eps.minOverBox(box);
-    const double epsMax = eps.maxOverBox(box);
-    if (record.lowerBound > epsMax) return false;
-    const double gate = MINIMAX_GATE * epsMax;
+    const EpsField& eps = field;
+    const double gate = MINIMAX_GATE * minimaxTarget() * field.maxOverBox(box);
     BoxOutcome& lsq = record.lsq;
     if (!lsq.samplesComplete && lsq.errSamples <= gate) {
         // What the last scan of the least-squares polynomial saw (at another eps, or none after an RSS
@@ -463,16 +468,28 @@ bool BoxFitter::decideMinimax(const Box& box, const EpsField& eps, BoxRecord& re
     }
     if (lsq.errSamples > gate) return false;
 
+    // A fit certified at the cells holds its minimax polynomials within MINIMAX_CELLS_TARGET eps at every
+    // point they are fitted at (the certification itself stays at eps).
+    const EpsField tight = minimaxTarget() < 1.0 ? scaledField(field, minimaxTarget()) : field;
+    const double epsMin = tight.minOverBox(box);
+    const double epsMax = tight.maxOverBox(box);
+    if (record.lowerBound > epsMax) return false;
+
+    // A polynomial within eps (less a margin for the rounding of its coefficients to float) ends the
+    // search when its certification passes. The search meets the same polynomials at any eps, so what an
+    // earlier one ended with is this eps's answer when this eps would have ended it there too.
+    const double acceptBelow = epsMin * (1.0 - MINIMAX_ROUNDING_MARGIN);
+    const bool noEarlierStop = record.minEarlier > acceptBelow;
     switch (record.state) {
     case BoxRecord::Minimax::Found:
-        // A polynomial found within an earlier eps: it answers a larger eps; a smaller one needs a search.
-        if (record.minimax.errCriterionBound <= epsMin) {
+        if (noEarlierStop && record.offered <= acceptBelow && record.minimax.errCriterionBound <= epsMin) {
             counters.addCacheHit();
             record.minimax.accepted = true;
             return true;
         }
         break;
     case BoxRecord::Minimax::Converged: {
+        if (!noEarlierStop) break;
         BoxOutcome& m = record.minimax;
         if (m.errCriterionBound <= epsMin) {
             counters.addCacheHit();
@@ -484,7 +501,7 @@ bool BoxFitter::decideMinimax(const Box& box, const EpsField& eps, BoxRecord& re
             return false;
         }
         const BoxOutcome before = m;
-        certify(box, eps, m, counters);
+        certify(box, tight, m, counters);
         keepWhatWasKnown(m, before);
         record.changed = true;
         return m.accepted;
@@ -503,30 +520,32 @@ bool BoxFitter::decideMinimax(const Box& box, const EpsField& eps, BoxRecord& re
         if (mask & (1u << i)) start[i] = static_cast<double>(lsq.c[i]) * factors[i];
     MinimaxTarget target;
     target.stopAbove = epsMax;
-    // A polynomial within eps (less a margin for the rounding of its coefficients to float) ends the
-    // search when its certification passes.
     BoxOutcome found;
-    target.acceptBelow = epsMin * (1.0 - MINIMAX_ROUNDING_MARGIN);
+    target.acceptBelow = acceptBelow;
     target.accept = [&](const std::array<double, MONOMIAL_COUNT>& scaled) {
         found = BoxOutcome{};
         found.p = lsq.p;
         for (std::size_t i = 0; i < MONOMIAL_COUNT; ++i)
             if (mask & (1u << i)) found.c[i] = static_cast<float>(scaled[i] / factors[i]);
-        certify(box, eps, found, counters);
+        certify(box, tight, found, counters);
         return found.accepted;
     };
     const MinimaxSolution solution = fitMinimax(mVolume, box, mask, mCertify, start, target);
-    counters.addMinimax(solution.scans);
     record.changed = true;
     record.lowerBound = std::max(record.lowerBound, roundDownToFloat(solution.lowerBound));
+    record.minEarlier = roundDownToFloat(solution.minEarlier);
+    record.offered = roundUpToFloat(solution.maxResidual);
     switch (solution.result) {
     case MinimaxSolution::Result::Above:
+        counters.addMinimax(solution.scans, false);
         record.state = BoxRecord::Minimax::Above;
         return false;
     case MinimaxSolution::Result::GaveUp:
+        counters.addMinimax(solution.scans, false);
         record.state = BoxRecord::Minimax::NotRun; // (another eps may stop it sooner)
         return false;
     case MinimaxSolution::Result::Found:
+        counters.addMinimax(solution.scans, true);
         record.state = BoxRecord::Minimax::Found;
         record.minimax = found;
         return true;
@@ -539,7 +558,8 @@ bool BoxFitter::decideMinimax(const Box& box, const EpsField& eps, BoxRecord& re
     m.p = lsq.p;
     for (std::size_t i = 0; i < MONOMIAL_COUNT; ++i)
         if (mask & (1u << i)) m.c[i] = static_cast<float>(solution.scaled[i] / factors[i]);
-    certify(box, eps, m, counters);
+    certify(box, tight, m, counters);
+    counters.addMinimax(solution.scans, m.accepted);
     return m.accepted;
 }
 

@@ -19,15 +19,17 @@ public:
     void addFit() { mine().fits.fetch_add(1, std::memory_order_relaxed); }
     void addScan() { mine().scans.fetch_add(1, std::memory_order_relaxed); }
     void addCacheHit() { mine().cacheHits.fetch_add(1, std::memory_order_relaxed); }
-    void addMinimax(int scans) {
+    void addMinimax(int scans, bool accepted) {
         mine().minimaxFits.fetch_add(1, std::memory_order_relaxed);
         mine().minimaxScans.fetch_add(static_cast<std::size_t>(scans), std::memory_order_relaxed);
+        if (accepted) mine().minimaxAccepted.fetch_add(1, std::memory_order_relaxed);
     }
     std::size_t fits() const { return total(&Slot::fits); }
     std::size_t scans() const { return total(&Slot::scans); }
     std::size_t cacheHits() const { return total(&Slot::cacheHits); }
     std::size_t minimaxFits() const { return total(&Slot::minimaxFits); }
     std::size_t minimaxScans() const { return total(&Slot::minimaxScans); }
+    std::size_t minimaxAccepted() const { return total(&Slot::minimaxAccepted); }
 
 private:
     struct alignas(64) Slot {
@@ -36,6 +38,7 @@ private:
         std::atomic<std::size_t> cacheHits{0};
         std::atomic<std::size_t> minimaxFits{0};
         std::atomic<std::size_t> minimaxScans{0};
+        std::atomic<std::size_t> minimaxAccepted{0};
     };
     // Threads get slots in the order they first count; threads that share a slot still count right.
     static constexpr std::size_t SLOTS = 16;
@@ -62,9 +65,16 @@ struct BoxOutcome {
 };
 
 /// Minimax acceptance runs the exchange only on a box whose least-squares polynomial is within this many
-/// times eps at every sample: further out the minimax one is rarely within eps, and the exchange would
-/// mostly prove that at the price of several scans (docs/DESIGN.md §3, "Minimax").
+/// times the minimax target (eps, or MINIMAX_CELLS_TARGET eps) at every sample: further out the minimax one
+/// is rarely within it, and the exchange would mostly prove that at the price of a search (docs/DESIGN.md
+/// §3, "Minimax").
 inline constexpr double MINIMAX_GATE = 1.5;
+/// With Certify::Cells a box is accepted by its minimax polynomial only when that is within this fraction
+/// of eps at the samples and the cell points, face centres included: least squares rarely comes near eps
+/// everywhere, minimax does by its nature, and between the certified points a polynomial overshoots what
+/// it holds at them. With this margin the Vots' MIP agrees with the exact grid's at least as often as with
+/// least squares (docs/DESIGN.md §3, "Minimax"; tests/render/test_RealVolumeProjections.cpp).
+inline constexpr double MINIMAX_CELLS_TARGET = 0.9;
 /// The exchange offers a polynomial for certification once its largest residual is within eps less this
 /// fraction: the rounding of its coefficients to float must not take it past eps.
 inline constexpr double MINIMAX_ROUNDING_MARGIN = 1e-4;
@@ -85,6 +95,10 @@ struct BoxRecord {
     float lowerBound = 0.f;
     Minimax state = Minimax::NotRun;
     BoxOutcome minimax;
+    /// Converged, Found: the search's MinimaxSolution::minEarlier (rounded down) and the largest residual
+    /// of the polynomial it ended with (rounded up), which say at which eps it would end there again.
+    float minEarlier = 0.f;
+    float offered = INFINITY;
     bool changed = false; // decide() learned something a cache should keep
 };
 
@@ -119,6 +133,8 @@ private:
     bool decideLeastSquares(const Box& box, const EpsField& eps, BoxRecord& record, FitCounters& counters,
                             bool minimax) const;
     bool decideMinimax(const Box& box, const EpsField& eps, BoxRecord& record, FitCounters& counters) const;
+    /// The fraction of eps a minimax polynomial must keep to (MINIMAX_CELLS_TARGET with Certify::Cells).
+    double minimaxTarget() const { return mCertify == Certify::Cells ? MINIMAX_CELLS_TARGET : 1.0; }
 
     const Volume& mVolume;
     int mDegree;

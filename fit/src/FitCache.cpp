@@ -76,7 +76,12 @@ void FitCache::Impl::find(const Box& box, BoxRecord& record) {
     record.fitted = entry.hasCoefficients;
     record.lowerBound = entry.lowerBound;
     record.state = entry.minimaxState;
-    if (entry.minimaxEntry != CachedBox::NO_ENTRY) record.minimax = shard.minimaxes[entry.minimaxEntry];
+    if (entry.minimaxEntry != CachedBox::NO_ENTRY) {
+        const CachedMinimax& found = shard.minimaxes[entry.minimaxEntry];
+        record.minimax = found.outcome;
+        record.minEarlier = found.minEarlier;
+        record.offered = found.offered;
+    }
 }
 
 void FitCache::Impl::store(const Box& box, const BoxRecord& record) {
@@ -89,12 +94,13 @@ void FitCache::Impl::store(const Box& box, const BoxRecord& record) {
     entry.hasCoefficients = record.fitted;
     entry.lowerBound = record.lowerBound;
     entry.minimaxState = record.state;
-    if (record.state == BoxRecord::Minimax::Converged) {
+    if (record.state == BoxRecord::Minimax::Converged || record.state == BoxRecord::Minimax::Found) {
+        const CachedMinimax found{record.minimax, record.minEarlier, record.offered};
         if (entry.minimaxEntry == CachedBox::NO_ENTRY) {
             entry.minimaxEntry = static_cast<std::uint32_t>(shard.minimaxes.size());
-            shard.minimaxes.push_back(record.minimax);
+            shard.minimaxes.push_back(found);
         } else {
-            shard.minimaxes[entry.minimaxEntry] = record.minimax;
+            shard.minimaxes[entry.minimaxEntry] = found;
         }
     }
 }

@@ -41,6 +41,13 @@ struct CachedBox {
     static constexpr std::uint32_t NO_ENTRY = 0xffffffffu;
 };
 
+/// A minimax polynomial found for a box (BoxRecord's).
+struct CachedMinimax {
+    BoxOutcome outcome;
+    float minEarlier = 0.f;
+    float offered = INFINITY;
+};
+
 struct FitCache::Impl {
     // Shards by position: the boxes of one zone (32^3 cells, SplitMerge.h) share a shard, so a zone's split
     // (hundreds of lookups in a row) works in one small table that stays in cache, instead of missing into a
@@ -53,8 +60,8 @@ struct FitCache::Impl {
         // and misses never touch the large entries (a node map, or a flat map with the entries inline,
         // would touch them).
         absl::flat_hash_map<Box, std::uint32_t, BoxHash, BoxEqual> index;
-        std::deque<CachedBox> entries;    // never moves an entry
-        std::deque<BoxOutcome> minimaxes; // CachedBox::minimaxEntry
+        std::deque<CachedBox> entries;       // never moves an entry
+        std::deque<CachedMinimax> minimaxes; // CachedBox::minimaxEntry
     };
     std::array<Shard, SHARDS> shards;
     // Identity of what the cached errors belong to; a mismatch clears the cache.

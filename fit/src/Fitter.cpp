@@ -12,6 +12,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <sstream>
 
@@ -122,6 +123,7 @@ FitResult fitVotSpace(const Volume& volume, const FitOptions& options, FitCache*
     result.stats.cacheHits = counters.cacheHits();
     result.stats.minimaxFits = counters.minimaxFits();
     result.stats.minimaxScans = counters.minimaxScans();
+    result.stats.minimaxAccepted = counters.minimaxAccepted();
     result.stats.coveredCells = static_cast<std::size_t>(mask.totalForeground());
     result.stats.backgroundCells = static_cast<std::size_t>(mask.totalBackground());
     result.stats.backgroundValueSum = mask.backgroundValueSum();

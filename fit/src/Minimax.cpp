@@ -22,9 +22,9 @@ constexpr int REGION_COUNT = REGIONS * REGIONS * REGIONS;
 constexpr std::size_t POOL_CAPACITY = 128;
 constexpr int REFACTOR_EVERY = 32; // pivots between fresh inverses of the basis
 constexpr double PIVOT_TOLERANCE = 1e-9;
-// Shapes of at most this many samples keep their point matrix per thread, at most this many shapes.
+// Shapes of at most this many samples keep their point matrix per thread, in at most this many bytes.
 constexpr std::int64_t MINIMAX_SHAPE_CACHE_SAMPLES = 128;
-constexpr std::size_t MINIMAX_CACHED_SHAPES = 2048;
+constexpr std::size_t MINIMAX_SHAPE_CACHE_BYTES = std::size_t{16} << 20; // per thread, while the fit runs
 
 constexpr int MAX_N = static_cast<int>(MONOMIAL_COUNT) + 1;
 constexpr int WIDTH = MAX_N + 1;
@@ -103,21 +103,33 @@ private:
     int mN = 0;
 };
 
-/// The value a point stands for, summed as BoxFitter::certify sums it: the sample, or the mean of the
-/// corners of the edge or cell, x fastest.
+/// The trilinear value at a point of the half-integer lattice (doubled coordinates): the mean of the
+/// corners of its edge, face or cell, x fastest, as BoxFitter::certify sums it.
+template <typename T> double latticeValue(const Volume& volume, const T* values, int tx, int ty, int tz) {
+    const auto* base = values + volume.indexOf(tx >> 1, ty >> 1, tz >> 1);
+    const int xh = tx & 1, yh = ty & 1, zh = tz & 1;
+    const std::size_t dy = static_cast<std::size_t>(volume.dims[0]);
+    const std::size_t dz = dy * static_cast<std::size_t>(volume.dims[1]);
+    double sum = 0.0;
+    for (int k = 0; k <= zh; ++k)
+        for (int j = 0; j <= yh; ++j)
+            for (int i = 0; i <= xh; ++i)
+                sum += sampleAsFloat(base[static_cast<std::size_t>(k) * dz +
+                                          static_cast<std::size_t>(j) * dy + static_cast<std::size_t>(i)]);
+    const int count = (1 + xh) * (1 + yh) * (1 + zh);
+    return count == 1 ? sum : count == 2 ? 0.5 * sum : sum / count;
+}
+
+/// Whether the minimax fit of a Certify::Cells fit holds this point of the half-integer lattice besides the
+/// samples: the certified edge midpoints and cell centres, and the face centres (MINIMAX_FACE_CENTRES).
+bool isCellPoint(int halves) {
+    return halves == 1 || halves == 3 || (MINIMAX_FACE_CENTRES && halves == 2);
+}
+
+/// The value a point stands for: the sample, or the trilinear value there (latticeValue).
 double referenceAt(const Volume& volume, const std::array<int, 3>& twice) {
     return visitSamples(volume, [&](const auto* values) {
-        const int x0 = twice[0] >> 1, y0 = twice[1] >> 1, z0 = twice[2] >> 1;
-        const int xh = twice[0] & 1, yh = twice[1] & 1, zh = twice[2] & 1;
-        double sum = 0.0;
-        int count = 0;
-        for (int dz = 0; dz <= zh; ++dz)
-            for (int dy = 0; dy <= yh; ++dy)
-                for (int dx = 0; dx <= xh; ++dx) {
-                    sum += sampleAsFloat(values[volume.indexOf(x0 + dx, y0 + dy, z0 + dz)]);
-                    ++count;
-                }
-        return count == 1 ? sum : count == 2 ? 0.5 * sum : sum / count;
+        return latticeValue(volume, values, twice[0], twice[1], twice[2]);
     });
 }
 
@@ -218,8 +230,7 @@ void scanSamples(const Volume& volume, const Geometry& g, const Tensor& c, bool 
     out.finish();
 }
 
-/// Residuals against the trilinear value at every cell centre and edge midpoint of the box (the points
-/// with one or three half coordinates, as BoxFitter::certify walks them).
+/// Residuals against the trilinear value at every cell point of the box (isCellPoint).
 void scanCells(const Volume& volume, const Geometry& g, const Tensor& c, Extremes& out) {
     const Box& box = g.box();
     const int n[3] = {2 * box.cells(0), 2 * box.cells(1), 2 * box.cells(2)};
@@ -229,7 +240,6 @@ void scanCells(const Volume& volume, const Geometry& g, const Tensor& c, Extreme
             const int tz = 2 * box.lo[2] + zi;
             const double w = g.scaled(2, tz);
             const int rz = g.region(2, tz);
-            const int z0 = box.lo[2] + zi / 2, zh = zi & 1;
             double q[4][4];
             for (int a = 0; a < 4; ++a)
                 for (int b = 0; b < 4; ++b)
@@ -238,40 +248,65 @@ void scanCells(const Volume& volume, const Geometry& g, const Tensor& c, Extreme
                 const int ty = 2 * box.lo[1] + yi;
                 const double v = g.scaled(1, ty);
                 const int ry = g.region(1, ty);
-                const int yh = yi & 1;
-                const int y0 = box.lo[1] + yi / 2;
                 double r[4];
                 for (int a = 0; a < 4; ++a)
                     r[a] = ((q[a][3] * v + q[a][2]) * v + q[a][1]) * v + q[a][0];
-                const int xhWanted = (yh + zh) % 2 == 0 ? 1 : 0;
-                const bool centres = yh + zh == 2;
-                const auto* c00 = values + volume.indexOf(0, y0, z0);
-                const auto* c10 = yh ? c00 + volume.dims[0] : c00;
-                const auto* c01 = zh ? c00 + volume.indexOf(0, 0, 1) : c00;
-                const auto* c11 = zh ? c10 + volume.indexOf(0, 0, 1) : c10;
-                for (int xi = xhWanted; xi <= n[0]; xi += 2) {
-                    const int x0 = box.lo[0] + xi / 2;
-                    double reference = 0.0;
-                    if (centres) {
-                        for (const auto* base : {c00, c10, c01, c11}) {
-                            reference += sampleAsFloat(base[x0]);
-                            reference += sampleAsFloat(base[x0 + 1]);
-                        }
-                        reference /= 8.0;
-                    } else if (xhWanted) {
-                        reference = 0.5 * (sampleAsFloat(c00[x0]) + sampleAsFloat(c00[x0 + 1]));
-                    } else {
-                        reference = 0.5 * (sampleAsFloat(c00[x0]) + sampleAsFloat(c11[x0]));
-                    }
+                for (int xi = 0; xi <= n[0]; ++xi) {
+                    if (!isCellPoint((xi & 1) + (yi & 1) + (zi & 1))) continue;
                     const int tx = 2 * box.lo[0] + xi;
                     const double u = g.scaled(0, tx);
-                    const double res = reference - (((r[3] * u + r[2]) * u + r[1]) * u + r[0]);
+                    const double res = latticeValue(volume, values, tx, ty, tz) -
+                                       (((r[3] * u + r[2]) * u + r[1]) * u + r[0]);
                     out.offer(g.region(0, tx) + REGIONS * (ry + REGIONS * rz), res, {tx, ty, tz});
                 }
             }
         }
     });
     out.finish();
+}
+
+/// An upper bound of |residual| at the cell points beyond the largest at the samples: for a cubic, the
+/// mean of P at the 2, 4 or 8 corners of an edge, face or cell is P at its centre plus a/8 of the sum of the
+/// second derivatives along its a half axes, and the reference there is the mean of the samples; second
+/// derivatives are affine in position, so their sums take their largest magnitude at a corner of the box.
+/// `c` holds the coefficients of the basis over scaled coordinates. A relative 1e-9 and 1e-12 scale cover
+/// the rounding of the residuals computed with them.
+double cellBound(const Geometry& g, const double* c, double scale) {
+    const Box& box = g.box();
+    // Second derivative along axis a, in index units: (grad0 + sum_b grad[b] u_b) / half_a^2.
+    double second[3][4] = {};
+    for (int j = 0; j < g.n(); ++j) {
+        const auto& e = MONOMIAL_EXPONENTS[static_cast<std::size_t>(g.basis(j))];
+        for (int a = 0; a < 3; ++a) {
+            if (e[a] < 2) continue;
+            std::array<int, 3> rest = e;
+            rest[a] -= 2;
+            const double factor = c[j] * e[a] * (e[a] - 1);
+            const int term = rest[0] ? 1 : rest[1] ? 2 : rest[2] ? 3 : 0; // the degree is at most 3
+            second[a][term] += factor;
+        }
+    }
+    double inverseHalfSquared[3];
+    for (int a = 0; a < 3; ++a) {
+        const double half = 0.5 * box.cells(a);
+        inverseHalfSquared[a] = 1.0 / (half * half);
+    }
+    double largest = 0.0;
+    for (int corner = 0; corner < 8; ++corner) {
+        double d[3];
+        const double u[3] = {(corner & 1) ? 1.0 : -1.0, (corner & 2) ? 1.0 : -1.0, (corner & 4) ? 1.0 : -1.0};
+        for (int a = 0; a < 3; ++a)
+            d[a] = (second[a][0] + second[a][1] * u[0] + second[a][2] * u[1] + second[a][3] * u[2]) *
+                   inverseHalfSquared[a];
+        // Edges: one axis; faces: two (MINIMAX_FACE_CENTRES); cells: three.
+        largest =
+            std::max({largest, std::abs(d[0]), std::abs(d[1]), std::abs(d[2]), std::abs(d[0] + d[1] + d[2])});
+        if (MINIMAX_FACE_CENTRES)
+            largest =
+                std::max({largest, std::abs(d[0] + d[1]), std::abs(d[0] + d[2]), std::abs(d[1] + d[2])});
+    }
+    const double bound = largest / 8.0;
+    return bound * (1.0 + 1e-9) + 1e-12 * scale;
 }
 
 /// The simplex method on the dual LP
@@ -592,7 +627,7 @@ void buildShape(const Geometry& g, Certify points, ShapePoints& out) {
             for (int y = 0; y <= 2 * box.cells(1); ++y)
                 for (int x = 0; x <= 2 * box.cells(0); ++x) {
                     const int halves = (x & 1) + (y & 1) + (z & 1);
-                    if (pass == 0 ? halves != 0 : halves % 2 == 0) continue;
+                    if (pass == 0 ? halves != 0 : !isCellPoint(halves)) continue;
                     const std::array<int, 3> twice{2 * box.lo[0] + x, 2 * box.lo[1] + y, 2 * box.lo[2] + z};
                     const Point p = g.point(twice, 0.0);
                     for (int j = 0; j < g.n(); ++j)
@@ -611,14 +646,21 @@ const ShapePoints& shapeOf(const Geometry& g, Certify points) {
         return scratch;
     }
     thread_local absl::flat_hash_map<std::uint64_t, std::unique_ptr<ShapePoints>> shapes;
+    thread_local std::size_t shapeBytes = 0;
     const std::uint64_t key = std::uint64_t{g.mask()} << 26 | std::uint64_t{points == Certify::Cells} << 24 |
                               std::uint64_t(box.points(0)) << 16 | std::uint64_t(box.points(1)) << 8 |
                               std::uint64_t(box.points(2));
     auto it = shapes.find(key);
     if (it == shapes.end()) {
-        if (shapes.size() >= MINIMAX_CACHED_SHAPES) shapes.clear();
         auto shape = std::make_unique<ShapePoints>();
         buildShape(g, points, *shape);
+        const std::size_t bytes = static_cast<std::size_t>(shape->phi.size()) * sizeof(double) +
+                                  shape->offsets.size() * sizeof(shape->offsets[0]);
+        if (shapeBytes + bytes > MINIMAX_SHAPE_CACHE_BYTES) {
+            shapes.clear();
+            shapeBytes = 0;
+        }
+        shapeBytes += bytes;
         it = shapes.emplace(key, std::move(shape)).first;
     }
     return *it->second;
@@ -630,30 +672,8 @@ void gatherValues(const Volume& volume, const Box& box, const ShapePoints& shape
     visitSamples(volume, [&](const auto* values) {
         for (std::size_t k = 0; k < shape.offsets.size(); ++k) {
             const auto& o = shape.offsets[k];
-            const int x = box.lo[0] + (o[0] >> 1), y = box.lo[1] + (o[1] >> 1), z = box.lo[2] + (o[2] >> 1);
-            const auto* base = values + volume.indexOf(x, y, z);
-            const int xh = o[0] & 1, yh = o[1] & 1, zh = o[2] & 1;
-            double value;
-            if (xh + yh + zh == 0) {
-                value = sampleAsFloat(*base);
-            } else if (xh + yh + zh == 3) {
-                // The mean of the cell's 8 corners, x fastest, as BoxFitter::certify sums it.
-                const std::size_t dy = static_cast<std::size_t>(volume.dims[0]);
-                const std::size_t dz = dy * static_cast<std::size_t>(volume.dims[1]);
-                double sum = 0.0;
-                for (const std::size_t offset : {std::size_t{0}, dy, dz, dy + dz}) {
-                    sum += sampleAsFloat(base[offset]);
-                    sum += sampleAsFloat(base[offset + 1]);
-                }
-                value = sum / 8.0;
-            } else {
-                const std::size_t step = xh   ? 1
-                                         : yh ? static_cast<std::size_t>(volume.dims[0])
-                                              : static_cast<std::size_t>(volume.dims[0]) *
-                                                    static_cast<std::size_t>(volume.dims[1]);
-                value = 0.5 * (sampleAsFloat(base[0]) + sampleAsFloat(base[step]));
-            }
-            f(static_cast<Eigen::Index>(k)) = value;
+            f(static_cast<Eigen::Index>(k)) = latticeValue(volume, values, 2 * box.lo[0] + o[0],
+                                                           2 * box.lo[1] + o[1], 2 * box.lo[2] + o[2]);
         }
     });
 }
@@ -725,28 +745,36 @@ MinimaxSolution fitDense(const Volume& volume, const Geometry& g, Certify points
         const double* y = exchange.coefficients();
         for (int j = 0; j < n; ++j)
             c(j) = y[j];
-        // The samples first; the cell points (far more of them) only once no sample is beyond t, or
-        // beyond the target.
+        // The samples first; the cell points (far more of them) only when no sample is beyond t (or to see
+        // whether a polynomial within the target is within it at the cell points too), and not even then
+        // when the curvature bound answers for them. What enters does not depend on the target: the worst
+        // sample while one is beyond t, else the worst point.
         const double slack = MINIMAX_TOLERANCE * std::max(t, 0.0) + 1e-9 * scale;
         const int ms = shape.samples;
         r.head(ms).noalias() = f.head(ms) - shape.phi.topRows(ms) * c;
         Eigen::Index worst = 0;
-        double largest = r.head(ms).cwiseAbs().maxCoeff(&worst);
-        const bool offer = offers < MINIMAX_MAX_OFFERS && largest <= target.acceptBelow;
-        if ((largest <= t + slack || offer) && m > ms) {
+        const double largestSample = r.head(ms).cwiseAbs().maxCoeff(&worst);
+        const bool samplesDone = largestSample <= t + slack;
+        const bool offer = offers < MINIMAX_MAX_OFFERS && largestSample <= target.acceptBelow;
+        bool cellsPriced = m == ms;
+        double largest = largestSample; // over every point once the cells are priced, else an upper bound
+        if (m > ms && (samplesDone || offer)) largest = largestSample + cellBound(g, c.data(), scale);
+        const auto priceCells = [&] {
+            if (cellsPriced) return;
+            cellsPriced = true;
             r.tail(m - ms).noalias() = f.tail(m - ms) - shape.phi.bottomRows(m - ms) * c;
             Eigen::Index worstCell = 0;
             const double largestCell = r.tail(m - ms).cwiseAbs().maxCoeff(&worstCell);
-            if (largestCell > largest) {
-                largest = largestCell;
-                worst = ms + worstCell;
-            }
-        }
-        if (largest <= t + slack || (offer && largest <= target.acceptBelow)) {
+            largest = std::max(largestSample, largestCell);
+            if (largestCell > largestSample) worst = ms + worstCell;
+        };
+        if (samplesDone && largest > t + slack) priceCells();
+        if (offer && largest > target.acceptBelow) priceCells();
+        if ((samplesDone && largest <= t + slack) || (offer && largest <= target.acceptBelow)) {
             for (int j = 0; j < n; ++j)
                 solution.scaled[static_cast<std::size_t>(g.basis(j))] = c(j);
             solution.maxResidual = largest;
-            if (largest <= t + slack) {
+            if (samplesDone && largest <= t + slack) {
                 solution.result = MinimaxSolution::Result::Converged;
                 return solution;
             }
@@ -756,6 +784,8 @@ MinimaxSolution fitDense(const Volume& volume, const Geometry& g, Certify points
                 return solution;
             }
         }
+        if (samplesDone) priceCells(); // (it was: the samples are within t, so some cell point is not)
+        solution.minEarlier = std::min(solution.minEarlier, largestSample);
         if (exchange.pivots() >= MINIMAX_MAX_PIVOTS) return solution;
         alignas(16) double phi[MONOMIAL_COUNT] = {};
         shape.row(static_cast<int>(worst), phi);
@@ -866,39 +896,44 @@ MinimaxSolution fitByScans(const Volume& volume, const Geometry& g, Certify poin
         const double slack = MINIMAX_TOLERANCE * std::max(t, 0.0) + 1e-9 * scale;
         const Tensor c = g.tensor(exchange.coefficients());
         scanSamples(volume, g, c, false, extremes);
+        // As in fitDense, what joins the pool does not depend on the target.
+        const bool samplesDone = extremes.maxAbs <= t + slack;
         const bool offer = offers < MINIMAX_MAX_OFFERS && extremes.maxAbs <= target.acceptBelow;
-        if (extremes.maxAbs > t + slack && !offer) {
+        if (!samplesDone && !offer) {
+            solution.minEarlier = std::min(solution.minEarlier, extremes.maxAbs);
             addCandidates(volume, g, extremes, exchange, pivotSlack, pool);
             continue;
         }
         double worst = extremes.maxAbs;
         Extremes cells;
         if (points == Certify::Cells) {
-            ++solution.scans;
-            scanCells(volume, g, c, cells);
-            worst = std::max(worst, cells.maxAbs);
+            // The curvature bound, or else the scan, for the cell points.
+            worst = extremes.maxAbs + cellBound(g, exchange.coefficients(), scale);
+            const bool converges = samplesDone && worst <= t + slack;
+            const bool offered = offer && worst <= target.acceptBelow;
+            // (Once the samples are within t, a failed offer needs the cell points' candidates.)
+            if (!converges && (!offered || samplesDone)) {
+                ++solution.scans;
+                scanCells(volume, g, c, cells);
+                worst = std::max(extremes.maxAbs, cells.maxAbs);
+            }
         }
-        auto addAll = [&] {
-            addCandidates(volume, g, extremes, exchange, pivotSlack, pool);
-            if (points == Certify::Cells) addCandidates(volume, g, cells, exchange, pivotSlack, pool);
-        };
-        if (worst > t + slack && !(offer && worst <= target.acceptBelow)) {
-            addAll();
-            continue;
+        if ((samplesDone && worst <= t + slack) || (offer && worst <= target.acceptBelow)) {
+            for (int j = 0; j < n; ++j)
+                solution.scaled[static_cast<std::size_t>(g.basis(j))] = exchange.coefficients()[j];
+            solution.maxResidual = worst;
+            if (samplesDone && worst <= t + slack) {
+                solution.result = MinimaxSolution::Result::Converged;
+                return solution;
+            }
+            ++offers;
+            if (target.accept && target.accept(solution.scaled)) {
+                solution.result = MinimaxSolution::Result::Found;
+                return solution;
+            }
         }
-        for (int j = 0; j < n; ++j)
-            solution.scaled[static_cast<std::size_t>(g.basis(j))] = exchange.coefficients()[j];
-        solution.maxResidual = worst;
-        if (worst <= t + slack) {
-            solution.result = MinimaxSolution::Result::Converged;
-            return solution;
-        }
-        ++offers;
-        if (target.accept && target.accept(solution.scaled)) {
-            solution.result = MinimaxSolution::Result::Found;
-            return solution;
-        }
-        addAll();
+        solution.minEarlier = std::min(solution.minEarlier, extremes.maxAbs);
+        addCandidates(volume, g, samplesDone ? cells : extremes, exchange, pivotSlack, pool);
     }
 }
 
@@ -907,10 +942,10 @@ MinimaxSolution fitByScans(const Volume& volume, const Geometry& g, Certify poin
 std::int64_t pointsToFit(const Box& box, Certify points) {
     std::int64_t count = box.pointCount();
     if (points == Certify::Cells) {
-        // Edge midpoints along each axis and cell centres.
         const std::int64_t px = box.points(0), py = box.points(1), pz = box.points(2);
         const std::int64_t cx = box.cells(0), cy = box.cells(1), cz = box.cells(2);
-        count += cx * py * pz + px * cy * pz + px * py * cz + cx * cy * cz;
+        count += cx * py * pz + px * cy * pz + px * py * cz + cx * cy * cz; // edge midpoints, cell centres
+        if (MINIMAX_FACE_CENTRES) count += cx * cy * pz + cx * py * cz + px * cy * cz;
     }
     return count;
 }

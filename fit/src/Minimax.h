@@ -24,8 +24,13 @@ inline constexpr int MINIMAX_MAX_PIVOTS = 600;
 /// residuals, which feed a pool of candidate points.
 inline constexpr std::int64_t MINIMAX_DENSE_POINTS = 256;
 
+/// With Certify::Cells the minimax polynomial is fitted at the face centres too, which certification does
+/// not test: a polynomial held within eps at every point of the half-integer lattice overshoots less
+/// between them (docs/DESIGN.md §3, "Minimax").
+inline constexpr bool MINIMAX_FACE_CENTRES = true;
+
 /// The points the minimax polynomial is fitted on: the box's grid samples and, with Certify::Cells, its
-/// edge midpoints and cell centres.
+/// edge midpoints, face centres (MINIMAX_FACE_CENTRES) and cell centres.
 std::int64_t pointsToFit(const Box& box, Certify points);
 
 struct MinimaxSolution {
@@ -39,6 +44,9 @@ struct MinimaxSolution {
     /// No polynomial of the basis has a largest |residual| over the points below this (the dual LP's value).
     double lowerBound = 0.0;
     double maxResidual = INFINITY; // of `scaled` over the points (Converged, Found)
+    /// The smallest largest residual over the samples of the polynomials met before the last: a target
+    /// whose acceptBelow is under it stops the search no sooner, and the search is the same up to there.
+    double minEarlier = INFINITY;
     /// Coefficients over the scaled coordinates u = (x - centre) / half-extent, canonical monomial order.
     std::array<double, MONOMIAL_COUNT> scaled{};
     int scans = 0;
@@ -59,8 +67,8 @@ inline constexpr int MINIMAX_MAX_OFFERS = 2;
 /// The polynomial of the basis (a basisMask) that minimises the largest |value - P| over the box's grid
 /// samples and, with Certify::Cells, over its cell centres and edge midpoints (their trilinear value), or
 /// the first one met within the target. `start` (scaled coordinates, e.g. the least-squares solution)
-/// only picks the first reference points. Without a target's stops the polynomial found depends only on
-/// the box and the start.
+/// only picks the first reference points. The sequence of polynomials met depends only on the box and the
+/// start; the target only says where it stops.
 MinimaxSolution fitMinimax(const Volume& volume, const Box& box, std::uint32_t basisMask, Certify points,
                            const std::array<double, MONOMIAL_COUNT>& start, const MinimaxTarget& target);
 

@@ -108,6 +108,7 @@ std::string buildFitMeta(const FitProvenance& r) {
         meta["fit"]["norm"] = nameOf(o.norm);
         meta["stats"]["minimax_fits"] = s.minimaxFits;
         meta["stats"]["minimax_scans"] = s.minimaxScans;
+        meta["stats"]["minimax_accepted"] = s.minimaxAccepted;
     }
     // Only a volume whose file states its orientation gets the key: other files keep their bytes.
     if (vol.orientationKnown) meta["source"]["patient_axes"] = vol.patientAxes;

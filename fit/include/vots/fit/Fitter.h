@@ -80,13 +80,14 @@ struct FitOptions {
 };
 
 struct FitStats {
-    double seconds = 0.0;         // wall time of the fit
-    std::size_t boxFits = 0;      // least-squares solves
-    std::size_t boxScans = 0;     // full residual scans over a box's samples
-    std::size_t cacheHits = 0;    // box errors reused from a FitCache
-    std::size_t minimaxFits = 0;  // exchange runs (FitNorm::Minimax)
-    std::size_t minimaxScans = 0; // their scans over a box's points
-    std::size_t coveredCells = 0; // non-background cells (all covered)
+    double seconds = 0.0;            // wall time of the fit
+    std::size_t boxFits = 0;         // least-squares solves
+    std::size_t boxScans = 0;        // full residual scans over a box's samples
+    std::size_t cacheHits = 0;       // box errors reused from a FitCache
+    std::size_t minimaxFits = 0;     // exchange runs (FitNorm::Minimax)
+    std::size_t minimaxScans = 0;    // their scans over a box's points
+    std::size_t minimaxAccepted = 0; // of those runs, the ones that ended with a box accepted
+    std::size_t coveredCells = 0;    // non-background cells (all covered)
     std::size_t backgroundCells = 0;
     /// Over the background cells, the sum of each one's mean corner value (its integral of the
     /// trilinear field): ranks' fits add up to the whole volume's.
