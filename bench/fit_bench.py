@@ -56,7 +56,8 @@ def main():
     parser.add_argument("--vots", default=str(ROOT / "build" / "release" / "cli" / "vots"))
     parser.add_argument("--runs", type=int, default=3, help="fast-method runs per cell (median)")
     parser.add_argument("--paper-timeout", type=float, default=600.0)
-    parser.add_argument("--eps", default="1,2,5", help="percent of the value range")
+    parser.add_argument("--eps", default="1,2,5",
+                        help="percent of the value range; a value ending in u is in data units (20u: 20 HU)")
     parser.add_argument("--norms", default="lsq,minimax", help="--fit-norm values, run interleaved")
     parser.add_argument("--certify", default="samples", choices=("samples", "cells"))
     parser.add_argument("--background", help="--background for every fit (default: auto)")
@@ -93,7 +94,8 @@ def main():
                 for _ in range(runs):
                     for norm in run_norms:
                         out = tmp / f"{vol.stem}-{pct}-{method}-{norm}.vots"
-                        cmd = [args.vots, "fit", str(vol), "-o", str(out), "--eps", f"{pct}%", "--method", method,
+                        eps_arg = pct[:-1] if pct.endswith("u") else f"{pct}%"
+                        cmd = [args.vots, "fit", str(vol), "-o", str(out), "--eps", eps_arg, "--method", method,
                                "--fit-norm", norm, "--certify", args.certify, "--threads", str(args.threads)]
                         if args.background:
                             cmd += ["--background", args.background]
