@@ -1,7 +1,8 @@
 // render_bench: steady-state frame times of Vot MIP (walk and raster strategies) vs the reference ray
 // caster, measured interleaved in one run, as markdown rows.
 //
-//   render_bench VOLUME [--vots FILE | --eps-percent P[,P...] | --eps E] [--degree N] [--size N]
+//   render_bench VOLUME [--vots FILE | --eps-percent P[,P...] | --eps E] [--degree N] [--fit-norm N] [--size
+//   N]
 //                [--frames N] [--warmup N] [--strategy both|walk|raster]
 //                [--walk-shader auto|fragment|compute] [--no-cull] [--png-dir DIR]
 // Each round renders one frame with every renderer being compared (reference, raster, walk), so load
@@ -72,6 +73,9 @@ int main(int argc, char** argv) {
         ->delimiter(',');
     app.add_option("--eps", epsAbs, "fit at this absolute eps (data units)");
     app.add_option("--degree", degree, "fit degree");
+    std::string norm{vots::fit::nameOf(vots::fit::DEFAULT_FIT_NORM)};
+    app.add_option("--fit-norm", norm, "fit norm: minimax or lsq (docs/DESIGN.md §3)")
+        ->check(CLI::IsMember(vots::fit::acceptedNames<vots::fit::FitNorm>()));
     app.add_option("--size", size, "image side in pixels");
     app.add_option("--frames", frames, "timed rounds (median over them)");
     app.add_option("--warmup", warmup, "untimed rounds first");
@@ -125,7 +129,8 @@ int main(int argc, char** argv) {
                 eps = space.eps;
             } else {
                 const vots::fit::FitOptions options = vots::render::renderFitOptions(
-                    static_cast<float>(eps), degree, vots::fit::defaultBackground(volume));
+                    static_cast<float>(eps), degree, vots::fit::defaultBackground(volume),
+                    vots::render::RENDER_FIT_CERTIFY, vots::fit::parseName<vots::fit::FitNorm>(norm));
                 const auto t0 = Clock::now();
                 space = vots::fit::fitVotSpace(volume, options).space;
                 fitSeconds = std::chrono::duration<double>(Clock::now() - t0).count();

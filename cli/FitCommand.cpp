@@ -2,6 +2,7 @@
 #include "Args.h"
 #include "Commands.h"
 #include "DicomWebInput.h"
+#include "FitNormOption.h"
 #include "FrameOption.h"
 #include "MemoryBudgetOption.h"
 #include "ProgressLine.h"
@@ -41,8 +42,9 @@ struct FitArgs {
     std::string eps;
     int degree = 3;
     std::string background = "auto";
-    std::string method = "fast";     // checked by CLI11 against fit::FIT_METHOD_NAMES
-    std::string certify = "samples"; // checked by CLI11 against fit::CERTIFY_NAMES
+    std::string method = "fast";                          // checked by CLI11 against fit::FIT_METHOD_NAMES
+    std::string certify = "samples";                      // checked by CLI11 against fit::CERTIFY_NAMES
+    std::string norm{fit::nameOf(fit::DEFAULT_FIT_NORM)}; // checked by CLI11 against fit::FIT_NORM_NAMES
     std::string focus;
     std::string epsFocus;
     int threads = 0;
@@ -118,6 +120,7 @@ fit::FitOptions fitOptionsFor(const FitArgs& a, const CheckedArgs& checked, std:
     options.background = resolveBackground(a.background, range);
     options.method = fit::parseName<fit::FitMethod>(a.method);
     options.certify = fit::parseName<fit::Certify>(a.certify);
+    options.norm = fit::parseName<fit::FitNorm>(a.norm);
     options.focus = checked.focus;
     options.threads = a.threads;
     return options;
@@ -287,6 +290,7 @@ void addFitCommand(CLI::App& app) {
                     "samples: bound at grid samples; cells: also at cell centres and edge midpoints")
         ->check(CLI::IsMember(fit::acceptedNames<fit::Certify>()))
         ->capture_default_str();
+    addFitNormOption(*cmd, args->norm);
     CLI::Option* focus = cmd->add_option("--focus", args->focus, "Focus sphere x,y,z,r in grid index units");
     CLI::Option* epsFocus =
         cmd->add_option("--eps-focus", args->epsFocus, "Error bound inside the focus sphere");

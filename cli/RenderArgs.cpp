@@ -128,7 +128,8 @@ fit::FitResult fitForRender(const fit::Volume& volume, std::array<float, 2> rang
     const auto eps = static_cast<float>(c.eps.resolve(range[0], range[1]));
     if (!(eps > 0)) throw fit::InputError("--eps " + a.eps + " is 0 for this volume; give it in data units");
     const fit::FitOptions options = render::renderFitOptions(
-        eps, a.degree, resolveBackground(a.background, range), fit::parseName<fit::Certify>(a.certify));
+        eps, a.degree, resolveBackground(a.background, range), fit::parseName<fit::Certify>(a.certify),
+        fit::parseName<fit::FitNorm>(a.norm));
     fit::validateFitOptions(volume, options);
     return fit::fitVotSpace(volume, options);
 }

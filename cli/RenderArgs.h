@@ -37,6 +37,7 @@ struct RenderArgs {
     int degree = 3;
     std::string background = "auto";
     std::string certify{fit::nameOf(render::RENDER_FIT_CERTIFY)};
+    std::string norm{fit::nameOf(fit::DEFAULT_FIT_NORM)};
     std::string volume;
     std::string memoryBudget;     // empty: the default
     std::string series;           // DICOM SeriesInstanceUID; empty: the folder's only series

@@ -3,6 +3,7 @@
 #include "Args.h"
 #include "Commands.h"
 #include "DicomWebInput.h"
+#include "FitNormOption.h"
 #include "FrameOption.h"
 #include "MemoryBudgetOption.h"
 #include "RawOptions.h"
@@ -226,6 +227,7 @@ void addRenderCommand(CLI::App& app) {
                     "Fit certification for volume input: cells (also between samples) or samples")
         ->check(CLI::IsMember(fit::acceptedNames<fit::Certify>()))
         ->capture_default_str();
+    addFitNormOption(*cmd, args->norm);
     cmd->add_option("--volume", args->volume, "The volume of a .vots input (for --renderer grid)");
     cmd->add_option("--turntable", args->turntable,
                     "N views around the vertical axis from the camera's azimuth, 360/N degrees apart, in one "

@@ -1,5 +1,6 @@
 // `vots serve`: options -> vots::server::Server, then serve until SIGINT/SIGTERM; no HTTP logic here.
 #include "Commands.h"
+#include "FitNormOption.h"
 #include "MemoryBudgetOption.h"
 #include "ServeDicomWeb.h"
 
@@ -38,6 +39,7 @@ struct ServeArgs {
     int frameCacheMb = 64;
     int cacheDirGb = 16;
     bool noWarmUp = false;
+    std::string norm{fit::nameOf(fit::DEFAULT_FIT_NORM)};
     std::string prepare = "cranium"; // the viewer's first dataset when the data folders have it
     std::string tokenFile;
     std::vector<std::string> allowHosts;
@@ -111,6 +113,7 @@ void runServe(const ServeArgs& a) {
     options.frameCacheBytes = static_cast<std::size_t>(a.frameCacheMb) << 20;
     options.diskCacheBytes = static_cast<std::uint64_t>(a.cacheDirGb) << 30;
     options.warmUpFits = !a.noWarmUp;
+    options.fitNorm = fit::parseName<fit::FitNorm>(a.norm);
     options.startupDataset = a.prepare;
     options.allowedHosts = a.allowHosts;
     options.maxRendersPerClient = a.rendersPerClient;
@@ -235,6 +238,7 @@ void addServeCommand(CLI::App& app) {
                     "New fits one client may have queued or running; more get 429 (0: no limit)")
         ->check(CLI::Range(0, 1 << 20))
         ->capture_default_str();
+    addFitNormOption(*cmd, args->norm);
     cmd->add_flag(
         "--no-warm-up", args->noWarmUp,
         "Do not fit at half the last eps in idle time (it makes later refits to a smaller eps faster)");

@@ -55,17 +55,18 @@ const RankPart::HeldPlanes& RankPart::heldPlanes(const std::string& volumePath) 
     return *mPlanes;
 }
 
-std::string RankPart::cellsFitId(const std::string& volumePath, float eps, int degree) {
-    return volumePath + '|' + exactText(eps) + '|' + std::to_string(degree);
+std::string RankPart::cellsFitId(const std::string& volumePath, float eps, int degree, fit::FitNorm norm) {
+    return volumePath + '|' + exactText(eps) + '|' + std::to_string(degree) + '|' +
+           std::string(fit::nameOf(norm));
 }
 
 std::string RankPart::votsFileId(const std::string& votsPath, bool cutRays) {
     return "file|" + votsPath + (cutRays ? "|cut" : "|whole");
 }
 
-RankFit RankPart::fit(const std::string& volumePath, float eps, int degree, std::array<float, 2> range,
-                      const FitProgress& progress) {
-    const std::string id = cellsFitId(volumePath, eps, degree);
+RankFit RankPart::fit(const std::string& volumePath, float eps, int degree, fit::FitNorm norm,
+                      std::array<float, 2> range, const FitProgress& progress) {
+    const std::string id = cellsFitId(volumePath, eps, degree, norm);
     if (id == mFitId) {
         RankFit held = mFitDone;
         held.fitMs = 0.0;
@@ -75,11 +76,13 @@ RankFit RankPart::fit(const std::string& volumePath, float eps, int degree, std:
     mFitId.clear(); // until the new fit is made, nothing is held
     mFitted.reset();
     const auto& [cells, read] = heldPlanes(volumePath);
-    fit::FitOptions options = render::renderFitOptions(eps, degree, fit::defaultBackground(range));
+    fit::FitOptions options = render::renderFitOptions(eps, degree, fit::defaultBackground(range),
+                                                       render::RENDER_FIT_CERTIFY, norm);
     options.progress = progress;
     fit::FitResult fitted;
     if (!cells.empty()) {
         fit::validateFitOptions(read.planes, options);
+        // (A cache is bound to one norm: another one clears it.)
         std::unique_ptr<fit::FitCache>& boxCache = mBoxCaches[degree];
         if (!boxCache) boxCache = std::make_unique<fit::FitCache>();
         fitted = fit::fitVotSpace(read.planes, options, boxCache.get());
@@ -94,9 +97,9 @@ RankFit RankPart::fit(const std::string& volumePath, float eps, int degree, std:
     return mFitDone;
 }
 
-double RankPart::uploadFit(const std::string& volumePath, float eps, int degree,
+double RankPart::uploadFit(const std::string& volumePath, float eps, int degree, fit::FitNorm norm,
                            std::optional<float> wholeFill, render::VotRenderer& vots) {
-    const std::string id = cellsFitId(volumePath, eps, degree);
+    const std::string id = cellsFitId(volumePath, eps, degree, norm);
     if (id != mFitId)
         throw std::runtime_error("rank " + std::to_string(mRank) + " holds no fit of this frame");
     const std::string uploadId = id + "|fill " + (wholeFill ? exactText(*wholeFill) : "none");

@@ -1,9 +1,17 @@
-// Cache-aware box acceptance: an exact cached error answers a uniform eps without any scan.
+// Cache-aware box acceptance: an exact cached error answers a uniform eps without any scan; minimax
+// acceptance keeps a BoxRecord per box instead.
 #include "BoxTester.h"
 
 namespace vots::fit {
 
 BoxOutcome BoxTester::test(const Box& box) const {
+    if (mFitter.norm() == FitNorm::Minimax) {
+        BoxRecord record;
+        if (mCache) mCache->find(box, record);
+        const BoxOutcome o = mFitter.decide(box, mEps, record, mCounters, mMinimax);
+        if (mCache && record.changed) mCache->store(box, record);
+        return o;
+    }
     const bool singleCell = box.cellCount() == 1;
     std::optional<CachedBox> cached;
     if (mCache) cached = mCache->find(box);

@@ -13,6 +13,14 @@ public:
 
     /// Accepted outcomes carry coefficients and certified errors; rejected ones may not.
     BoxOutcome test(const Box& box) const;
+    /// The same tester, but a minimax fit's boxes are accepted with their least-squares polynomial only: the
+    /// split, where larger boxes accepted by minimax would block more merges than they save
+    /// (docs/DESIGN.md §4).
+    BoxTester leastSquaresOnly() const {
+        BoxTester t = *this;
+        t.mMinimax = false;
+        return t;
+    }
     /// A hint: box will be tested soon.
     void willTest(const Box& box) const {
         if (mCache) mCache->prefetch(box);
@@ -24,6 +32,7 @@ private:
     const EpsField& mEps;
     FitCounters& mCounters;
     FitCache::Impl* mCache;
+    bool mMinimax = true; // (with a FitNorm::Minimax fitter)
 };
 
 /// A box chosen (or proposed) for the cover, with its certified fit.

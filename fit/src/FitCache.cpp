@@ -11,13 +11,15 @@ std::size_t FitCache::size() const {
     return mImpl->size();
 }
 
-void FitCache::Impl::bind(const Volume& volume, int degreeIn, Certify certifyIn) {
-    if (volumeData == sampleData(volume) && dims == volume.dims && degree == degreeIn && certify == certifyIn)
+void FitCache::Impl::bind(const Volume& volume, int degreeIn, Certify certifyIn, FitNorm normIn) {
+    if (volumeData == sampleData(volume) && dims == volume.dims && degree == degreeIn &&
+        certify == certifyIn && norm == normIn)
         return;
     for (auto& shard : shards) {
         std::lock_guard lock(shard.mutex);
         shard.index.clear();
         shard.entries.clear();
+        shard.minimaxes.clear();
     }
     {
         std::lock_guard lock(maskMutex);
@@ -27,6 +29,7 @@ void FitCache::Impl::bind(const Volume& volume, int degreeIn, Certify certifyIn)
     dims = volume.dims;
     degree = degreeIn;
     certify = certifyIn;
+    norm = normIn;
 }
 
 std::shared_ptr<const CellMask> FitCache::Impl::maskFor(const Volume& volume,
@@ -61,6 +64,45 @@ void FitCache::Impl::store(const Box& box, const CachedBox& entry) {
         shard.entries.push_back(entry);
     else
         shard.entries[it->second] = entry;
+}
+
+void FitCache::Impl::find(const Box& box, BoxRecord& record) {
+    auto& shard = shards[shardOf(box)];
+    std::lock_guard lock(shard.mutex);
+    const auto it = shard.index.find(box);
+    if (it == shard.index.end()) return;
+    const CachedBox& entry = shard.entries[it->second];
+    record.lsq = entry.outcome;
+    record.fitted = entry.hasCoefficients;
+    record.lowerBound = entry.lowerBound;
+    record.state = entry.minimaxState;
+    if (entry.minimaxEntry != CachedBox::NO_ENTRY) {
+        const CachedMinimax& found = shard.minimaxes[entry.minimaxEntry];
+        record.minimax = found.outcome;
+        record.minEarlier = found.minEarlier;
+        record.offered = found.offered;
+    }
+}
+
+void FitCache::Impl::store(const Box& box, const BoxRecord& record) {
+    auto& shard = shards[shardOf(box)];
+    std::lock_guard lock(shard.mutex);
+    const auto [it, added] = shard.index.try_emplace(box, static_cast<std::uint32_t>(shard.entries.size()));
+    if (added) shard.entries.emplace_back();
+    CachedBox& entry = shard.entries[it->second];
+    entry.outcome = record.lsq;
+    entry.hasCoefficients = record.fitted;
+    entry.lowerBound = record.lowerBound;
+    entry.minimaxState = record.state;
+    if (record.state == BoxRecord::Minimax::Converged || record.state == BoxRecord::Minimax::Found) {
+        const CachedMinimax found{record.minimax, record.minEarlier, record.offered};
+        if (entry.minimaxEntry == CachedBox::NO_ENTRY) {
+            entry.minimaxEntry = static_cast<std::uint32_t>(shard.minimaxes.size());
+            shard.minimaxes.push_back(found);
+        } else {
+            shard.minimaxes[entry.minimaxEntry] = found;
+        }
+    }
 }
 
 std::size_t FitCache::Impl::size() {

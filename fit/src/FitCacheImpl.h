@@ -33,6 +33,19 @@ struct BoxEqual {
 struct CachedBox {
     BoxOutcome outcome; // coefficients valid only when fitted (not for an RSS early reject)
     bool hasCoefficients = false;
+    // Minimax acceptance only (BoxRecord): the lower bound, the exchange's state, and where the shard keeps
+    // the minimax outcome (few boxes have one, so it is not inline).
+    float lowerBound = 0.f;
+    BoxRecord::Minimax minimaxState = BoxRecord::Minimax::NotRun;
+    std::uint32_t minimaxEntry = NO_ENTRY;
+    static constexpr std::uint32_t NO_ENTRY = 0xffffffffu;
+};
+
+/// A minimax polynomial found for a box (BoxRecord's).
+struct CachedMinimax {
+    BoxOutcome outcome;
+    float minEarlier = 0.f;
+    float offered = INFINITY;
 };
 
 struct FitCache::Impl {
@@ -47,7 +60,8 @@ struct FitCache::Impl {
         // and misses never touch the large entries (a node map, or a flat map with the entries inline,
         // would touch them).
         absl::flat_hash_map<Box, std::uint32_t, BoxHash, BoxEqual> index;
-        std::deque<CachedBox> entries; // never moves an entry
+        std::deque<CachedBox> entries;       // never moves an entry
+        std::deque<CachedMinimax> minimaxes; // CachedBox::minimaxEntry
     };
     std::array<Shard, SHARDS> shards;
     // Identity of what the cached errors belong to; a mismatch clears the cache.
@@ -55,6 +69,7 @@ struct FitCache::Impl {
     std::array<int, 3> dims{0, 0, 0};
     int degree = -1;
     Certify certify = Certify::Samples;
+    FitNorm norm = FitNorm::Lsq;
 
     // The background mask of the bound volume: the same for every refit at the same background, and
     // built on the fit's serial path.
@@ -66,12 +81,15 @@ struct FitCache::Impl {
         const auto zone = [&](int a) { return static_cast<std::size_t>(box.lo[a] >> SHARD_CELLS_LOG2); };
         return (zone(0) * 73856093u ^ zone(1) * 19349663u ^ zone(2) * 83492791u) % SHARDS;
     }
-    void bind(const Volume& volume, int degreeIn, Certify certifyIn);
+    void bind(const Volume& volume, int degreeIn, Certify certifyIn, FitNorm normIn);
     std::shared_ptr<const CellMask> maskFor(const Volume& volume, std::optional<float> background);
     std::optional<CachedBox> find(const Box& box);
     /// Starts loading where find(box) will look, so that lookups coming soon overlap their cache misses.
     void prefetch(const Box& box);
     void store(const Box& box, const CachedBox& entry);
+    /// Minimax acceptance: what is known of the box, into `record` (left empty when nothing is).
+    void find(const Box& box, BoxRecord& record);
+    void store(const Box& box, const BoxRecord& record);
     std::size_t size();
 };
 

@@ -12,6 +12,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <sstream>
 
@@ -74,12 +75,12 @@ FitResult fitVotSpace(const Volume& volume, const FitOptions& options, FitCache*
     std::optional<FocusRegion> focus = options.focus; // in the fitted volume's own index space
     if (focus && options.partOfGrid) focus->centerIndex[2] -= options.partOfGrid->firstPlane;
     const EpsField eps(options.eps, focus);
-    const BoxFitter fitter(volume, options.degree, options.certify);
+    const BoxFitter fitter(volume, options.degree, options.certify, options.norm);
     FitCounters counters;
     FitCache::Impl* cacheImpl = nullptr;
     if (cache) {
         cacheImpl = &cache->impl();
-        cacheImpl->bind(volume, options.degree, options.certify);
+        cacheImpl->bind(volume, options.degree, options.certify, options.norm);
     }
     const std::shared_ptr<const CellMask> maskOwner =
         cacheImpl ? cacheImpl->maskFor(volume, options.background)
@@ -124,6 +125,9 @@ FitResult fitVotSpace(const Volume& volume, const FitOptions& options, FitCache*
     result.stats.boxFits = counters.fits();
     result.stats.boxScans = counters.scans();
     result.stats.cacheHits = counters.cacheHits();
+    result.stats.minimaxFits = counters.minimaxFits();
+    result.stats.minimaxScans = counters.minimaxScans();
+    result.stats.minimaxAccepted = counters.minimaxAccepted();
     result.stats.coveredCells = static_cast<std::size_t>(mask.totalForeground());
     result.stats.backgroundCells = static_cast<std::size_t>(mask.totalBackground());
     result.stats.backgroundValueSum = mask.backgroundValueSum();

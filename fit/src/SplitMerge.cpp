@@ -126,7 +126,7 @@ std::vector<FittedBox> splitZones(const CellMask& mask, const BoxTester& tester,
         }
         std::vector<FittedBox>& boxes = scratch[static_cast<std::size_t>(thread)];
         boxes.clear();
-        splitZone(zone, mask, tester, boxes, control);
+        splitZone(zone, mask, tester.leastSquaresOnly(), boxes, control);
         // Merging inside the zone first keeps most merge work parallel.
         mergeNeighbours(boxes, tester, FitControl{1, nullptr, control.cancel});
         perZone[n].assign(boxes.begin(), boxes.end());

@@ -102,6 +102,14 @@ std::string buildFitMeta(const FitProvenance& r) {
           {"max_error", finiteOrNull(s.maxError)}}},
         {"max_error", finiteOrNull(r.maxError)},
     };
+    // Only a minimax fit names its norm: a least-squares fit's file keeps the bytes it had before the norm
+    // could be chosen.
+    if (o.norm != fit::FitNorm::Lsq) {
+        meta["fit"]["norm"] = nameOf(o.norm);
+        meta["stats"]["minimax_fits"] = s.minimaxFits;
+        meta["stats"]["minimax_scans"] = s.minimaxScans;
+        meta["stats"]["minimax_accepted"] = s.minimaxAccepted;
+    }
     // Only a volume whose file states its orientation gets the key: other files keep their bytes.
     if (vol.orientationKnown) meta["source"]["patient_axes"] = vol.patientAxes;
     // Only a 4D file's fit and a volume with NaN/Inf samples get these keys.

@@ -19,13 +19,14 @@ std::optional<int> parsePlainInt(std::string_view text) {
     return value;
 }
 
-fit::FitOptions renderFitOptions(float eps, int degree, std::optional<float> background,
-                                 fit::Certify certify) {
+fit::FitOptions renderFitOptions(float eps, int degree, std::optional<float> background, fit::Certify certify,
+                                 fit::FitNorm norm) {
     fit::FitOptions options;
     options.eps = eps;
     options.degree = degree;
     options.background = background;
     options.certify = certify;
+    options.norm = norm;
     return options;
 }
 

@@ -76,7 +76,7 @@ void refuseWhatVotsCannotDraw(const Dataset& dataset, const RenderParams& params
 /// HttpError 409 for a fit (POST /api/fit) of a .vots dataset: it has no volume to fit.
 void refuseFitOfVots(const Dataset& dataset);
 /// The key of a uniform-eps fit of the dataset (no focus).
-FitKey fitKeyFor(const Dataset& dataset, const EpsSpec& eps, int degree);
+FitKey fitKeyFor(const Dataset& dataset, const EpsSpec& eps, int degree, fit::FitNorm norm);
 
 /// The job's visible state as JSON (GET /api/jobs/{id}, SSE data).
 nlohmann::json jobJson(const JobSnapshot& job);

@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <memory>
 
 namespace vots::test {
@@ -204,6 +205,30 @@ TEST(CliFit, RawInputWithFocusAndCellCertificationVerifies) {
     verifyArgs.insert(verifyArgs.end(), rawArgs.begin(), rawArgs.end());
     const CliResult verifyRun = runVots(verifyArgs);
     EXPECT_EQ(verifyRun.exitCode, 0) << describe(verifyArgs, verifyRun);
+}
+
+TEST(CliFit, FitNormChoosesHowBoxesAreAcceptedAndMinimaxNamesItInTheMeta) {
+    TempDir dir;
+    std::map<std::string, std::size_t> vots;
+    for (const std::string norm : {"lsq", "minimax"}) {
+        const std::string out = dir.file(norm + ".vots");
+        const std::vector<std::string> args{"fit", MRI_BRAIN, "-o", out, "--eps", "3%", "--fit-norm", norm};
+        const CliResult r = runVots(args);
+        ASSERT_EQ(r.exitCode, 0) << describe(args, r);
+        const fit::VotSpace space = meta::readVotSpaceFile(out);
+        vots[norm] = space.vots.size();
+        const json meta = json::parse(space.metaJson);
+        // A least-squares file keeps the meta it had before the norm could be chosen.
+        EXPECT_EQ(meta.at("fit").contains("norm"), norm == "minimax");
+        if (norm == "minimax") {
+            EXPECT_EQ(meta.at("fit").at("norm"), "minimax");
+            EXPECT_GT(meta.at("stats").at("minimax_fits").get<std::size_t>(), 0u);
+        }
+        const std::vector<std::string> verify{"verify", out, MRI_BRAIN};
+        const CliResult v = runVots(verify);
+        EXPECT_EQ(v.exitCode, 0) << describe(verify, v);
+    }
+    EXPECT_LT(vots["minimax"], vots["lsq"]);
 }
 
 TEST(CliFit, ProgressGoesToStderrOnly) {

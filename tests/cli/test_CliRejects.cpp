@@ -44,6 +44,7 @@ TEST(CliRejects, BadFitArguments) {
                    "--eps-focus");
     expectBadInput(dir, fitWith(out, {"--eps", "2", "--method", "slow"}), "--method");
     expectBadInput(dir, fitWith(out, {"--eps", "2", "--certify", "pixels"}), "--certify");
+    expectBadInput(dir, fitWith(out, {"--eps", "2", "--fit-norm", "l2"}), "--fit-norm");
     expectBadInput(dir, fitWith(out, {"--eps", "2", "--background", "dark"}), "--background");
     expectBadInput(dir, fitWith(out, {"--eps", "2", "--raw-dims", "4,4,4"}), "--raw-type");
     expectBadInput(dir, fitWith(out, {"--eps", "2", "--raw-dims", "4,4", "--raw-type", "uint8"}),

@@ -26,6 +26,7 @@ namespace {
 
 constexpr float EPS = 20.f; // data units
 constexpr int DEGREE = 3;
+constexpr fit::FitNorm NORM = fit::FitNorm::Minimax;
 
 /// The frame one process draws of the union of the ranks' fits (each of its cells' planes, with the
 /// options RankPart fits with), shown with the whole volume's fill.
@@ -41,6 +42,7 @@ fit::VotSpace unionOfRankFits(const std::string& path, int ranks, std::array<flo
         options.degree = DEGREE;
         options.background = fit::defaultBackground(range);
         options.certify = render::RENDER_FIT_CERTIFY;
+        options.norm = NORM;
         fit::VotSpace space = fit::fitVotSpace(read.planes, options).space;
         dist::placeCellsFitInGrid(space, cells, read.whole);
         if (r == 0) {
@@ -64,7 +66,7 @@ Ranks fitOnRanks(const std::string& path, int ranks, std::array<float, 2> range)
     for (int r = 0; r < ranks; ++r) {
         out.parts.push_back(std::make_unique<dist::RankPart>(r, ranks, dist::RankSetup{}));
         out.renderers.push_back(std::make_unique<render::VotRenderer>());
-        out.fits.push_back(out.parts.back()->fit(path, EPS, DEGREE, range));
+        out.fits.push_back(out.parts.back()->fit(path, EPS, DEGREE, NORM, range));
     }
     return out;
 }
@@ -128,7 +130,7 @@ TEST_F(RanksInOneProcess, CompositeTheFrameOfTheUnionOfTheirFitsWithTheWholeVolu
         EXPECT_NE(dist::wholeVolumeFill({sums.front()}), fill) << count << " ranks";
         for (int r = 0; r < count; ++r)
             ranks.parts[static_cast<std::size_t>(r)]->uploadFit(
-                path, EPS, DEGREE, fill, *ranks.renderers[static_cast<std::size_t>(r)]);
+                path, EPS, DEGREE, NORM, fill, *ranks.renderers[static_cast<std::size_t>(r)]);
 
         render::VotRenderer one;
         one.upload(unionOfRankFits(path, count, range, fill));
@@ -159,8 +161,8 @@ TEST_F(RanksInOneProcess, EachRanksOwnFillWouldChangeTheMinipOfThisVolume) {
     const std::optional<float> fill =
         dist::wholeVolumeFill({whole.fits[0].background, whole.fits[1].background});
     for (std::size_t r = 0; r < 2; ++r) {
-        whole.parts[r]->uploadFit(path, EPS, DEGREE, fill, *whole.renderers[r]);
-        own.parts[r]->uploadFit(path, EPS, DEGREE, dist::wholeVolumeFill({own.fits[r].background}),
+        whole.parts[r]->uploadFit(path, EPS, DEGREE, NORM, fill, *whole.renderers[r]);
+        own.parts[r]->uploadFit(path, EPS, DEGREE, NORM, dist::wholeVolumeFill({own.fits[r].background}),
                                 *own.renderers[r]);
     }
     EXPECT_NE(composited(own, frame).pixels, composited(whole, frame).pixels)

@@ -59,6 +59,17 @@ cmp -s <(vots_body "$work/2.vots") <(vots_body "$work/2b.vots") || fail "two run
 no_times() { "$vots" info --json "$1" | sed -E 's/"(fit_)?seconds":[^,}]*//g; s/"file":"[^"]*"//'; }
 [[ $(no_times "$work/2.vots") == "$(no_times "$work/2b.vots")" ]] || fail "two runs on 2 ranks: meta blocks differ"
 
+# Either norm on the ranks (docs/DESIGN.md §3): least squares verifies as well, with more Vots than minimax
+# (the default), and only a minimax file names its norm.
+mpi 2 "$vots" fit "$volume" -o "$work/2lsq.vots" "${fit_args[@]}" --fit-norm lsq >/dev/null ||
+    fail "2 ranks, --fit-norm lsq: fit failed"
+"$vots" verify "$work/2lsq.vots" "$volume" >"$work/verify" || fail "2 ranks, lsq: verify failed: $(cat "$work/verify")"
+vot_count() { od -An -tu8 -j88 -N8 "$1" | tr -d ' '; }
+(($(vot_count "$work/2.vots") < $(vot_count "$work/2lsq.vots"))) ||
+    fail "2 ranks: minimax gave $(vot_count "$work/2.vots") Vots, least squares $(vot_count "$work/2lsq.vots")"
+[[ $(json_key "$work/2.vots" norm) == '"norm":"minimax"' ]] || fail "2 ranks: the minimax file does not name its norm"
+[[ -z $(json_key "$work/2lsq.vots" norm) ]] || fail "2 ranks: the least-squares file names a norm"
+
 # A focus sphere across the border of two ranks' cells, named in the whole volume's index space: every rank holds its
 # samples to the focus's eps (vots verify rebuilds the field from the meta block), and the file records
 # the focus as one process's does.

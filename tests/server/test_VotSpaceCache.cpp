@@ -64,6 +64,19 @@ TEST(FitKey, TextIsExactAndFileSafe) {
               std::string::npos);
 }
 
+TEST(FitKey, TheNormIsPartOfTheKeyAndLeastSquaresKeepsItsOldText) {
+    FitKey lsq{"blobs", 5.1f, 3, 2.55f, std::nullopt};
+    lsq.norm = fit::FitNorm::Lsq;
+    FitKey minimax = lsq;
+    minimax.norm = fit::FitNorm::Minimax;
+    EXPECT_NE(lsq.text(), minimax.text());
+    // The text of a key before the norm could be chosen (and the server's fits were least squares), so the
+    // cache files those fits wrote are found again.
+    EXPECT_EQ(lsq.text(), "blobs__e40a33333_d3_b40233333_cells_v00000000");
+    EXPECT_EQ(fitOptionsFor(minimax).norm, fit::FitNorm::Minimax);
+    EXPECT_EQ(fitOptionsFor(lsq).norm, fit::FitNorm::Lsq);
+}
+
 TEST(VotSpaceCache, EvictsLeastRecentlyUsedOverBudget) {
     const FitKey k1{"a", 1.f, 3, 0.f, std::nullopt}, k2{"a", 2.f, 3, 0.f, std::nullopt},
         k3{"a", 3.f, 3, 0.f, std::nullopt};

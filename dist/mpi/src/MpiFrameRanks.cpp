@@ -52,6 +52,14 @@ std::vector<char> commandOf(MessageKind kind, const CommandBody& body, const std
 /// What a FRAME command asks of one rank: its Vots (or planes) ready and its frame drawn. Returns the
 /// frame; *readMs is the time of a read of the grid's planes or of a .vots file (0 when held), *drawMs
 /// the frame's, with the upload of a fit made before it.
+/// The norm a command names; an unknown one is a bad message.
+fit::FitNorm normOf(const CommandBody& c) {
+    if (c.norm != static_cast<std::int32_t>(fit::FitNorm::Lsq) &&
+        c.norm != static_cast<std::int32_t>(fit::FitNorm::Minimax))
+        throw BadRankMessage("a command with an unknown fit norm " + std::to_string(c.norm));
+    return static_cast<fit::FitNorm>(c.norm);
+}
+
 RankFrame drawPart(RankPart& part, const CommandBody& c, const std::string& path, render::VotRenderer& vots,
                    render::GridRenderer& grid, double* readMs, double* drawMs) {
     const auto start = Clock::now();
@@ -62,7 +70,7 @@ RankFrame drawPart(RankPart& part, const CommandBody& c, const std::string& path
         *readMs = part.ensureVotsFile(path, compositesCutRays(c.frame.mode), vots);
     } else {
         const std::optional<float> fill = c.hasFill ? std::optional<float>(c.fill) : std::nullopt;
-        part.uploadFit(path, c.eps, c.degree, fill, vots);
+        part.uploadFit(path, c.eps, c.degree, normOf(c), fill, vots);
     }
     RankFrame drawn = c.frame.renderer == render::RendererKind::Grid ? RankPart::drawGrid(c.frame, grid)
                                                                      : part.draw(c.frame, vots);
@@ -118,7 +126,7 @@ std::vector<char> replyTo(MessageKind kind, const CommandBody& c, const std::str
         case SUMMARY:
             return messageOf(SUMMARIZED, part.summarize(path));
         case FIT:
-            return messageOf(FITTED, fittedBodyOf(part.fit(path, c.eps, c.degree, c.range)));
+            return messageOf(FITTED, fittedBodyOf(part.fit(path, c.eps, c.degree, normOf(c), c.range)));
         case FRAME: {
             if (!vots || !grid) throw std::runtime_error(noRenderer);
             double readMs = 0.0, frameMs = 0.0;
@@ -246,6 +254,7 @@ RanksFit MpiFrameRanks::fitOnRanks(const FitRequest& request, const FitProgress&
     CommandBody command;
     command.eps = request.eps;
     command.degree = request.degree;
+    command.norm = static_cast<std::int32_t>(request.norm);
     command.range = request.valueRange;
     std::vector<BackgroundSums> sums(static_cast<std::size_t>(mWorld.size()));
     RanksFit done;
@@ -261,12 +270,13 @@ RanksFit MpiFrameRanks::fitOnRanks(const FitRequest& request, const FitProgress&
     exchange(
         commandOf(FIT, command, path), Clock::now() + FRAME_DEADLINE + FIT_DEADLINE,
         [&] {
-            const RankFit mine = mPart.fit(path, request.eps, request.degree, request.valueRange, progress);
+            const RankFit mine =
+                mPart.fit(path, request.eps, request.degree, request.norm, request.valueRange, progress);
             add(0, fittedBodyOf(mine));
         },
         [&](int rank, const std::vector<char>& reply) { add(rank, bodyOf<FittedBody>(reply, FITTED)); });
     mFittedFill = wholeVolumeFill(sums);
-    mFittedId = RankPart::cellsFitId(path, request.eps, request.degree);
+    mFittedId = RankPart::cellsFitId(path, request.eps, request.degree, request.norm);
     done.seconds = slowestMs / 1000.0;
     return done;
 }
@@ -285,6 +295,7 @@ ComposedFrame MpiFrameRanks::draw(const DrawRequest& request, render::VotRendere
     command.frame = request.frame;
     command.eps = request.fit.eps;
     command.degree = request.fit.degree;
+    command.norm = static_cast<std::int32_t>(request.fit.norm);
     command.range = request.fit.valueRange;
     command.votsFile = request.votsFile ? 1 : 0;
     // A frame of Vots the ranks must first read (a file, the grid's planes) or upload gets a fit's deadline.
@@ -298,7 +309,7 @@ ComposedFrame MpiFrameRanks::draw(const DrawRequest& request, render::VotRendere
         firstOfItsInput = id != mSentFileId;
         mSentFileId = id;
     } else {
-        if (RankPart::cellsFitId(path, request.fit.eps, request.fit.degree) != mFittedId) {
+        if (RankPart::cellsFitId(path, request.fit.eps, request.fit.degree, request.fit.norm) != mFittedId) {
             fitOnRanks(request.fit, {});
             firstOfItsInput = true;
         }

@@ -34,6 +34,7 @@ struct CommandBody {
     render::FrameRequest frame;           // FRAME
     float eps = 0.f;                      // FIT, FRAME of the Vots: RankPart::cellsFitId's
     std::int32_t degree = 3;              // likewise
+    std::int32_t norm = 0;                // likewise: fit::FitNorm
     std::array<float, 2> range{0.f, 0.f}; // FIT: the whole volume's min and max
     std::int32_t votsFile = 0;            // FRAME: the path is a .vots file's
     std::int32_t hasFill = 0;             // FRAME of a fit: the whole volume's fill (wholeVolumeFill)

@@ -21,7 +21,8 @@ void readyStartupDataset(Server::Impl& s, const std::string& name) {
         }
         std::shared_ptr<const fit::VotSpace> space = dataset->space; // a .vots dataset has it loaded
         if (dataset->kind == DatasetKind::Volume) {
-            const FitKey key = fitKeyFor(*dataset, EpsSpec{}, DEFAULT_DEGREE); // the viewer's first fit
+            // The viewer's first fit.
+            const FitKey key = fitKeyFor(*dataset, EpsSpec{}, DEFAULT_DEGREE, s.options.fitNorm);
             const auto fit = s.fitJobs.submit(dataset, key);
             const JobSnapshot done = fit->waitFinished(std::chrono::minutes(10));
             if (done.state != JobState::Done) return; // failed (the job says why) or the server is stopping

@@ -33,6 +33,8 @@ std::string FitKey::text() const {
     char crc[16];
     std::snprintf(crc, sizeof crc, "_v%08x", static_cast<unsigned>(volumeCrc));
     out += crc;
+    // The fits before the norm could be chosen were least squares: their cache files keep their names.
+    if (norm == fit::FitNorm::Minimax) out += "_mm";
     if (focus) {
         out += "_f" + hexBits(focus->centerIndex[0]) + "-" + hexBits(focus->centerIndex[1]) + "-" +
                hexBits(focus->centerIndex[2]) + "-" + hexBits(focus->radius) + "-" + hexBits(focus->epsFocus);
@@ -41,7 +43,8 @@ std::string FitKey::text() const {
 }
 
 fit::FitOptions fitOptionsFor(const FitKey& key) {
-    fit::FitOptions options = render::renderFitOptions(key.eps, key.degree, key.background);
+    fit::FitOptions options =
+        render::renderFitOptions(key.eps, key.degree, key.background, render::RENDER_FIT_CERTIFY, key.norm);
     options.focus = key.focus;
     return options;
 }

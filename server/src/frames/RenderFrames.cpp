@@ -51,24 +51,25 @@ std::shared_ptr<const fit::VotSpace> spaceFor(Server::Impl& s, const std::shared
     throw HttpError(503, "the fit finished but newer fits have pushed it out of memory; try again");
 }
 
-dist::FitRequest fitRequestFor(const Dataset& dataset, float eps, int degree) {
+dist::FitRequest fitRequestFor(const Dataset& dataset, float eps, int degree, fit::FitNorm norm) {
     dist::FitRequest request;
     request.dataset = dataset.name;
     request.volumePath = dataset.path;
     request.valueRange = dataset.range;
     request.eps = eps;
     request.degree = degree;
+    request.norm = norm;
     return request;
 }
 
 /// Under mpirun: the frame is drawn on every rank from its cells' own fit, so rank 0 fits nothing whole
 /// (what the ranks cannot composite was refused before the dataset was looked up); a .vots dataset from
 /// each rank's Vots of the file.
-PreparedRender prepareOnRanks(const Dataset& dataset, PreparedRender prepared) {
+PreparedRender prepareOnRanks(const Dataset& dataset, PreparedRender prepared, fit::FitNorm norm) {
     RenderJob& job = prepared.job;
     if (dataset.kind == DatasetKind::Vots) {
         dist::DrawRequest request;
-        request.fit = fitRequestFor(dataset, dataset.space->eps, dataset.space->degree);
+        request.fit = fitRequestFor(dataset, dataset.space->eps, dataset.space->degree, norm);
         request.votsFile = true;
         request.frame = job.params;
         job.onRanks = std::move(request);
@@ -77,12 +78,12 @@ PreparedRender prepareOnRanks(const Dataset& dataset, PreparedRender prepared) {
         return prepared;
     }
     dist::DrawRequest request;
-    request.fit = fitRequestFor(dataset, resolveEps(dataset, job.params.eps), job.params.degree);
+    request.fit = fitRequestFor(dataset, resolveEps(dataset, job.params.eps), job.params.degree, norm);
     request.frame = job.params;
     job.onRanks = std::move(request);
     prepared.drawnFrom = job.params.renderer == render::RendererKind::Grid
                              ? dataset.name + "_v" + std::to_string(dataset.contentCrc) + "|ranks"
-                             : fitKeyFor(dataset, job.params.eps, job.params.degree).text() + "|ranks";
+                             : fitKeyFor(dataset, job.params.eps, job.params.degree, norm).text() + "|ranks";
     return prepared;
 }
 
@@ -106,14 +107,14 @@ PreparedRender prepareRender(Server::Impl& s, const RenderParams& params, const 
     if (!s.renderQueue || !s.renderQueue->hasContext())
         throw HttpError(503, s.renderQueue ? "rendering is unavailable: " + s.renderQueue->contextError()
                                            : "rendering is disabled");
-    if (s.options.ranks) return prepareOnRanks(*dataset, std::move(prepared));
+    if (s.options.ranks) return prepareOnRanks(*dataset, std::move(prepared), s.options.fitNorm);
     if (dataset->kind == DatasetKind::Vots) {
         job.space = dataset->space;
         prepared.drawnFrom = dataset->name + "_vots"; // the file's one Vot-Space, loaded once
     } else if (job.params.renderer == render::RendererKind::Grid) {
         prepared.drawnFrom = dataset->name + "_v" + std::to_string(dataset->contentCrc);
     } else {
-        const FitKey key = fitKeyFor(*dataset, job.params.eps, job.params.degree);
+        const FitKey key = fitKeyFor(*dataset, job.params.eps, job.params.degree, s.options.fitNorm);
         job.space = spaceFor(s, dataset, key, client);
         prepared.drawnFrom = key.text();
     }
@@ -122,7 +123,8 @@ PreparedRender prepareRender(Server::Impl& s, const RenderParams& params, const 
 
 FitOnRanks fitOnRanks(Server::Impl& s, const Dataset& dataset, const FitKey& key,
                       const fit::FitProgress& progress) {
-    const dist::RanksFit done = s.options.ranks->fit(fitRequestFor(dataset, key.eps, key.degree), progress);
+    const dist::RanksFit done =
+        s.options.ranks->fit(fitRequestFor(dataset, key.eps, key.degree, key.norm), progress);
     return {static_cast<std::size_t>(done.votCount), done.seconds};
 }
 

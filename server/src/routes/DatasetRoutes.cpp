@@ -101,11 +101,12 @@ void refuseFitOfVots(const Dataset& dataset) {
                                  ": it cannot be refitted without its volume");
 }
 
-FitKey fitKeyFor(const Dataset& dataset, const EpsSpec& eps, int degree) {
+FitKey fitKeyFor(const Dataset& dataset, const EpsSpec& eps, int degree, fit::FitNorm norm) {
     FitKey key;
     key.dataset = dataset.name;
     key.eps = resolveEps(dataset, eps);
     key.degree = degree;
+    key.norm = norm;
     key.background = dataset.background;
     key.volumeCrc = dataset.contentCrc;
     return key;

@@ -52,7 +52,7 @@ void installJobRoutes(Server::Impl& s) {
         }
         const auto dataset = s.registry.find(p.dataset);
         refuseFitOfVots(*dataset);
-        FitKey key = fitKeyFor(*dataset, p.eps, p.degree);
+        FitKey key = fitKeyFor(*dataset, p.eps, p.degree, s.options.fitNorm);
         key.focus = p.focus;
         const auto job = s.fitJobs.submit(dataset, key, req.remote_addr);
         nlohmann::json body = jobJson(job->snapshot());

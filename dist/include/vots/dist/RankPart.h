@@ -58,22 +58,22 @@ struct RankFit {
 };
 
 /// The fit of a volume's cells as `mpirun vots render VOLUME --eps` makes it (automatic background, cells
-/// certified), kept while the volume, eps and degree stay the same; or the rank's Vots of a .vots file.
+/// certified), kept while the volume, eps, degree and norm stay the same; or the rank's Vots of a .vots file.
 /// The rank's samples are read once and kept, with a box cache per degree, as one process keeps a
 /// study's: a refit at a new eps reuses the boxes fitted before. Not thread-safe.
 class RankPart {
 public:
     RankPart(int rank, int ranks, RankSetup setup);
 
-    /// Reads (once) and fits this rank's planes unless the fit of (volume, eps, degree) is held; `range`
-    /// is the whole volume's. The fit reports through `progress` when it is set. Needs no renderer.
-    RankFit fit(const std::string& volumePath, float eps, int degree, std::array<float, 2> range,
-                const FitProgress& progress = {});
-    /// Uploads the held fit of (volume, eps, degree) to `vots` with the whole volume's background fill
-    /// (wholeVolumeFill of every rank's RankFit) unless `vots` holds it already; returns the milliseconds
-    /// it took. Throws std::runtime_error when that fit is not the one held.
-    double uploadFit(const std::string& volumePath, float eps, int degree, std::optional<float> wholeFill,
-                     render::VotRenderer& vots);
+    /// Reads (once) and fits this rank's planes unless the fit of (volume, eps, degree, norm) is held;
+    /// `range` is the whole volume's. The fit reports through `progress` when it is set. Needs no renderer.
+    RankFit fit(const std::string& volumePath, float eps, int degree, fit::FitNorm norm,
+                std::array<float, 2> range, const FitProgress& progress = {});
+    /// Uploads the held fit of (volume, eps, degree, norm) to `vots` with the whole volume's background
+    /// fill (wholeVolumeFill of every rank's RankFit) unless `vots` holds it already; returns the
+    /// milliseconds it took. Throws std::runtime_error when that fit is not the one held.
+    double uploadFit(const std::string& volumePath, float eps, int degree, fit::FitNorm norm,
+                     std::optional<float> wholeFill, render::VotRenderer& vots);
     /// Uploads this rank's Vots of the .vots file (votsOfCells: those whose box starts in its cells, or
     /// with `cutRays` every one that meets them) when they differ from what `vots` holds, reading the file
     /// when it is not the one kept; returns the milliseconds it took (0 when held).
@@ -97,8 +97,8 @@ public:
     /// What the fit (or read) of the Vots uploaded last took, upload included (0 before the first).
     double fitMs() const { return mFitMs; }
 
-    /// The identity of a rank's fit of its cells: the volume, the exact eps, the degree.
-    static std::string cellsFitId(const std::string& volumePath, float eps, int degree);
+    /// The identity of a rank's fit of its cells: the volume, the exact eps, the degree, the norm.
+    static std::string cellsFitId(const std::string& volumePath, float eps, int degree, fit::FitNorm norm);
     /// The identity of the Vots of a .vots file a rank uploads for whole or cut rays.
     static std::string votsFileId(const std::string& votsPath, bool cutRays);
 

@@ -27,6 +27,14 @@ enum class Certify {
     Cells    // also the trilinear value at cell centres and edge midpoints inside the box
 };
 
+/// Which polynomial a box is tested with (docs/DESIGN.md §3). Either way the stored float coefficients are
+/// certified the same way, so the guarantee is the same; minimax accepts a box whenever some polynomial of
+/// the degree is within eps there, so boxes grow larger and there are fewer of them.
+enum class FitNorm {
+    Lsq,    // the least-squares polynomial only (the paper's method)
+    Minimax // the least-squares one, else the one with the smallest largest error (an exchange LP)
+};
+
 inline constexpr auto FIT_METHOD_NAMES =
     nameTable<FitMethod>("fit method", {{FitMethod::Paper, "paper"}, {FitMethod::Fast, "fast"}});
 constexpr const auto& namesOf(FitMethod) {
@@ -37,6 +45,13 @@ inline constexpr auto CERTIFY_NAMES =
 constexpr const auto& namesOf(Certify) {
     return CERTIFY_NAMES;
 }
+inline constexpr auto FIT_NORM_NAMES =
+    nameTable<FitNorm>("fit norm", {{FitNorm::Lsq, "lsq"}, {FitNorm::Minimax, "minimax"}});
+constexpr const auto& namesOf(FitNorm) {
+    return FIT_NORM_NAMES;
+}
+/// What `vots fit`, `vots render` and the server fit with unless told otherwise.
+inline constexpr FitNorm DEFAULT_FIT_NORM = FitNorm::Minimax;
 
 /// A fit's progress report, called now and then from the fitting threads: a fraction in [0, 1] and a stage
 /// name ("split", "merge", "cache", ...). The one type of every progress callback, the server's jobs
@@ -56,6 +71,7 @@ struct FitOptions {
     std::optional<float> background; // cells with all 8 corners below it are omitted
     FitMethod method = FitMethod::Fast;
     Certify certify = Certify::Samples;
+    FitNorm norm = DEFAULT_FIT_NORM;
     std::optional<FocusRegion> focus;     // tighter eps in a sphere (grid index space)
     std::optional<PartOfGrid> partOfGrid; // set: the volume is these planes of a grid, the focus in its space
     int threads = 0;                      // 0: all hardware threads
@@ -64,11 +80,14 @@ struct FitOptions {
 };
 
 struct FitStats {
-    double seconds = 0.0;         // wall time of the fit
-    std::size_t boxFits = 0;      // least-squares solves
-    std::size_t boxScans = 0;     // full residual scans over a box's samples
-    std::size_t cacheHits = 0;    // box errors reused from a FitCache
-    std::size_t coveredCells = 0; // non-background cells (all covered)
+    double seconds = 0.0;            // wall time of the fit
+    std::size_t boxFits = 0;         // least-squares solves
+    std::size_t boxScans = 0;        // full residual scans over a box's samples
+    std::size_t cacheHits = 0;       // box errors reused from a FitCache
+    std::size_t minimaxFits = 0;     // exchange runs (FitNorm::Minimax)
+    std::size_t minimaxScans = 0;    // their scans over a box's points
+    std::size_t minimaxAccepted = 0; // of those runs, the ones that ended with a box accepted
+    std::size_t coveredCells = 0;    // non-background cells (all covered)
     std::size_t backgroundCells = 0;
     /// Over the background cells, the sum of each one's mean corner value (its integral of the
     /// trilinear field): ranks' fits add up to the whole volume's.
@@ -86,7 +105,7 @@ public:
     FitCancelled() : std::runtime_error("fit cancelled") {}
 };
 
-/// Box errors and coefficients from earlier fits of one volume at one degree and certify mode,
+/// Box errors and coefficients from earlier fits of one volume at one degree, certify mode and norm,
 /// so a fit at a new eps reuses them. Thread-safe; tied to the volume it was first used with.
 class FitCache {
 public:
@@ -109,7 +128,7 @@ void validateFitOptions(const Volume& volume, const FitOptions& options);
 
 /// Fits a Vot-Space. Every non-background cell is covered and every grid sample inside a chosen
 /// Vot's box is within eps(sample) of the Vot (no Vot's box holds a NaN or Inf sample). A cache, when given,
-/// must belong to this volume, degree and certify mode.
+/// is bound to this volume, degree, certify mode and norm (and cleared when they change).
 FitResult fitVotSpace(const Volume& volume, const FitOptions& options, FitCache* cache = nullptr);
 
 /// VotSpace::backgroundFill of a fit with these stats: the mean over its background cells of the

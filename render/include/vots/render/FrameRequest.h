@@ -28,10 +28,12 @@ inline constexpr int MAX_SERVED_SIDE = 4096;
 inline constexpr fit::Certify RENDER_FIT_CERTIFY = fit::Certify::Cells;
 
 /// The options of a fit made to be rendered, built here for the server, `vots render` and the benchmarks:
-/// eps in data units, the degree, the background threshold (nullopt: every cell is fitted) and what the
-/// bound is certified on. Progress, cancel, focus and threads are left for the caller.
+/// eps in data units, the degree, the background threshold (nullopt: every cell is fitted), what the
+/// bound is certified on and the norm a box is accepted by (docs/DESIGN.md §3). Progress, cancel, focus
+/// and threads are left for the caller.
 fit::FitOptions renderFitOptions(float eps, int degree, std::optional<float> background,
-                                 fit::Certify certify = RENDER_FIT_CERTIFY);
+                                 fit::Certify certify = RENDER_FIT_CERTIFY,
+                                 fit::FitNorm norm = fit::DEFAULT_FIT_NORM);
 
 struct FrameRequest {
     Camera camera = cameraForView(ViewPreset::Anterior);

@@ -1,6 +1,7 @@
 // The Vots HTTP server: routes over a dataset registry, fit jobs, a Vot-Space cache and the render thread.
 #pragma once
 
+#include "vots/fit/Fitter.h"
 #include "vots/pacs/DicomWebAuth.h"
 #include "vots/pacs/DicomWebUrl.h"
 
@@ -33,7 +34,9 @@ struct ServerOptions {
     std::size_t frameCacheBytes = std::size_t{64} << 20;    // encoded /render answers kept in memory
     int maxRunningFits = 2;
     int maxQueuedFits = 8;
-    bool warmUpFits = true;     // fit eps / 2 into the box cache while idle (WarmUpFits)
+    bool warmUpFits = true; // fit eps / 2 into the box cache while idle (WarmUpFits)
+    // How every fit of the server accepts a box (`vots serve --fit-norm`, docs/DESIGN.md §3).
+    fit::FitNorm fitNorm = fit::DEFAULT_FIT_NORM;
     int httpThreads = 12;       // requests handled at once; idle connections and event streams hold none
     int maxEventStreams = 1000; // /api/jobs/{id}/events streams open at once (a thread each); more: 503
     // Per client (remote address; behind a proxy every user is the proxy's one client): renders in

@@ -1,0 +1,15 @@
+// The --fit-norm option of `fit` and `render`: which polynomial a box is accepted with (docs/DESIGN.md §3).
+#pragma once
+
+#include <string>
+
+namespace CLI {
+class App;
+}
+
+namespace vots::cli {
+
+/// Adds --fit-norm lsq|minimax to a command; `norm` holds the default (fit::DEFAULT_FIT_NORM) until given.
+void addFitNormOption(CLI::App& command, std::string& norm);
+
+} // namespace vots::cli
