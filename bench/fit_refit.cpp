@@ -26,13 +26,17 @@ int main(int argc, char** argv) {
     // --cells: certify at cell centres and edge midpoints too, as the server fits for rendering.
     const bool cells = argc > 1 && std::string(argv[1]) == "--cells";
     if (cells) --argc, ++argv;
+    // --lsq: accept boxes by least squares alone (--fit-norm lsq); default: the default norm, minimax.
+    const bool lsq = argc > 1 && std::string(argv[1]) == "--lsq";
+    if (lsq) --argc, ++argv;
     // --no-fresh: only the refits (for profiling them); the fresh-fit column then reads nan.
     const bool timeFresh = !(argc > 1 && std::string(argv[1]) == "--no-fresh");
     if (!timeFresh) --argc, ++argv;
     if (argc < 3) {
         std::fprintf(
             stderr,
-            "usage: fit_refit [--cells] [--no-fresh] VOLUME BASE_PERCENT[,BASE_PERCENT...] [PERCENT...]\n"
+            "usage: fit_refit [--cells] [--lsq] [--no-fresh] VOLUME BASE_PERCENT[,BASE_PERCENT...] "
+            "[PERCENT...]\n"
             "  fits at each BASE_PERCENT of the value range into one cache (as a server that has fitted\n"
             "  them), then refits at each PERCENT with a copy of that history\n");
         return 2;
@@ -46,6 +50,7 @@ int main(int argc, char** argv) {
             o.eps = static_cast<float>(percent / 100.0 * (range[1] - range[0]));
             o.background = background;
             if (cells) o.certify = Certify::Cells;
+            if (lsq) o.norm = FitNorm::Lsq;
             return o;
         };
         std::printf(

@@ -9,7 +9,7 @@ class App;
 
 namespace vots::cli {
 
-/// Adds --fit-norm lsq|minimax to a command; `norm` holds the default (fit::DEFAULT_FIT_NORM) until given.
+/// Adds --fit-norm lsq|minimax to a command; `norm` holds the command's default until given.
 void addFitNormOption(CLI::App& command, std::string& norm);
 
 } // namespace vots::cli

@@ -39,7 +39,7 @@ struct ServeArgs {
     int frameCacheMb = 64;
     int cacheDirGb = 16;
     bool noWarmUp = false;
-    std::string norm{fit::nameOf(fit::DEFAULT_FIT_NORM)};
+    std::string norm{fit::nameOf(fit::SERVE_FIT_NORM)};
     std::string prepare = "cranium"; // the viewer's first dataset when the data folders have it
     std::string tokenFile;
     std::vector<std::string> allowHosts;

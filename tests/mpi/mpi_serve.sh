@@ -19,7 +19,9 @@ ln -s "$(realpath "$volume")" "$work/data/$(basename "$volume")"
 [[ -n $other ]] && ln -s "$(realpath "$other")" "$work/data/$(basename "$other")"
 name=$(basename "$volume" | sed -E 's/\.(nrrd|nhdr|nii\.gz|nii|mhd|mha)$//')
 
-start_job "$work/data" "$name"
+# Minimax fits on the ranks (`vots serve` fits least squares unless told): the frames, refits from the
+# ranks' box caches included, are `mpirun vots render`'s, whose default is minimax.
+start_job "$work/data" "$name" --fit-norm minimax
 view="cam=az=30,el=20&size=96x80&eps=2%25"
 render_args=(--cam az=30,el=20 --size 96x80 --eps 2%)
 

@@ -27,7 +27,7 @@ PY
 start_job "$work/data" air_step
 for mode in aip minip; do
     mpirun --oversubscribe -np 2 "$vots" render "$work/data/air_step.nrrd" -o "$work/render-$mode.png" \
-        --cam anterior --size 128x128 --mode "$mode" --window -2990,200 --eps 2% 2>/dev/null ||
+        --cam anterior --size 128x128 --mode "$mode" --window -2990,200 --eps 2% --fit-norm lsq 2>/dev/null ||
         fail "mpirun vots render --mode $mode failed"
     code=$(get "$work/served-$mode.png" \
         "render?dataset=air_step&cam=anterior&size=128x128&mode=$mode&window=-2990,200&eps=2%25")

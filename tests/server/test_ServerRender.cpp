@@ -16,11 +16,16 @@ namespace {
 
 class ServerRender : public SharedServerTest {
 protected:
-    /// Runs the real CLI and returns the PNG bytes it wrote.
+    /// Runs the real CLI and returns the PNG bytes it wrote: fitted by the server's norm (SERVE_FIT_NORM),
+    /// unless args name one.
     static std::string cliRender(const std::string& file, const std::string& args) {
         const std::string out = world().dir().file("cli-" + std::to_string(sCount++) + ".png");
+        const std::string norm =
+            args.find("--fit-norm") == std::string::npos
+                ? std::string(" --fit-norm ") + std::string(fit::nameOf(fit::SERVE_FIT_NORM))
+                : std::string();
         const std::string command = std::string(VOTS_CLI) + " render '" + VOTS_TEST_DATA_DIR + "/" + file +
-                                    "' -o '" + out + "' " + args + " 2>/dev/null";
+                                    "' -o '" + out + "' " + args + norm + " 2>/dev/null";
         EXPECT_EQ(std::system(command.c_str()), 0) << command;
         std::ifstream in(out, std::ios::binary);
         std::ostringstream bytes;
@@ -76,6 +81,23 @@ TEST_F(ServerRender, RefitAtNewEpsThroughBoxCacheMatchesCliBytes) {
     serverRender("dataset=blobs_64x64x64_uint8&size=32x32&eps=7%25");
     EXPECT_EQ(serverRender("dataset=blobs_64x64x64_uint8&size=64x64&eps=4%25&cam=superior"),
               cliRender(BLOBS_FILE, "--size 64x64 --eps 4% --cam superior"));
+}
+
+TEST_F(ServerRender, AMinimaxServerRefitsThroughItsBoxCacheToTheCliBytes) {
+    // `vots serve --fit-norm minimax`: its fits, refits from the box cache included, are `vots render
+    // --fit-norm minimax`'s, and the key tells them from least squares'.
+    server::ServerOptions options = world().options();
+    options.fitNorm = fit::FitNorm::Minimax;
+    options.cacheDir.clear();
+    const LoopbackServer minimax(options);
+    const auto render = [&](const std::string& query) {
+        const auto res = minimax.client()->Get(("/render?" + query).c_str());
+        return res && res->status == 200 ? res->body : std::string("failed");
+    };
+    render("dataset=blobs_64x64x64_uint8&size=32x32&eps=7%25");
+    const std::string refit = render("dataset=blobs_64x64x64_uint8&size=64x64&eps=4%25&cam=superior");
+    EXPECT_EQ(refit, cliRender(BLOBS_FILE, "--size 64x64 --eps 4% --cam superior --fit-norm minimax"));
+    EXPECT_NE(refit, cliRender(BLOBS_FILE, "--size 64x64 --eps 4% --cam superior --fit-norm lsq"));
 }
 
 TEST_F(ServerRender, SameUrlSameBytesAndHeaders) {

@@ -128,8 +128,9 @@ TEST(ServerSourceSamples, RenderAndFitOfTheCompactStudyMatchTheCli) {
         ASSERT_TRUE(res);
         EXPECT_EQ(res->status, 200) << res->body;
         const std::string out = world.dir().file("cli.png");
-        const std::string command =
-            std::string(VOTS_CLI) + " render '" + path + "' -o '" + out + "' " + args + " 2>/dev/null";
+        const std::string command = std::string(VOTS_CLI) + " render '" + path + "' -o '" + out + "' " +
+                                    args + " --fit-norm " + std::string(fit::nameOf(fit::SERVE_FIT_NORM)) +
+                                    " 2>/dev/null"; // the server's norm
         ASSERT_EQ(std::system(command.c_str()), 0) << command;
         EXPECT_EQ(res->body, fileBytes(out)) << query;
     }

@@ -14,10 +14,10 @@ struct FitKey {
     std::string dataset; // plain identifier
     float eps = 0.f;     // resolved, data units
     int degree = 3;
-    float background = 0.f;                    // cells with all corners below it are omitted
-    std::optional<fit::FocusRegion> focus;     // grid index space
-    std::uint32_t volumeCrc = 0;               // fit::Volume::contentCrc(): a changed file is a new key
-    fit::FitNorm norm = fit::DEFAULT_FIT_NORM; // a least-squares key keeps the text it had before norms
+    float background = 0.f;                  // cells with all corners below it are omitted
+    std::optional<fit::FocusRegion> focus;   // grid index space
+    std::uint32_t volumeCrc = 0;             // fit::Volume::contentCrc(): a changed file is a new key
+    fit::FitNorm norm = fit::SERVE_FIT_NORM; // a least-squares key keeps the text it had before norms
 
     /// Canonical, exact text (floats as hex bits), safe as a file stem: [A-Za-z0-9_-] only.
     /// Equal keys give equal text and vice versa.

@@ -23,7 +23,7 @@ struct FitRequest {
     std::array<float, 2> valueRange{0.f, 0.f}; // the whole volume's min and max sample
     float eps = 0.f;                           // data units
     int degree = 3;
-    fit::FitNorm norm = fit::DEFAULT_FIT_NORM;
+    fit::FitNorm norm = fit::SERVE_FIT_NORM;
 };
 
 /// One frame of a dataset, as every rank draws its part of it: from the Vots of its cells fitted at

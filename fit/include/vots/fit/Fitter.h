@@ -50,8 +50,12 @@ inline constexpr auto FIT_NORM_NAMES =
 constexpr const auto& namesOf(FitNorm) {
     return FIT_NORM_NAMES;
 }
-/// What `vots fit`, `vots render` and the server fit with unless told otherwise.
+/// What `vots fit` and `vots render` fit with unless told otherwise (the server: SERVE_FIT_NORM).
 inline constexpr FitNorm DEFAULT_FIT_NORM = FitNorm::Minimax;
+/// What `vots serve` fits with unless told otherwise: least squares, whose refits at a new eps (the
+/// viewer's slider) answer most boxes from the box cache, where minimax refits take 4-8x as long
+/// (bench/RESULTS.md, "Minimax acceptance").
+inline constexpr FitNorm SERVE_FIT_NORM = FitNorm::Lsq;
 
 /// A fit's progress report, called now and then from the fitting threads: a fraction in [0, 1] and a stage
 /// name ("split", "merge", "cache", ...). The one type of every progress callback, the server's jobs

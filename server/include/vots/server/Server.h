@@ -36,7 +36,7 @@ struct ServerOptions {
     int maxQueuedFits = 8;
     bool warmUpFits = true; // fit eps / 2 into the box cache while idle (WarmUpFits)
     // How every fit of the server accepts a box (`vots serve --fit-norm`, docs/DESIGN.md §3).
-    fit::FitNorm fitNorm = fit::DEFAULT_FIT_NORM;
+    fit::FitNorm fitNorm = fit::SERVE_FIT_NORM;
     int httpThreads = 12;       // requests handled at once; idle connections and event streams hold none
     int maxEventStreams = 1000; // /api/jobs/{id}/events streams open at once (a thread each); more: 503
     // Per client (remote address; behind a proxy every user is the proxy's one client): renders in
