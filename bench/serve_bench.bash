@@ -23,7 +23,7 @@ name=$(basename "$volume" | sed -E 's/\.(nrrd|nhdr|nii\.gz|nii|mhd|mha)$//')
 url_of() { # LOG: the URL the server listening into LOG prints (up to 5 min); exits when there is none
     local url=
     for _ in $(seq 600); do
-        url=$(sed -nE 's|^vots serve: listening on (http://[^ ]+/)$|\1|p' "$1")
+        url=$(sed -nE 's|^.*vots serve: listening on (http://[^ ]+/)$|\1|p' "$1")
         [[ -n $url ]] && break
         sleep 0.5
     done

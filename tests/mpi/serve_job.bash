@@ -25,7 +25,9 @@ start_job() { # DATA_FOLDER DATASET [MORE SERVE ARGUMENTS]
     job=$!
     url=
     for _ in $(seq 240); do
-        url=$(sed -nE 's|^vots serve: listening on (http://[^ ]+/)$|\1|p' "$work/serve.log")
+        # Not anchored at the line's start: mpirun forwards the ranks' output in pieces, so another
+        # rank's words can stand before it on the same line.
+        url=$(sed -nE 's|^.*vots serve: listening on (http://[^ ]+/)$|\1|p' "$work/serve.log")
         [[ -n $url ]] && return
         kill -0 "$job" 2>/dev/null || fail "mpirun ended before listening"
         sleep 0.5
