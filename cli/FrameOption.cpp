@@ -10,9 +10,10 @@
 namespace vots::cli {
 
 void addFrameOption(CLI::App& command, std::optional<int>& frame) {
-    command.add_option("--frame", frame,
-                       "Which 3D volume (0-based) of a 4D NIfTI or MGH/MGZ file to read; without it frame 0 "
-                       "is read (and stderr says how many the file holds)");
+    command.add_option(
+        "--frame", frame,
+        "Which 3D volume (0-based) of a 4D NIfTI or MGH/MGZ file or a DICOM series with several "
+        "time points to read; without it frame 0 is read (and stderr says how many the file holds)");
 }
 
 int frameToRead(const std::string& path, const std::optional<fit::RawLayout>& raw, const std::string& series,

@@ -1,4 +1,4 @@
-// The --frame option of `fit`, `render` and `verify`: picks one 3D volume of a 4D NIfTI or MGH file.
+// The --frame option of `fit`, `render` and `verify`: picks one 3D volume of a 4D file or DICOM series.
 #pragma once
 
 #include "vots/fit/VolumeLoad.h"
