@@ -184,7 +184,7 @@ void runFit(const FitArgs& a) {
                               fit::SampleStorage::Source);
         const int frame = frameToRead(input.path(), checked.raw, a.series, a.frame);
         fit::Volume loaded =
-            fit::loadVolume(input.path(), checked.raw, fit::SampleStorage::Source, a.series, frame);
+            loadFrame(input.path(), checked.raw, fit::SampleStorage::Source, a.series, frame);
         if (input.fromPacs()) loaded.name = input.volumeName();
         return loaded;
     });
@@ -213,6 +213,7 @@ void runFitOnRanks(const dist::MpiWorld& world, const FitArgs& a) {
     fit::PlanesOfGrid read;
     world.allOrNone([&] {
         checked = checkArgs(a);
+        if (a.frame == FRAME_MAX) throw fit::InputError("--frame max runs in one process, not under mpirun");
         if (world.rank() == 0) checkOutput(a);
         cells = dist::fitCellsOfRank(world, fit::volumeHeaderInfo(a.input, checked.raw, a.series).dims[2]);
         const auto planes = static_cast<std::uint64_t>(cells.end - cells.first + 1);

@@ -1,6 +1,7 @@
 // `vots render` under mpirun: every rank reads and draws its z cells; rank 0 writes the composited frames.
 #include "RenderOnRanks.h"
 
+#include "FrameOption.h"
 #include "MemoryBudgetOption.h"
 #include "TurntableOutput.h"
 
@@ -74,6 +75,7 @@ void readRankInput(const MpiWorld& world, const RenderArgs& a, RankInput& in) {
         in.fitHere = !in.grid;
     }
     if (volumePath.empty()) return;
+    if (a.frame == FRAME_MAX) throw fit::InputError("--frame max runs in one process, not under mpirun");
     // An empty range of cells (more ranks than cells) still reads its one plane: its range counts alike.
     checkPlanesFitBudget(volumePath, in.c.raw, a.memoryBudget, a.series,
                          static_cast<std::uint64_t>(in.cells.end - in.cells.first + 1));

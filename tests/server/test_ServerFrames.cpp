@@ -1,5 +1,6 @@
 // A 4D dataset in the server: the listing says its frame count, /render?frame=k draws what `vots render
 // --frame k` draws (byte for byte), each frame's fit has its own key, and a frame it does not hold is a 400.
+#include "NiftiFloat32.h"
 #include "ServerFixture.h"
 
 #include "vots/fit/Fitter.h"
@@ -21,35 +22,20 @@ constexpr const char* FOUR = "pulse4d";
 constexpr int FRAMES = 3;
 constexpr int NX = 24, NY = 20, NZ = 14;
 
-template <class T> void put(std::string& bytes, std::size_t offset, T value) {
-    std::memcpy(bytes.data() + offset, &value, sizeof value); // little endian, as the header says
-}
-
 /// A float32 NIfTI-1 of FRAMES volumes: a ball whose brightness and radius grow with the frame, so every
 /// frame draws differently.
 std::string writeFourDimensional(const TempDir& dir) {
-    std::string bytes(352, '\0');
-    put<std::int32_t>(bytes, 0, 348);
-    const std::int16_t dim[8] = {4, NX, NY, NZ, FRAMES, 1, 1, 1};
-    for (std::size_t i = 0; i < 8; ++i)
-        put<std::int16_t>(bytes, 40 + 2 * i, dim[i]);
-    put<std::int16_t>(bytes, 70, 16); // float32
-    put<std::int16_t>(bytes, 72, 32);
-    for (std::size_t i = 0; i < 4; ++i)
-        put<float>(bytes, 76 + 4 * i, 1.f);
-    put<float>(bytes, 108, 352.f);
-    std::memcpy(bytes.data() + 344, "n+1\0", 4);
+    std::vector<float> values;
     for (int t = 0; t < FRAMES; ++t)
         for (int z = 0; z < NZ; ++z)
             for (int y = 0; y < NY; ++y)
                 for (int x = 0; x < NX; ++x) {
                     const double r = std::hypot(x - 11.5, y - 9.5, 1.4 * (z - 6.5));
                     const double radius = 4.0 + 2.0 * t;
-                    const auto value = static_cast<float>(
-                        r < radius ? 100.0 + 150.0 * t + 20.0 * std::sin(0.5 * x + 0.3 * y) : 0.0);
-                    bytes.append(reinterpret_cast<const char*>(&value), sizeof value);
+                    values.push_back(static_cast<float>(
+                        r < radius ? 100.0 + 150.0 * t + 20.0 * std::sin(0.5 * x + 0.3 * y) : 0.0));
                 }
-    return dir.write(std::string("data/") + FOUR + ".nii", bytes);
+    return dir.write(std::string("data/") + FOUR + ".nii", niftiFloat32({NX, NY, NZ}, FRAMES, values));
 }
 
 std::string fileBytes(const std::string& path) {
