@@ -18,32 +18,7 @@ view=(--cam az=30,el=20 --size 96x80 --window -50,200)
 
 # A float32 NIfTI-1 of 2 frames, 24x20x16: values 10..110 in a ball (brighter and larger in frame 1), a NaN
 # block in the upper z planes (rank 1's), the lowest finite sample (-50) at one corner of plane 0 (rank 0's).
-/usr/bin/python3 - "$work/four.nii" <<'PY'
-import math, struct, sys
-nx, ny, nz, frames = 24, 20, 16, 2
-header = bytearray(352)
-struct.pack_into("<i", header, 0, 348)
-struct.pack_into("<8h", header, 40, 4, nx, ny, nz, frames, 1, 1, 1)
-struct.pack_into("<hh", header, 70, 16, 32)  # float32
-struct.pack_into("<8f", header, 76, 1, 1, 1, 1, 1, 1, 1, 1)
-struct.pack_into("<f", header, 108, 352.0)
-header[344:348] = b"n+1\0"
-samples = []
-for t in range(frames):
-    for z in range(nz):
-        for y in range(ny):
-            for x in range(nx):
-                r = math.sqrt((x - 11.5) ** 2 + (y - 9.5) ** 2 + (z - 7.5) ** 2)
-                value = 10.0 + (60.0 + 40.0 * t) * max(0.0, 1.0 - r / (6.0 + 2.0 * t))
-                if 11 <= z <= 13 and 5 <= x <= 17 and 4 <= y <= 15:
-                    value = float("nan")
-                if (x, y, z) == (0, 0, 0):
-                    value = -50.0
-                samples.append(value)
-with open(sys.argv[1], "wb") as out:
-    out.write(header)
-    out.write(struct.pack("<%df" % len(samples), *samples))
-PY
+/usr/bin/python3 "$(dirname "$0")/write_nodata_4d.py" "$work/four.nii"
 
 # --frame 1 on 2 ranks: the fit verifies against frame 1 (not frame 0) and says so; the grid draws frame 1.
 mpi 2 "$vots" fit "$work/four.nii" --frame 1 -o "$work/f1.vots" --eps 2% >/dev/null 2>"$work/err" ||
