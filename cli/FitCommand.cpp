@@ -184,7 +184,7 @@ void runFit(const FitArgs& a) {
                               fit::SampleStorage::Source);
         const int frame = frameToRead(input.path(), checked.raw, a.series, a.frame);
         fit::Volume loaded =
-            fit::loadVolume(input.path(), checked.raw, fit::SampleStorage::Source, a.series, frame);
+            loadFrame(input.path(), checked.raw, fit::SampleStorage::Source, a.series, frame);
         if (input.fromPacs()) loaded.name = input.volumeName();
         return loaded;
     });
@@ -213,14 +213,14 @@ void runFitOnRanks(const dist::MpiWorld& world, const FitArgs& a) {
     fit::PlanesOfGrid read;
     world.allOrNone([&] {
         checked = checkArgs(a);
-        if (a.frame && *a.frame != 0)
-            throw fit::InputError("--frame other than 0 is not supported under mpirun yet");
+        if (a.frame == FRAME_MAX) throw fit::InputError("--frame max runs in one process, not under mpirun");
         if (world.rank() == 0) checkOutput(a);
         cells = dist::fitCellsOfRank(world, fit::volumeHeaderInfo(a.input, checked.raw, a.series).dims[2]);
         const auto planes = static_cast<std::uint64_t>(cells.end - cells.first + 1);
         checkPlanesFitBudget(a.input, checked.raw, a.memoryBudget, a.series, planes,
                              fit::SampleStorage::Source);
-        read = dist::loadPlanesOfCells(a.input, cells, checked.raw, fit::SampleStorage::Source, a.series);
+        read = dist::loadPlanesOfCells(a.input, cells, checked.raw, fit::SampleStorage::Source, a.series,
+                                       a.frame.value_or(0));
     });
     // The whole volume's range: the union of the ranks' planes', which cover every plane.
     const std::array<float, 2> range = world.unionOfRanges(read.planes.valueRange());
@@ -230,6 +230,7 @@ void runFitOnRanks(const dist::MpiWorld& world, const FitArgs& a) {
         options = fitOptionsFor(a, checked, range);
         // The focus is named in the whole volume's index space; each rank's field is moved into its planes.
         options.partOfGrid = fit::PartOfGrid{cells.first, read.whole.dims};
+        options.noDataValue = range[0]; // the whole volume's lowest finite sample, not this rank's
         fit::validateFitOptions(read.planes, options);
         ProgressLine progress(a.progress && world.rank() == 0); // rank 0's fit stands for the others
         if (a.progress && world.rank() == 0)

@@ -1,6 +1,7 @@
 // `vots info`: summary of a .vots file (grid, degree, eps, Vot count, box sizes), as text or JSON.
 #include "Args.h"
 #include "Commands.h"
+#include "FrameOption.h"
 
 #include "vots/fit/VotSpaceFile.h"
 #include "vots/meta/FitMeta.h"
@@ -114,7 +115,10 @@ void printText(const std::string& path, const fit::VotSpace& s, const meta::FitM
     row("degree") << s.degree << " (header)";
     if (meta.requestedDegree) o << ", " << *meta.requestedDegree << " requested";
     o << "\n";
-    if (meta.frame) row("frame") << *meta.frame << " (of a 4D file)\n";
+    if (meta.frame == FRAME_MAX)
+        row("frame") << "max (the maximum over the frames of a 4D file)\n";
+    else if (meta.frame)
+        row("frame") << *meta.frame << " (of a 4D file)\n";
     if (meta.nonFiniteSamples > 0)
         row("no data") << formatCount(meta.nonFiniteSamples)
                        << " samples NaN or Inf (left out as omitted cells are)\n";

@@ -124,12 +124,13 @@ std::optional<float> resolveBackground(const std::string& text, std::array<float
 // Fits `volume` with the options the arguments give for a whole volume whose values span `range` (eps in
 // percent of it, its background): the volume itself, or under mpirun one rank's slab of it.
 fit::FitResult fitForRender(const fit::Volume& volume, std::array<float, 2> range, const RenderArgs& a,
-                            const CheckedArgs& c) {
+                            const CheckedArgs& c, std::optional<float> noDataValue) {
     const auto eps = static_cast<float>(c.eps.resolve(range[0], range[1]));
     if (!(eps > 0)) throw fit::InputError("--eps " + a.eps + " is 0 for this volume; give it in data units");
-    const fit::FitOptions options = render::renderFitOptions(
-        eps, a.degree, resolveBackground(a.background, range), fit::parseName<fit::Certify>(a.certify),
-        fit::parseName<fit::FitNorm>(a.norm));
+    fit::FitOptions options = render::renderFitOptions(eps, a.degree, resolveBackground(a.background, range),
+                                                       fit::parseName<fit::Certify>(a.certify),
+                                                       fit::parseName<fit::FitNorm>(a.norm));
+    options.noDataValue = noDataValue;
     fit::validateFitOptions(volume, options);
     return fit::fitVotSpace(volume, options);
 }

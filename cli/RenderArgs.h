@@ -66,8 +66,9 @@ CheckedArgs checkArgs(const RenderArgs& a);
 bool isVotsFile(const std::string& path);
 
 /// Fits `volume` with the options the arguments give for a whole volume whose values span `range` (eps
-/// in percent of it, its background): the volume itself, or under mpirun one rank's slab of it.
+/// in percent of it, its background): the volume itself, or under mpirun one rank's slab of it, with the
+/// whole volume's lowest finite sample as `noDataValue` (fit::FitOptions).
 fit::FitResult fitForRender(const fit::Volume& volume, std::array<float, 2> range, const RenderArgs& a,
-                            const CheckedArgs& c);
+                            const CheckedArgs& c, std::optional<float> noDataValue = std::nullopt);
 
 } // namespace vots::cli

@@ -61,8 +61,7 @@ RenderVolume loadRenderVolume(const std::string& named, const RenderArgs& a, con
     return input.reading([&] {
         checkVolumeFitsBudget(input.path(), c.raw, a.memoryBudget, a.series);
         const int frame = frameToRead(input.path(), c.raw, a.series, a.frame);
-        RenderVolume loaded{fit::loadVolume(input.path(), c.raw, fit::SampleStorage::Float, a.series, frame),
-                            {}};
+        RenderVolume loaded{loadFrame(input.path(), c.raw, fit::SampleStorage::Float, a.series, frame), {}};
         if (withIdentity && fit::isDicomFolder(input.path()))
             loaded.identity = fit::readDicomIdentity(input.path(), a.series);
         return loaded;

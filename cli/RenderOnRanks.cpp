@@ -1,6 +1,7 @@
 // `vots render` under mpirun: every rank reads and draws its z cells; rank 0 writes the composited frames.
 #include "RenderOnRanks.h"
 
+#include "FrameOption.h"
 #include "MemoryBudgetOption.h"
 #include "TurntableOutput.h"
 
@@ -74,12 +75,12 @@ void readRankInput(const MpiWorld& world, const RenderArgs& a, RankInput& in) {
         in.fitHere = !in.grid;
     }
     if (volumePath.empty()) return;
-    if (a.frame && *a.frame != 0)
-        throw fit::InputError("--frame other than 0 is not supported under mpirun yet");
+    if (a.frame == FRAME_MAX) throw fit::InputError("--frame max runs in one process, not under mpirun");
     // An empty range of cells (more ranks than cells) still reads its one plane: its range counts alike.
     checkPlanesFitBudget(volumePath, in.c.raw, a.memoryBudget, a.series,
                          static_cast<std::uint64_t>(in.cells.end - in.cells.first + 1));
-    in.read = dist::loadPlanesOfCells(volumePath, in.cells, in.c.raw, fit::SampleStorage::Float, a.series);
+    in.read = dist::loadPlanesOfCells(volumePath, in.cells, in.c.raw, fit::SampleStorage::Float, a.series,
+                                      a.frame.value_or(0));
 }
 
 // Fits this rank's planes with the options of the whole volume and places the Vots in its grid, with the
@@ -88,7 +89,8 @@ void fitRankCells(const MpiWorld& world, const RenderArgs& a, RankInput& in, std
     fit::FitStats cellsStats; // of this rank's fit: its background cells count towards the whole's fill
     world.allOrNone([&] {
         if (!in.cells.empty()) {
-            fit::FitResult fitted = fitForRender(in.read->planes, range, a, in.c);
+            // No data counts as the whole volume's lowest finite sample, not this rank's.
+            fit::FitResult fitted = fitForRender(in.read->planes, range, a, in.c, range[0]);
             cellsStats = fitted.stats;
             in.space = std::move(fitted.space);
         }
@@ -149,7 +151,8 @@ void runRenderOnRanks(const MpiWorld& world, const RenderArgs& a) {
         context = render::EglContext::createOrThrow();
         if (in.grid) {
             drawer.grid.emplace().uploadPlanes(in.read->planes, in.cells.first, in.read->whole);
-            in.read.reset(); // the samples are in the textures
+            drawer.grid->useNoDataValue((*volumeRange)[0]); // the whole volume's, as the one process draws
+            in.read.reset();                                // the samples are in the textures
         } else {
             drawer.vots.emplace();
             server::applyRenderPolicy(*drawer.vots);

@@ -44,7 +44,7 @@ void runVerify(const VerifyArgs& a) {
     const VolumeInput input(a.input, a.dicomWeb, nullptr, false);
     const fit::Volume volume = input.reading([&] {
         const int frame = frameToRead(input.path(), raw, a.series, a.frame);
-        return fit::loadVolume(input.path(), raw, fit::SampleStorage::Float, a.series, frame);
+        return loadFrame(input.path(), raw, fit::SampleStorage::Float, a.series, frame);
     });
     const meta::FitMetaView meta = meta::readFitMeta(space.metaJson);
     const fit::VerifyReport r = fit::verifyVotSpace(space, volume, epsFieldOf(space, meta));

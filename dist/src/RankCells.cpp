@@ -27,8 +27,8 @@ fit::Volume planesOfCells(const fit::Volume& volume, RankCells cells) {
 
 fit::PlanesOfGrid loadPlanesOfCells(const std::string& path, RankCells cells,
                                     const std::optional<fit::RawLayout>& raw, fit::SampleStorage storage,
-                                    const std::string& dicomSeries) {
-    return fit::loadVolumePlanes(path, cells.first, cells.end, raw, storage, dicomSeries);
+                                    const std::string& dicomSeries, int frame) {
+    return fit::loadVolumePlanes(path, cells.first, cells.end, raw, storage, dicomSeries, frame);
 }
 
 void placeCellsFitInGrid(fit::VotSpace& space, RankCells cells, const fit::Volume& whole) {

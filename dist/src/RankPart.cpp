@@ -78,6 +78,7 @@ RankFit RankPart::fit(const std::string& volumePath, float eps, int degree, fit:
     const auto& [cells, read] = heldPlanes(volumePath);
     fit::FitOptions options = render::renderFitOptions(eps, degree, fit::defaultBackground(range),
                                                        render::RENDER_FIT_CERTIFY, norm);
+    options.noDataValue = range[0]; // the whole volume's lowest finite sample, as on every other rank
     options.progress = progress;
     fit::FitResult fitted;
     if (!cells.empty()) {

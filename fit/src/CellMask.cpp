@@ -129,7 +129,7 @@ double markForeground(const T* values, const std::array<int, 3>& dims, std::opti
 
 } // namespace
 
-CellMask::CellMask(const Volume& volume, std::optional<float> background) {
+CellMask::CellMask(const Volume& volume, std::optional<float> background, std::optional<float> noDataValue) {
     for (int a = 0; a < 3; ++a) {
         mCells[a] = std::max(volume.dims[a] - 1, 0);
         mWordDims[a] = (mCells[a] + B - 1) / B;
@@ -144,10 +144,9 @@ CellMask::CellMask(const Volume& volume, std::optional<float> background) {
         };
         // Cells with a non-finite corner count in the fill as the lowest finite sample: no data reads as
         // the darkest data in a MinIP and the average (docs/DESIGN.md §4 "Non-finite samples").
-        const float noDataValue = volume.isCompact() ? 0.0f : volume.valueRange()[0];
+        const float noData = noDataValue ? *noDataValue : volume.isCompact() ? 0.0f : volume.valueRange()[0];
         visitSamples(volume, [&](const auto* values) {
-            mBackgroundValueSum =
-                markForeground(values, volume.dims, background, mCells, noDataValue, setRow);
+            mBackgroundValueSum = markForeground(values, volume.dims, background, mCells, noData, setRow);
         });
     }
     // The 3D prefix sum over words as three 1D passes (x, then y, then z), each over whole rows.

@@ -16,7 +16,8 @@ namespace vots::fit {
 /// per cell would cost 4 bytes a cell, as much as the float samples (docs/DESIGN.md §4 "Background").
 class CellMask {
 public:
-    CellMask(const Volume& volume, std::optional<float> background);
+    /// noDataValue: what a cell with a non-finite corner counts as in backgroundValueSum (FitOptions).
+    CellMask(const Volume& volume, std::optional<float> background, std::optional<float> noDataValue = {});
 
     std::array<int, 3> cellDims() const { return mCells; }
     bool isBackground(int i, int j, int k) const {

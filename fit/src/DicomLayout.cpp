@@ -133,11 +133,53 @@ ScalarType valueTypeOf(const std::vector<DicomSliceHeader>& slices) {
     return ScalarType::Float32;
 }
 
-DicomSeriesLayout layoutDicomSeries(const std::string& folder, const std::string& seriesUid) {
-    return layoutOfSlices(pickSeries(folder, seriesUid), folder);
+DicomSeriesLayout layoutDicomSeries(const std::string& folder, const std::string& seriesUid, int frame) {
+    return layoutOfSlices(pickSeries(folder, seriesUid), folder, frame);
 }
 
-DicomSeriesLayout layoutOfSlices(std::vector<DicomSliceHeader> series, const std::string& folder) {
+namespace {
+
+/// A 4D series (perfusion, cardiac phases, fMRI) holds one image per time point at every position: keeps
+/// the images of `frame`, the frame-th of each position in time order, and says how many each position
+/// holds. `slices` are in position order. A series with one image per position has frame 0 only.
+std::uint64_t keepFrame(std::vector<DicomSliceHeader>& slices, const Vec3& normal, int frame,
+                        const std::string& folder) {
+    std::vector<std::size_t> starts{0}; // where each position's run of images starts
+    for (std::size_t i = 1; i < slices.size(); ++i)
+        if (dot(slices[i].position, normal) - dot(slices[i - 1].position, normal) >= MIN_GAP_MM)
+            starts.push_back(i);
+    starts.push_back(slices.size());
+    const std::size_t frames = starts[1] - starts[0];
+    for (std::size_t p = 1; p + 1 < starts.size(); ++p)
+        if (starts[p + 1] - starts[p] != frames)
+            throwInputError(folder, "two slices at one position: " + fileName(slices[starts[p]].path) +
+                                        " holds " + std::to_string(starts[p + 1] - starts[p]) +
+                                        " images at its position, " + fileName(slices.front().path) + " " +
+                                        std::to_string(frames) + " (not one per time point everywhere)");
+    checkFrame(folder, frame, frames);
+    if (frames == 1) return 1;
+    std::vector<DicomSliceHeader> kept;
+    for (std::size_t p = 0; p + 1 < starts.size(); ++p) {
+        const auto first = slices.begin() + static_cast<long>(starts[p]);
+        const auto last = slices.begin() + static_cast<long>(starts[p + 1]);
+        std::stable_sort(first, last, [](const DicomSliceHeader& a, const DicomSliceHeader& b) {
+            return a.timeOrder < b.timeOrder;
+        });
+        if (std::adjacent_find(first, last, [](const DicomSliceHeader& a, const DicomSliceHeader& b) {
+                return a.timeOrder == b.timeOrder;
+            }) != last)
+            throwInputError(folder, "two slices at one position and one time: " + fileName(first->path) +
+                                        " and others (no TemporalPositionIdentifier, AcquisitionTime or "
+                                        "InstanceNumber tells them apart)");
+        kept.push_back(std::move(*(first + frame)));
+    }
+    slices = std::move(kept);
+    return frames;
+}
+
+} // namespace
+
+DicomSeriesLayout layoutOfSlices(std::vector<DicomSliceHeader> series, const std::string& folder, int frame) {
     DicomSeriesLayout layout;
     layout.slices = std::move(series);
     std::vector<DicomSliceHeader>& slices = layout.slices;
@@ -154,6 +196,7 @@ DicomSeriesLayout layoutOfSlices(std::vector<DicomSliceHeader> series, const std
     std::stable_sort(slices.begin(), slices.end(), [&](const DicomSliceHeader& a, const DicomSliceHeader& b) {
         return dot(a.position, normal) < dot(b.position, normal);
     });
+    layout.frames = keepFrame(slices, normal, frame, folder);
     const std::size_t n = slices.size();
     double sliceSpacing = 1.0;
     if (n > 1) {

@@ -11,6 +11,7 @@
 #include <gdcmTrace.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -67,6 +68,34 @@ int integerOf(const std::string& text, int fallback) {
 
 /// The DICOM Part 10 signature: a 128-byte preamble, then "DICM". A file with it that GDCM cannot parse
 /// is a damaged DICOM file, not an unrelated file to skip.
+/// AcquisitionTime "HHMMSS.FFFFFF" (HH, HHMM and the fraction optional) as seconds of the day; nullopt for
+/// anything else.
+std::optional<double> secondsOfDay(const std::string& time) {
+    std::size_t digits = 0;
+    while (digits < time.size() && digits < 6 && std::isdigit(static_cast<unsigned char>(time[digits])))
+        ++digits;
+    if (digits < 2 || digits % 2 != 0) return std::nullopt;
+    double seconds = 0.0;
+    const double unit[3] = {3600.0, 60.0, 1.0};
+    for (std::size_t i = 0; i < digits; i += 2)
+        seconds += unit[i / 2] * ((time[i] - '0') * 10 + (time[i + 1] - '0'));
+    if (digits == 6 && digits < time.size()) {
+        const auto fraction = numbersOf("0" + time.substr(digits), 1);
+        if (!fraction) return std::nullopt;
+        seconds += (*fraction)[0];
+    }
+    return seconds;
+}
+
+/// The first of TemporalPositionIdentifier, AcquisitionTime and InstanceNumber that is present.
+double timeOrderOf(const std::string& temporalPosition, const std::string& acquisitionTime,
+                   const std::string& instanceNumber) {
+    if (const auto position = numbersOf(temporalPosition, 1)) return (*position)[0];
+    if (const auto seconds = secondsOfDay(acquisitionTime)) return *seconds;
+    if (const auto number = numbersOf(instanceNumber, 1)) return (*number)[0];
+    return 0.0;
+}
+
 bool hasDicomSignature(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     char bytes[132] = {};
@@ -117,6 +146,7 @@ std::optional<DicomSliceHeader> readSliceHeader(const std::string& path) {
         slice.pixelSpacing = {(*spacing)[0], (*spacing)[1]};
     if (const auto slope = numbersOf(text(0x0028, 0x1053), 1)) slice.slope = (*slope)[0];
     if (const auto intercept = numbersOf(text(0x0028, 0x1052), 1)) slice.intercept = (*intercept)[0];
+    slice.timeOrder = timeOrderOf(text(0x0020, 0x0100), text(0x0008, 0x0032), text(0x0020, 0x0013));
     slice.encapsulated = reader.GetFile().GetHeader().GetDataSetTransferSyntax().IsEncapsulated();
     slice.pixelDataOffset = reader.GetStreamCurrentPosition();
     slice.fileSize = regularFileSize(path);
@@ -129,7 +159,7 @@ namespace {
 struct HeaderNumbers {
     int present = 0, rows = 0, columns = 0, frames = 0, samplesPerPixel = 0, bitsAllocated = 0,
         bitsStored = 0, pixelsSigned = 0, hasPosition = 0, encapsulated = 0;
-    double position[3]{}, orientation[6]{}, pixelSpacing[2]{}, slope = 1, intercept = 0;
+    double position[3]{}, orientation[6]{}, pixelSpacing[2]{}, slope = 1, intercept = 0, timeOrder = 0;
     std::uint64_t pixelDataOffset = 0, fileSize = 0;
 };
 
@@ -150,6 +180,7 @@ HeaderNumbers numbersFrom(const DicomSliceHeader& s) {
     std::copy(s.pixelSpacing.begin(), s.pixelSpacing.end(), n.pixelSpacing);
     n.slope = s.slope;
     n.intercept = s.intercept;
+    n.timeOrder = s.timeOrder;
     n.pixelDataOffset = s.pixelDataOffset;
     n.fileSize = s.fileSize;
     return n;
@@ -175,6 +206,7 @@ DicomSliceHeader headerFrom(const HeaderNumbers& n, const std::string& path, std
     std::copy(n.pixelSpacing, n.pixelSpacing + 2, s.pixelSpacing.begin());
     s.slope = n.slope;
     s.intercept = n.intercept;
+    s.timeOrder = n.timeOrder;
     s.pixelDataOffset = n.pixelDataOffset;
     s.fileSize = n.fileSize;
     return s;

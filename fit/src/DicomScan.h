@@ -32,6 +32,9 @@ struct DicomSliceHeader {
     bool encapsulated = false;                           // compressed pixel data (JPEG, RLE, ...)
     std::uint64_t pixelDataOffset = 0;                   // where the pixel values start in the file
     std::uint64_t fileSize = 0;
+    /// Orders the images of a 4D series at one position in time: TemporalPositionIdentifier, else
+    /// AcquisitionTime (seconds of the day), else InstanceNumber; 0 when none is present.
+    double timeOrder = 0.0;
 };
 
 class ChildSender;

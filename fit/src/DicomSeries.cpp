@@ -53,6 +53,7 @@ VolumeHeaderInfo dicomSeriesHeaderInfo(const std::string& folder, const std::str
     for (int a = 0; a < 3; ++a)
         info.dims[a] = static_cast<std::uint64_t>(layout.dims[a]);
     info.sourceType = layout.valueType;
+    info.frames = layout.frames;
     return info;
 }
 
@@ -75,16 +76,17 @@ ScalarType dicomSampleType(int bitsStored, bool pixelsSigned, double slope, doub
     return detail::valueTypeOf({header});
 }
 
-Volume loadDicomSeries(const std::string& folder, const std::string& seriesUid, SampleStorage storage) {
-    const DicomSeriesLayout layout = detail::layoutDicomSeries(folder, seriesUid);
+Volume loadDicomSeries(const std::string& folder, const std::string& seriesUid, SampleStorage storage,
+                       int frame) {
+    const DicomSeriesLayout layout = detail::layoutDicomSeries(folder, seriesUid, frame);
     Volume volume = detail::gridOfLayout(layout, folder);
     loadSlices(layout, 0, layout.dims[2] - 1, storage, volume);
     return volume;
 }
 
 Volume loadDicomSeriesPlanes(const std::string& folder, int first, int last, Volume& grid,
-                             const std::string& seriesUid, SampleStorage storage) {
-    const DicomSeriesLayout layout = detail::layoutDicomSeries(folder, seriesUid);
+                             const std::string& seriesUid, SampleStorage storage, int frame) {
+    const DicomSeriesLayout layout = detail::layoutDicomSeries(folder, seriesUid, frame);
     grid = detail::gridOfLayout(layout, folder);
     Volume planes = detail::gridOfPlanes(grid, first, last); // throws for planes outside the series
     loadSlices(layout, first, last, storage, planes);

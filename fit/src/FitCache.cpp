@@ -32,12 +32,13 @@ void FitCache::Impl::bind(const Volume& volume, int degreeIn, Certify certifyIn,
     norm = normIn;
 }
 
-std::shared_ptr<const CellMask> FitCache::Impl::maskFor(const Volume& volume,
-                                                        std::optional<float> background) {
+std::shared_ptr<const CellMask> FitCache::Impl::maskFor(const Volume& volume, std::optional<float> background,
+                                                        std::optional<float> noDataValue) {
     std::lock_guard lock(maskMutex);
-    if (!mask || maskBackground != background) {
-        mask = std::make_shared<const CellMask>(volume, background);
+    if (!mask || maskBackground != background || maskNoData != noDataValue) {
+        mask = std::make_shared<const CellMask>(volume, background, noDataValue);
         maskBackground = background;
+        maskNoData = noDataValue;
     }
     return mask;
 }

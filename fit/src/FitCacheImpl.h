@@ -76,13 +76,15 @@ struct FitCache::Impl {
     std::mutex maskMutex;
     std::shared_ptr<const CellMask> mask;
     std::optional<float> maskBackground;
+    std::optional<float> maskNoData;
 
     static std::size_t shardOf(const Box& box) {
         const auto zone = [&](int a) { return static_cast<std::size_t>(box.lo[a] >> SHARD_CELLS_LOG2); };
         return (zone(0) * 73856093u ^ zone(1) * 19349663u ^ zone(2) * 83492791u) % SHARDS;
     }
     void bind(const Volume& volume, int degreeIn, Certify certifyIn, FitNorm normIn);
-    std::shared_ptr<const CellMask> maskFor(const Volume& volume, std::optional<float> background);
+    std::shared_ptr<const CellMask> maskFor(const Volume& volume, std::optional<float> background,
+                                            std::optional<float> noDataValue);
     std::optional<CachedBox> find(const Box& box);
     /// Starts loading where find(box) will look, so that lookups coming soon overlap their cache misses.
     void prefetch(const Box& box);

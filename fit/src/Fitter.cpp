@@ -83,8 +83,8 @@ FitResult fitVotSpace(const Volume& volume, const FitOptions& options, FitCache*
         cacheImpl->bind(volume, options.degree, options.certify, options.norm);
     }
     const std::shared_ptr<const CellMask> maskOwner =
-        cacheImpl ? cacheImpl->maskFor(volume, options.background)
-                  : std::make_shared<const CellMask>(volume, options.background);
+        cacheImpl ? cacheImpl->maskFor(volume, options.background, options.noDataValue)
+                  : std::make_shared<const CellMask>(volume, options.background, options.noDataValue);
     const CellMask& mask = *maskOwner;
     const BoxTester tester(fitter, eps, counters, cacheImpl);
     const FitControl control{resolveThreadCount(options.threads), options.progress, options.cancel};

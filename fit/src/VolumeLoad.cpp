@@ -12,9 +12,9 @@ Volume loadVolume(const std::string& path, const std::optional<RawLayout>& raw, 
     const std::string extension = raw || isDicomFolder(path) ? std::string() : detail::volumeExtension(path);
     if (extension == ".nii" || extension == ".nii.gz") return loadNifti(path, storage, frame);
     if (extension == ".mgh" || extension == ".mgz") return loadMgh(path, storage, frame);
+    if (isDicomFolder(path) && !raw) return loadDicomSeries(path, dicomSeries, storage, frame);
     detail::checkFrame(path, frame, 1); // the other formats hold one 3D volume
     if (raw) return loadRaw(path, *raw, storage);
-    if (isDicomFolder(path)) return loadDicomSeries(path, dicomSeries, storage);
     if (extension == ".nrrd" || extension == ".nhdr") return loadNrrd(path, storage);
     if (extension == ".mhd" || extension == ".mha") return loadMetaImage(path, storage);
     detail::throwUnknownVolumeFormat(path);

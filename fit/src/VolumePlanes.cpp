@@ -98,9 +98,8 @@ PlanesOfGrid loadVolumePlanes(const std::string& path, int first, int last,
                               const std::optional<RawLayout>& raw, SampleStorage storage,
                               const std::string& dicomSeries, int frame) {
     if (!raw && isDicomFolder(path)) {
-        detail::checkFrame(path, frame, 1);
         PlanesOfGrid read;
-        read.planes = loadDicomSeriesPlanes(path, first, last, read.whole, dicomSeries, storage);
+        read.planes = loadDicomSeriesPlanes(path, first, last, read.whole, dicomSeries, storage, frame);
         return read;
     }
     if (auto stored = storedSamplesOf(path, raw, frame)) {

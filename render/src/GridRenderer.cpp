@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <variant>
@@ -113,6 +114,7 @@ struct GridRenderer::Impl {
     bool hasData = false;
     SceneBounds bounds;
     std::array<float, 2> valueRange{0.f, 0.f};
+    std::optional<float> noDataValue; // useNoDataValue's; empty: valueRange[0]
     FrameStats stats;
 
     GLuint programFor(const std::string& sampler) {
@@ -147,7 +149,7 @@ struct GridRenderer::Impl {
         glProgramUniform3f(p, glGetUniformLocation(p, "uDims"), float(bounds.dims[0]), float(bounds.dims[1]),
                            float(bounds.dims[2]));
         glProgramUniform1i(p, glGetUniformLocation(p, "uMode"), blend.shaderMode);
-        glProgramUniform1f(p, glGetUniformLocation(p, "uNoDataValue"), valueRange[0]);
+        glProgramUniform1f(p, glGetUniformLocation(p, "uNoDataValue"), noDataValue.value_or(valueRange[0]));
         setSlabUniforms(p, options.slab, camera, bounds);
         glProgramUniform1i(p, glGetUniformLocation(p, "uVolume"), 0);
         glBindVertexArray(vertexArray.get());
@@ -237,6 +239,7 @@ void GridRenderer::uploadPlanes(const fit::Volume& volume, int firstPlane, const
     d.chunks = std::move(chunks);
     d.bounds = sceneBounds(whole);
     d.valueRange = volume.valueRange();
+    d.noDataValue.reset();
     d.hasData = true;
 }
 
@@ -254,6 +257,10 @@ bool GridRenderer::hasData() const {
 const SceneBounds& GridRenderer::bounds() const {
     return mImpl->bounds;
 }
+void GridRenderer::useNoDataValue(float value) {
+    mImpl->noDataValue = value;
+}
+
 std::array<float, 2> GridRenderer::valueRange() const {
     return mImpl->valueRange;
 }

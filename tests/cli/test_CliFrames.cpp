@@ -2,14 +2,19 @@
 // without it, the frame errors, and no-data samples reported by `vots info`.
 #include "CliExpect.h"
 #include "CliRunner.h"
+#include "NiftiFloat32.h"
 #include "TempDir.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
+#include <vector>
 
 namespace vots::test {
 namespace {
@@ -45,6 +50,49 @@ TEST(CliFrames, TheChosenFrameIsFittedVerifiedRenderedAndRecorded) {
         {"render", NIBABEL_DATA + "test.mgz", "--frame", "1", "--eps", "1%", "-o", dir.file("m.png")});
     EXPECT_EQ(r.exitCode, 0) << r.err;
     EXPECT_TRUE(std::filesystem::exists(dir.file("m.png")));
+}
+
+// --frame max: each sample the largest over the frames (a NaN where one frame has no data is passed over).
+TEST(CliFrames, FrameMaxIsTheMaximumOverTheFramesAtEachSample) {
+    TempDir dir;
+    const std::array<int, 3> dims{12, 10, 8};
+    std::vector<float> frames, most;
+    for (int t = 0; t < 3; ++t)
+        for (int z = 0; z < dims[2]; ++z)
+            for (int y = 0; y < dims[1]; ++y)
+                for (int x = 0; x < dims[0]; ++x) {
+                    // Each frame is brightest in another third of the x axis.
+                    const float value = (x / 4 == t ? 500.f : 100.f) + static_cast<float>(y + z);
+                    frames.push_back(x == 5 && y == 5 && z == 4 && t == 1
+                                         ? std::numeric_limits<float>::quiet_NaN()
+                                         : value);
+                }
+    const std::size_t n = frames.size() / 3;
+    for (std::size_t i = 0; i < n; ++i)
+        most.push_back(std::max(
+            {frames[i], frames[n + i] == frames[n + i] ? frames[n + i] : frames[i], frames[2 * n + i]}));
+    const std::string four = dir.write("four.nii", niftiFloat32(dims, 3, frames));
+    const std::string expected = dir.write("max.nii", niftiFloat32(dims, 1, most));
+    const std::string out = dir.file("max.vots");
+    CliResult r = runVots({"fit", four, "--frame", "max", "-o", out, "--eps", "1"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(runVots({"verify", out, expected}).exitCode, 0);
+    EXPECT_EQ(runVots({"verify", out, four, "--frame", "max"}).exitCode, 0);
+    for (const char* frame : {"0", "1", "2"})
+        EXPECT_NE(runVots({"verify", out, four, "--frame", frame}).exitCode, 0) << frame;
+    r = runVots({"info", out});
+    EXPECT_NE(r.out.find("max (the maximum over the frames of a 4D file)"), std::string::npos) << r.out;
+    // The grid draws the maximum's samples: the PNG of the 3D file of the maxima.
+    r = runVots({"render", four, "--frame", "max", "--mode", "reference", "--size", "48x40", "-o",
+                 dir.file("a.png")});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    r = runVots({"render", expected, "--mode", "reference", "--size", "48x40", "-o", dir.file("b.png")});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    std::ifstream a(dir.file("a.png"), std::ios::binary), b(dir.file("b.png"), std::ios::binary);
+    EXPECT_EQ(std::string(std::istreambuf_iterator<char>(a), {}),
+              std::string(std::istreambuf_iterator<char>(b), {}));
+    expectBadInput(dir, {"fit", four, "--frame", "maximum", "-o", dir.file("no.vots")},
+                   "not a frame number or 'max'");
 }
 
 TEST(CliFrames, AFrameTheFileDoesNotHoldIsBadInput) {

@@ -4,7 +4,8 @@
 # Usage: tests/web/run.sh [--bin PATH] [--data DIR] [--port N] [spec.mjs ...]
 # Env:   VOTS_BIN (default build/release/cli/vots, else the first build/*/cli/vots),
 #        VOTS_TEST_DATA (default: a temporary folder with the index-space volumes of
-#        scripts/make-test-volumes: the brain MRI as NRRD, the blobs and the orbital), VOTS_WEB_PORT,
+#        scripts/make-test-volumes: the brain MRI as NRRD, the blobs and the orbital, and nibabel's 4D
+#        functional.nii), VOTS_WEB_PORT,
 #        CHROMIUM (default /usr/bin/chromium), VOTS_TEST_DATASET, VOTS_URL (a server to test instead of
 #        starting one; token.spec.mjs then fails, as it needs run.sh to start its own).
 set -euo pipefail
@@ -21,7 +22,7 @@ while [ $# -gt 0 ]; do
     --bin) bin="$2"; shift 2 ;;
     --data) data="$2"; shift 2 ;;
     --port) port="$2"; shift 2 ;;
-    -h|--help) sed -n '2,9p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,10p' "$0"; exit 0 ;;
     *) specs+=("$1"); shift ;;
   esac
 done
@@ -82,6 +83,8 @@ if [ -z "${VOTS_URL:-}" ]; then
     for name in mri-brain_33x41x25_int16.nrrd blobs_64x64x64_uint8.nrrd orbital_64x64x64_float32.nrrd; do
       ln -s "$volumes_dir/all/$name" "$data/$name"
     done
+    # A 4D file for time.spec.mjs: nibabel's fMRI (17x21x3, 20 frames), installed by scripts/setup.
+    ln -s /usr/lib/python3/dist-packages/nibabel/tests/data/functional.nii "$data/functional.nii"
   fi
   if [ ! -d "$data" ]; then
     echo "run.sh: no data folder at $data (set VOTS_TEST_DATA or pass --data)" >&2

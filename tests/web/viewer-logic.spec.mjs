@@ -17,11 +17,12 @@ const CT = {
 };
 const MR = { name: 'head', modality: 'MR', range: [0, 255], defaultEps: 5.1, window: { level: 100, width: 200 } };
 const NO_DEFAULT = { ...MR, name: 'bare', defaultEps: undefined };
-const DATASETS = [MR, CT, NO_DEFAULT];
+const FMRI = { ...MR, name: 'fmri', frames: 20 };
+const DATASETS = [MR, CT, NO_DEFAULT, FMRI];
 
 test('a hash the viewer writes reads back as the same view', () => {
   const view = {
-    dataset: 'head', cam: { az: 30, el: -20, zoom: 1.25, panX: 0.5, panY: -0.25, proj: 'persp', fov: 40 },
+    dataset: 'head', frame: 0, cam: { az: 30, el: -20, zoom: 1.25, panX: 0.5, panY: -0.25, proj: 'persp', fov: 40 },
     eps: 7.5, degree: 2, mode: 'density', renderer: 'vots', slab: null, window: { level: 12.5, width: 80 },
     colormap: 'bone',
   };
@@ -31,6 +32,21 @@ test('a hash the viewer writes reads back as the same view', () => {
   const { view: back, problems } = parseHash(text, DATASETS, initialView());
   assert.deepEqual(problems, []);
   assert.deepEqual(back, view);
+});
+
+test('the frame of a 4D dataset is in the link (frame 0 unsaid) and one it does not hold is named', () => {
+  const view = { ...initialView(), dataset: 'fmri', frame: 7, eps: 7.5, window: { level: 12.5, width: 80 } };
+  const text = formatHash(view);
+  assert.match(text, /^#dataset=fmri&cam=[^&]*&frame=7&eps=/);
+  assert.deepEqual(parseHash(text, DATASETS, initialView()).view, view);
+  assert.doesNotMatch(formatHash({ ...view, frame: 0 }), /frame=/);
+  for (const bad of ['20', '-1', 'x', '1.5']) {
+    const { view: back, problems } = parseHash(`#dataset=fmri&frame=${bad}`, DATASETS, initialView());
+    assert.equal(back.frame, 0, bad);
+    assert.deepEqual(problems, [`frame '${bad}' is not one of the 20 of 'fmri'; showing frame 0.`]);
+  }
+  // A 3D dataset has frame 0 alone.
+  assert.equal(parseHash('#dataset=head&frame=1', DATASETS, initialView()).problems.length, 1);
 });
 
 test('an empty hash opens the Cranium CT at its server default eps and window', () => {

@@ -53,6 +53,7 @@ export async function fetchDatasets() {
 function viewQuery(p) {
   const q = new URLSearchParams();
   q.set('dataset', p.dataset);
+  if (p.frame) q.set('frame', String(p.frame)); // frame 0 unsaid: a 3D dataset's query stays as it was
   q.set('cam', p.cam);
   q.set('size', `${p.size.w}x${p.size.h}`);
   q.set('eps', String(p.eps));
@@ -106,8 +107,9 @@ export async function fetchFrame(url, signal) {
   };
 }
 
-export async function startFit({ dataset, eps, degree }) {
+export async function startFit({ dataset, frame, eps, degree }) {
   const body = { dataset, eps };
+  if (frame) body.frame = frame;
   if (degree !== undefined) body.degree = degree;
   const res = await request('api/fit', {
     method: 'POST',

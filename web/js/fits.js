@@ -5,7 +5,7 @@ import { followJob, startFit } from './api.js';
 // shows a finished fit's numbers; onStart(eps) runs when a fit starts being waited for; onReady(eps) runs once
 // frames may use eps; onChange() whenever the status may differ.
 export function createFits({ progress, banner, showFacts, onStart, onReady, onChange }) {
-  const fitted = new Map(); // dataset name -> Set of eps known to be fitted
+  const fitted = new Map(); // "dataset/frame" -> Set of eps known to be fitted
   let token = 0; // bumped per request, so the answers of a superseded one are dropped
   let follow = null;
   let fitting = null; // {eps, progress, stage}
@@ -35,7 +35,9 @@ export function createFits({ progress, banner, showFacts, onStart, onReady, onCh
   // Starts (or joins) the fit for eps; frames keep the old eps until it is done, then swap.
   // eps: null or 0 when the server sent no default and the user chose none. fixedEps: the dataset is
   // drawn at eps alone (a .vots file), there is nothing to fit.
-  async function ensure({ dataset, eps, degree, fixedEps = false }) {
+  // frame: the 3D volume of a 4D dataset (each is fitted on its own).
+  async function ensure({ dataset, frame = 0, eps, degree, fixedEps = false }) {
+    const fitName = `${dataset}/${frame}`;
     if (follow) follow.cancel();
     follow = null;
     if (!(eps > 0)) {
@@ -46,7 +48,7 @@ export function createFits({ progress, banner, showFacts, onStart, onReady, onCh
       banner.show(`No error bound ε for '${dataset}': the server sent no default; choose one with the ε slider.`, 'fit');
       return;
     }
-    if (isFitted(dataset, eps, fixedEps)) {
+    if (isFitted(fitName, eps, fixedEps)) {
       // Supersede a fit still in flight for another eps: its reply must not swap frames away from this one.
       token++;
       fitting = null;
@@ -59,7 +61,7 @@ export function createFits({ progress, banner, showFacts, onStart, onReady, onCh
     progress.box.hidden = false;
     setProgress(0, 'queued');
     try {
-      const job = await startFit({ dataset, eps, degree });
+      const job = await startFit({ dataset, frame, eps, degree });
       if (mine !== token) return;
       let result = job;
       if (job.state !== 'done') {
@@ -70,7 +72,7 @@ export function createFits({ progress, banner, showFacts, onStart, onReady, onCh
         result = await follow.done;
         if (mine !== token) return;
       }
-      markFitted(dataset, eps);
+      markFitted(fitName, eps);
       showFacts({
         votCount: Number.isFinite(Number(result.votCount)) ? Number(result.votCount) : undefined,
         fitSeconds: Number.isFinite(Number(result.fitSeconds)) ? Number(result.fitSeconds) : undefined,

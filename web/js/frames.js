@@ -60,6 +60,7 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
     const preview = previewing();
     return {
       dataset: view.dataset,
+      frame: view.frame,
       cam: formatCamera(view.cam),
       size: frameSize(draft),
       eps: preview ? previewEps : renderEps,

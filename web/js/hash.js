@@ -15,6 +15,7 @@ function enc(v) {
 
 export function formatHash(view) {
   const parts = [['dataset', view.dataset], ['cam', formatCamera(view.cam)]];
+  if (view.frame) parts.push(['frame', view.frame]); // frame 0 unsaid, so a 3D dataset's link reads as before
   // With no eps (the server sent no default and the user chose none) the link carries none either.
   if (view.eps !== null) parts.push(['eps', view.eps]);
   parts.push(['mode', view.mode]);
@@ -92,8 +93,14 @@ export function parseHash(hash, datasets, current) {
     problems.push(`window '${q.get('window')}' is not level,width with width > 0; using the dataset default.`);
   }
 
+  const frames = Math.max(1, Number(ds.frames) || 1);
+  const frame = q.has('frame') ? Number(q.get('frame')) : 0;
+  const frameOk = Number.isInteger(frame) && frame >= 0 && frame < frames;
+  if (!frameOk) problems.push(`frame '${q.get('frame')}' is not one of the ${frames} of '${ds.name}'; showing frame 0.`);
+
   const view = {
     dataset: ds.name,
+    frame: frameOk ? frame : 0,
     cam,
     eps: eps > 0 ? eps : keptEps,
     degree: degree !== null && /^\d$/.test(degree) && Number(degree) <= MAX_DEGREE ? Number(degree) : undefined,

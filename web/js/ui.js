@@ -19,6 +19,7 @@ import { createPacsSend } from './pacs-send.js';
 import { attachSlabControl } from './slab-control.js';
 import { statusLine } from './status.js';
 import { createStudyBrowser } from './study-browser.js';
+import { attachTimeControl } from './time.js';
 import { homeCamera, initialView, reconcileRenderer } from './view.js';
 
 const EPS_KEY_SETTLE_MS = 300; // keyboard steps of the eps slider fit once it has rested this long
@@ -151,10 +152,24 @@ const cine = createCine({
     frames.schedule();
   },
   onChange(running) {
+    if (running) time.stop(); // one cine at a time
     if (!running) writeHash(); // the throttled write of the last step may still wait: the link is now
     el.cine.setAttribute('aria-pressed', String(running));
     el.cine.textContent = running ? 'Stop cine' : 'Cine';
   },
+});
+
+// A 4D dataset's volume: shown as a new dataset's is, the exact grid while its fit runs.
+const time = attachTimeControl({
+  el: { box: $('time'), slider: $('frame-slider'), value: $('frame-value'), cine: $('time-cine') },
+  view,
+  dataset: currentDataset,
+  busy: () => frames.busy() || fits.fitting() !== null,
+  showFrame() {
+    frames.useEps(null);
+    commit({ refit: true });
+  },
+  stopTurn: () => cine.stop(),
 });
 
 // The labels and bars of the frame on screen, not of a camera the hand has moved on from.
@@ -168,13 +183,14 @@ function showViewOverlays() {
 function syncPanel() {
   const ds = currentDataset();
   if (ds) syncControls(el, ds, view);
+  time.sync();
   slabControl.sync();
   showViewOverlays();
   pacsSend.sync();
 }
 
 function ensureFitted() {
-  fits.ensure({ dataset: view.dataset, eps: view.eps, degree: view.degree, fixedEps: isVotsDataset(currentDataset()) });
+  fits.ensure({ dataset: view.dataset, frame: view.frame, eps: view.eps, degree: view.degree, fixedEps: isVotsDataset(currentDataset()) });
 }
 
 // Adopts the URL hash into the view; problems with the link go to the banner.
@@ -220,6 +236,7 @@ el.dataset.addEventListener('change', () => {
   if (!ds) return;
   cancelSliderSettle(); // a step on the old dataset's slider means nothing for the new one
   view.dataset = ds.name;
+  view.frame = 0;
   view.cam = homeCamera(view.cam);
   view.window = { level: Number(ds.window.level), width: Number(ds.window.width) };
   view.eps = defaultEpsOf(ds);

@@ -8,6 +8,7 @@ export { COLORMAPS, MODES, RENDERERS };
 export function initialView() {
   return {
     dataset: null, // dataset name
+    frame: 0, // the 3D volume of a 4D dataset (0-based)
     cam: { ...DEFAULT_CAMERA },
     eps: null, // target error bound, data units
     degree: undefined, // only sent when the link carries one

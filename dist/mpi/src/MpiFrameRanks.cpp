@@ -66,6 +66,7 @@ RankFrame drawPart(RankPart& part, const CommandBody& c, const std::string& path
     *readMs = 0.0;
     if (c.frame.renderer == render::RendererKind::Grid) {
         *readMs = part.ensureGrid(path, grid);
+        grid.useNoDataValue(c.range[0]); // the whole volume's lowest finite sample, as one process draws
     } else if (c.votsFile) {
         *readMs = part.ensureVotsFile(path, compositesCutRays(c.frame.mode), vots);
     } else {

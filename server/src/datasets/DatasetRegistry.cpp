@@ -45,10 +45,9 @@ void describeRange(Dataset& dataset, std::array<float, 2> range) {
 }
 
 /// The dataset of a volume loaded from `path`.
-std::shared_ptr<const Dataset> datasetOfVolume(const std::string& name, const fs::path& path,
-                                               const std::string& dicomSeries,
-                                               const fit::VolumeHeaderInfo& header,
-                                               std::shared_ptr<const fit::Volume> volume) {
+std::shared_ptr<Dataset> datasetOfVolume(const std::string& name, const fs::path& path,
+                                         const std::string& dicomSeries, const fit::VolumeHeaderInfo& header,
+                                         std::shared_ptr<const fit::Volume> volume) {
     auto dataset = std::make_shared<Dataset>();
     dataset->loadAndFitBytes = fit::estimateLoadAndFitBytes(header, DATASET_STORAGE);
     const std::uint64_t held = fit::estimateLoadedVolumeBytes(header, DATASET_STORAGE);
@@ -62,18 +61,20 @@ std::shared_ptr<const Dataset> datasetOfVolume(const std::string& name, const fs
     return dataset;
 }
 
-std::shared_ptr<const Dataset> loadDataset(const std::string& name, const fs::path& path,
-                                           const std::string& dicomSeries,
-                                           const fit::VolumeHeaderInfo& header) {
-    return datasetOfVolume(name, path, dicomSeries, header,
-                           std::make_shared<fit::Volume>(
-                               fit::loadVolume(path.string(), std::nullopt, DATASET_STORAGE, dicomSeries)));
+std::shared_ptr<Dataset> loadDataset(const std::string& name, const fs::path& path,
+                                     const std::string& dicomSeries, const fit::VolumeHeaderInfo& header,
+                                     int frame) {
+    auto dataset = datasetOfVolume(name, path, dicomSeries, header,
+                                   std::make_shared<fit::Volume>(fit::loadVolume(
+                                       path.string(), std::nullopt, DATASET_STORAGE, dicomSeries, frame)));
+    dataset->frame = frame;
+    return dataset;
 }
 
 /// Under mpirun: the ranks read the samples, each its z cells' planes; this process reads the grid from the
 /// first plane and holds no samples.
-std::shared_ptr<const Dataset> summarizeDataset(const std::string& name, const fs::path& path,
-                                                const std::string& dicomSeries, dist::FrameRanks& ranks) {
+std::shared_ptr<Dataset> summarizeDataset(const std::string& name, const fs::path& path,
+                                          const std::string& dicomSeries, dist::FrameRanks& ranks) {
     if (!dicomSeries.empty())
         throw fit::InputError(
             "under mpirun a folder of several DICOM series is not drawn across the ranks yet");
@@ -213,6 +214,7 @@ void DatasetRegistry::offerDicomFolder(const std::string& name, const fs::path& 
     entry->dicomSeries.clear();
     entry->isVots = false;
     entry->dataset.reset();
+    entry->otherFrames.clear();
     entry->header.reset();
     entry->loadError.clear();
 }
@@ -256,7 +258,7 @@ void DatasetRegistry::rememberLoadFailure(Entry& entry, const std::string& name)
     entry.loadError = std::move(failure.message);
 }
 
-std::shared_ptr<const Dataset> DatasetRegistry::find(const std::string& name) {
+std::shared_ptr<const Dataset> DatasetRegistry::find(const std::string& name, int frame) {
     if (!isDatasetName(name))
         throw HttpError(400, "dataset must be a plain name of letters, digits, '_' and '-'");
     Entry* entry = nullptr;
@@ -294,7 +296,8 @@ std::shared_ptr<const Dataset> DatasetRegistry::find(const std::string& name) {
                 mMemory.admit(mRanks ? 0 : fit::estimateLoadAndFitBytes(*entry->header, DATASET_STORAGE),
                               "dataset '" + name + "' (" + entry->header->describe() + ")");
             auto dataset = mRanks ? summarizeDataset(name, entry->path, entry->dicomSeries, *mRanks)
-                                  : loadDataset(name, entry->path, entry->dicomSeries, *entry->header);
+                                  : loadDataset(name, entry->path, entry->dicomSeries, *entry->header, 0);
+            dataset->frames = entry->header->frames;
             std::lock_guard lock(mMutex); // loaded() reads dataset under mMutex
             entry->dataset = std::move(dataset);
         } catch (...) {
@@ -302,7 +305,27 @@ std::shared_ptr<const Dataset> DatasetRegistry::find(const std::string& name) {
         }
     }
     if (!entry->dataset) throw HttpError(500, "dataset '" + name + "' cannot be loaded: " + entry->loadError);
-    return entry->dataset;
+    return frame == 0 ? entry->dataset : findOtherFrame(*entry, name, frame);
+}
+
+std::shared_ptr<const Dataset> DatasetRegistry::findOtherFrame(Entry& entry, const std::string& name,
+                                                               int frame) {
+    const std::uint64_t frames = entry.dataset->frames;
+    if (frame < 0 || static_cast<std::uint64_t>(frame) >= frames)
+        throw HttpError(400, "dataset '" + name + "' has no frame " + std::to_string(frame) + ": it holds " +
+                                 std::to_string(frames) + (frames == 1 ? " frame" : " frames"));
+    if (auto it = entry.otherFrames.find(frame); it != entry.otherFrames.end()) return it->second;
+    if (entry.dataset->samplesOnRanks)
+        throw HttpError(409, "under mpirun only frame 0 of a 4D dataset is drawn across the ranks yet");
+    // Admitted as frame 0 was: each frame is a volume of the same size, resident once loaded.
+    const MemoryReservation admitted =
+        mMemory.admit(entry.dataset->loadAndFitBytes, "frame " + std::to_string(frame) + " of dataset '" +
+                                                          name + "' (" + entry.header->describe() + ")");
+    auto dataset = loadDataset(name, entry.path, entry.dicomSeries, *entry.header, frame);
+    dataset->frames = frames;
+    std::lock_guard lock(mMutex); // loaded() reads the frames under mMutex
+    entry.otherFrames.emplace(frame, dataset);
+    return dataset;
 }
 
 std::optional<fit::VolumeHeaderInfo> DatasetRegistry::header(const std::string& name) const {
@@ -321,8 +344,11 @@ DatasetKind DatasetRegistry::kind(const std::string& name) const {
 std::vector<std::shared_ptr<const Dataset>> DatasetRegistry::loaded() const {
     std::lock_guard lock(mMutex);
     std::vector<std::shared_ptr<const Dataset>> out;
-    for (const auto& [name, entry] : mEntries)
+    for (const auto& [name, entry] : mEntries) {
         if (entry->dataset) out.push_back(entry->dataset);
+        for (const auto& [frame, dataset] : entry->otherFrames)
+            out.push_back(dataset);
+    }
     return out;
 }
 

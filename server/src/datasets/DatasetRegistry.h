@@ -39,6 +39,8 @@ struct Dataset {
     std::string name;           // file stem, a plain identifier
     std::filesystem::path path; // the file it came from
     std::string dicomSeries;    // the SeriesInstanceUID when `path` is a DICOM folder of several series
+    int frame = 0;              // which 3D volume of a 4D file `volume` is (0-based)
+    std::uint64_t frames = 1;   // the 3D volumes the file holds (fMRI, perfusion, cardiac phases)
     DatasetKind kind = DatasetKind::Volume;
     std::shared_ptr<const fit::Volume> volume; // Volume kind only; null for Vots
     std::shared_ptr<const fit::VotSpace>
@@ -100,8 +102,10 @@ public:
     /// The dataset, loading it on first use. Throws HttpError 400 for a name that is not a plain
     /// identifier, 404 for an unknown one, 500 when the file cannot be read (the reason is kept), 507
     /// when its header announces more than the memory budget leaves (asked again next time: memory may
-    /// have been freed meanwhile).
-    std::shared_ptr<const Dataset> find(const std::string& name);
+    /// have been freed meanwhile). `frame` picks one 3D volume of a 4D file, loaded on its first use as
+    /// frame 0 is (which is loaded first: it says how many the file holds); a frame the file does not hold
+    /// is a 400 naming the count.
+    std::shared_ptr<const Dataset> find(const std::string& name, int frame = 0);
     /// The header of a dataset find() has looked at, loaded or not (nullopt before, or when unreadable).
     std::optional<fit::VolumeHeaderInfo> header(const std::string& name) const;
     /// Whether a name found is a volume or a .vots file, loaded or not (Volume for an unknown name).
@@ -115,13 +119,16 @@ private:
         std::string dicomSeries; // the SeriesInstanceUID when `path` is a folder holding several
         bool isVots = false;     // `path` is a Vot-Space file
         std::mutex loadMutex;    // held while this one file loads, so others load in parallel
-        std::shared_ptr<const Dataset> dataset;
+        std::shared_ptr<const Dataset> dataset;                    // frame 0
+        std::map<int, std::shared_ptr<const Dataset>> otherFrames; // of a 4D file, as they are asked for
         std::optional<fit::VolumeHeaderInfo> header; // read before loading; written under mMutex
         std::string loadError;
     };
     /// In a catch block of a load: passes on a failure the client may retry (classifyFailure: 503, 507),
     /// remembers any other as the file's, so that every later request is answered 500 with it.
     static void rememberLoadFailure(Entry& entry, const std::string& name);
+    /// Frame `frame` (> 0) of a 4D volume whose frame 0 is loaded; under the entry's loadMutex.
+    std::shared_ptr<const Dataset> findOtherFrame(Entry& entry, const std::string& name, int frame);
     MemoryAdmission& mMemory;
     dist::FrameRanks* mRanks = nullptr;
     mutable std::mutex mMutex;

@@ -1,12 +1,12 @@
-// BoxCaches: a small map of fit::FitCache by "dataset/degree", trimmed when a new one is made.
+// BoxCaches: a small map of fit::FitCache by "dataset/frame/degree", trimmed when a new one is made.
 #include "fits/BoxCaches.h"
 
 #include <iterator>
 
 namespace vots::server {
 
-std::shared_ptr<fit::FitCache> BoxCaches::forFits(const std::string& dataset, int degree) {
-    const std::string name = dataset + "/" + std::to_string(degree);
+std::shared_ptr<fit::FitCache> BoxCaches::forFits(const std::string& dataset, int frame, int degree) {
+    const std::string name = dataset + "/" + std::to_string(frame) + "/" + std::to_string(degree);
     std::lock_guard lock(mMutex);
     auto& slot = mCaches[name];
     if (!slot) {

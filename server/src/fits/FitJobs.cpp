@@ -163,7 +163,7 @@ void FitJobs::run(const Pending& pending) {
         options.progress = [&job](double fraction, const char* stage) { job.setProgress(fraction, stage); };
         options.cancel = &mCancel;
         // The box cache answers only uniform eps exactly; focus fits run without it.
-        const auto boxCache = key.focus ? nullptr : mBoxCaches.forFits(key.dataset, key.degree);
+        const auto boxCache = key.focus ? nullptr : mBoxCaches.forFits(key.dataset, key.frame, key.degree);
         fit::FitResult result = fit::fitVotSpace(*pending.dataset->volume, options, boxCache.get());
         result.space.metaJson = cacheMetaFor(key, *pending.dataset, result.stats, result.space);
         auto space = std::make_shared<const fit::VotSpace>(std::move(result.space));

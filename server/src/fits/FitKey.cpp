@@ -33,6 +33,8 @@ std::string FitKey::text() const {
     char crc[16];
     std::snprintf(crc, sizeof crc, "_v%08x", static_cast<unsigned>(volumeCrc));
     out += crc;
+    // Frame 0 keeps the text it had before 4D datasets, so its cache files keep their names.
+    if (frame != 0) out += "_t" + std::to_string(frame);
     // The fits before the norm could be chosen were least squares: their cache files keep their names.
     if (norm == fit::FitNorm::Minimax) out += "_mm";
     if (focus) {

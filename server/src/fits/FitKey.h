@@ -1,4 +1,4 @@
-// Identity of a fitted Vot-Space: dataset, eps, degree, background and focus, with a canonical text form.
+// Identity of a fitted Vot-Space: dataset, frame, eps, degree, background and focus, as canonical text.
 #pragma once
 
 #include "vots/fit/EpsField.h"
@@ -18,6 +18,7 @@ struct FitKey {
     std::optional<fit::FocusRegion> focus;   // grid index space
     std::uint32_t volumeCrc = 0;             // fit::Volume::contentCrc(): a changed file is a new key
     fit::FitNorm norm = fit::SERVE_FIT_NORM; // a least-squares key keeps the text it had before norms
+    int frame = 0; // the 3D volume of a 4D dataset (0-based); 0 for every other dataset
 
     /// Canonical, exact text (floats as hex bits), safe as a file stem: [A-Za-z0-9_-] only.
     /// Equal keys give equal text and vice versa.

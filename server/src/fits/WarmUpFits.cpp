@@ -74,7 +74,7 @@ void WarmUpFits::run(std::shared_ptr<const Dataset> dataset, const FitKey& key) 
             while (!mCancel && mForeground.renderedWithin(QUIET))
                 std::this_thread::sleep_for(std::chrono::milliseconds(10));
         };
-        const auto boxCache = mBoxCaches.forFits(key.dataset, key.degree);
+        const auto boxCache = mBoxCaches.forFits(key.dataset, key.frame, key.degree);
         fit::fitVotSpace(*dataset->volume, options, boxCache.get());
     } catch (const fit::FitCancelled&) {
         end = End::Cancelled;

@@ -98,7 +98,7 @@ PreparedRender prepareRender(Server::Impl& s, const RenderParams& params, const 
         const std::string refused = s.options.ranks->refusal(params.dataset, params);
         if (!refused.empty()) throw HttpError(409, refused);
     }
-    const auto dataset = s.registry.find(job.params.dataset);
+    const auto dataset = s.registry.find(job.params.dataset, job.params.frame);
     refuseWhatVotsCannotDraw(*dataset, job.params); // 409 before any work
     job.volume = dataset->volume;
     // A .vots dataset's window comes from the Vots' own range, as in `vots render FILE.vots`.

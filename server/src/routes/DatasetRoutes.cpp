@@ -44,6 +44,7 @@ nlohmann::json datasetJson(const Dataset& d) {
                           {"defaultEps", d.defaultEps},
                           {"background", d.background},
                           {"modality", d.isCt ? "CT" : "other"},
+                          {"frames", d.frames},
                           {"fits", true},
                           {"memoryNeeded", d.loadAndFitBytes}};
     if (isVots) {
@@ -104,6 +105,7 @@ void refuseFitOfVots(const Dataset& dataset) {
 FitKey fitKeyFor(const Dataset& dataset, const EpsSpec& eps, int degree, fit::FitNorm norm) {
     FitKey key;
     key.dataset = dataset.name;
+    key.frame = dataset.frame;
     key.eps = resolveEps(dataset, eps);
     key.degree = degree;
     key.norm = norm;

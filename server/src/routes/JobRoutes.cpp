@@ -50,7 +50,7 @@ void installJobRoutes(Server::Impl& s) {
             if (!refused.empty()) throw HttpError(409, refused);
             if (p.focus) throw HttpError(409, "under mpirun the ranks fit without a focus sphere");
         }
-        const auto dataset = s.registry.find(p.dataset);
+        const auto dataset = s.registry.find(p.dataset, p.frame);
         refuseFitOfVots(*dataset);
         FitKey key = fitKeyFor(*dataset, p.eps, p.degree, s.options.fitNorm);
         key.focus = p.focus;

@@ -161,7 +161,7 @@ void installPacsStoreRoute(Server::Impl& s) {
         const DicomWebService& service = s.seriesOpens.service(req.matches[1].str());
         StoreRequest request = parseStoreRequest(req.body);
         if (s.options.ranks) throw HttpError(409, "a sweep is sent from one process, not under mpirun");
-        const auto dataset = s.registry.find(request.frame.dataset);
+        const auto dataset = s.registry.find(request.frame.dataset, request.frame.frame);
         if (dataset->kind != DatasetKind::Volume || !fit::isDicomFolder(dataset->path.string()))
             throw HttpError(409,
                             "dataset '" + dataset->name +

@@ -9,6 +9,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <limits>
 #include <set>
 
 namespace vots::server {
@@ -25,6 +26,12 @@ int parseDegree(std::string_view text) {
     const auto degree = render::parsePlainInt(text);
     if (!degree || *degree < 0 || *degree > 3) bad("degree must be 0, 1, 2 or 3");
     return *degree;
+}
+
+int parseVolumeFrame(std::string_view text) {
+    const auto frame = render::parsePlainInt(text);
+    if (!frame || *frame < 0) bad("frame must be a whole number >= 0 (a 3D volume of a 4D dataset)");
+    return *frame;
 }
 
 bool isClientId(std::string_view id) {
@@ -129,8 +136,8 @@ std::pair<int, int> parseSize(std::string_view text) {
 }
 
 RenderParams parseRenderParams(const QueryParams& query) {
-    static const std::set<std::string> KNOWN{"dataset",  "cam",  "size",   "eps",      "degree", "mode",
-                                             "renderer", "slab", "window", "colormap", "client"};
+    static const std::set<std::string> KNOWN{"dataset", "frame",    "cam",  "size",   "eps",      "degree",
+                                             "mode",    "renderer", "slab", "window", "colormap", "client"};
     std::set<std::string> seen;
     for (const auto& [key, value] : query) {
         if (!key.empty() && key[0] == '_') continue; // cache busters such as _=1699999999
@@ -150,6 +157,7 @@ RenderParams parseRenderParams(const QueryParams& query) {
     if (!dataset) bad("missing parameter 'dataset'");
     if (!isDatasetName(*dataset)) bad("dataset must be a plain name of letters, digits, '_' and '-'");
     p.dataset = *dataset;
+    if (const auto frame = get("frame")) p.frame = parseVolumeFrame(*frame);
     if (const auto cam = get("cam")) p.camera = parseWith("cam", [&] { return render::parseCamera(*cam); });
     if (const auto size = get("size")) std::tie(p.width, p.height) = parseSize(*size);
     if (const auto eps = get("eps")) {
@@ -176,7 +184,7 @@ RenderParams parseRenderParams(const QueryParams& query) {
 FitParams parseFitParams(const std::string& body) {
     const nlohmann::json json = nlohmann::json::parse(body, nullptr, /*allow_exceptions=*/false);
     if (json.is_discarded() || !json.is_object()) bad("body must be a JSON object");
-    static const std::set<std::string> KNOWN{"dataset", "eps", "degree", "focus"};
+    static const std::set<std::string> KNOWN{"dataset", "frame", "eps", "degree", "focus"};
     for (const auto& item : json.items())
         if (!KNOWN.count(item.key())) bad("unknown field '" + item.key().substr(0, 32) + "'");
 
@@ -186,6 +194,12 @@ FitParams parseFitParams(const std::string& body) {
     p.dataset = dataset->get<std::string>();
     if (!isDatasetName(p.dataset)) bad("dataset must be a plain name of letters, digits, '_' and '-'");
 
+    if (const auto frame = json.find("frame"); frame != json.end()) {
+        if (!frame->is_number_integer() || frame->get<long long>() < 0 ||
+            frame->get<long long>() > std::numeric_limits<int>::max())
+            bad("frame must be a whole number >= 0 (a 3D volume of a 4D dataset)");
+        p.frame = static_cast<int>(frame->get<long long>());
+    }
     if (const auto eps = json.find("eps"); eps != json.end()) {
         if (eps->is_string()) {
             p.eps = parseEpsSpec(eps->get<std::string>());

@@ -24,6 +24,7 @@ using fit::EpsSpec;
 /// is a plain identifier.
 struct RenderParams : render::FrameRequest {
     std::string dataset;
+    int frame = 0; // the 3D volume of a 4D dataset (0-based), the query's frame=
     EpsSpec eps;
     bool epsGiven = false; // the query named eps (a .vots dataset refuses only an eps other than its own)
     int degree = DEFAULT_DEGREE;
@@ -33,6 +34,7 @@ struct RenderParams : render::FrameRequest {
 /// A typed POST /api/fit body.
 struct FitParams {
     std::string dataset;
+    int frame = 0; // the 3D volume of a 4D dataset (0-based)
     EpsSpec eps;
     int degree = DEFAULT_DEGREE;
     std::optional<fit::FocusRegion> focus; // {x,y,z,r} grid index units, eps in data units

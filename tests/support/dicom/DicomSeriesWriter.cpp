@@ -115,7 +115,11 @@ void writeSlice(const fit::Volume& volume, int z, int fileIndex, const std::stri
     }
     gdcm::DataSet& data = writer.GetFile().GetDataSet();
     setText(data, 0x0008, 0x0016, gdcm::VR::UI, "1.2.840.10008.5.1.4.1.1.2"); // CT Image Storage
-    setText(data, 0x0008, 0x0018, gdcm::VR::UI, o.seriesUid + "." + std::to_string(fileIndex + 1));
+    const std::string timePoint = o.temporalPosition > 0 ? std::to_string(o.temporalPosition) + "." : "";
+    setText(data, 0x0008, 0x0018, gdcm::VR::UI,
+            o.seriesUid + "." + timePoint + std::to_string(fileIndex + 1));
+    if (o.temporalPosition > 0)
+        setText(data, 0x0020, 0x0100, gdcm::VR::IS, std::to_string(o.temporalPosition));
     setText(data, 0x0008, 0x0060, gdcm::VR::CS, "CT");
     setText(data, 0x0008, 0x103e, gdcm::VR::LO, o.description);
     setText(data, 0x0010, 0x0010, gdcm::VR::PN, "Vots^Phantom");

@@ -33,6 +33,9 @@ struct DicomWriteOptions {
     // Slice z sits at origin + z * spacing[2] * normal, or against the normal (row x column) when false:
     // a grid whose third axis runs against the right-handed normal (left-handed storage) needs it.
     bool slicesAlongNormal = true;
+    // > 0: every slice is of this time point of a 4D series (TemporalPositionIdentifier, also in the SOP
+    // instance UIDs); the series' other time points are written with the same seriesUid and another prefix.
+    int temporalPosition = 0;
     // Broken series for the error tests; -1: none.
     int dropSlice = -1;     // this slice is not written (a gap in the positions)
     int resizeSlice = -1;   // this slice is one column narrower

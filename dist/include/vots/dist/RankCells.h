@@ -29,10 +29,10 @@ RankCells cellsOfRankInVolume(const std::string& path, int rank, int ranks,
 /// Planes [first, end] of the volume: the cells', with the plane they share with the next rank's.
 fit::Volume planesOfCells(const fit::Volume& volume, RankCells cells);
 /// The same planes read from the file, only their bytes where the format allows (fit::loadVolumePlanes),
-/// with the whole volume's grid.
+/// with the whole volume's grid; `frame` picks one 3D volume of a 4D file, as in fit::loadVolume.
 fit::PlanesOfGrid loadPlanesOfCells(const std::string& path, RankCells cells,
                                     const std::optional<fit::RawLayout>& raw, fit::SampleStorage storage,
-                                    const std::string& dicomSeries);
+                                    const std::string& dicomSeries, int frame = 0);
 /// Moves a Vot-Space fitted on the cells' planes into the grid of the whole (`whole`: its grid is enough).
 void placeCellsFitInGrid(fit::VotSpace& space, RankCells cells, const fit::Volume& whole);
 

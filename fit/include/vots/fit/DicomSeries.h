@@ -60,15 +60,19 @@ ScalarType dicomSampleType(int bitsStored, bool pixelsSigned, double slope, doub
 
 /// Loads the series: values in real units (RescaleSlope/Intercept), slices ordered by
 /// ImagePositionPatient along the slice normal, spacing from PixelSpacing and the slice positions,
-/// orientation from ImageOrientationPatient. Compressed transfer syntaxes GDCM decodes are read.
+/// orientation from ImageOrientationPatient. Compressed transfer syntaxes GDCM decodes are read. A series
+/// with as many images at every position (a 4D series: perfusion, cardiac phases) holds one frame per time
+/// point, ordered by TemporalPositionIdentifier, else AcquisitionTime, else InstanceNumber; `frame` picks
+/// one (dicomSeriesHeaderInfo says how many).
 Volume loadDicomSeries(const std::string& folder, const std::string& seriesUid = {},
-                       SampleStorage storage = SampleStorage::Float);
+                       SampleStorage storage = SampleStorage::Float, int frame = 0);
 
 /// Slices [first, last] of what loadDicomSeries gives, bit for bit, with the origin at slice `first`:
 /// every file's header is read to order the series, but only those slices' pixels are decoded, so a
 /// rank of `mpirun vots fit` holds its slab alone. `grid` receives the whole series' grid, without
 /// samples. Throws InputError as loadDicomSeries does, and for slices outside the series.
 Volume loadDicomSeriesPlanes(const std::string& folder, int first, int last, Volume& grid,
-                             const std::string& seriesUid = {}, SampleStorage storage = SampleStorage::Float);
+                             const std::string& seriesUid = {}, SampleStorage storage = SampleStorage::Float,
+                             int frame = 0);
 
 } // namespace vots::fit

@@ -81,6 +81,10 @@ struct FitOptions {
     int threads = 0;                      // 0: all hardware threads
     FitProgress progress;                 // empty: no reports
     const std::atomic<bool>* cancel = nullptr; // set to true to abandon the fit (throws FitCancelled)
+    /// What a cell with a non-finite corner counts as in the background fill; empty: the volume's lowest
+    /// finite sample. A rank fitting its planes gives the whole volume's, so the fill does not depend on
+    /// how the planes are shared out.
+    std::optional<float> noDataValue;
 };
 
 struct FitStats {

@@ -32,8 +32,9 @@ ScalarType parseScalarType(const std::string& text);
 /// Loads a volume. The format follows the extension: .nrrd/.nhdr, .nii/.nii.gz (NIfTI-1 and -2),
 /// .mgh/.mgz (FreeSurfer), .mhd/.mha; with a raw layout any file is read as raw samples; a folder is read
 /// as a DICOM series (loadDicomSeries in DicomSeries.h), `dicomSeries` picking one by UID when it holds
-/// several. `frame` (0-based) picks one 3D volume of a 4D NIfTI or MGH file; every other file has only
-/// frame 0. Throws InputError with a one-line message (a frame out of range names the frame count).
+/// several. `frame` (0-based) picks one 3D volume of a 4D NIfTI or MGH file or of a DICOM series with
+/// several images at each position (loadDicomSeries); every other file has only frame 0. Throws InputError
+/// with a one-line message (a frame out of range names the frame count).
 Volume loadVolume(const std::string& path, const std::optional<RawLayout>& raw = std::nullopt,
                   SampleStorage storage = SampleStorage::Float, const std::string& dicomSeries = {},
                   int frame = 0);

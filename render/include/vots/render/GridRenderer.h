@@ -36,6 +36,10 @@ public:
     /// cells alone. Under mpirun each rank draws its z cells this way; max, min or sum over the ranks' frames
     /// is the frame of the whole, as the chunks of one upload combine. Throws fit::InputError as upload.
     void uploadPlanes(const fit::Volume& planes, int firstPlane, const fit::Volume& whole);
+    /// What a non-finite sample's cell counts as in minip and aip until the next upload: by default the
+    /// uploaded samples' lowest finite one; under mpirun each rank sets the whole volume's, so that the
+    /// ranks' frames agree with the one-process frame.
+    void useNoDataValue(float value);
     /// The most z planes one texture holds at the next upload (0: from the GL limit and 1 GiB); for
     /// tests, which split small volumes.
     void setChunkPlaneLimit(int planes);
