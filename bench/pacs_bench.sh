@@ -52,7 +52,9 @@ serve() { # serve LOG ARGS... -> sets server, base
     "$vots" serve --port "$server_port" --cache-dir "$work/cache-$RANDOM" --no-warm-up "${@:2}" >"$1" 2>&1 &
     server=$!
     base=http://127.0.0.1:$server_port
-    until curl -sf "$base/api/datasets" >/dev/null; do
+    # /api/stats, not /api/datasets: listing the datasets loads them, and the folder's clock would then
+    # start with its series read already.
+    until curl -sf "$base/api/stats" >/dev/null; do
         kill -0 "$server" 2>/dev/null || { cat "$1"; exit 1; }
         sleep 0.1
     done
