@@ -52,13 +52,18 @@ serve() { # serve LOG ARGS... -> sets server, base
     "$vots" serve --port "$server_port" --cache-dir "$work/cache-$RANDOM" --no-warm-up "${@:2}" >"$1" 2>&1 &
     server=$!
     base=http://127.0.0.1:$server_port
-    until curl -sf "$base/api/datasets" >/dev/null; do
+    # /api/stats, not /api/datasets: listing the datasets loads them, and the folder's clock would then
+    # start with its series read already.
+    until curl -sf "$base/api/stats" >/dev/null; do
         kill -0 "$server" 2>/dev/null || { cat "$1"; exit 1; }
         sleep 0.1
     done
 }
-frame() { # frame DATASET QUERY -> HTTP status of one /render
-    curl -s -o /dev/null -w '%{http_code}' "$base/render?dataset=$1&size=$size&cam=az%3D30%2Cel%3D20&$2"
+frame() { # frame DATASET QUERY [CAMERA] -> "HTTP_STATUS FRAME_MS" of one /render (FRAME_MS: the render
+    # thread's upload and draw, X-Vots-Frame-Ms)
+    curl -s -o /dev/null -D "$work/headers" -w '%{http_code}' \
+        "$base/render?dataset=$1&size=$size&cam=${3:-az%3D30%2Cel%3D20}&$2"
+    printf ' %s' "$(tr -d '\r' <"$work/headers" | awk -F': ' 'tolower($1) == "x-vots-frame-ms" { print $2 }')"
 }
 peak_mib() { awk '/VmHWM/ { printf "%.0f", $2 / 1024 }' "/proc/$server/status"; }
 stop_server() {
@@ -70,16 +75,17 @@ first_images=() # "LABEL SECONDS" per open
 report() { # report LABEL START DATASET
     local grid vots first asked
     asked=$(now)
-    grid=$(frame "$3" "renderer=grid")
+    read -r grid frame_ms <<<"$(frame "$3" "renderer=grid")"
     first=$(since "$2")
     first_images+=("$1 $first")
-    printf '%-7s first image (grid) %6.2f s (HTTP %s; the request %.2f s)' "$1" "$first" "$grid" "$(since "$asked")"
+    printf '%-7s first image (grid) %6.2f s (HTTP %s; the request %.2f s, of which upload and draw %.2f s)' \
+        "$1" "$first" "$grid" "$(since "$asked")" "$(echo "${frame_ms:-0} / 1000" | bc -l)"
     local again
     again=$(now)
-    grid=$(curl -s -o /dev/null -w '%{http_code}' "$base/render?dataset=$3&size=$size&cam=az%3D60%2Cel%3D10&renderer=grid")
-    printf ', the next %.2f s (HTTP %s)' "$(since "$again")" "$grid"
+    read -r grid frame_ms <<<"$(frame "$3" "renderer=grid" "az%3D60%2Cel%3D10")"
+    printf ', the next %.2f s (HTTP %s, draw %.2f s)' "$(since "$again")" "$grid" "$(echo "${frame_ms:-0} / 1000" | bc -l)"
     if [[ -z ${VOTS_BENCH_FIRST_IMAGE_ONLY:-} ]]; then
-        vots=$(frame "$3" "eps=2%25")
+        read -r vots _ <<<"$(frame "$3" "eps=2%25")"
         printf '  first Vot frame %6.2f s (HTTP %s)' "$(since "$2")" "$vots"
     fi
     printf '  peak %s MiB\n' "$(peak_mib)"
@@ -92,6 +98,20 @@ for ((round = 1; round <= ${VOTS_BENCH_ROUNDS:-1}; ++round)); do
 serve "$work/folder.log" --data "$work/folder"
 report folder "$(now)" bench
 stop_server
+
+# What Orthanc and loopback alone take to announce the series (QIDO-RS, then its metadata) and to serve it:
+# the floor of any open.
+start=$(now)
+curl -fsS -u "vots:$password" -o /dev/null \
+    "http://127.0.0.1:$port/dicom-web/studies/$series_uid.0/series?SeriesInstanceUID=$series_uid&includefield=00201209"
+curl -fsS -u "vots:$password" -o /dev/null \
+    "http://127.0.0.1:$port/dicom-web/studies/$series_uid.0/series/$series_uid/metadata"
+printf 'orthanc series announcement alone (QIDO-RS and metadata, curl): %.2f s\n' "$(since "$start")"
+start=$(now)
+bytes=$(curl -sS -u "vots:$password" -o /dev/null -w '%{size_download}' \
+    -H 'Accept: multipart/related; type="application/dicom"; transfer-syntax=*' \
+    "http://127.0.0.1:$port/dicom-web/studies/$series_uid.0/series/$series_uid")
+printf 'orthanc series retrieve alone (curl to /dev/null): %.2f s for %s MB\n' "$(since "$start")" "$((bytes >> 20))"
 
 # The PACS: the clock starts at the open (announce, retrieve, load), as the viewer's "Open" does. A fresh
 # cache folder each time: the series is retrieved, never read from a kept copy.

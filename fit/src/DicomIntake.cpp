@@ -5,6 +5,7 @@
 #include "DicomChild.h"
 #include "DicomLayout.h"
 #include "DicomSlice.h"
+#include "SampleRange.h"
 
 #include "vots/fit/Error.h"
 
@@ -12,11 +13,14 @@
 #include <poll.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <array>
 #include <atomic>
 #include <cerrno>
 #include <cstring>
 #include <functional>
 #include <latch>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <thread>
@@ -80,7 +84,11 @@ struct DicomSeriesIntake::State {
 
     // Written by the decoding thread alone, read after it is joined.
     std::vector<DicomSliceHeader> images; // in arrival order
-    bool mismatch = false;                // a file is not of the announced grid
+    // Of each slot's slice as it lands, while the decoding thread would otherwise wait on the child: the
+    // volume's contentCrc and valueRange are then combined from them, not read again after the last one.
+    std::vector<std::uint32_t> sliceCrcs;
+    std::vector<std::array<float, 2>> sliceRanges;
+    bool mismatch = false; // a file is not of the announced grid
     std::exception_ptr failure;
     std::thread decoder;
 
@@ -138,6 +146,13 @@ struct DicomSeriesIntake::State {
         child.send(&end, sizeof end);
     }
 
+    void receiveStoredSlice(const DicomSliceHeader& header, detail::ParentReceiver& parent, std::size_t slot,
+                            std::vector<char>& buffer) {
+        receiveAt(header, parent, slot, buffer);
+        sliceCrcs[slot] = samples.planesCrc(static_cast<int>(slot), 1);
+        sliceRanges[slot] = finiteRange(samples, slot * pixels, (slot + 1) * pixels);
+    }
+
     void parentStores(detail::ParentReceiver& parent) {
         std::vector<float> scratch(pixels);
         std::vector<char> buffer;
@@ -166,7 +181,7 @@ struct DicomSeriesIntake::State {
             if (mismatch)
                 detail::receiveSlice(*header, pixels, parent, buffer, scratch.data());
             else
-                receiveAt(*header, parent, slot, buffer);
+                receiveStoredSlice(*header, parent, slot, buffer);
         }
     }
 };
@@ -177,6 +192,10 @@ DicomSeriesIntake::DicomSeriesIntake(const VolumeHeaderInfo& announced, SampleSt
     s.announced = announced;
     s.pixels = static_cast<std::size_t>(announced.dims[0] * announced.dims[1]);
     const std::size_t slices = static_cast<std::size_t>(announced.dims[2]);
+    for (int a = 0; a < 3; ++a)
+        s.samples.dims[a] = static_cast<int>(announced.dims[a]); // for planesCrc
+    s.sliceCrcs.resize(slices);
+    s.sliceRanges.resize(slices);
     detail::withStoredSamples(s.samples, announced.sourceType, storage, [&](auto& samples) {
         samples.resize(s.pixels * slices);
         s.receiveAt = [&s, &samples](const DicomSliceHeader& header, detail::ParentReceiver& parent,
@@ -283,9 +302,20 @@ DicomIntakeResult DicomSeriesIntake::finish(const std::string& name) {
         order.push_back(slotOf.at(slice.path));
     s.reorder(order);
     Volume volume = detail::gridOfLayout(layout, name);
+    std::uint32_t crc = volume.gridCrc();
+    std::array<float, 2> range{std::numeric_limits<float>::infinity(),
+                               -std::numeric_limits<float>::infinity()};
+    const std::uint64_t sliceBytes = s.pixels * sizeof(float); // contentCrc reads samples as floats
+    for (const std::size_t slot : order) {
+        crc = combineCrc(crc, s.sliceCrcs.at(slot), sliceBytes);
+        range = {std::min(range[0], s.sliceRanges.at(slot)[0]),
+                 std::max(range[1], s.sliceRanges.at(slot)[1])};
+    }
     volume.values = std::move(s.samples.values);
     volume.compact = std::move(s.samples.compact);
     result.volume = std::move(volume);
+    result.contentCrc = crc;
+    result.valueRange = usableRange(range);
     return result;
 }
 

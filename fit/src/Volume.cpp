@@ -7,6 +7,7 @@
 #include "Crc32.h"
 #include "SampleAccess.h"
 #include "SampleDecode.h"
+#include "SampleRange.h"
 
 #include <zlib.h>
 
@@ -33,13 +34,12 @@ std::size_t Volume::heldSamples() const {
         compact);
 }
 
-std::array<float, 2> Volume::valueRange() const {
-    const std::size_t count = heldSamples();
-    const auto range = visitSamples(*this, [count](const auto* samples) -> std::array<float, 2> {
+std::array<float, 2> finiteRange(const Volume& volume, std::size_t begin, std::size_t end) {
+    return visitSamples(volume, [begin, end](const auto* samples) -> std::array<float, 2> {
         // A plain min/max the compiler vectorises; std::minmax_element tracks positions and does not (a
         // fit calls this more than once, on its serial path). NaN and Inf samples are no data: skipped.
         float lo = std::numeric_limits<float>::infinity(), hi = -lo;
-        for (std::size_t i = 0; i < count; ++i) {
+        for (std::size_t i = begin; i < end; ++i) {
             const float v = sampleAsFloat(samples[i]);
             const bool finite = std::fabs(v) <= std::numeric_limits<float>::max();
             lo = finite ? std::min(lo, v) : lo;
@@ -47,8 +47,15 @@ std::array<float, 2> Volume::valueRange() const {
         }
         return {lo, hi};
     });
+}
+
+std::array<float, 2> usableRange(std::array<float, 2> range) {
     if (range[0] > range[1]) return {0.0f, 0.0f}; // no finite sample
     return range;
+}
+
+std::array<float, 2> Volume::valueRange() const {
+    return usableRange(finiteRange(*this, 0, heldSamples()));
 }
 
 std::size_t Volume::nonFiniteCount() const {

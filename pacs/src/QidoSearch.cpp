@@ -13,9 +13,17 @@
 namespace vots::pacs {
 namespace {
 
-bool isDate(const std::string& text) {
-    return text.size() == 8 &&
-           std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+/// A study date as QIDO-RS takes it (YYYYMMDD) from YYYYMMDD or YYYY-MM-DD (what a date input gives);
+/// empty stays empty (no bound).
+std::string qidoDate(const std::string& text) {
+    std::string date = text;
+    if (date.size() == 10 && date[4] == '-' && date[7] == '-')
+        date = date.substr(0, 4) + date.substr(5, 2) + date.substr(8, 2);
+    const bool digits = std::all_of(date.begin(), date.end(), [](char c) { return c >= '0' && c <= '9'; });
+    if (!date.empty() && (date.size() != 8 || !digits))
+        throw PacsError(PacsFailure::BadRequest,
+                        "study date '" + text.substr(0, 40) + "' is not YYYYMMDD or YYYY-MM-DD");
+    return date;
 }
 
 void addParameter(std::string& query, const std::string& key, const std::string& value) {
@@ -31,16 +39,12 @@ int countOf(const nlohmann::json& dataset, const char* tag) {
 
 std::vector<StudySummary> searchStudies(const DicomWebEndpoint& endpoint, const DicomWebAccess& access,
                                         const StudyQuery& q) {
-    for (const std::string* date : {&q.studyDateFrom, &q.studyDateTo})
-        if (!date->empty() && !isDate(*date))
-            throw PacsError(PacsFailure::BadRequest,
-                            "study date '" + date->substr(0, 40) + "' is not YYYYMMDD");
+    const std::string dateFrom = qidoDate(q.studyDateFrom), dateTo = qidoDate(q.studyDateTo);
     if (q.limit < 1) throw PacsError(PacsFailure::BadRequest, "a study search needs a limit of at least 1");
     std::string query;
     addParameter(query, "PatientName", q.patientName);
     addParameter(query, "PatientID", q.patientId);
-    if (!q.studyDateFrom.empty() || !q.studyDateTo.empty())
-        addParameter(query, "StudyDate", q.studyDateFrom + "-" + q.studyDateTo);
+    if (!dateFrom.empty() || !dateTo.empty()) addParameter(query, "StudyDate", dateFrom + "-" + dateTo);
     addParameter(query, "ModalitiesInStudy", q.modality);
     addParameter(query, "AccessionNumber", q.accessionNumber);
     addParameter(query, "limit", std::to_string(q.limit));

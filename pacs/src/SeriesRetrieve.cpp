@@ -110,8 +110,8 @@ std::optional<PacsError> retrieveEach(const DicomWebSeries& series, const DicomW
 
 RetrievedSeries retrieveSeries(const DicomWebSeries& series, const DicomWebAccess& access,
                                const SeriesRetrieveOptions& options) {
-    DicomWebConnection connection(series.endpoint, access);
-    const SeriesAnnouncement announced = announceSeries(connection, series);
+    const SeriesAnnouncement announced =
+        options.announced ? *options.announced : announceSeries(series, access);
     if (options.admit) options.admit(announced.grid);
 
     RetrievedSeries retrieved{SpoolFolder(options.spoolParent)};

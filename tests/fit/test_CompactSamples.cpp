@@ -5,11 +5,14 @@
 #include "vots/fit/VolumeLoad.h"
 
 #include "CellMask.h"
+#include "SampleRange.h"
 #include "TempDir.h"
 #include "VolumeFixtures.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -110,6 +113,17 @@ TEST_P(CompactSamples, FitIsTheSameAsFromFloats) {
         EXPECT_EQ(chained, asFloat.contentCrc());
         EXPECT_NE(combineCrc(asSource.gridCrc(), asSource.planesCrc(0, 37), planeBytes * 37), chained);
         EXPECT_THROW(asSource.planesCrc(30, 9), InputError);
+        // The range in runs too: min and max of the runs' is the volume's; an empty run has none.
+        const std::size_t plane = std::size_t{DIMS[0]} * DIMS[1];
+        std::array<float, 2> runs{INFINITY, -INFINITY};
+        for (const auto& [first, count] : {std::pair{0, 7}, {7, 0}, {7, 20}, {27, 11}}) {
+            const std::array<float, 2> run = finiteRange(asSource, plane * first, plane * (first + count));
+            runs = {std::min(runs[0], run[0]), std::max(runs[1], run[1])};
+        }
+        EXPECT_EQ(usableRange(runs), asFloat.valueRange());
+        EXPECT_GT(finiteRange(asSource, plane * 7, plane * 7)[0],
+                  finiteRange(asSource, plane * 7, plane * 7)[1]);
+        EXPECT_EQ(usableRange(finiteRange(asSource, plane * 7, plane * 7)), (std::array<float, 2>{0.f, 0.f}));
         EXPECT_EQ(asSource.at(35, 22, 19), asFloat.at(35, 22, 19));
         EXPECT_EQ(asSource.at(69, 44, 37), asFloat.at(69, 44, 37));
         // The fast method only: the paper method fits boxes with the same BoxFitter and reads the same

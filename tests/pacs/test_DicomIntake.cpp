@@ -75,6 +75,10 @@ TEST_F(DicomIntake, FilesInAnyOrderGiveTheFolderReadersVolume) {
     ASSERT_TRUE(mFolderRead.isCompact());
     EXPECT_TRUE(read.volume->compact == mFolderRead.compact) << "the samples differ from the folder's";
     EXPECT_EQ(read.volume->contentCrc(), mFolderRead.contentCrc());
+    // Combined from the slices in arrival order, then put in z order: the volume's own.
+    EXPECT_EQ(read.contentCrc, mFolderRead.contentCrc());
+    EXPECT_EQ(read.valueRange, mFolderRead.valueRange());
+    EXPECT_NE(read.valueRange[0], read.valueRange[1]);
 }
 
 TEST_F(DicomIntake, FloatStorageMatchesTheFolderReaderToo) {
@@ -85,6 +89,8 @@ TEST_F(DicomIntake, FloatStorageMatchesTheFolderReaderToo) {
     const fit::DicomIntakeResult read = intake.finish("series");
     ASSERT_TRUE(read.volume.has_value());
     EXPECT_EQ(read.volume->values, floats.values);
+    EXPECT_EQ(read.contentCrc, floats.contentCrc());
+    EXPECT_EQ(read.valueRange, floats.valueRange());
 }
 
 TEST_F(DicomIntake, AnotherGridThanAnnouncedIsLeftToTheFolderReader) {

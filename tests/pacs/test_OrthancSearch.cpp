@@ -47,6 +47,12 @@ TEST(OrthancSearch, FiltersStudiesByModalityAndDate) {
     around.studyDateFrom = date;
     around.studyDateTo = date;
     EXPECT_FALSE(searchStudies(orthancEndpoint(), orthancAccess(), around).empty());
+    // As a browser's date input gives it: the same search.
+    StudyQuery dashed;
+    dashed.studyDateFrom = date.substr(0, 4) + "-" + date.substr(4, 2) + "-" + date.substr(6, 2);
+    dashed.studyDateTo = dashed.studyDateFrom;
+    EXPECT_EQ(searchStudies(orthancEndpoint(), orthancAccess(), dashed).size(),
+              searchStudies(orthancEndpoint(), orthancAccess(), around).size());
     StudyQuery limited;
     limited.limit = 1;
     EXPECT_EQ(searchStudies(orthancEndpoint(), orthancAccess(), limited).size(), 1u);
@@ -90,9 +96,12 @@ TEST(OrthancSearch, RefusedCredentialsAreOneLineWithoutThePassword) {
         EXPECT_NE(message.find("401"), std::string::npos) << message;
         EXPECT_EQ(message.find(password), std::string::npos) << message;
     }
-    StudyQuery badDate;
-    badDate.studyDateFrom = "2024-01-01";
-    EXPECT_THROW(searchStudies(orthancEndpoint(), orthancAccess(), badDate), vots::fit::InputError);
+    for (const char* notADate : {"2024-1-1", "yesterday", "2024010"}) {
+        StudyQuery badDate;
+        badDate.studyDateFrom = notADate;
+        EXPECT_THROW(searchStudies(orthancEndpoint(), orthancAccess(), badDate), vots::fit::InputError)
+            << notADate;
+    }
 }
 
 } // namespace

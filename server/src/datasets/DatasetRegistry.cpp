@@ -44,10 +44,12 @@ void describeRange(Dataset& dataset, std::array<float, 2> range) {
     dataset.presets = windowPresets(range, dataset.isCt);
 }
 
-/// The dataset of a volume loaded from `path`.
+/// The dataset of a volume loaded from `path`; `known`: its value range and content CRC when its reader
+/// gave them already (they are read from the samples otherwise).
 std::shared_ptr<Dataset> datasetOfVolume(const std::string& name, const fs::path& path,
                                          const std::string& dicomSeries, const fit::VolumeHeaderInfo& header,
-                                         std::shared_ptr<const fit::Volume> volume) {
+                                         std::shared_ptr<const fit::Volume> volume,
+                                         const std::optional<VolumeSummary>& known = std::nullopt) {
     auto dataset = std::make_shared<Dataset>();
     dataset->loadAndFitBytes = fit::estimateLoadAndFitBytes(header, DATASET_STORAGE);
     const std::uint64_t held = fit::estimateLoadedVolumeBytes(header, DATASET_STORAGE);
@@ -55,8 +57,8 @@ std::shared_ptr<Dataset> datasetOfVolume(const std::string& name, const fs::path
     dataset->name = name;
     dataset->path = path;
     dataset->dicomSeries = dicomSeries;
-    describeRange(*dataset, volume->valueRange());
-    dataset->contentCrc = volume->contentCrc();
+    describeRange(*dataset, known ? known->valueRange : volume->valueRange());
+    dataset->contentCrc = known ? known->contentCrc : volume->contentCrc();
     dataset->volume = std::move(volume);
     return dataset;
 }
@@ -220,7 +222,7 @@ void DatasetRegistry::offerDicomFolder(const std::string& name, const fs::path& 
 }
 
 void DatasetRegistry::offerLoadedDicomFolder(const std::string& name, const fs::path& folder,
-                                             fit::Volume volume) {
+                                             fit::Volume volume, const VolumeSummary& summary) {
     offerDicomFolder(name, folder);
     if (mRanks) return; // the ranks read the folder themselves
     Entry* entry = nullptr;
@@ -234,7 +236,7 @@ void DatasetRegistry::offerLoadedDicomFolder(const std::string& name, const fs::
     header.sourceType = volume.sourceType;
     std::lock_guard loadLock(entry->loadMutex);
     auto dataset =
-        datasetOfVolume(name, folder, {}, header, std::make_shared<fit::Volume>(std::move(volume)));
+        datasetOfVolume(name, folder, {}, header, std::make_shared<fit::Volume>(std::move(volume)), summary);
     std::lock_guard lock(mMutex);
     entry->header = header;
     entry->dataset = std::move(dataset);

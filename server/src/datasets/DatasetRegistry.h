@@ -13,6 +13,7 @@
 #include "vots/render/DisplaySettings.h"
 
 #include <array>
+#include <cstdint>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -81,6 +82,12 @@ std::uint64_t estimateVotsLoadBytes(std::uint64_t fileBytes);
 std::map<std::string, std::string> dicomDatasetNames(const std::string& folderName,
                                                      const std::vector<fit::DicomSeriesSummary>& series);
 
+/// What a reader may give with a volume so that it is not read again for them.
+struct VolumeSummary {
+    std::array<float, 2> valueRange{0.f, 0.f}; // fit::Volume::valueRange()
+    std::uint32_t contentCrc = 0;              // fit::Volume::contentCrc()
+};
+
 class DatasetRegistry {
 public:
     DatasetRegistry(const std::vector<std::filesystem::path>& dataDirs, MemoryAdmission& memory);
@@ -93,9 +100,10 @@ public:
     /// series changed on the PACS), it is read from `folder` from now on.
     void offerDicomFolder(const std::string& name, const std::filesystem::path& folder);
     /// The same with the folder's series read already (as its files arrived from the PACS), in
-    /// DATASET_STORAGE: find() answers it without reading the folder again.
+    /// DATASET_STORAGE, and `summary` its valueRange() and contentCrc(): find() answers it without
+    /// reading the folder or the samples again.
     void offerLoadedDicomFolder(const std::string& name, const std::filesystem::path& folder,
-                                fit::Volume volume);
+                                fit::Volume volume, const VolumeSummary& summary);
 
     /// All names found, sorted.
     std::vector<std::string> names() const;

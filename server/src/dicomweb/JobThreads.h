@@ -1,16 +1,19 @@
-// The thread-per-job bookkeeping the PACS opens and sends share: forgetting finished jobs, joining at the
-// end.
+// The thread-per-job bookkeeping the PACS opens and sends share: how a job ends, forgetting finished jobs,
+// joining at the end.
 #pragma once
 
 #include "HttpError.h"
+#include "dicomweb/PacsFailure.h"
 
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <deque>
+#include <exception>
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 
 namespace vots::server {
@@ -40,6 +43,25 @@ void forgetFinishedJobs(JobsById<Job>& jobs, std::deque<std::uint64_t>& finished
         forgotten->second->thread.join();
         jobs.erase(forgotten);
     }
+}
+
+/// How the job's thread ends, under `mutex`: a job that threw `failure` is Cancelled when `cancelled`, else
+/// Failed with the HTTP status and message pacsFailure maps the failure to; then it is no longer running,
+/// and the oldest finished jobs beyond `keep` are forgotten (forgetFinishedJobs). Call last in the thread.
+template <class Job>
+void endJob(std::mutex& mutex, JobsById<Job>& jobs, std::deque<std::uint64_t>& finished, int& running,
+            Job& job, std::exception_ptr failure, bool cancelled, std::size_t keep) {
+    using State = decltype(job.visible.state);
+    const std::optional<HttpError> error =
+        failure ? std::optional<HttpError>(pacsFailure(failure)) : std::nullopt;
+    std::lock_guard lock(mutex);
+    if (error) {
+        job.visible.state = cancelled ? State::Cancelled : State::Failed;
+        job.visible.errorStatus = cancelled ? 0 : error->status();
+        job.visible.error = cancelled ? "cancelled" : error->what();
+    }
+    --running;
+    forgetFinishedJobs(jobs, finished, job.visible.id, keep);
 }
 
 /// Sets every job's `stop` flag and joins every thread, outside the lock (a job's last update takes it).

@@ -3,7 +3,6 @@
 
 #include "HttpError.h"
 #include "dicomweb/JobThreads.h"
-#include "dicomweb/PacsFailure.h"
 
 #include "vots/fit/DicomIntake.h"
 #include "vots/fit/MemoryBudget.h"
@@ -86,6 +85,7 @@ void SeriesOpenJobs::run(Job& job) {
     const DicomWebService& service = this->service(job.visible.service);
     const pacs::DicomWebSeries series{service.endpoint, job.visible.studyUid, job.visible.seriesUid};
     const std::string name = pacsDatasetName(service.name, series.seriesUid);
+    std::exception_ptr failure;
     try {
         update(job, [](SeriesOpenSnapshot& s) { s.state = SeriesOpenState::Announcing; });
         // QIDO and the series' metadata only: enough to know whether the kept copy is still the series.
@@ -108,6 +108,7 @@ void SeriesOpenJobs::run(Job& job) {
             fit::DicomIntakeResult read;
             pacs::SeriesRetrieveOptions options;
             options.spoolParent = mCache->spoolParent().string();
+            options.announced = announced;
             options.cancel = &job.cancel;
             options.admit = [&](const fit::VolumeHeaderInfo& grid) {
                 reserved = mMemory.admit(fit::estimateLoadAndFitBytes(grid, DATASET_STORAGE),
@@ -130,7 +131,8 @@ void SeriesOpenJobs::run(Job& job) {
                                   announced.sopInstanceUids, retrieved);
             if (read.volume) {
                 read.volume->name = folder->filename().string(); // as the folder's reader names it
-                mRegistry.offerLoadedDicomFolder(name, *folder, std::move(*read.volume));
+                mRegistry.offerLoadedDicomFolder(name, *folder, std::move(*read.volume),
+                                                 {read.valueRange, read.contentCrc});
                 readAlready = true;
             }
         }
@@ -143,17 +145,9 @@ void SeriesOpenJobs::run(Job& job) {
             s.state = SeriesOpenState::Done;
         });
     } catch (...) {
-        const HttpError failure = pacsFailure(std::current_exception());
-        const bool cancelled = job.cancel.load();
-        update(job, [&](SeriesOpenSnapshot& s) {
-            s.state = cancelled ? SeriesOpenState::Cancelled : SeriesOpenState::Failed;
-            s.errorStatus = cancelled ? 0 : failure.status();
-            s.error = cancelled ? "cancelled" : failure.what();
-        });
+        failure = std::current_exception();
     }
-    std::lock_guard lock(mMutex);
-    --mRunning;
-    forgetFinishedJobs(mJobs, mFinished, job.visible.id, KEEP_FINISHED);
+    endJob(mMutex, mJobs, mFinished, mRunning, job, failure, job.cancel.load(), KEEP_FINISHED);
 }
 
 SeriesOpenSnapshot SeriesOpenJobs::snapshot(std::uint64_t id) const {

@@ -3,7 +3,6 @@
 
 #include "HttpError.h"
 #include "dicomweb/JobThreads.h"
-#include "dicomweb/PacsFailure.h"
 
 namespace vots::server {
 
@@ -32,21 +31,14 @@ void SweepStoreJobs::run(Job& job, const Work& work) {
         std::lock_guard lock(mMutex);
         change(job.visible);
     };
+    std::exception_ptr failure;
     try {
         work(update, job.stop);
         update([](SweepStoreSnapshot& s) { s.state = SweepStoreState::Done; });
     } catch (...) {
-        const HttpError failure = pacsFailure(std::current_exception());
-        const bool cancelled = job.cancelled.load();
-        update([&](SweepStoreSnapshot& s) {
-            s.state = cancelled ? SweepStoreState::Cancelled : SweepStoreState::Failed;
-            s.errorStatus = cancelled ? 0 : failure.status();
-            s.error = cancelled ? "cancelled" : failure.what();
-        });
+        failure = std::current_exception();
     }
-    std::lock_guard lock(mMutex);
-    --mRunning;
-    forgetFinishedJobs(mJobs, mFinished, job.visible.id, KEEP_FINISHED);
+    endJob(mMutex, mJobs, mFinished, mRunning, job, failure, job.cancelled.load(), KEEP_FINISHED);
 }
 
 SweepStoreSnapshot SweepStoreJobs::snapshot(std::uint64_t id) const {

@@ -29,17 +29,6 @@ std::string fieldParam(const httplib::Request& req, const char* name) {
     return value;
 }
 
-/// A date as YYYYMMDD or YYYY-MM-DD (what a date input gives), returned as YYYYMMDD; empty: none.
-std::string dateParam(const httplib::Request& req, const char* name) {
-    std::string value = req.get_param_value(name);
-    if (value.size() == 10 && value[4] == '-' && value[7] == '-')
-        value = value.substr(0, 4) + value.substr(5, 2) + value.substr(8, 2);
-    const bool digits = std::all_of(value.begin(), value.end(), [](char c) { return c >= '0' && c <= '9'; });
-    if (!value.empty() && (value.size() != 8 || !digits))
-        throw HttpError(400, std::string(name) + ": a date is YYYYMMDD or YYYY-MM-DD");
-    return value;
-}
-
 int limitParam(const httplib::Request& req) {
     if (!req.has_param("limit")) return 100;
     const std::string text = req.get_param_value("limit");
@@ -118,8 +107,8 @@ void installPacsRoutes(Server::Impl& s) {
         pacs::StudyQuery query;
         query.patientName = fieldParam(req, "patientName");
         query.patientId = fieldParam(req, "patientId");
-        query.studyDateFrom = dateParam(req, "dateFrom");
-        query.studyDateTo = dateParam(req, "dateTo");
+        query.studyDateFrom = fieldParam(req, "dateFrom"); // its form is searchStudies' to check
+        query.studyDateTo = fieldParam(req, "dateTo");
         query.modality = fieldParam(req, "modality");
         query.accessionNumber = fieldParam(req, "accessionNumber");
         query.limit = limitParam(req);

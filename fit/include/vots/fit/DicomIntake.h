@@ -6,6 +6,8 @@
 #include "vots/fit/VolumeHeader.h"
 #include "vots/fit/VolumeLoad.h"
 
+#include <array>
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -18,6 +20,9 @@ struct DicomIntakeResult {
     /// the files are not the announced grid (another image size, sample type or count): read them as a
     /// folder then, which names the problem.
     std::optional<Volume> volume;
+    /// With a volume: its contentCrc() and valueRange(), combined from each slice's as it arrived.
+    std::uint32_t contentCrc = 0;
+    std::array<float, 2> valueRange{0.f, 0.f};
     int images = 0; // files that were DICOM images
     int files = 0;  // files added
 };

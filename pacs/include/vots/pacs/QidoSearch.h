@@ -9,7 +9,7 @@
 
 namespace vots::pacs {
 
-/// Empty fields do not constrain. Names may hold the wildcards * and ?; dates are YYYYMMDD.
+/// Empty fields do not constrain. Names may hold the wildcards * and ?; dates are YYYYMMDD or YYYY-MM-DD.
 struct StudyQuery {
     std::string patientName;
     std::string patientId;

@@ -8,6 +8,7 @@
 
 #include <atomic>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,10 @@ SeriesAnnouncement announceSeries(const DicomWebSeries& series, const DicomWebAc
 
 struct SeriesRetrieveOptions {
     std::string spoolParent; // where the spool folder is made; empty: $TMPDIR or /tmp
+    /// The series' announcement when the caller has just asked for it (announceSeries): the retrieve
+    /// then starts on the pixels at once instead of asking again (QIDO and metadata: a second or more
+    /// for a thousand instances). Empty: the retrieve announces the series itself.
+    std::optional<SeriesAnnouncement> announced;
     /// Called with the announced grid before the pixels are asked for; throws to refuse (memory budget).
     std::function<void(const fit::VolumeHeaderInfo&)> admit;
     /// Instances received so far and the series' count; called from the retrieving threads, in order.
