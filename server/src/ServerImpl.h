@@ -47,12 +47,14 @@ struct Server::Impl {
     std::atomic<int> listenSocket{-1};        // the socket httplib binds, so its backlog can be raised
     std::thread readyingStartup;            // readyStartupDataset(options.startupDataset); joined by ~Server
     std::unique_ptr<ViewerStreams> viewers; // GET /api/stream's sockets; after the parts their frames use
+    std::unique_ptr<TlsContext> tls;        // HTTPS; null for plain HTTP
     GatedHttpServer http;                   // destroyed first: no handler runs after the rest is gone
 };
 
 // Route installers, one file each.
 void installDatasetRoutes(Server::Impl& s);  // GET /api/datasets
 void installStatsRoute(Server::Impl& s);     // GET /api/stats
+void installAccessRoute(Server::Impl& s);    // GET /api/access
 void installRenderRoute(Server::Impl& s);    // GET /render
 void installTurntableRoute(Server::Impl& s); // GET /turntable
 void installJobRoutes(Server::Impl& s);      // POST /api/fit, GET /api/jobs/{id}, GET /api/jobs/{id}/events
