@@ -45,6 +45,8 @@ struct ServeArgs {
     std::string tlsCert, tlsKey;
     bool insecureHttp = false;
     std::string behindProxy;
+    std::string auditLog;
+    int auditLogMb = 64;
     std::vector<std::string> allowHosts;
     std::string memoryBudget; // empty: the default
     int rendersPerClient = server::ServerOptions{}.maxRendersPerClient;
@@ -135,6 +137,8 @@ void runServe(const ServeArgs& a) {
     options.tlsCertificate = a.tlsCert;
     options.tlsKey = a.tlsKey;
     options.trustedProxy = a.behindProxy;
+    options.auditLog = a.auditLog;
+    options.auditLogBytes = static_cast<std::uint64_t>(a.auditLogMb) << 20;
     refuseCleartextBeyondLoopback(a);
     options.maxRendersPerClient = a.rendersPerClient;
     options.maxFitsPerClient = a.fitsPerClient;
@@ -251,6 +255,12 @@ void addServeCommand(CLI::App& app) {
         "--behind-proxy", args->behindProxy,
         "Address of a reverse proxy that terminates TLS: its requests are taken to come from "
         "the last X-Forwarded-For address (quotas); serving beyond loopback then needs no TLS here");
+    cmd->add_option("--audit-log", args->auditLog,
+                    "File to append one JSON line to per access to patient data (who, from where, which "
+                    "dataset or study, what, the status); data requests get 503 while it cannot be written");
+    cmd->add_option("--audit-log-mb", args->auditLogMb, "Size beyond which the audit log becomes FILE.1")
+        ->check(CLI::Range(1, 1 << 20))
+        ->capture_default_str();
     cmd->add_option(
         "--allow-host", args->allowHosts,
         "Host name the server also answers to, as NAME (any port) or NAME:PORT (repeatable; "

@@ -93,6 +93,8 @@ Server::Impl::Impl(ServerOptions opts)
                 return fitOnRanks(*this, dataset, key, progress);
             });
     cache.deferDiskWritesWhile([this] { return foreground.busyWithin(DISK_WRITE_QUIET); });
+    if (!options.auditLog.empty())
+        audit = std::make_unique<AuditLog>(options.auditLog, options.auditLogBytes);
 }
 
 std::vector<fs::path> defaultDataDirs() {
@@ -136,6 +138,10 @@ Server::Server(ServerOptions options) : mImpl(std::make_unique<Impl>(std::move(o
     http.set_pre_routing_handler([&s](const httplib::Request& req, httplib::Response& res) {
         if (isApiPath(req.path)) {
             if (const auto refused = screenApiRequest(s, req)) return refuse(res, *refused);
+            // Never serve patient data unaudited.
+            if (s.audit && auditAction(req.method, req.path) && !s.audit->ready())
+                return refuse(res,
+                              Refusal{503, "the audit log cannot be written; data requests are refused"});
             return httplib::Server::HandlerResponse::Unhandled;
         }
         if (const auto refused = screenTarget(req)) return refuse(res, *refused);
@@ -156,6 +162,11 @@ Server::Server(ServerOptions options) : mImpl(std::make_unique<Impl>(std::move(o
         return httplib::Server::HandlerResponse::Handled;
     };
     http.set_error_handler(onError);
+    if (s.audit)
+        http.set_logger([&s](const httplib::Request& req, const httplib::Response& res) {
+            if (const auto action = auditAction(req.method, req.path))
+                s.audit->write(auditLine(*action, req, res, s.guard.tokenOf(req)));
+        });
     http.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr error) {
         sendException(res, error);
     });

@@ -55,6 +55,10 @@ struct ServerOptions {
     std::vector<AccessToken> accessTokens;
     // HTTPS (`--tls-cert`, `--tls-key`): PEM certificate chain and key; both empty: plain HTTP.
     std::filesystem::path tlsCertificate, tlsKey;
+    // `--audit-log FILE`: one JSON line per access to patient data; empty: none. Beyond auditLogBytes the
+    // file becomes FILE.1 and a new one is begun.
+    std::filesystem::path auditLog;
+    std::uint64_t auditLogBytes = std::uint64_t{64} << 20;
     // `--behind-proxy ADDR`: requests from this address carry their client in X-Forwarded-For.
     std::string trustedProxy;
     // Loads and fits are refused (507) when their estimate from the header exceeds the budget minus the
