@@ -1,5 +1,5 @@
 // forwardedClient: only the last X-Forwarded-For entry (the one the trusted proxy wrote) counts.
-#include "connection/ForwardedClient.h"
+#include "connection/RequestHead.h"
 
 #include <gtest/gtest.h>
 
