@@ -42,6 +42,11 @@ struct ServeArgs {
     std::string norm{fit::nameOf(fit::SERVE_FIT_NORM)};
     std::string prepare = "cranium"; // the viewer's first dataset when the data folders have it
     std::string tokenFile;
+    std::string tlsCert, tlsKey;
+    bool insecureHttp = false;
+    std::string behindProxy;
+    std::string auditLog;
+    int auditLogMb = 64;
     std::vector<std::string> allowHosts;
     std::string memoryBudget; // empty: the default
     int rendersPerClient = server::ServerOptions{}.maxRendersPerClient;
@@ -85,6 +90,19 @@ dist::RankSetup rankSetupOf(const ServeArgs& a) {
     return setup;
 }
 
+/// Beyond loopback the token and the images would cross the network in clear: only with TLS, behind a
+/// proxy that terminates it, or when the operator says so (--insecure-http, warned about).
+void refuseCleartextBeyondLoopback(const ServeArgs& a) {
+    if (server::isLoopbackHost(a.host) || !a.tlsCert.empty() || !a.behindProxy.empty()) return;
+    if (!a.insecureHttp)
+        throw fit::InputError(
+            "serving on " + a.host +
+            " beyond loopback needs HTTPS: give --tls-cert and --tls-key, or --behind-proxy "
+            "ADDR for a reverse proxy that terminates TLS, or --insecure-http to serve in clear");
+    std::cerr << "vots serve: warning: --insecure-http: the access token and the images cross the network "
+                 "unencrypted\n";
+}
+
 void runServe(const ServeArgs& a) {
     const dist::MpiWorld& world = dist::MpiWorld::get();
     std::shared_ptr<dist::MpiFrameRanks> ranks;
@@ -116,13 +134,20 @@ void runServe(const ServeArgs& a) {
     options.fitNorm = fit::parseName<fit::FitNorm>(a.norm);
     options.startupDataset = a.prepare;
     options.allowedHosts = a.allowHosts;
+    options.tlsCertificate = a.tlsCert;
+    options.tlsKey = a.tlsKey;
+    options.trustedProxy = a.behindProxy;
+    options.auditLog = a.auditLog;
+    options.auditLogBytes = static_cast<std::uint64_t>(a.auditLogMb) << 20;
+    refuseCleartextBeyondLoopback(a);
     options.maxRendersPerClient = a.rendersPerClient;
     options.maxFitsPerClient = a.fitsPerClient;
     // Beyond loopback anyone on the network could read the images and start fits: a token is required,
     // the given one or else a fresh one, which only this process ever shows.
     const bool generatedToken = a.tokenFile.empty() && !server::isLoopbackHost(a.host);
-    if (!a.tokenFile.empty()) options.accessToken = server::readAccessTokenFile(a.tokenFile);
-    if (generatedToken) options.accessToken = server::generateAccessToken();
+    if (!a.tokenFile.empty()) options.accessTokens = server::readAccessTokenFile(a.tokenFile);
+    if (generatedToken)
+        options.accessTokens = {{"operator", server::Role::Operator, server::generateAccessToken()}};
     options.memoryBudgetBytes = resolveMemoryBudget(a.memoryBudget);
     options.dicomWebServices = dicomWebServicesOf(a.dicomWeb);
     options.retrievedSeriesBytes = static_cast<std::uint64_t>(a.dicomWeb.cacheGb) << 30;
@@ -138,6 +163,7 @@ void runServe(const ServeArgs& a) {
     sigemptyset(&stopSignals);
     sigaddset(&stopSignals, SIGINT);
     sigaddset(&stopSignals, SIGTERM);
+    sigaddset(&stopSignals, SIGHUP); // not a stop: the TLS certificate and key are read again
     pthread_sigmask(SIG_BLOCK, &stopSignals, nullptr);
 
     server::Server srv(options);
@@ -149,15 +175,15 @@ void runServe(const ServeArgs& a) {
         throw fit::InputError("cannot listen on " + a.host + ":" + std::to_string(port) +
                               " (in use, or not an address of this machine)");
     }
-    const std::string url = "http://" + urlAuthority(a.host, port) + "/";
+    const std::string url = (srv.servesTls() ? "https://" : "http://") + urlAuthority(a.host, port) + "/";
     std::cout << "vots serve: listening on " << url << "\n"
               << "  data:  " << joined(options.dataDirs) << "\n"
               << "  web:   " << (options.webDir.empty() ? "(none)" : options.webDir.string()) << "\n"
               << "  cache: " << options.cacheDir.string() << "\n"
               << "  token: "
-              << (options.accessToken.empty() ? "none (loopback only)"
-                  : generatedToken            ? "required, generated (printed once on stderr)"
-                                              : "required, from " + a.tokenFile)
+              << (options.accessTokens.empty() ? "none (loopback only)"
+                  : generatedToken             ? "required, generated (printed once on stderr)"
+                                               : "required, from " + a.tokenFile)
               << "\n"
               << "  memory budget: " << fit::formatBytes(srv.memoryBudget())
               << (a.memoryBudget.empty() ? " (default: 80 % of the memory available)" : "") << "\n"
@@ -169,9 +195,9 @@ void runServe(const ServeArgs& a) {
                   << "' drawn from every rank's z cells and composited here\n";
     std::cout << std::flush;
     if (generatedToken)
-        std::cerr << "vots serve: access token: " << options.accessToken << "\n"
+        std::cerr << "vots serve: access token: " << options.accessTokens[0].token << "\n"
                   << "  send 'Authorization: Bearer TOKEN', or open the viewer at " << url
-                  << "#token=" << options.accessToken << std::endl;
+                  << "#token=" << options.accessTokens[0].token << std::endl;
 
     std::atomic<bool> stopping{false};
     std::thread listener([&srv, &stopping] {
@@ -182,7 +208,15 @@ void runServe(const ServeArgs& a) {
         if (!stopping) ::kill(::getpid(), SIGTERM);
     });
     int signal = 0;
-    sigwait(&stopSignals, &signal);
+    while (sigwait(&stopSignals, &signal) == 0 && signal == SIGHUP) {
+        try {
+            srv.reloadTls();
+            if (srv.servesTls()) std::cout << "vots serve: TLS certificate and key read again" << std::endl;
+        } catch (const fit::InputError& e) {
+            std::cerr << "vots serve: " << e.what() << "; the previous certificate stays in force"
+                      << std::endl;
+        }
+    }
     std::cout << "vots serve: stopping" << std::endl;
     stopping = true;
     srv.stop();
@@ -202,10 +236,31 @@ void addServeCommand(CLI::App& app) {
     cmd->add_option("--port", args->port, "TCP port (0: any free port)")
         ->check(CLI::Range(0, 65535))
         ->capture_default_str();
-    cmd->add_option("--token-file", args->tokenFile,
-                    "File holding the access token (16..256 of A-Za-z0-9-._~+/=) that every API request must "
-                    "show as 'Authorization: Bearer TOKEN' or token=TOKEN; the viewer takes it from its "
-                    "URL's #token=TOKEN. Also asks for a token on loopback");
+    cmd->add_option(
+        "--token-file", args->tokenFile,
+        "File holding the access token (16..256 of A-Za-z0-9-._~+/=) that every API request must "
+        "show as 'Authorization: Bearer TOKEN' or token=TOKEN; the viewer takes it from its "
+        "URL's #token=TOKEN. Also asks for a token on loopback. Or lines 'NAME ROLE TOKEN', ROLE "
+        "viewer (list, render, PACS search and retrieve) or operator (also fits and PACS stores)");
+    cmd->add_option("--tls-cert", args->tlsCert,
+                    "PEM certificate (chain) to serve HTTPS with (TLS 1.2 or newer); read again on SIGHUP")
+        ->check(CLI::ExistingFile);
+    cmd->add_option("--tls-key", args->tlsKey, "PEM private key of --tls-cert; read again on SIGHUP")
+        ->check(CLI::ExistingFile);
+    cmd->get_option("--tls-cert")->needs("--tls-key");
+    cmd->get_option("--tls-key")->needs("--tls-cert");
+    cmd->add_flag("--insecure-http", args->insecureHttp,
+                  "Serve plain HTTP beyond loopback (the token and images cross the network in clear)");
+    cmd->add_option(
+        "--behind-proxy", args->behindProxy,
+        "Address of a reverse proxy that terminates TLS: its requests are taken to come from "
+        "the last X-Forwarded-For address (quotas); serving beyond loopback then needs no TLS here");
+    cmd->add_option("--audit-log", args->auditLog,
+                    "File to append one JSON line to per access to patient data (who, from where, which "
+                    "dataset or study, what, the status); data requests get 503 while it cannot be written");
+    cmd->add_option("--audit-log-mb", args->auditLogMb, "Size beyond which the audit log becomes FILE.1")
+        ->check(CLI::Range(1, 1 << 20))
+        ->capture_default_str();
     cmd->add_option(
         "--allow-host", args->allowHosts,
         "Host name the server also answers to, as NAME (any port) or NAME:PORT (repeatable; "

@@ -78,7 +78,11 @@ Server::Impl::Impl(ServerOptions opts)
                   options.cacheDir.empty() ? fs::path() : options.cacheDir / "dicomweb",
                   options.retrievedSeriesBytes, registry, memory),
       frames(options.frameCacheBytes), renders(options.maxRendersPerClient, "renders"),
-      guard(options.allowedHosts, options.accessToken) {
+      guard(options.allowedHosts, options.accessTokens),
+      tls(options.tlsCertificate.empty() && options.tlsKey.empty()
+              ? nullptr
+              : std::make_unique<TlsContext>(options.tlsCertificate, options.tlsKey)),
+      http(tls.get()) {
     if (options.withRenderer)
         renderQueue = std::make_unique<RenderQueue>(stats, foreground, options.ranks.get());
     // Under mpirun the samples stay with the ranks, each reading its slab: this process holds none.
@@ -89,6 +93,8 @@ Server::Impl::Impl(ServerOptions opts)
                 return fitOnRanks(*this, dataset, key, progress);
             });
     cache.deferDiskWritesWhile([this] { return foreground.busyWithin(DISK_WRITE_QUIET); });
+    if (!options.auditLog.empty())
+        audit = std::make_unique<AuditLog>(options.auditLog, options.auditLogBytes);
 }
 
 std::vector<fs::path> defaultDataDirs() {
@@ -114,11 +120,14 @@ Server::Server(ServerOptions options) : mImpl(std::make_unique<Impl>(std::move(o
     connections.workerThreads = std::max(4, s.options.httpThreads);
     connections.maxStreams = static_cast<std::size_t>(std::max(1, s.options.maxEventStreams));
     connections.gate.maxBodyBytes = MAX_BODY_BYTES;
+    http.trustProxy(s.options.trustedProxy);
     http.startConnections(connections);
     http.set_payload_max_length(MAX_BODY_BYTES);
     // One request per connection (GatedHttpServer answers each with Connection: close): a kept-alive
     // connection would have to go back through the gate anyway, and reconnecting on loopback is cheap.
     http.set_keep_alive_max_count(1);
+    // Browsers that have seen the server over HTTPS never try it over plain HTTP again (a year).
+    if (s.tls) http.set_default_headers({{"Strict-Transport-Security", "max-age=31536000"}});
     http.set_socket_options([&s](socket_t sock) {
         httplib::default_socket_options(sock);
         s.listenSocket = sock;
@@ -129,6 +138,10 @@ Server::Server(ServerOptions options) : mImpl(std::make_unique<Impl>(std::move(o
     http.set_pre_routing_handler([&s](const httplib::Request& req, httplib::Response& res) {
         if (isApiPath(req.path)) {
             if (const auto refused = screenApiRequest(s, req)) return refuse(res, *refused);
+            // Never serve patient data unaudited.
+            if (s.audit && auditAction(req.method, req.path) && !s.audit->ready())
+                return refuse(res,
+                              Refusal{503, "the audit log cannot be written; data requests are refused"});
             return httplib::Server::HandlerResponse::Unhandled;
         }
         if (const auto refused = screenTarget(req)) return refuse(res, *refused);
@@ -149,12 +162,18 @@ Server::Server(ServerOptions options) : mImpl(std::make_unique<Impl>(std::move(o
         return httplib::Server::HandlerResponse::Handled;
     };
     http.set_error_handler(onError);
+    if (s.audit)
+        http.set_logger([&s](const httplib::Request& req, const httplib::Response& res) {
+            if (const auto action = auditAction(req.method, req.path))
+                s.audit->write(auditLine(*action, req, res, s.guard.tokenOf(req)));
+        });
     http.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr error) {
         sendException(res, error);
     });
 
     installDatasetRoutes(s);
     installStatsRoute(s);
+    installAccessRoute(s);
     installRenderRoute(s);
     installTurntableRoute(s);
     installJobRoutes(s);
@@ -192,6 +211,14 @@ int Server::bindToAnyPort(const std::string& host) {
         raiseListenBacklog(*mImpl);
     }
     return port;
+}
+
+void Server::reloadTls() {
+    if (mImpl->tls) mImpl->tls->reload();
+}
+
+bool Server::servesTls() const {
+    return mImpl->tls != nullptr;
 }
 
 bool Server::listenAfterBind() {

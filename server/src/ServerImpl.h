@@ -14,6 +14,7 @@
 #include "frames/FrameCache.h"
 #include "frames/RenderQueue.h"
 #include "routes/Params.h"
+#include "security/AuditLog.h"
 #include "security/RequestGuard.h"
 #include "stream/ViewerStreams.h"
 #include "vots/server/Server.h"
@@ -44,15 +45,18 @@ struct Server::Impl {
     FrameCache frames;                        // encoded /render answers
     ClientQuota renders;                      // /render and /turntable requests in progress per client
     RequestGuard guard;                       // Host, token and cross-site checks before any route
+    std::unique_ptr<AuditLog> audit;          // --audit-log; null without
     std::atomic<int> listenSocket{-1};        // the socket httplib binds, so its backlog can be raised
     std::thread readyingStartup;            // readyStartupDataset(options.startupDataset); joined by ~Server
     std::unique_ptr<ViewerStreams> viewers; // GET /api/stream's sockets; after the parts their frames use
+    std::unique_ptr<TlsContext> tls;        // HTTPS; null for plain HTTP
     GatedHttpServer http;                   // destroyed first: no handler runs after the rest is gone
 };
 
 // Route installers, one file each.
 void installDatasetRoutes(Server::Impl& s);  // GET /api/datasets
 void installStatsRoute(Server::Impl& s);     // GET /api/stats
+void installAccessRoute(Server::Impl& s);    // GET /api/access
 void installRenderRoute(Server::Impl& s);    // GET /render
 void installTurntableRoute(Server::Impl& s); // GET /turntable
 void installJobRoutes(Server::Impl& s);      // POST /api/fit, GET /api/jobs/{id}, GET /api/jobs/{id}/events

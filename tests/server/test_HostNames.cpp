@@ -100,7 +100,10 @@ TEST(AccessToken, GeneratedTokensAre128BitsOfHexAndDiffer) {
 TEST(AccessToken, TokenFileIsTrimmedAndChecked) {
     test::TempDir dir;
     dir.write("good", "  s3cret-Token_0123456789~+/=\n\n");
-    EXPECT_EQ(readAccessTokenFile(dir.path() / "good"), "s3cret-Token_0123456789~+/=");
+    const auto good = readAccessTokenFile(dir.path() / "good");
+    ASSERT_EQ(good.size(), 1u);
+    EXPECT_EQ(good[0].token, "s3cret-Token_0123456789~+/=");
+    EXPECT_EQ(good[0].role, Role::Operator);
     dir.write("short", "zqxw\n");
     dir.write("empty", "\n");
     dir.write("space", "zqxwzqxw zqxwzqxwzqxw\n");

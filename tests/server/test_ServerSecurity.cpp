@@ -105,7 +105,7 @@ TEST(ServerSecurity, CrossSiteRequestsStartNoFitWhileSameOriginOnesDo) {
 TEST(ServerSecurity, TokenIsRequiredOnTheApiButNotForTheViewerFiles) {
     ServerWorld world;
     server::ServerOptions options = quietOptions(world);
-    options.accessToken = TOKEN;
+    options.accessTokens = {{"operator", server::Role::Operator, TOKEN}};
     LoopbackServer server(options);
     auto c = server.client();
     const std::string bearer = std::string("Bearer ") + TOKEN;
@@ -159,7 +159,7 @@ TEST(ServerSecurity, TokenIsRequiredOnTheApiButNotForTheViewerFiles) {
 TEST(ServerSecurity, BoundToEveryInterfaceItAnswersAddressesButNoForeignName) {
     ServerWorld world;
     server::ServerOptions options = quietOptions(world);
-    options.accessToken = TOKEN;
+    options.accessTokens = {{"operator", server::Role::Operator, TOKEN}};
     LoopbackServer server(options, "0.0.0.0");
     auto c = server.client();
     const std::string port = std::to_string(server.port());

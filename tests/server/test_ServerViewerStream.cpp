@@ -225,7 +225,7 @@ TEST(ServerViewerStreamGuard, TheUpgradePassesHostOriginAndToken) {
     server::ServerOptions options = world.options();
     options.withRenderer = false;
     options.warmUpFits = false;
-    options.accessToken = TOKEN;
+    options.accessTokens = {{"operator", server::Role::Operator, TOKEN}};
     LoopbackServer server(options);
     const int port = server.port();
     const std::string own = "http://127.0.0.1:" + std::to_string(port);

@@ -16,6 +16,7 @@ import { attachInput } from './input.js';
 import { fitViewToDataset, isVotsDataset } from './kind.js';
 import { showOverlays } from './overlays.js';
 import { createPacsSend } from './pacs-send.js';
+import { applyRole } from './role.js';
 import { attachSlabControl } from './slab-control.js';
 import { statusLine } from './status.js';
 import { createStudyBrowser } from './study-browser.js';
@@ -409,6 +410,7 @@ const studyBrowser = createStudyBrowser({
 async function start() {
   fillChoices(el);
   adoptToken(location.hash); // before the first request: a server beyond loopback asks for it
+  applyRole([el.epsSlider, $('pacs-send-button')]);
   updateStatus();
   studyBrowser.start();
   let listed;

@@ -1,5 +1,6 @@
 // BufferedSocketStream: the httplib::Stream a worker serves a gated request through: the bytes the
-// ConnectionGate read first, then the socket itself, with time limits on every wait.
+// ConnectionGate read first, then the socket itself (through its TLS session for HTTPS), with time limits
+// on every wait.
 #pragma once
 
 #include "connection/ConnectionGate.h"
@@ -25,8 +26,12 @@ public:
     void get_local_ip_and_port(std::string& ip, int& port) const override;
     socket_t socket() const override { return mRequest.fd; }
 
+    /// HTTPS: sends close_notify (best effort); the socket stays open. Nothing for plain HTTP.
+    void shutdownTls();
+
 private:
     bool waitFor(short events) const;
+    template <typename Transfer> ssize_t throughTls(Transfer transfer);
 
     const ArrivedRequest& mRequest;
     const std::chrono::milliseconds mTimeout;

@@ -1,7 +1,12 @@
-// ConnectionGate: an epoll loop that reads requests without blocking and hands on the complete ones.
+// ConnectionGate: an epoll loop that reads requests (and TLS handshakes) without blocking and hands on the
+// complete ones.
 #include "connection/ConnectionGate.h"
 
+#include "connection/RequestHead.h"
+
 #include <nlohmann/json.hpp>
+#include <openssl/err.h>
+#include <openssl/ssl.h>
 
 #include <arpa/inet.h>
 #include <fcntl.h>
@@ -30,6 +35,8 @@ constexpr int SWEEP_MS = 100;
 
 const char* reasonPhrase(int status) {
     switch (status) {
+    case 400:
+        return "Bad Request";
     case 411:
         return "Length Required";
     case 414:
@@ -62,65 +69,24 @@ void addressOf(const sockaddr_storage& addr, std::string& text, int& port) {
     text = buffer;
 }
 
-bool equalsIgnoringCase(std::string_view a, std::string_view b) {
-    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
-               return std::tolower(static_cast<unsigned char>(x)) ==
-                      std::tolower(static_cast<unsigned char>(y));
-           });
-}
-
-std::string_view trimmed(std::string_view s) {
-    while (!s.empty() && (s.front() == ' ' || s.front() == '\t'))
-        s.remove_prefix(1);
-    while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
-        s.remove_suffix(1);
-    return s;
-}
-
-/// Where the head ends (just past its blank line), or npos. httplib accepts bare LF line ends too.
-std::size_t headEnd(const std::string& bytes) {
-    const std::size_t crlf = bytes.find("\r\n\r\n");
-    const std::size_t lf = bytes.find("\n\n");
-    if (crlf == std::string::npos && lf == std::string::npos) return std::string::npos;
-    if (lf == std::string::npos || (crlf != std::string::npos && crlf < lf)) return crlf + 4;
-    return lf + 2;
-}
-
-// Removes "Expect: 100-continue" header lines from a request whose head ends at headEnd(bytes).
-void eraseExpectContinue(std::string& bytes) {
-    const std::size_t end = headEnd(bytes);
-    if (end == std::string::npos) return;
-    std::size_t pos = bytes.find('\n');
-    while (pos != std::string::npos && pos + 1 < end) {
-        const std::size_t start = pos + 1;
-        const std::size_t next = bytes.find('\n', start);
-        const std::size_t lineEnd = next == std::string::npos || next > end ? end : next + 1;
-        const std::string_view line(bytes.data() + start, (next == std::string::npos ? end : next) - start);
-        const std::size_t colon = line.find(':');
-        if (colon != std::string_view::npos && equalsIgnoringCase(trimmed(line.substr(0, colon)), "Expect") &&
-            equalsIgnoringCase(trimmed(line.substr(colon + 1)), "100-continue")) {
-            bytes.erase(start, lineEnd - start);
-            return; // one such line; a second one is the handler's to refuse
-        }
-        pos = next;
-    }
-}
-
 } // namespace
 
-void sendJsonErrorNow(int fd, int status, const std::string& message) {
+std::string jsonErrorAnswer(int status, const std::string& message) {
     const std::string body = nlohmann::json{{"error", message}}.dump();
-    const std::string answer =
-        "HTTP/1.1 " + std::to_string(status) + " " + reasonPhrase(status) +
-        "\r\nContent-Type: application/json\r\nContent-Length: " + std::to_string(body.size()) +
-        "\r\nConnection: close\r\n\r\n" + body;
+    return "HTTP/1.1 " + std::to_string(status) + " " + reasonPhrase(status) +
+           "\r\nContent-Type: application/json\r\nContent-Length: " + std::to_string(body.size()) +
+           "\r\nConnection: close\r\n\r\n" + body;
+}
+
+void sendJsonErrorNow(int fd, int status, const std::string& message) {
+    const std::string answer = jsonErrorAnswer(status, message);
     // A few hundred bytes: they fit in any socket's send buffer, so one send is enough.
     [[maybe_unused]] const ssize_t sent =
         ::send(fd, answer.data(), answer.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
 }
 
-ConnectionGate::ConnectionGate(GateLimits limits, Dispatch dispatch)
-    : mLimits(limits), mDispatch(std::move(dispatch)) {
+ConnectionGate::ConnectionGate(GateLimits limits, Dispatch dispatch, const TlsContext* tls)
+    : mLimits(limits), mDispatch(std::move(dispatch)), mTls(tls) {
     mEpoll = ::epoll_create1(EPOLL_CLOEXEC);
     mWake = ::eventfd(0, EFD_NONBLOCK | EFD_CLOEXEC);
     if (mEpoll < 0 || mWake < 0) throw std::runtime_error("cannot create the connection gate's epoll");
@@ -221,13 +187,99 @@ void ConnectionGate::adopt(int fd) {
     Connection& c = mConnections[fd];
     c.fd = fd;
     c.accepted = Clock::now();
+    if (mTls) {
+        c.tls = mTls->accept(fd);
+        c.handshaking = true;
+        if (!c.tls) close(fd);
+    }
+}
+
+void ConnectionGate::watch(const Connection& c, bool writable) {
+    epoll_event event{};
+    event.events = EPOLLIN | EPOLLRDHUP | (writable ? EPOLLOUT : 0u);
+    event.data.fd = c.fd;
+    ::epoll_ctl(mEpoll, EPOLL_CTL_MOD, c.fd, &event);
+}
+
+ConnectionGate::Handshake ConnectionGate::advanceHandshake(Connection& c) {
+    if (!c.sniffed) {
+        // A TLS connection opens with a handshake record (type 22); anything else is most likely plain
+        // HTTP sent to the HTTPS port, which is answered in plain HTTP so that the client learns why.
+        unsigned char first = 0;
+        const ssize_t n = ::recv(c.fd, &first, 1, MSG_PEEK);
+        if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR)) return Handshake::Wait;
+        if (n <= 0) return Handshake::Failed;
+        if (first != 22) return Handshake::PlainHttp;
+        c.sniffed = true;
+    }
+    ERR_clear_error();
+    const int done = SSL_do_handshake(c.tls.get());
+    if (done == 1) {
+        c.handshaking = false;
+        watch(c, false);
+        return Handshake::Done;
+    }
+    switch (SSL_get_error(c.tls.get(), done)) {
+    case SSL_ERROR_WANT_READ:
+        watch(c, false);
+        return Handshake::Wait;
+    case SSL_ERROR_WANT_WRITE:
+        watch(c, true);
+        return Handshake::Wait;
+    default:
+        ERR_clear_error();
+        return Handshake::Failed;
+    }
+}
+
+ssize_t ConnectionGate::receive(Connection& c, char* buffer, std::size_t size) {
+    if (!c.tls) return ::recv(c.fd, buffer, size, 0);
+    ERR_clear_error();
+    const int n = SSL_read(c.tls.get(), buffer, static_cast<int>(size));
+    if (n > 0) return n;
+    const int error = SSL_get_error(c.tls.get(), n);
+    if (error == SSL_ERROR_WANT_READ || error == SSL_ERROR_WANT_WRITE) {
+        errno = EAGAIN;
+        return -1;
+    }
+    ERR_clear_error();
+    return 0; // closed, or failed: either way the connection has ended
+}
+
+void ConnectionGate::sendNow(Connection& c, std::string_view bytes) {
+    if (c.tls) {
+        ERR_clear_error();
+        [[maybe_unused]] const int sent =
+            SSL_write(c.tls.get(), bytes.data(), static_cast<int>(bytes.size()));
+        ERR_clear_error();
+        return;
+    }
+    [[maybe_unused]] const ssize_t sent =
+        ::send(c.fd, bytes.data(), bytes.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
 }
 
 void ConnectionGate::readFrom(Connection& c) {
+    if (c.handshaking) {
+        switch (advanceHandshake(c)) {
+        case Handshake::Wait:
+            return;
+        case Handshake::Failed:
+            close(c.fd);
+            return;
+        case Handshake::PlainHttp:
+            c.tls.reset();
+            c.handshaking = false;
+            refuse(c, 400, "this port serves HTTPS only: use https://");
+            return;
+        case Handshake::Done:
+            break;
+        }
+    }
     std::array<char, 16384> buffer;
     bool ended = false; // the client closed its side (or the socket failed)
     for (;;) {
-        const ssize_t n = ::recv(c.fd, buffer.data(), buffer.size(), 0);
+        const ssize_t n = c.draining ? ::recv(c.fd, buffer.data(), buffer.size(), 0)
+                                     : receive(c, buffer.data(), buffer.size());
         if (n > 0) {
             if (!c.draining) c.bytes.append(buffer.data(), static_cast<std::size_t>(n));
             if (!c.draining && c.bytes.size() > mLimits.maxHeadBytes + mLimits.maxBodyBytes) break;
@@ -250,9 +302,7 @@ void ConnectionGate::readFrom(Connection& c) {
         return;
     case Verdict::WaitAfterContinue:
         if (!c.continued) {
-            static constexpr std::string_view CONTINUE = "HTTP/1.1 100 Continue\r\n\r\n";
-            [[maybe_unused]] const ssize_t sent =
-                ::send(c.fd, CONTINUE.data(), CONTINUE.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
+            sendNow(c, "HTTP/1.1 100 Continue\r\n\r\n");
             c.continued = true;
         }
         return;
@@ -339,7 +389,10 @@ void ConnectionGate::dispatch(Connection& c) {
         addressOf(addr, request.localAddress, request.localPort);
 
     ::epoll_ctl(mEpoll, EPOLL_CTL_DEL, c.fd, nullptr);
-    setBlocking(c.fd, true);
+    // A TLS socket stays non-blocking: a readable socket may hold only part of a record, and a blocking
+    // SSL_read would then wait past any time limit for the rest.
+    setBlocking(c.fd, !c.tls);
+    request.tls = std::move(c.tls);
     mConnections.erase(c.fd); // c is gone from here on
     --mWaitingCount;
     mDispatch(std::move(request));
@@ -350,7 +403,8 @@ void ConnectionGate::refuse(Connection& c, int status, const char* message) {
 }
 
 void ConnectionGate::refuse(Connection& c, int status, const std::string& message) {
-    sendJsonErrorNow(c.fd, status, message);
+    sendNow(c, jsonErrorAnswer(status, message));
+    if (c.tls) SSL_shutdown(c.tls.get()); // close_notify; what the client still sends is then dropped
     ::shutdown(c.fd, SHUT_WR);
     c.bytes.clear();
     c.bytes.shrink_to_fit();

@@ -2,13 +2,17 @@
 // idle clients and slow senders wait without a worker thread (docs/RELIABILITY.md, "Hostile connections").
 #pragma once
 
+#include "connection/TlsContext.h"
+
 #include <atomic>
 #include <chrono>
 #include <cstddef>
 #include <functional>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <thread>
 #include <vector>
 
@@ -25,6 +29,7 @@ struct ArrivedRequest {
     int peerPort = 0;
     std::string localAddress;
     int localPort = 0;
+    TlsSession tls; // HTTPS: the session, its handshake done (the fd is then non-blocking); else null
 };
 
 struct GateLimits {
@@ -45,7 +50,8 @@ struct GateLimits {
 class ConnectionGate {
 public:
     using Dispatch = std::function<void(ArrivedRequest)>;
-    ConnectionGate(GateLimits limits, Dispatch dispatch);
+    /// tls: when not null, every connection is HTTPS: its handshake is done here too, without a thread.
+    ConnectionGate(GateLimits limits, Dispatch dispatch, const TlsContext* tls = nullptr);
     ~ConnectionGate(); // stop()
     ConnectionGate(const ConnectionGate&) = delete;
     ConnectionGate& operator=(const ConnectionGate&) = delete;
@@ -64,7 +70,11 @@ private:
         std::string bytes;
         bool draining = false;  // refused: the answer is sent, the rest of the request is read and dropped
         bool continued = false; // "100 Continue" sent for an "Expect: 100-continue" request
+        TlsSession tls;         // HTTPS only
+        bool handshaking = false;
+        bool sniffed = false; // its first byte seen: a TLS record, not plain HTTP
     };
+    enum class Handshake { Wait, Done, Failed, PlainHttp };
     enum class Verdict {
         Wait,
         WaitAfterContinue, // Expect: 100-continue and the body not there yet: say 100, then wait
@@ -77,6 +87,10 @@ private:
     void threadMain();
     void adopt(int fd);
     void readFrom(Connection& c);
+    Handshake advanceHandshake(Connection& c);
+    ssize_t receive(Connection& c, char* buffer, std::size_t size); // recv's contract, TLS or not
+    void sendNow(Connection& c, std::string_view bytes);            // best effort, never blocks
+    void watch(const Connection& c, bool writable);
     Verdict judge(const Connection& c) const;
     void dispatch(Connection& c);
     void refuse(Connection& c, int status, const char* message);
@@ -86,6 +100,7 @@ private:
 
     const GateLimits mLimits;
     const Dispatch mDispatch;
+    const TlsContext* const mTls;
     int mEpoll = -1;
     int mWake = -1; // eventfd: new sockets or stop
     std::mutex mMutex;
@@ -96,7 +111,9 @@ private:
     std::thread mThread;
 };
 
-/// Writes a complete JSON error answer (Connection: close) to a blocking or non-blocking socket; best effort.
+/// A complete JSON error answer, with Connection: close.
+std::string jsonErrorAnswer(int status, const std::string& message);
+/// Writes jsonErrorAnswer() to a blocking or non-blocking plain socket; best effort.
 void sendJsonErrorNow(int fd, int status, const std::string& message);
 
 } // namespace vots::server

@@ -1,6 +1,8 @@
 // GatedHttpServer: hands accepted sockets to the gate and serves arrived requests on workers or streams.
 #include "connection/GatedHttpServer.h"
 
+#include "connection/RequestHead.h"
+
 #include <sys/socket.h>
 #include <unistd.h>
 
@@ -42,7 +44,7 @@ bool isEventStreamRequest(const std::string& method, const std::string& target) 
                        [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
 }
 
-GatedHttpServer::GatedHttpServer() {
+GatedHttpServer::GatedHttpServer(const TlsContext* tls) : mTls(tls) {
     new_task_queue = [] { return new RunAtOnce(); };
 }
 
@@ -56,7 +58,8 @@ void GatedHttpServer::startConnections(const ConnectionLimits& limits) {
     mWorkers =
         std::make_unique<httplib::ThreadPool>(static_cast<std::size_t>(std::max(1, limits.workerThreads)));
     mStreams = std::make_unique<StreamThreads>(limits.maxStreams);
-    mGate = std::make_unique<ConnectionGate>(limits.gate, [this](ArrivedRequest r) { route(std::move(r)); });
+    mGate = std::make_unique<ConnectionGate>(
+        limits.gate, [this](ArrivedRequest r) { route(std::move(r)); }, mTls);
 }
 
 void GatedHttpServer::stopConnections() {
@@ -92,16 +95,21 @@ bool GatedHttpServer::process_and_close_socket(socket_t sock) {
 }
 
 void GatedHttpServer::route(ArrivedRequest request) {
+    if (!mTrustedProxy.empty() && request.peerAddress == mTrustedProxy)
+        if (auto client = forwardedClient(request.bytes)) request.peerAddress = std::move(*client);
     {
         std::lock_guard lock(mUpgradeMutex);
-        if (mIsUpgrade && mIsUpgrade(request.method, request.target)) return mTakeUpgrade(std::move(request));
+        if (mIsUpgrade && mIsUpgrade(request.method, request.target)) {
+            // The WebSocket hub speaks plain TCP only; the viewer falls back to HTTP requests without it.
+            if (!request.tls) return mTakeUpgrade(std::move(request));
+            return answerAndClose(std::make_shared<ArrivedRequest>(std::move(request)), 501,
+                                  "the viewer socket is not served over HTTPS; use the HTTP routes");
+        }
     }
     auto shared = std::make_shared<ArrivedRequest>(std::move(request));
     if (isEventStreamRequest(shared->method, shared->target)) {
-        if (!mStreams->tryStart([this, shared] { serve(*shared); })) {
-            sendJsonErrorNow(shared->fd, 503, "too many event streams open; try again later");
-            closeConnection(shared->fd);
-        }
+        if (!mStreams->tryStart([this, shared] { serve(*shared); }))
+            answerAndClose(shared, 503, "too many event streams open; try again later");
         return;
     }
     mWorkers->enqueue([this, shared] { serve(*shared); });
@@ -112,7 +120,23 @@ void GatedHttpServer::serve(const ArrivedRequest& request) {
     bool connectionClosed = false;
     // One request per connection, as before the gate: an answer ends with Connection: close.
     process_request(stream, true, connectionClosed, nullptr);
+    stream.shutdownTls();
     closeConnection(request.fd);
+}
+
+void GatedHttpServer::answerAndClose(std::shared_ptr<ArrivedRequest> request, int status,
+                                     const std::string& message) {
+    if (!request->tls) {
+        sendJsonErrorNow(request->fd, status, message);
+        return closeConnection(request->fd);
+    }
+    // Through TLS the answer may have to wait for the socket: a worker writes it, not the gate's thread.
+    mWorkers->enqueue([request, status, message] {
+        BufferedSocketStream stream(*request, SOCKET_TIMEOUT);
+        stream.write(jsonErrorAnswer(status, message));
+        stream.shutdownTls();
+        closeConnection(request->fd);
+    });
 }
 
 } // namespace vots::server

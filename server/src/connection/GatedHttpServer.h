@@ -6,6 +6,7 @@
 #include "connection/BufferedSocketStream.h"
 #include "connection/ConnectionGate.h"
 #include "connection/StreamThreads.h"
+#include "connection/TlsContext.h"
 
 #include <httplib.h>
 
@@ -26,7 +27,8 @@ struct ConnectionLimits {
 
 class GatedHttpServer : public httplib::Server {
 public:
-    GatedHttpServer();
+    /// tls: when not null (it must outlive this), connections are HTTPS only.
+    explicit GatedHttpServer(const TlsContext* tls = nullptr);
     ~GatedHttpServer() override; // stopConnections()
 
     /// Starts the gate and the workers; call once, before listen_after_bind().
@@ -39,6 +41,10 @@ public:
     void takeUpgrades(std::function<bool(const std::string&, const std::string&)> isUpgrade,
                       std::function<void(ArrivedRequest)> take);
 
+    /// Requests from this address (a reverse proxy) are taken to come from the last address of their
+    /// X-Forwarded-For (quotas, logs); empty: none trusted. Call before listen_after_bind().
+    void trustProxy(std::string address) { mTrustedProxy = std::move(address); }
+
     std::size_t waitingConnections() const;
     std::size_t runningStreams() const;
 
@@ -48,7 +54,10 @@ private:
     bool process_and_close_socket(socket_t sock) override;
     void route(ArrivedRequest request); // on the gate's thread: to a worker, or a stream thread
     void serve(const ArrivedRequest& request);
+    void answerAndClose(std::shared_ptr<ArrivedRequest> request, int status, const std::string& message);
 
+    const TlsContext* const mTls;
+    std::string mTrustedProxy;
     std::mutex mMutex; // start and stop
     bool mStopped = false;
     std::unique_ptr<httplib::ThreadPool> mWorkers;

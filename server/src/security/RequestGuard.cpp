@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <regex>
 
 namespace vots::server {
 namespace {
@@ -60,8 +61,21 @@ bool tokensEqual(std::string_view presented, std::string_view expected) {
     return difference == 0;
 }
 
-RequestGuard::RequestGuard(const std::vector<std::string>& allowedHosts, std::string token)
-    : mAllowedHosts(allowedHosts), mToken(std::move(token)), mHosts("127.0.0.1", 0, allowedHosts) {}
+bool needsOperator(const std::string& method, const std::string& path) {
+    static const std::regex operatorPaths(R"(/api/fit|/api/pacs/[^/]+/store|/api/pacs/stores/\d+/cancel)");
+    return method == "POST" && std::regex_match(path, operatorPaths);
+}
+
+RequestGuard::RequestGuard(const std::vector<std::string>& allowedHosts, std::vector<AccessToken> tokens)
+    : mAllowedHosts(allowedHosts), mTokens(std::move(tokens)), mHosts("127.0.0.1", 0, allowedHosts) {}
+
+const AccessToken* RequestGuard::tokenOf(const httplib::Request& req) const {
+    const std::string presented = presentedToken(req);
+    const AccessToken* match = nullptr;
+    for (const AccessToken& t : mTokens) // every one compared: the time does not tell which matched
+        if (tokensEqual(presented, t.token)) match = &t;
+    return match;
+}
 
 void RequestGuard::bound(const std::string& host, int port) {
     mHosts = HostNames(host, port, mAllowedHosts);
@@ -78,9 +92,15 @@ std::optional<Refusal> RequestGuard::checkHost(const httplib::Request& req) cons
 }
 
 std::optional<Refusal> RequestGuard::checkApi(const httplib::Request& req) const {
-    if (!mToken.empty() && !tokensEqual(presentedToken(req), mToken))
-        return Refusal{401, "missing or wrong access token (send 'Authorization: Bearer TOKEN', or "
-                            "token=TOKEN in the query; the viewer takes it from #token=TOKEN)"};
+    if (!mTokens.empty()) {
+        const AccessToken* token = tokenOf(req);
+        if (!token)
+            return Refusal{401, "missing or wrong access token (send 'Authorization: Bearer TOKEN', or "
+                                "token=TOKEN in the query; the viewer takes it from #token=TOKEN)"};
+        if (token->role == Role::Viewer && needsOperator(req.method, req.path))
+            return Refusal{403, "the token of '" + token->name + "' is a viewer's: " + req.method + " " +
+                                    req.path.substr(0, MAX_QUOTED_CHARS) + " needs an operator's token"};
+    }
     // Browsers name the site a request comes from; a page of another one must not start fits, nor
     // have its <img> tags make us render.
     const std::string site = req.get_header_value("Sec-Fetch-Site");

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "security/HostNames.h"
+#include "vots/server/Exposure.h"
 
 #include <httplib.h>
 
@@ -23,26 +24,33 @@ struct Refusal {
 /// so timing the 401s tells nothing about how much of a guess was right.
 bool tokensEqual(std::string_view presented, std::string_view expected);
 
+/// True for the requests only an operator's token may make: fits (POST /api/fit) and what goes to a PACS
+/// (POST /api/pacs/{name}/store and the cancel of a store).
+bool needsOperator(const std::string& method, const std::string& path);
+
 class RequestGuard {
 public:
     /// allowedHosts: the --allow-host names (throws fit::InputError for one that is not a host name);
-    /// token: required on every API request when not empty.
-    RequestGuard(const std::vector<std::string>& allowedHosts, std::string token);
+    /// tokens: one of them is required on every API request when there are any.
+    RequestGuard(const std::vector<std::string>& allowedHosts, std::vector<AccessToken> tokens);
 
     /// The address and port the server listens on; called before it serves.
     void bound(const std::string& host, int port);
 
     /// Every request, static files too: the Host must name this server (DNS rebinding), else 421.
     std::optional<Refusal> checkHost(const httplib::Request& req) const;
-    /// API requests: the token (401), a foreign Origin or Sec-Fetch-Site (403), and for a request that
-    /// changes state (any method but GET, HEAD, OPTIONS) a JSON Content-Type (415).
+    /// API requests: the token (401), its role for the operator's routes (403), a foreign Origin or
+    /// Sec-Fetch-Site (403), and for a request that changes state (any method but GET, HEAD, OPTIONS) a
+    /// JSON Content-Type (415).
     std::optional<Refusal> checkApi(const httplib::Request& req) const;
 
-    bool requiresToken() const { return !mToken.empty(); }
+    /// The token the request shows, when it is one of ours; null when it shows none of them.
+    const AccessToken* tokenOf(const httplib::Request& req) const;
+    bool requiresToken() const { return !mTokens.empty(); }
 
 private:
     std::vector<std::string> mAllowedHosts;
-    std::string mToken;
+    std::vector<AccessToken> mTokens;
     HostNames mHosts;
 };
 

@@ -4,6 +4,7 @@
 #include "vots/fit/Fitter.h"
 #include "vots/pacs/DicomWebAuth.h"
 #include "vots/pacs/DicomWebUrl.h"
+#include "vots/server/Exposure.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -48,10 +49,18 @@ struct ServerOptions {
     // it: the viewer's first image then waits for none of that. Empty: none.
     std::string startupDataset;
     // Security (docs/API.md): Host names answered besides the bound address (and, bound to loopback, the
-    // loopback names), as NAME (any port) or NAME:PORT; and the token every request but the viewer's
-    // files must show (empty: none asked for).
+    // loopback names), as NAME (any port) or NAME:PORT; and the tokens, one of which every request but
+    // the viewer's files must show, with its role (empty: none asked for, everyone an operator).
     std::vector<std::string> allowedHosts;
-    std::string accessToken;
+    std::vector<AccessToken> accessTokens;
+    // HTTPS (`--tls-cert`, `--tls-key`): PEM certificate chain and key; both empty: plain HTTP.
+    std::filesystem::path tlsCertificate, tlsKey;
+    // `--audit-log FILE`: one JSON line per access to patient data; empty: none. Beyond auditLogBytes the
+    // file becomes FILE.1 and a new one is begun.
+    std::filesystem::path auditLog;
+    std::uint64_t auditLogBytes = std::uint64_t{64} << 20;
+    // `--behind-proxy ADDR`: requests from this address carry their client in X-Forwarded-For.
+    std::string trustedProxy;
     // Loads and fits are refused (507) when their estimate from the header exceeds the budget minus the
     // process's resident memory: never an allocation the kernel kills the server for. 0: the default,
     // fit::defaultMemoryBudget() (80 % of the memory available at start).
@@ -87,6 +96,11 @@ public:
     bool listenAfterBind();
     void stop();
     bool isRunning() const;
+
+    /// HTTPS: reads the certificate and key again for the connections that follow; throws
+    /// fit::InputError (the old ones stay in force) when they cannot be read. Nothing for plain HTTP.
+    void reloadTls();
+    bool servesTls() const;
 
     /// The memory budget in force (the option, or the default it resolved to).
     std::uint64_t memoryBudget() const;
