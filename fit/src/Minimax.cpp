@@ -666,14 +666,15 @@ const ShapePoints& shapeOf(const Geometry& g, Certify points) {
     return *it->second;
 }
 
-/// The values at the shape's points in this box: the samples, or the trilinear values at cell points.
-void gatherValues(const Volume& volume, const Box& box, const ShapePoints& shape, Eigen::VectorXd& f) {
-    f.resize(static_cast<Eigen::Index>(shape.offsets.size()));
+/// The values at the shape's points [begin, end) in this box: the samples, or the trilinear values at cell
+/// points.
+void gatherValues(const Volume& volume, const Box& box, const ShapePoints& shape, int begin, int end,
+                  Eigen::VectorXd& f) {
     visitSamples(volume, [&](const auto* values) {
-        for (std::size_t k = 0; k < shape.offsets.size(); ++k) {
-            const auto& o = shape.offsets[k];
-            f(static_cast<Eigen::Index>(k)) = latticeValue(volume, values, 2 * box.lo[0] + o[0],
-                                                           2 * box.lo[1] + o[1], 2 * box.lo[2] + o[2]);
+        for (int k = begin; k < end; ++k) {
+            const auto& o = shape.offsets[static_cast<std::size_t>(k)];
+            f(k) = latticeValue(volume, values, 2 * box.lo[0] + o[0], 2 * box.lo[1] + o[1],
+                                2 * box.lo[2] + o[2]);
         }
     });
 }
@@ -695,6 +696,27 @@ struct RowList {
     }
 };
 
+/// The end of one step of a search whose polynomial (coefficients y of the basis) has this largest residual:
+/// converged, it is the answer; within the target, it is offered to the target's accept (counted in
+/// `offers`). True when the search ends with `solution` (Converged or Found).
+bool endsSearch(const Geometry& g, const double* y, double largest, bool converged, bool withinTarget,
+                const MinimaxTarget& target, int& offers, MinimaxSolution& solution) {
+    if (!converged && !withinTarget) return false;
+    for (int j = 0; j < g.n(); ++j)
+        solution.scaled[static_cast<std::size_t>(g.basis(j))] = y[j];
+    solution.maxResidual = largest;
+    if (converged) {
+        solution.result = MinimaxSolution::Result::Converged;
+        return true;
+    }
+    ++offers;
+    if (target.accept && target.accept(solution.scaled)) {
+        solution.result = MinimaxSolution::Result::Found;
+        return true;
+    }
+    return false;
+}
+
 /// Every point of the box in one matrix: pricing is one product with the coefficients, and the worst
 /// point enters.
 MinimaxSolution fitDense(const Volume& volume, const Geometry& g, Certify points,
@@ -704,35 +726,57 @@ MinimaxSolution fitDense(const Volume& volume, const Geometry& g, Certify points
     const Box& box = g.box();
     const int n = g.n();
     const ShapePoints& shape = shapeOf(g, points);
+    // The cell points (Certify::Cells: seven for each sample) are gathered only once some step prices them:
+    // the first basis is chosen among the samples, and most searches end before the cells matter.
+    const int m = static_cast<int>(shape.offsets.size());
+    const int ms = shape.samples;
     thread_local Eigen::VectorXd f, r;
-    gatherValues(volume, box, shape, f);
-    const int m = static_cast<int>(f.size());
+    f.resize(m);
+    r.resize(m);
+    gatherValues(volume, box, shape, 0, ms, f);
     solution.scans = 1;
     Vector c(n);
     for (int j = 0; j < n; ++j)
         c(j) = start[static_cast<std::size_t>(g.basis(j))];
-    r.noalias() = f - shape.phi * c;
-    const double scale = 1.0 + f.cwiseAbs().maxCoeff();
+    r.head(ms).noalias() = f.head(ms) - shape.phi.topRows(ms) * c;
+    // (A trilinear value at a cell point is a mean of samples: the samples hold the largest |f|.)
+    const double scale = 1.0 + f.head(ms).cwiseAbs().maxCoeff();
 
-    // The first basis from the start polynomial's worst points.
-    thread_local std::vector<int> order;
-    order.resize(static_cast<std::size_t>(m));
-    for (int i = 0; i < m; ++i)
-        order[static_cast<std::size_t>(i)] = i;
-    auto worstFirst = [&](int a, int b) {
-        const double ra = std::abs(r(a)), rb = std::abs(r(b));
-        return ra != rb ? ra > rb : a < b;
+    // The first basis from the start polynomial's worst samples.
+    // The points ranked worst first by |residual|, ties by row: a strict order, so selecting the few worst
+    // and sorting them is the same as a partial sort, in time linear in m. Pairs in one array, so the
+    // selection compares without reaching into the residuals.
+    struct Ranked {
+        double magnitude;
+        int row;
     };
-    const int few = std::min(m, 3 * n + 8);
-    std::partial_sort(order.begin(), order.begin() + few, order.end(), worstFirst);
+    auto worstFirst = [](const Ranked& a, const Ranked& b) {
+        return a.magnitude != b.magnitude ? a.magnitude > b.magnitude : a.row < b.row;
+    };
+    thread_local std::vector<Ranked> ranked;
+    ranked.resize(static_cast<std::size_t>(ms));
+    for (int i = 0; i < ms; ++i)
+        ranked[static_cast<std::size_t>(i)] = {std::abs(r(i)), i};
+    thread_local std::vector<int> order;
+    order.resize(static_cast<std::size_t>(ms));
+    const auto rankFirst = [&](int count) {
+        for (int i = 0; i < count; ++i)
+            order[static_cast<std::size_t>(i)] = ranked[static_cast<std::size_t>(i)].row;
+    };
+    const int few = std::min(ms, 3 * n + 8);
+    std::nth_element(ranked.begin(), ranked.begin() + (few - 1), ranked.end(), worstFirst);
+    std::sort(ranked.begin(), ranked.begin() + few, worstFirst);
+    rankFirst(few);
     Exchange exchange(n);
     if (!exchange.start(RowList{shape, box, f, order, few})) {
-        if (few == m) return solution;
-        std::sort(order.begin() + few, order.end(), worstFirst);
-        if (!exchange.start(RowList{shape, box, f, order, m})) return solution;
+        if (few == ms) return solution;
+        std::sort(ranked.begin() + few, ranked.end(), worstFirst);
+        rankFirst(ms);
+        if (!exchange.start(RowList{shape, box, f, order, ms})) return solution;
     }
     const RowList rows{shape, box, f, order, m};
     int offers = 0;
+    bool cellsGathered = m == ms;
 
     for (;;) {
         const double t = exchange.t();
@@ -750,7 +794,6 @@ MinimaxSolution fitDense(const Volume& volume, const Geometry& g, Certify points
         // when the curvature bound answers for them. What enters does not depend on the target: the worst
         // sample while one is beyond t, else the worst point.
         const double slack = MINIMAX_TOLERANCE * std::max(t, 0.0) + 1e-9 * scale;
-        const int ms = shape.samples;
         r.head(ms).noalias() = f.head(ms) - shape.phi.topRows(ms) * c;
         Eigen::Index worst = 0;
         const double largestSample = r.head(ms).cwiseAbs().maxCoeff(&worst);
@@ -762,6 +805,8 @@ MinimaxSolution fitDense(const Volume& volume, const Geometry& g, Certify points
         const auto priceCells = [&] {
             if (cellsPriced) return;
             cellsPriced = true;
+            if (!cellsGathered) gatherValues(volume, box, shape, ms, m, f);
+            cellsGathered = true;
             r.tail(m - ms).noalias() = f.tail(m - ms) - shape.phi.bottomRows(m - ms) * c;
             Eigen::Index worstCell = 0;
             const double largestCell = r.tail(m - ms).cwiseAbs().maxCoeff(&worstCell);
@@ -770,20 +815,9 @@ MinimaxSolution fitDense(const Volume& volume, const Geometry& g, Certify points
         };
         if (samplesDone && largest > t + slack) priceCells();
         if (offer && largest > target.acceptBelow) priceCells();
-        if ((samplesDone && largest <= t + slack) || (offer && largest <= target.acceptBelow)) {
-            for (int j = 0; j < n; ++j)
-                solution.scaled[static_cast<std::size_t>(g.basis(j))] = c(j);
-            solution.maxResidual = largest;
-            if (samplesDone && largest <= t + slack) {
-                solution.result = MinimaxSolution::Result::Converged;
-                return solution;
-            }
-            ++offers;
-            if (target.accept && target.accept(solution.scaled)) {
-                solution.result = MinimaxSolution::Result::Found;
-                return solution;
-            }
-        }
+        if (endsSearch(g, c.data(), largest, samplesDone && largest <= t + slack,
+                       offer && largest <= target.acceptBelow, target, offers, solution))
+            return solution;
         if (samplesDone) priceCells(); // (it was: the samples are within t, so some cell point is not)
         solution.minEarlier = std::min(solution.minEarlier, largestSample);
         if (exchange.pivots() >= MINIMAX_MAX_PIVOTS) return solution;
@@ -918,20 +952,9 @@ MinimaxSolution fitByScans(const Volume& volume, const Geometry& g, Certify poin
                 worst = std::max(extremes.maxAbs, cells.maxAbs);
             }
         }
-        if ((samplesDone && worst <= t + slack) || (offer && worst <= target.acceptBelow)) {
-            for (int j = 0; j < n; ++j)
-                solution.scaled[static_cast<std::size_t>(g.basis(j))] = exchange.coefficients()[j];
-            solution.maxResidual = worst;
-            if (samplesDone && worst <= t + slack) {
-                solution.result = MinimaxSolution::Result::Converged;
-                return solution;
-            }
-            ++offers;
-            if (target.accept && target.accept(solution.scaled)) {
-                solution.result = MinimaxSolution::Result::Found;
-                return solution;
-            }
-        }
+        if (endsSearch(g, exchange.coefficients(), worst, samplesDone && worst <= t + slack,
+                       offer && worst <= target.acceptBelow, target, offers, solution))
+            return solution;
         solution.minEarlier = std::min(solution.minEarlier, extremes.maxAbs);
         addCandidates(volume, g, samplesDone ? cells : extremes, exchange, pivotSlack, pool);
     }

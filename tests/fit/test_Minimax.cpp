@@ -372,8 +372,10 @@ TEST(Minimax, RefitsFromABoxCacheGiveTheVotsOfAFreshFit) {
             const FitResult refit = fitVotSpace(volume, o, &cache);
             const FitResult fresh = fitVotSpace(volume, o);
             hits += refit.stats.cacheHits;
-            expectSameVots(refit.space, fresh.space,
-                           std::string(nameOf(certify)) + " at " + std::to_string(percent) + " %");
+            const std::string what = std::string(nameOf(certify)) + " at " + std::to_string(percent) + " %";
+            expectSameVots(refit.space, fresh.space, what);
+            // Every sample within the new eps, by the verifier (independent of the fitter and its cache).
+            EXPECT_TRUE(verifyVotSpace(refit.space, volume).ok) << what;
         }
         EXPECT_GT(hits, 0u);
     }
