@@ -37,8 +37,15 @@ std::string frameKeyFor(const std::string& drawnFrom, const RenderParams& p) {
 
 /// The Vot-Space for this request: from memory, else from the (possibly new) fit job.
 std::shared_ptr<const fit::VotSpace> spaceFor(Server::Impl& s, const std::shared_ptr<const Dataset>& dataset,
-                                              const FitKey& key, const std::string& client) {
+                                              const FitKey& key, const std::string& client,
+                                              bool mayStartFit) {
     if (auto space = s.cache.findInMemory(key)) return space;
+    // The default eps is the server's own fit (warm-up and the first view), so every role may wait for it.
+    if (!mayStartFit && key.eps != dataset->defaultEps) {
+        if (auto space = s.cache.find(key)) return space;
+        throw HttpError(403, "this token is a viewer's: it draws the fits an operator has made, and eps " +
+                                 exactText(key.eps) + " has none yet (an operator's token starts it)");
+    }
     const auto job = s.fitJobs.submit(dataset, key, client);
     const JobSnapshot done = job->waitFinished(FIT_WAIT);
     if (done.state == JobState::Failed) throw HttpError(500, "fit failed: " + done.error);
@@ -89,7 +96,8 @@ PreparedRender prepareOnRanks(const Dataset& dataset, PreparedRender prepared, f
 
 } // namespace
 
-PreparedRender prepareRender(Server::Impl& s, const RenderParams& params, const std::string& client) {
+PreparedRender prepareRender(Server::Impl& s, const RenderParams& params, const std::string& client,
+                             bool mayStartFit) {
     PreparedRender prepared;
     RenderJob& job = prepared.job;
     job.params = params;
@@ -115,7 +123,7 @@ PreparedRender prepareRender(Server::Impl& s, const RenderParams& params, const 
         prepared.drawnFrom = dataset->name + "_v" + std::to_string(dataset->contentCrc);
     } else {
         const FitKey key = fitKeyFor(*dataset, job.params.eps, job.params.degree, s.options.fitNorm);
-        job.space = spaceFor(s, dataset, key, client);
+        job.space = spaceFor(s, dataset, key, client, mayStartFit);
         prepared.drawnFrom = key.text();
     }
     return prepared;

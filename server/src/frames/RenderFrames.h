@@ -19,8 +19,11 @@ struct PreparedRender {
 };
 
 /// Throws HttpError: 404 for an unknown dataset, 409 for what Vots cannot draw, 503 without a renderer
-/// or while the fit still runs, 500 when it failed. `client` is the fit job's owner.
-PreparedRender prepareRender(Server::Impl& s, const RenderParams& params, const std::string& client);
+/// or while the fit still runs, 500 when it failed, 403 when the Vots need a fit `mayStartFit` forbids
+/// (a viewer's token: only the dataset's default eps and fits already made). `client` is the fit job's
+/// owner.
+PreparedRender prepareRender(Server::Impl& s, const RenderParams& params, const std::string& client,
+                             bool mayStartFit = true);
 
 /// Under mpirun: the ranks fit their cells at the key's eps (dist::FrameRanks::fit), which the next
 /// frames at that eps find held; this process's fit reports through `progress`. Throws what the port

@@ -22,7 +22,7 @@ void installRenderRoute(Server::Impl& s) {
         // Held until the answer is made: one client cannot fill the render queue for everyone.
         const ClientQuota::Ticket place = s.renders.enter(req.remote_addr);
         const RenderParams params = parseRenderParams(targetQueryParams(req.target));
-        const PreparedRender prepared = prepareRender(s, params, req.remote_addr);
+        const PreparedRender prepared = prepareRender(s, params, req.remote_addr, s.guard.mayStartFits(req));
 
         FrameCache::Source source = FrameCache::Source::Rendered;
         const auto frame = cachedFrame(s, prepared, params, &source);

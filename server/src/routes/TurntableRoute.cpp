@@ -54,7 +54,8 @@ void installTurntableRoute(Server::Impl& s) {
         // so other clients' frames are drawn in between.
         const ClientQuota::Ticket place = s.renders.enter(req.remote_addr);
         const TurntableRequest turn = parseTurntableRequest(targetQueryParams(req.target));
-        const PreparedRender prepared = prepareRender(s, turn.first, req.remote_addr);
+        const PreparedRender prepared =
+            prepareRender(s, turn.first, req.remote_addr, s.guard.mayStartFits(req));
 
         render::WebmWriter video(turn.first.width, turn.first.height);
         int cached = 0;

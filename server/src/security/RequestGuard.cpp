@@ -77,6 +77,12 @@ const AccessToken* RequestGuard::tokenOf(const httplib::Request& req) const {
     return match;
 }
 
+bool RequestGuard::mayStartFits(const httplib::Request& req) const {
+    if (mTokens.empty()) return true;
+    const AccessToken* token = tokenOf(req);
+    return token && token->role == Role::Operator;
+}
+
 void RequestGuard::bound(const std::string& host, int port) {
     mHosts = HostNames(host, port, mAllowedHosts);
 }

@@ -47,6 +47,8 @@ public:
     /// The token the request shows, when it is one of ours; null when it shows none of them.
     const AccessToken* tokenOf(const httplib::Request& req) const;
     bool requiresToken() const { return !mTokens.empty(); }
+    /// False for a viewer's token: its renders draw the fits that exist, and start none at a new eps.
+    bool mayStartFits(const httplib::Request& req) const;
 
 private:
     std::vector<std::string> mAllowedHosts;

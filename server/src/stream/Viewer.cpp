@@ -23,8 +23,9 @@ std::string sizerKey(const RenderParams& p) {
 
 } // namespace
 
-Viewer::Viewer(ViewerContext& context, std::weak_ptr<WebSocketPeer> peer, std::string address)
-    : mContext(context), mPeer(std::move(peer)), mAddress(std::move(address)) {}
+Viewer::Viewer(ViewerContext& context, std::weak_ptr<WebSocketPeer> peer, std::string address,
+               bool mayStartFits)
+    : mContext(context), mPeer(std::move(peer)), mAddress(std::move(address)), mMayStartFits(mayStartFits) {}
 
 void Viewer::onText(std::string text) {
     ClientMessage message;
@@ -77,7 +78,7 @@ void Viewer::draw(const PendingView& view) {
             std::lock_guard lock(mMutex);
             if (mClosed) return;
         }
-        const PreparedRender prepared = prepareRender(s, view.params, mAddress);
+        const PreparedRender prepared = prepareRender(s, view.params, mAddress, mMayStartFits);
         const RenderParams& full = view.params;
         if (view.still) {
             // Through the frame cache: the same bytes as GET /render for these parameters.

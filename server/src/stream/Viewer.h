@@ -31,7 +31,8 @@ public:
     // trame sends 50-60 while interacting; 70 keeps thin bone edges and text in the frame readable.
     static constexpr int DRAFT_QUALITY = 70;
 
-    Viewer(ViewerContext& context, std::weak_ptr<WebSocketPeer> peer, std::string address);
+    /// mayStartFits: false for a viewer's token (see RequestGuard::mayStartFits).
+    Viewer(ViewerContext& context, std::weak_ptr<WebSocketPeer> peer, std::string address, bool mayStartFits);
 
     void onText(std::string text) override;
     void onClosed() override;
@@ -45,6 +46,7 @@ private:
     ViewerContext& mContext;
     const std::weak_ptr<WebSocketPeer> mPeer;
     const std::string mAddress;
+    const bool mMayStartFits;
     std::mutex mMutex;
     ViewerPacing mPacing{MAX_IN_FLIGHT};
     std::map<std::string, DraftSizer> mSizers; // by dataset, mode and renderer: their frames cost differently

@@ -9,8 +9,9 @@ ViewerStreams::ViewerStreams(Server::Impl& s)
     : mContext{s, [this](std::function<void()> draw) { mDraws.enqueue(std::move(draw)); }},
       mHub(
           WebSocketLimits{}, [&s](const httplib::Request& req) { return screenApiRequest(s, req); },
-          [this](std::weak_ptr<WebSocketPeer> peer, const httplib::Request& req) {
-              return std::make_shared<Viewer>(mContext, std::move(peer), req.remote_addr);
+          [this, &s](std::weak_ptr<WebSocketPeer> peer, const httplib::Request& req) {
+              return std::make_shared<Viewer>(mContext, std::move(peer), req.remote_addr,
+                                              s.guard.mayStartFits(req));
           }) {}
 
 ViewerStreams::~ViewerStreams() {
