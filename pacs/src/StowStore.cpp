@@ -104,6 +104,11 @@ StoreReport storeInstances(const DicomWebEndpoint& endpoint, const DicomWebAcces
         throw PacsError(PacsFailure::Cancelled, connection.name() + ": the store was cancelled");
     if (!readProblem.empty())
         throw PacsError(PacsFailure::Local, "cannot store on " + connection.name() + ": " + readProblem);
+    // Not our cancel and no file problem: the provider stopped because a write failed, which httplib
+    // reports as Canceled. The PACS closed the connection mid-body (a refusal answered before reading it).
+    if (!result && result.error() == httplib::Error::Canceled)
+        throw PacsError(PacsFailure::Cut,
+                        connection.name() + ": the PACS closed the connection while the store was sent");
     if (!result) throw connection.transportError(result.error(), "the store");
     const nlohmann::json answer = nlohmann::json::parse(result->body, nullptr, false);
     int failedCount = 0;
