@@ -1,5 +1,6 @@
 // Tokens with roles (`--token-file` lines NAME ROLE TOKEN): a viewer's token is refused (403, JSON) on every
-// operator route and an operator's is not; GET /api/access names the token's role; the file's format.
+// operator route and an operator's is not, and its frames draw only the fits that exist; GET /api/access
+// names the token's role; the file's format.
 #include "ServerFixture.h"
 
 #include "vots/fit/Error.h"
@@ -27,11 +28,12 @@ std::vector<OperatorRequest> operatorRequests() {
             {"/api/pacs/stores/1/cancel", "{}"}};
 }
 
-class ServerRoles : public ::testing::Test {
+/// A server with a viewer's token (alice) and an operator's (bob); with a renderer where frames are drawn.
+class RolesServer : public ::testing::Test {
 protected:
-    ServerRoles() {
+    explicit RolesServer(bool withRenderer) {
         server::ServerOptions o = world.options();
-        o.withRenderer = false;
+        o.withRenderer = withRenderer;
         o.warmUpFits = false;
         o.accessTokens = {{"alice", server::Role::Viewer, VIEWER}, {"bob", server::Role::Operator, OPERATOR}};
         server = std::make_unique<LoopbackServer>(o);
@@ -42,6 +44,16 @@ protected:
 
     ServerWorld world;
     std::unique_ptr<LoopbackServer> server;
+};
+
+class ServerRoles : public RolesServer {
+protected:
+    ServerRoles() : RolesServer(false) {}
+};
+
+class ServerViewerFits : public RolesServer {
+protected:
+    ServerViewerFits() : RolesServer(true) {}
 };
 
 TEST_F(ServerRoles, AViewerTokenIsRefusedOnEveryOperatorRouteAndAnOperatorTokenIsNot) {
@@ -88,6 +100,39 @@ TEST_F(ServerRoles, AccessNamesTheTokensRoleAndNeverTheToken) {
     const auto without = c->Get("/api/access");
     ASSERT_TRUE(without);
     EXPECT_EQ(without->status, 401);
+}
+
+// A viewer's token draws the fits that exist (the default eps, an operator's fits) and starts none at a
+// new eps, through /render as through POST /api/fit: a 403 that starts no fit job.
+TEST_F(ServerViewerFits, AViewerDrawsAnOperatorsFitButStartsNoneAtANewEps) {
+    auto c = server->client();
+    const std::string newEps = "/render?dataset=" + std::string(BLOBS) + "&size=32x32&eps=9";
+
+    const auto refused = c->Get(newEps, bearer(VIEWER));
+    ASSERT_TRUE(refused);
+    EXPECT_EQ(refused->status, 403) << refused->body;
+    EXPECT_EQ(refused->get_header_value("Content-Type"), "application/json");
+    EXPECT_NE(bodyJson(refused)["error"].get<std::string>().find("viewer's"), std::string::npos);
+    const auto noJob = c->Get("/api/jobs/1", bearer(OPERATOR));
+    ASSERT_TRUE(noJob);
+    EXPECT_EQ(noJob->status, 404) << "the viewer's render started a fit: " << noJob->body;
+
+    const auto operatorFrame = c->Get(newEps, bearer(OPERATOR));
+    ASSERT_TRUE(operatorFrame);
+    ASSERT_EQ(operatorFrame->status, 200) << operatorFrame->body;
+    const auto viewerFrame = c->Get(newEps, bearer(VIEWER));
+    ASSERT_TRUE(viewerFrame);
+    ASSERT_EQ(viewerFrame->status, 200) << viewerFrame->body;
+    EXPECT_EQ(viewerFrame->body, operatorFrame->body);
+
+    // The default eps is the server's own fit, and the grid needs none: both open to a viewer.
+    for (const std::string& path :
+         {"/render?dataset=" + std::string(BLOBS) + "&size=32x32",
+          "/render?dataset=" + std::string(BLOBS) + "&size=32x32&eps=7&renderer=grid"}) {
+        const auto res = c->Get(path, bearer(VIEWER));
+        ASSERT_TRUE(res) << path;
+        EXPECT_EQ(res->status, 200) << path << ": " << res->body;
+    }
 }
 
 TEST(ServerRolesOpen, WithoutTokensEveryoneIsAnOperator) {
