@@ -49,29 +49,18 @@ std::uint32_t crcOf(std::uint32_t crc, const std::string& text) {
 
 struct FolderContent {
     std::uint64_t bytes = 0;
-    std::uint32_t crc = 0;
     int files = 0;
 };
 
-/// The bytes and CRC-32 of a folder's files, in name order.
-FolderContent readContent(const fs::path& folder) {
-    std::vector<fs::path> files;
-    for (const auto& entry : fs::directory_iterator(folder))
-        if (entry.is_regular_file()) files.push_back(entry.path());
-    std::sort(files.begin(), files.end());
+/// How many files a folder holds and their bytes, from their sizes alone: reading a 500 MB series again
+/// here would hold back its first image.
+FolderContent folderContent(const fs::path& folder) {
     FolderContent content;
-    std::vector<char> buffer(1 << 20);
-    for (const fs::path& file : files) {
-        std::ifstream in(file, std::ios::binary);
-        while (in) {
-            in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
-            const auto got = static_cast<std::size_t>(in.gcount());
-            content.crc = static_cast<std::uint32_t>(
-                crc32(content.crc, reinterpret_cast<const Bytef*>(buffer.data()), static_cast<uInt>(got)));
-            content.bytes += got;
+    for (const auto& entry : fs::directory_iterator(folder))
+        if (entry.is_regular_file()) {
+            content.bytes += entry.file_size();
+            ++content.files;
         }
-        ++content.files;
-    }
     return content;
 }
 
@@ -139,7 +128,7 @@ std::optional<fs::path> RetrievedSeriesCache::find(const std::string& seriesUid,
 fs::path RetrievedSeriesCache::keep(const KeptSeries& origin, const std::vector<std::string>& sopInstanceUids,
                                     const pacs::RetrievedSeries& retrieved) {
     const std::string key = retrievedSeriesKey(origin.seriesUid, sopInstanceUids);
-    const FolderContent content = readContent(retrieved.folder());
+    const FolderContent content = folderContent(retrieved.folder());
     std::lock_guard lock(mMutex);
     const fs::path folder = mRoot / key;
     const fs::path record = mRoot / (key + RECORD_EXTENSION);
@@ -154,7 +143,6 @@ fs::path RetrievedSeriesCache::keep(const KeptSeries& origin, const std::vector<
                                      {"seriesInstanceUid", origin.seriesUid},
                                      {"instances", content.files},
                                      {"bytes", content.bytes},
-                                     {"crc32", content.crc},
                                      {"perInstance", retrieved.perInstance}};
     const fs::path temporary = record.string() + ".tmp";
     {
