@@ -139,7 +139,8 @@ struct DicomSeriesIntake::State {
             if (carriesPixels(header, announced)) {
                 const std::array<int, 3> dims{static_cast<int>(announced.dims[0]),
                                               static_cast<int>(announced.dims[1]), 1};
-                detail::decodeAndSend(*header, dims, child);
+                detail::DecodedFile decoded; // single-frame files only: nothing to keep between them
+                detail::decodeAndSend(*header, dims, child, decoded);
             }
         }
         const Said end = Said::End;

@@ -70,9 +70,6 @@ void checkAlike(const std::vector<DicomSliceHeader>& slices) {
         if (s.samplesPerPixel != 1)
             throwInputError(s.path, "is a colour image (" + std::to_string(s.samplesPerPixel) +
                                         " samples per pixel); only greyscale series are supported");
-        if (s.frames != 1)
-            throwInputError(s.path, "holds " + std::to_string(s.frames) +
-                                        " frames; only series of single-frame images are supported");
         if (s.bitsAllocated != 8 && s.bitsAllocated != 16 && s.bitsAllocated != 32)
             throwInputError(s.path, "has " + std::to_string(s.bitsAllocated) +
                                         " bits allocated per pixel; 8, 16 or 32 are supported");
@@ -86,9 +83,9 @@ void checkAlike(const std::vector<DicomSliceHeader>& slices) {
             throwInputError(s.path, "mixed image sizes in the series: " + std::to_string(s.columns) + "x" +
                                         std::to_string(s.rows) + " here, " + std::to_string(first.columns) +
                                         "x" + std::to_string(first.rows) + " in " + fileName(first.path));
-        const std::uint64_t pixelBytes = static_cast<std::uint64_t>(s.rows) *
-                                         static_cast<std::uint64_t>(s.columns) *
-                                         static_cast<std::uint64_t>(s.bitsAllocated / 8);
+        const std::uint64_t pixelBytes =
+            static_cast<std::uint64_t>(s.rows) * static_cast<std::uint64_t>(s.columns) *
+            static_cast<std::uint64_t>(s.bitsAllocated / 8) * static_cast<std::uint64_t>(s.frames);
         // Uncompressed pixel data has a known size: a file too short for it was cut off.
         if (!s.encapsulated && s.fileSize < s.pixelDataOffset + pixelBytes)
             throwInputError(s.path, "is truncated: its pixel data needs " + std::to_string(pixelBytes) +
@@ -110,6 +107,71 @@ void checkAlike(const std::vector<DicomSliceHeader>& slices) {
                 throwInputError(s.path,
                                 "PixelSpacing differs from " + fileName(first.path) + " or is not positive");
     }
+}
+
+/// The bytes of one frame's pixels, at least 1 (so that a frame count checked against it stays bounded).
+std::uint64_t frameBytes(const DicomSliceHeader& s) {
+    return std::max<std::uint64_t>(1, static_cast<std::uint64_t>(s.rows) *
+                                          static_cast<std::uint64_t>(s.columns) *
+                                          static_cast<std::uint64_t>(std::max(1, s.bitsAllocated / 8)));
+}
+
+/// Refuses a NumberOfFrames the file cannot hold: uncompressed frames need their bytes, compressed ones at
+/// least an item header (8 bytes) each.
+void checkFrameCount(const DicomSliceHeader& s) {
+    const std::uint64_t held = s.fileSize > s.pixelDataOffset ? s.fileSize - s.pixelDataOffset : 0;
+    const std::uint64_t most = s.encapsulated ? held / 8 : held / frameBytes(s);
+    if (static_cast<std::uint64_t>(s.frames) > most)
+        throwInputError(s.path, "announces " + std::to_string(s.frames) +
+                                    " frames (NumberOfFrames) but its " + std::to_string(held) +
+                                    " bytes of pixel data hold at most " + std::to_string(most));
+    if (!s.framePlaces.empty() && s.framePlaces.size() != static_cast<std::size_t>(s.frames))
+        throwInputError(s.path, "its PerFrameFunctionalGroupsSequence holds " +
+                                    std::to_string(s.framePlaces.size()) + " items for " +
+                                    std::to_string(s.frames) + " frames (NumberOfFrames)");
+}
+
+/// A multi-frame instance as one header per frame, placed like the images of a series: at the position its
+/// per-frame functional group gives, else stacked along the normal from the file's position, frameGap
+/// apart (1 mm when the file says none). A frame's time order is its TemporalPositionIndex, else the
+/// file's own plus the frame's number, so that a cine at one position keeps its frame order and several
+/// stacks at the same positions follow their files' order.
+std::vector<DicomSliceHeader> oneHeaderPerFrame(std::vector<DicomSliceHeader> files) {
+    std::vector<DicomSliceHeader> headers;
+    headers.reserve(files.size());
+    for (DicomSliceHeader& file : files) {
+        if (file.frames <= 1) {
+            headers.push_back(std::move(file));
+            continue;
+        }
+        checkFrameCount(file);
+        const std::vector<FramePlace> places = std::move(file.framePlaces);
+        file.framePlaces.clear();
+        const auto& o = file.orientation;
+        const Vec3 normal = cross({o[0], o[1], o[2]}, {o[3], o[4], o[5]});
+        const double gap = file.frameGap > 0 ? file.frameGap : 1.0;
+        for (int k = 0; k < file.frames; ++k) {
+            DicomSliceHeader frame = file;
+            frame.frameIndex = k;
+            frame.timeOrder = file.timeOrder + k;
+            if (places.empty()) {
+                for (int a = 0; a < 3; ++a)
+                    frame.position[a] = file.position[a] + k * gap * normal[a];
+            } else {
+                const FramePlace& place = places[static_cast<std::size_t>(k)];
+                if (place.hasPosition == 0)
+                    throwInputError(file.path,
+                                    "frame " + std::to_string(k + 1) +
+                                        " has no PlanePositionSequence while other frames have one");
+                std::copy(place.position, place.position + 3, frame.position.begin());
+                if (place.hasTime != 0) frame.timeOrder = place.timeOrder;
+                frame.slope = place.slope;
+                frame.intercept = place.intercept;
+            }
+            headers.push_back(std::move(frame));
+        }
+    }
+    return headers;
 }
 
 } // namespace
@@ -184,6 +246,7 @@ DicomSeriesLayout layoutOfSlices(std::vector<DicomSliceHeader> series, const std
     layout.slices = std::move(series);
     std::vector<DicomSliceHeader>& slices = layout.slices;
     if (slices.empty()) throwInputError(folder, "holds no DICOM images");
+    slices = oneHeaderPerFrame(std::move(slices));
     checkAlike(slices);
 
     const auto& o = slices.front().orientation;

@@ -7,6 +7,7 @@
 #include "vots/fit/Error.h"
 
 #include <gdcmReader.h>
+#include <gdcmSequenceOfItems.h>
 #include <gdcmStringFilter.h>
 #include <gdcmTrace.h>
 
@@ -14,6 +15,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -26,6 +28,11 @@ namespace {
 namespace fs = std::filesystem;
 
 const gdcm::Tag PIXEL_DATA(0x7fe0, 0x0010);
+// The functional groups of multi-frame instances (Enhanced CT/MR, ...) and the macros read from them.
+const gdcm::Tag SHARED_GROUPS(0x5200, 0x9229), PER_FRAME_GROUPS(0x5200, 0x9230);
+const gdcm::Tag PLANE_POSITION(0x0020, 0x9113), PLANE_ORIENTATION(0x0020, 0x9116);
+const gdcm::Tag PIXEL_MEASURES(0x0028, 0x9110), FRAME_CONTENT(0x0020, 0x9111),
+    VALUE_TRANSFORM(0x0028, 0x9145);
 
 std::string trimmed(const std::string& text) {
     const auto first = text.find_first_not_of(" \t\r\n");
@@ -39,7 +46,7 @@ std::string textOf(const gdcm::StringFilter& filter, const gdcm::DataSet& data, 
                    std::uint16_t element) {
     const gdcm::Tag tag(group, element);
     if (!data.FindDataElement(tag) || data.GetDataElement(tag).IsEmpty()) return {};
-    std::string value = filter.ToString(tag);
+    std::string value = filter.ToString(data.GetDataElement(tag));         // also inside a sequence's item
     value.erase(std::find(value.begin(), value.end(), '\0'), value.end()); // padding of UIDs
     return trimmed(value);
 }
@@ -96,6 +103,84 @@ double timeOrderOf(const std::string& temporalPosition, const std::string& acqui
     return 0.0;
 }
 
+/// The items of sequence `tag` in `data`; null when it is absent or not a sequence.
+gdcm::SmartPointer<gdcm::SequenceOfItems> itemsOf(const gdcm::DataSet& data, const gdcm::Tag& tag) {
+    if (!data.FindDataElement(tag) || data.GetDataElement(tag).IsEmpty()) return nullptr;
+    return data.GetDataElement(tag).GetValueAsSQ();
+}
+
+/// The value of (group, element) in the first item of macro sequence `macro` of a functional group's data
+/// set (`groups`, null for none); "" when absent.
+std::string macroText(const gdcm::StringFilter& filter, const gdcm::DataSet* groups, const gdcm::Tag& macro,
+                      std::uint16_t group, std::uint16_t element) {
+    if (groups == nullptr) return {};
+    const gdcm::SmartPointer<gdcm::SequenceOfItems> items = itemsOf(*groups, macro);
+    if (!items || items->GetNumberOfItems() == 0) return {};
+    return textOf(filter, items->GetItem(1).GetNestedDataSet(), group, element);
+}
+
+/// Fills what a multi-frame instance keeps in its functional groups: the shared groups stand in for the
+/// top-level position, orientation, spacing and rescale an Enhanced CT/MR leaves out, and each per-frame
+/// group places its frame (position, temporal position, rescale).
+void readFunctionalGroups(const gdcm::StringFilter& filter, const gdcm::DataSet& data,
+                          DicomSliceHeader& slice) {
+    const gdcm::SmartPointer<gdcm::SequenceOfItems> sharedItems = itemsOf(data, SHARED_GROUPS);
+    const gdcm::DataSet* shared = sharedItems && sharedItems->GetNumberOfItems() > 0
+                                      ? &sharedItems->GetItem(1).GetNestedDataSet()
+                                      : nullptr;
+    const gdcm::SmartPointer<gdcm::SequenceOfItems> perFrame = itemsOf(data, PER_FRAME_GROUPS);
+    const gdcm::DataSet* firstFrame =
+        perFrame && perFrame->GetNumberOfItems() > 0 ? &perFrame->GetItem(1).GetNestedDataSet() : nullptr;
+    const auto sharedOrFirst = [&](const gdcm::Tag& macro, std::uint16_t group, std::uint16_t element) {
+        const std::string text = macroText(filter, shared, macro, group, element);
+        return text.empty() ? macroText(filter, firstFrame, macro, group, element) : text;
+    };
+    if (!numbersOf(textOf(filter, data, 0x0020, 0x0037), 6))
+        if (const auto orientation = numbersOf(sharedOrFirst(PLANE_ORIENTATION, 0x0020, 0x0037), 6))
+            std::copy(orientation->begin(), orientation->end(), slice.orientation.begin());
+    if (!numbersOf(textOf(filter, data, 0x0028, 0x0030), 2))
+        if (const auto spacing = numbersOf(sharedOrFirst(PIXEL_MEASURES, 0x0028, 0x0030), 2))
+            slice.pixelSpacing = {(*spacing)[0], (*spacing)[1]};
+    if (!numbersOf(textOf(filter, data, 0x0028, 0x1053), 1)) {
+        if (const auto slope = numbersOf(sharedOrFirst(VALUE_TRANSFORM, 0x0028, 0x1053), 1))
+            slice.slope = (*slope)[0];
+        if (const auto intercept = numbersOf(sharedOrFirst(VALUE_TRANSFORM, 0x0028, 0x1052), 1))
+            slice.intercept = (*intercept)[0];
+    }
+    for (const auto& [group, element] : {std::pair{0x0018, 0x0088}, std::pair{0x0018, 0x0050}}) {
+        std::string text = textOf(filter, data, group, element);
+        if (text.empty()) text = sharedOrFirst(PIXEL_MEASURES, group, element);
+        if (const auto gap = numbersOf(text, 1); gap && (*gap)[0] > 0) {
+            slice.frameGap = (*gap)[0];
+            break;
+        }
+    }
+    if (!perFrame) return;
+    bool placed = false;
+    for (gdcm::SequenceOfItems::SizeType i = 1; i <= perFrame->GetNumberOfItems(); ++i) {
+        const gdcm::DataSet* frame = &perFrame->GetItem(i).GetNestedDataSet();
+        FramePlace place;
+        place.slope = slice.slope;
+        place.intercept = slice.intercept;
+        if (const auto position = numbersOf(macroText(filter, frame, PLANE_POSITION, 0x0020, 0x0032), 3)) {
+            place.hasPosition = 1;
+            std::copy(position->begin(), position->end(), place.position);
+            placed = true;
+        }
+        if (const auto time = numbersOf(macroText(filter, frame, FRAME_CONTENT, 0x0020, 0x9128), 1)) {
+            place.hasTime = 1;
+            place.timeOrder = (*time)[0];
+        }
+        if (const auto slope = numbersOf(macroText(filter, frame, VALUE_TRANSFORM, 0x0028, 0x1053), 1))
+            place.slope = (*slope)[0];
+        if (const auto intercept = numbersOf(macroText(filter, frame, VALUE_TRANSFORM, 0x0028, 0x1052), 1))
+            place.intercept = (*intercept)[0];
+        slice.framePlaces.push_back(place);
+    }
+    // Groups that place no frame (only a rescale, say) leave the frames a stack.
+    if (!placed) slice.framePlaces.clear();
+}
+
 bool hasDicomSignature(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     char bytes[132] = {};
@@ -147,6 +232,15 @@ std::optional<DicomSliceHeader> readSliceHeader(const std::string& path) {
     if (const auto slope = numbersOf(text(0x0028, 0x1053), 1)) slice.slope = (*slope)[0];
     if (const auto intercept = numbersOf(text(0x0028, 0x1052), 1)) slice.intercept = (*intercept)[0];
     slice.timeOrder = timeOrderOf(text(0x0020, 0x0100), text(0x0008, 0x0032), text(0x0020, 0x0013));
+    if (slice.frames > 1) {
+        readFunctionalGroups(filter, data, slice);
+        // A multi-frame instance is placed by its frames: the first frame's position, else its own, else
+        // the origin (a multi-frame secondary capture has none; its frame order alone stacks it).
+        if (!slice.framePlaces.empty() && slice.framePlaces.front().hasPosition != 0)
+            std::copy(slice.framePlaces.front().position, slice.framePlaces.front().position + 3,
+                      slice.position.begin());
+        slice.hasPosition = true;
+    }
     slice.encapsulated = reader.GetFile().GetHeader().GetDataSetTransferSyntax().IsEncapsulated();
     slice.pixelDataOffset = reader.GetStreamCurrentPosition();
     slice.fileSize = regularFileSize(path);
@@ -159,7 +253,8 @@ namespace {
 struct HeaderNumbers {
     int present = 0, rows = 0, columns = 0, frames = 0, samplesPerPixel = 0, bitsAllocated = 0,
         bitsStored = 0, pixelsSigned = 0, hasPosition = 0, encapsulated = 0;
-    double position[3]{}, orientation[6]{}, pixelSpacing[2]{}, slope = 1, intercept = 0, timeOrder = 0;
+    double position[3]{}, orientation[6]{}, pixelSpacing[2]{}, slope = 1, intercept = 0, timeOrder = 0,
+                                                               frameGap = 0;
     std::uint64_t pixelDataOffset = 0, fileSize = 0;
 };
 
@@ -181,6 +276,7 @@ HeaderNumbers numbersFrom(const DicomSliceHeader& s) {
     n.slope = s.slope;
     n.intercept = s.intercept;
     n.timeOrder = s.timeOrder;
+    n.frameGap = s.frameGap;
     n.pixelDataOffset = s.pixelDataOffset;
     n.fileSize = s.fileSize;
     return n;
@@ -207,6 +303,7 @@ DicomSliceHeader headerFrom(const HeaderNumbers& n, const std::string& path, std
     s.slope = n.slope;
     s.intercept = n.intercept;
     s.timeOrder = n.timeOrder;
+    s.frameGap = n.frameGap;
     s.pixelDataOffset = n.pixelDataOffset;
     s.fileSize = n.fileSize;
     return s;
@@ -219,6 +316,9 @@ void sendSliceHeader(const std::optional<DicomSliceHeader>& slice, ChildSender& 
     child.send(&numbers, sizeof numbers);
     child.send(slice ? slice->seriesUid : std::string());
     child.send(slice ? slice->seriesDescription : std::string());
+    const std::vector<FramePlace> none;
+    const std::vector<FramePlace>& places = slice ? slice->framePlaces : none;
+    child.send(places.data(), places.size() * sizeof(FramePlace));
 }
 
 std::optional<DicomSliceHeader> receiveSliceHeader(const std::string& path, ParentReceiver& parent) {
@@ -226,9 +326,13 @@ std::optional<DicomSliceHeader> receiveSliceHeader(const std::string& path, Pare
     parent.nextInto(reinterpret_cast<char*>(&numbers), sizeof numbers);
     const std::vector<char> uid = parent.next();
     const std::vector<char> description = parent.next();
+    const std::vector<char> places = parent.next();
     if (numbers.present == 0) return std::nullopt;
-    return headerFrom(numbers, path, std::string(uid.begin(), uid.end()),
-                      std::string(description.begin(), description.end()));
+    DicomSliceHeader header = headerFrom(numbers, path, std::string(uid.begin(), uid.end()),
+                                         std::string(description.begin(), description.end()));
+    header.framePlaces.resize(places.size() / sizeof(FramePlace));
+    std::memcpy(header.framePlaces.data(), places.data(), header.framePlaces.size() * sizeof(FramePlace));
+    return header;
 }
 
 void quietGdcm() {

@@ -11,7 +11,17 @@
 
 namespace vots::fit::detail {
 
-/// The header fields of one DICOM image file that place and decode its slice.
+/// Where the PerFrameFunctionalGroupsSequence of a multi-frame instance puts one of its frames.
+struct FramePlace {
+    int hasPosition = 0;                 // PlanePositionSequence > ImagePositionPatient present
+    double position[3]{};                // ImagePositionPatient
+    int hasTime = 0;                     // FrameContentSequence > TemporalPositionIndex present
+    double timeOrder = 0.0;              // that index
+    double slope = 1.0, intercept = 0.0; // PixelValueTransformationSequence, else the file's
+};
+
+/// The header fields of one DICOM image file that place and decode its slice; for a multi-frame instance
+/// (frames > 1) the file's header, which layoutOfSlices turns into one such header per frame.
 struct DicomSliceHeader {
     std::string path;
     std::string seriesUid;
@@ -35,6 +45,11 @@ struct DicomSliceHeader {
     /// Orders the images of a 4D series at one position in time: TemporalPositionIdentifier, else
     /// AcquisitionTime (seconds of the day), else InstanceNumber; 0 when none is present.
     double timeOrder = 0.0;
+    int frameIndex = 0;    // which frame of its file this header places (0 for single-frame files)
+    double frameGap = 0.0; // SpacingBetweenSlices, else SliceThickness: between the frames of a stack
+    /// One per frame when the functional groups place the frames; empty otherwise (the frames then stack
+    /// along the normal, frameGap apart, from the file's position).
+    std::vector<FramePlace> framePlaces;
 };
 
 class ChildSender;

@@ -28,12 +28,15 @@ void loadInto(const DicomSeriesLayout& layout, int first, int last, std::vector<
     std::uint64_t largestFile = 0;
     for (auto slice = begin; slice != end; ++slice)
         largestFile = std::max(largestFile, slice->fileSize);
-    const std::uint64_t decodedSlice = pixels * static_cast<std::uint64_t>(begin->bitsAllocated / 8);
+    // A multi-frame instance is decoded whole, every frame at once.
+    const std::uint64_t decodedFile = pixels * static_cast<std::uint64_t>(begin->bitsAllocated / 8) *
+                                      static_cast<std::uint64_t>(std::max(1, begin->frames));
     detail::runIsolated(
         [&](detail::ChildSender& child) {
+            detail::DecodedFile decoded;
             for (auto slice = begin; slice != end; ++slice) {
                 child.announce(slice->path);
-                detail::decodeAndSend(*slice, layout.dims, child);
+                detail::decodeAndSend(*slice, layout.dims, child, decoded);
             }
         },
         [&](detail::ParentReceiver& parent) {
@@ -42,7 +45,7 @@ void loadInto(const DicomSeriesLayout& layout, int first, int last, std::vector<
                 detail::receiveSlice(*(begin + static_cast<std::ptrdiff_t>(z)), pixels, parent, buffer,
                                      out.data() + z * pixels);
         },
-        detail::childLimitsHolding(std::max(largestFile, decodedSlice)));
+        detail::childLimitsHolding(std::max(largestFile, decodedFile)));
 }
 
 } // namespace

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <string>
 #include <type_traits>
 #include <vector>
 
@@ -57,9 +58,19 @@ struct PixelDecoder {
     }
 };
 
-/// In the child: decodes the slice with GDCM and sends its format, then exactly its pixel bytes. Throws
-/// InputError when its image is not `dims` (columns, rows) or cannot be decoded.
-void decodeAndSend(const DicomSliceHeader& slice, const std::array<int, 3>& dims, ChildSender& child);
+/// In the child: the last file decodeAndSend decoded, kept so that the frames of a multi-frame instance,
+/// sent one by one, decode their file once.
+struct DecodedFile {
+    std::string path;
+    SliceFormat format;
+    std::vector<char> pixels; // every frame's
+};
+
+/// In the child: decodes the slice (frame slice.frameIndex of its file) with GDCM and sends its format,
+/// then exactly its pixel bytes. Throws InputError when its image is not `dims` (columns, rows) by
+/// slice.frames frames or cannot be decoded.
+void decodeAndSend(const DicomSliceHeader& slice, const std::array<int, 3>& dims, ChildSender& child,
+                   DecodedFile& last);
 
 /// In the parent: receives what decodeAndSend sent for `header`'s file and stores its `pixels` values,
 /// rescaled, at `out`; `buffer` is scratch kept between slices.

@@ -1,4 +1,5 @@
 // vots_write_dicom: writes a test DICOM series (good or broken) from a volume file or a synthetic field.
+#include "DicomMultiFrameWriter.h"
 #include "DicomSeriesWriter.h"
 
 #include "vots/fit/VolumeLoad.h"
@@ -7,6 +8,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -23,7 +25,8 @@ const char* USAGE =
     "         [--order ascending|descending|shuffled] [--prefix NAME] [--unsigned] [--bits-stored N]\n"
     "         [--slope S] [--intercept I] [--orientation R1,R2,R3,C1,C2,C3] [--origin X,Y,Z]\n"
     "         [--slices-against-normal]\n"
-    "         [--drop-slice K] [--resize-slice K] [--truncate-slice K] [--junk-file]\n";
+    "         [--drop-slice K] [--resize-slice K] [--truncate-slice K] [--junk-file]\n"
+    "         [--multi-frame T]   (one Enhanced CT instance of T time points, each 100 above the last)\n";
 
 std::vector<double> numbers(const std::string& text, std::size_t count) {
     std::vector<double> out;
@@ -72,6 +75,7 @@ int run(int argc, char** argv) {
     const std::string folder = argv[1];
     vots::test::DicomWriteOptions o;
     std::string input, kind, dims, spacing = "1,1,1";
+    int multiFrameTimePoints = 0;
     for (int i = 2; i < argc; ++i) {
         const std::string flag = argv[i];
         const auto value = [&]() -> std::string {
@@ -110,6 +114,8 @@ int run(int argc, char** argv) {
             o.truncateSlice = std::stoi(value());
         else if (flag == "--junk-file")
             o.junkFile = true;
+        else if (flag == "--multi-frame")
+            multiFrameTimePoints = std::stoi(value());
         else if (flag == "--slices-against-normal")
             o.slicesAlongNormal = false;
         else if (flag == "--orientation") {
@@ -136,7 +142,19 @@ int run(int argc, char** argv) {
         throw std::runtime_error(std::string("give --input or --synthetic\n") + USAGE);
     const vots::fit::Volume volume =
         input.empty() ? synthetic(kind, numbers(dims, 3), numbers(spacing, 3)) : vots::fit::loadVolume(input);
-    vots::test::writeDicomSeries(volume, folder, o);
+    if (multiFrameTimePoints > 0) {
+        std::vector<vots::fit::Volume> timePoints(static_cast<std::size_t>(multiFrameTimePoints), volume);
+        for (int t = 1; t < multiFrameTimePoints; ++t)
+            for (float& value : timePoints[static_cast<std::size_t>(t)].values)
+                value += 100.0f * static_cast<float>(t);
+        vots::test::MultiFrameOptions multi;
+        multi.seriesUid = o.seriesUid;
+        multi.syntax = o.syntax;
+        std::filesystem::create_directories(folder);
+        vots::test::writeMultiFrameDicom(timePoints, folder + "/instance.dcm", multi);
+    } else {
+        vots::test::writeDicomSeries(volume, folder, o);
+    }
     std::cout << "wrote " << folder << ": " << volume.dims[0] << "x" << volume.dims[1] << "x"
               << volume.dims[2] << " " << o.syntax << "\n";
     return 0;
