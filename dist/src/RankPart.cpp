@@ -27,12 +27,17 @@ std::string exactText(float value) {
     return std::to_string(bits);
 }
 
+/// One frame of one volume file, as the identities of held planes and fits name it.
+std::string volumeFrameId(const std::string& volumePath, int frame) {
+    return volumePath + '|' + std::to_string(frame);
+}
+
 } // namespace
 
 RankPart::RankPart(int rank, int ranks, RankSetup setup)
     : mRank(rank), mRanks(ranks), mSetup(std::move(setup)) {}
 
-RankPart::HeldPlanes RankPart::readOwnPlanes(const std::string& volumePath,
+RankPart::HeldPlanes RankPart::readOwnPlanes(const std::string& volumePath, int frame,
                                              fit::SampleStorage storage) const {
     const RankCells cells = cellsOfRankInVolume(volumePath, mRank, mRanks);
     const auto planes = static_cast<std::uint64_t>(std::max(cells.end - cells.first, 0)) + 1;
@@ -40,23 +45,25 @@ RankPart::HeldPlanes RankPart::readOwnPlanes(const std::string& volumePath,
         const std::string refusal = mSetup.planesOverBudget(volumePath, planes, storage);
         if (!refusal.empty()) throw RanksOverBudget(refusal);
     }
-    return {cells, loadPlanesOfCells(volumePath, cells, std::nullopt, storage, "")};
+    return {cells, loadPlanesOfCells(volumePath, cells, std::nullopt, storage, "", frame)};
 }
 
-const RankPart::HeldPlanes& RankPart::heldPlanes(const std::string& volumePath) {
-    if (mPlanes && volumePath == mPlanesPath) return *mPlanes;
+const RankPart::HeldPlanes& RankPart::heldPlanes(const std::string& volumePath, int frame) {
+    const std::string id = volumeFrameId(volumePath, frame);
+    if (mPlanes && id == mPlanesPath) return *mPlanes;
     mBoxCaches.clear(); // bound to the planes about to go
     mPlanes.reset();
     mPlanesPath.clear();
     // In the file's sample type: the same Vots as from floats (fit::SampleStorage), at half or a quarter of
     // the memory.
-    mPlanes = readOwnPlanes(volumePath, fit::SampleStorage::Source);
-    mPlanesPath = volumePath;
+    mPlanes = readOwnPlanes(volumePath, frame, fit::SampleStorage::Source);
+    mPlanesPath = id;
     return *mPlanes;
 }
 
-std::string RankPart::cellsFitId(const std::string& volumePath, float eps, int degree, fit::FitNorm norm) {
-    return volumePath + '|' + exactText(eps) + '|' + std::to_string(degree) + '|' +
+std::string RankPart::cellsFitId(const std::string& volumePath, int frame, float eps, int degree,
+                                 fit::FitNorm norm) {
+    return volumeFrameId(volumePath, frame) + '|' + exactText(eps) + '|' + std::to_string(degree) + '|' +
            std::string(fit::nameOf(norm));
 }
 
@@ -64,9 +71,9 @@ std::string RankPart::votsFileId(const std::string& votsPath, bool cutRays) {
     return "file|" + votsPath + (cutRays ? "|cut" : "|whole");
 }
 
-RankFit RankPart::fit(const std::string& volumePath, float eps, int degree, fit::FitNorm norm,
+RankFit RankPart::fit(const std::string& volumePath, int frame, float eps, int degree, fit::FitNorm norm,
                       std::array<float, 2> range, const FitProgress& progress) {
-    const std::string id = cellsFitId(volumePath, eps, degree, norm);
+    const std::string id = cellsFitId(volumePath, frame, eps, degree, norm);
     if (id == mFitId) {
         RankFit held = mFitDone;
         held.fitMs = 0.0;
@@ -75,7 +82,7 @@ RankFit RankPart::fit(const std::string& volumePath, float eps, int degree, fit:
     const auto start = std::chrono::steady_clock::now();
     mFitId.clear(); // until the new fit is made, nothing is held
     mFitted.reset();
-    const auto& [cells, read] = heldPlanes(volumePath);
+    const auto& [cells, read] = heldPlanes(volumePath, frame);
     fit::FitOptions options = render::renderFitOptions(eps, degree, fit::defaultBackground(range),
                                                        render::RENDER_FIT_CERTIFY, norm);
     options.noDataValue = range[0]; // the whole volume's lowest finite sample, as on every other rank
@@ -98,9 +105,9 @@ RankFit RankPart::fit(const std::string& volumePath, float eps, int degree, fit:
     return mFitDone;
 }
 
-double RankPart::uploadFit(const std::string& volumePath, float eps, int degree, fit::FitNorm norm,
+double RankPart::uploadFit(const std::string& volumePath, int frame, float eps, int degree, fit::FitNorm norm,
                            std::optional<float> wholeFill, render::VotRenderer& vots) {
-    const std::string id = cellsFitId(volumePath, eps, degree, norm);
+    const std::string id = cellsFitId(volumePath, frame, eps, degree, norm);
     if (id != mFitId)
         throw std::runtime_error("rank " + std::to_string(mRank) + " holds no fit of this frame");
     const std::string uploadId = id + "|fill " + (wholeFill ? exactText(*wholeFill) : "none");
@@ -149,9 +156,9 @@ double RankPart::ensureVotsFile(const std::string& votsPath, bool cutRays, rende
     return mFitMs;
 }
 
-RankSummary RankPart::summarize(const std::string& volumePath) {
+RankSummary RankPart::summarize(const std::string& volumePath, int frame) {
     // The planes the fits will take: the first fit reads nothing more.
-    const auto& [cells, read] = heldPlanes(volumePath);
+    const auto& [cells, read] = heldPlanes(volumePath, frame);
     const int lastPlane = read.whole.dims[2] - 1;
     const int owned = cells.empty() ? 0 : cells.end - cells.first + (cells.end == lastPlane ? 1 : 0);
     const std::uint64_t planeBytes = static_cast<std::uint64_t>(read.whole.dims[0]) *
@@ -181,14 +188,15 @@ RankFrame RankPart::draw(const render::FrameRequest& f, render::VotRenderer& vot
     return drawn;
 }
 
-double RankPart::ensureGrid(const std::string& volumePath, render::GridRenderer& grid) {
-    if (volumePath == mGridPath) return 0.0;
+double RankPart::ensureGrid(const std::string& volumePath, int frame, render::GridRenderer& grid) {
+    const std::string id = volumeFrameId(volumePath, frame);
+    if (id == mGridPath) return 0.0;
     const auto start = std::chrono::steady_clock::now();
     mGridPath.clear(); // until the new planes are uploaded, nothing is held
     // An empty range of cells (more ranks than cells) still reads its one plane and draws nothing of its own.
-    const auto [cells, read] = readOwnPlanes(volumePath, fit::SampleStorage::Float);
+    const auto [cells, read] = readOwnPlanes(volumePath, frame, fit::SampleStorage::Float);
     grid.uploadPlanes(read.planes, cells.first, read.whole);
-    mGridPath = volumePath;
+    mGridPath = id;
     return msSince(start);
 }
 

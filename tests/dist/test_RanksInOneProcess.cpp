@@ -66,7 +66,7 @@ Ranks fitOnRanks(const std::string& path, int ranks, std::array<float, 2> range)
     for (int r = 0; r < ranks; ++r) {
         out.parts.push_back(std::make_unique<dist::RankPart>(r, ranks, dist::RankSetup{}));
         out.renderers.push_back(std::make_unique<render::VotRenderer>());
-        out.fits.push_back(out.parts.back()->fit(path, EPS, DEGREE, NORM, range));
+        out.fits.push_back(out.parts.back()->fit(path, 0, EPS, DEGREE, NORM, range));
     }
     return out;
 }
@@ -130,7 +130,7 @@ TEST_F(RanksInOneProcess, CompositeTheFrameOfTheUnionOfTheirFitsWithTheWholeVolu
         EXPECT_NE(dist::wholeVolumeFill({sums.front()}), fill) << count << " ranks";
         for (int r = 0; r < count; ++r)
             ranks.parts[static_cast<std::size_t>(r)]->uploadFit(
-                path, EPS, DEGREE, NORM, fill, *ranks.renderers[static_cast<std::size_t>(r)]);
+                path, 0, EPS, DEGREE, NORM, fill, *ranks.renderers[static_cast<std::size_t>(r)]);
 
         render::VotRenderer one;
         one.upload(unionOfRankFits(path, count, range, fill));
@@ -161,8 +161,8 @@ TEST_F(RanksInOneProcess, EachRanksOwnFillWouldChangeTheMinipOfThisVolume) {
     const std::optional<float> fill =
         dist::wholeVolumeFill({whole.fits[0].background, whole.fits[1].background});
     for (std::size_t r = 0; r < 2; ++r) {
-        whole.parts[r]->uploadFit(path, EPS, DEGREE, NORM, fill, *whole.renderers[r]);
-        own.parts[r]->uploadFit(path, EPS, DEGREE, NORM, dist::wholeVolumeFill({own.fits[r].background}),
+        whole.parts[r]->uploadFit(path, 0, EPS, DEGREE, NORM, fill, *whole.renderers[r]);
+        own.parts[r]->uploadFit(path, 0, EPS, DEGREE, NORM, dist::wholeVolumeFill({own.fits[r].background}),
                                 *own.renderers[r]);
     }
     EXPECT_NE(composited(own, frame).pixels, composited(whole, frame).pixels)

@@ -33,7 +33,7 @@ public:
         return {{request.frame.width, request.frame.height, std::vector<float>(pixels, 255.f)}, {0.f, 255.f}};
     }
     dist::RanksFit fit(const dist::FitRequest&, const dist::FitProgress&) override { return {1, 0.0}; }
-    dist::VolumeSummary summarize(const std::filesystem::path&) override { return {{0.f, 255.f}, 1u}; }
+    dist::VolumeSummary summarize(const std::filesystem::path&, int) override { return {{0.f, 255.f}, 1u}; }
     std::vector<dist::RankTimes> lastTimes() const override { return {}; }
 
     /// Waits (a minute at most) until the render thread is inside the first frame.

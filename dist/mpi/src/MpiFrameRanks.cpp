@@ -65,13 +65,13 @@ RankFrame drawPart(RankPart& part, const CommandBody& c, const std::string& path
     const auto start = Clock::now();
     *readMs = 0.0;
     if (c.frame.renderer == render::RendererKind::Grid) {
-        *readMs = part.ensureGrid(path, grid);
+        *readMs = part.ensureGrid(path, c.volumeFrame, grid);
         grid.useNoDataValue(c.range[0]); // the whole volume's lowest finite sample, as one process draws
     } else if (c.votsFile) {
         *readMs = part.ensureVotsFile(path, compositesCutRays(c.frame.mode), vots);
     } else {
         const std::optional<float> fill = c.hasFill ? std::optional<float>(c.fill) : std::nullopt;
-        part.uploadFit(path, c.eps, c.degree, normOf(c), fill, vots);
+        part.uploadFit(path, c.volumeFrame, c.eps, c.degree, normOf(c), fill, vots);
     }
     RankFrame drawn = c.frame.renderer == render::RendererKind::Grid ? RankPart::drawGrid(c.frame, grid)
                                                                      : part.draw(c.frame, vots);
@@ -125,9 +125,10 @@ std::vector<char> replyTo(MessageKind kind, const CommandBody& c, const std::str
     try {
         switch (kind) {
         case SUMMARY:
-            return messageOf(SUMMARIZED, part.summarize(path));
+            return messageOf(SUMMARIZED, part.summarize(path, c.volumeFrame));
         case FIT:
-            return messageOf(FITTED, fittedBodyOf(part.fit(path, c.eps, c.degree, normOf(c), c.range)));
+            return messageOf(
+                FITTED, fittedBodyOf(part.fit(path, c.volumeFrame, c.eps, c.degree, normOf(c), c.range)));
         case FRAME: {
             if (!vots || !grid) throw std::runtime_error(noRenderer);
             double readMs = 0.0, frameMs = 0.0;
@@ -257,6 +258,7 @@ RanksFit MpiFrameRanks::fitOnRanks(const FitRequest& request, const FitProgress&
     command.degree = request.degree;
     command.norm = static_cast<std::int32_t>(request.norm);
     command.range = request.valueRange;
+    command.volumeFrame = request.frame;
     std::vector<BackgroundSums> sums(static_cast<std::size_t>(mWorld.size()));
     RanksFit done;
     double slowestMs = 0.0;
@@ -271,13 +273,13 @@ RanksFit MpiFrameRanks::fitOnRanks(const FitRequest& request, const FitProgress&
     exchange(
         commandOf(FIT, command, path), Clock::now() + FRAME_DEADLINE + FIT_DEADLINE,
         [&] {
-            const RankFit mine =
-                mPart.fit(path, request.eps, request.degree, request.norm, request.valueRange, progress);
+            const RankFit mine = mPart.fit(path, request.frame, request.eps, request.degree, request.norm,
+                                           request.valueRange, progress);
             add(0, fittedBodyOf(mine));
         },
         [&](int rank, const std::vector<char>& reply) { add(rank, bodyOf<FittedBody>(reply, FITTED)); });
     mFittedFill = wholeVolumeFill(sums);
-    mFittedId = RankPart::cellsFitId(path, request.eps, request.degree, request.norm);
+    mFittedId = RankPart::cellsFitId(path, request.frame, request.eps, request.degree, request.norm);
     done.seconds = slowestMs / 1000.0;
     return done;
 }
@@ -299,18 +301,21 @@ ComposedFrame MpiFrameRanks::draw(const DrawRequest& request, render::VotRendere
     command.norm = static_cast<std::int32_t>(request.fit.norm);
     command.range = request.fit.valueRange;
     command.votsFile = request.votsFile ? 1 : 0;
+    command.volumeFrame = request.fit.frame;
     // A frame of Vots the ranks must first read (a file, the grid's planes) or upload gets a fit's deadline.
     bool firstOfItsInput = false;
     mFitRoundMs.assign(static_cast<std::size_t>(mWorld.size()), 0.0);
     if (fromGrid) {
-        firstOfItsInput = path != mSentGridPath;
-        mSentGridPath = path;
+        const std::string sent = path + '|' + std::to_string(request.fit.frame);
+        firstOfItsInput = sent != mSentGridPath;
+        mSentGridPath = sent;
     } else if (request.votsFile) {
         const std::string id = RankPart::votsFileId(path, compositesCutRays(request.frame.mode));
         firstOfItsInput = id != mSentFileId;
         mSentFileId = id;
     } else {
-        if (RankPart::cellsFitId(path, request.fit.eps, request.fit.degree, request.fit.norm) != mFittedId) {
+        if (RankPart::cellsFitId(path, request.fit.frame, request.fit.eps, request.fit.degree,
+                                 request.fit.norm) != mFittedId) {
             fitOnRanks(request.fit, {});
             firstOfItsInput = true;
         }
@@ -366,14 +371,16 @@ ComposedFrame MpiFrameRanks::draw(const DrawRequest& request, render::VotRendere
     return composed;
 }
 
-VolumeSummary MpiFrameRanks::summarize(const std::filesystem::path& volumePath) {
+VolumeSummary MpiFrameRanks::summarize(const std::filesystem::path& volumePath, int frame) {
     std::lock_guard lock(mExchangeMutex);
     const std::string path = volumePath.string();
     std::vector<RankSummary> parts(static_cast<std::size_t>(mWorld.size()));
+    CommandBody command;
+    command.volumeFrame = frame;
     // Reading a rank's planes can take as long as fitting them.
     exchange(
-        commandOf(SUMMARY, CommandBody{}, path), Clock::now() + FRAME_DEADLINE + FIT_DEADLINE,
-        [&] { parts[0] = mPart.summarize(path); },
+        commandOf(SUMMARY, command, path), Clock::now() + FRAME_DEADLINE + FIT_DEADLINE,
+        [&] { parts[0] = mPart.summarize(path, frame); },
         [&](int rank, const std::vector<char>& reply) {
             parts[static_cast<std::size_t>(rank)] = bodyOf<RankSummary>(reply, SUMMARIZED);
         });

@@ -39,6 +39,7 @@ struct CommandBody {
     std::int32_t votsFile = 0;            // FRAME: the path is a .vots file's
     std::int32_t hasFill = 0;             // FRAME of a fit: the whole volume's fill (wholeVolumeFill)
     float fill = 0.f;
+    std::int32_t volumeFrame = 0; // SUMMARY, FIT, FRAME: the 3D volume of a 4D file the path names
 };
 
 struct FailedBody {

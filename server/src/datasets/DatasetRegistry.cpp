@@ -73,22 +73,24 @@ std::shared_ptr<Dataset> loadDataset(const std::string& name, const fs::path& pa
     return dataset;
 }
 
-/// Under mpirun: the ranks read the samples, each its z cells' planes; this process reads the grid from the
-/// first plane and holds no samples.
+/// Under mpirun: the ranks read the samples of `frame`, each its z cells' planes; this process reads the
+/// grid from the first plane and holds no samples.
 std::shared_ptr<Dataset> summarizeDataset(const std::string& name, const fs::path& path,
-                                          const std::string& dicomSeries, dist::FrameRanks& ranks) {
+                                          const std::string& dicomSeries, dist::FrameRanks& ranks,
+                                          int frame) {
     if (!dicomSeries.empty())
         throw fit::InputError(
             "under mpirun a folder of several DICOM series is not drawn across the ranks yet");
-    const dist::VolumeSummary summary = ranks.summarize(path);
+    const dist::VolumeSummary summary = ranks.summarize(path, frame);
     auto dataset = std::make_shared<Dataset>();
     dataset->name = name;
     dataset->path = path;
     dataset->samplesOnRanks = true;
+    dataset->frame = frame;
     describeRange(*dataset, summary.range);
     dataset->contentCrc = summary.contentCrc;
     dataset->volume = std::make_shared<fit::Volume>(
-        fit::loadVolumePlanes(path.string(), 0, 0, std::nullopt, DATASET_STORAGE).whole);
+        fit::loadVolumePlanes(path.string(), 0, 0, std::nullopt, DATASET_STORAGE, {}, frame).whole);
     return dataset;
 }
 
@@ -297,7 +299,7 @@ std::shared_ptr<const Dataset> DatasetRegistry::find(const std::string& name, in
             const MemoryReservation admitted =
                 mMemory.admit(mRanks ? 0 : fit::estimateLoadAndFitBytes(*entry->header, DATASET_STORAGE),
                               "dataset '" + name + "' (" + entry->header->describe() + ")");
-            auto dataset = mRanks ? summarizeDataset(name, entry->path, entry->dicomSeries, *mRanks)
+            auto dataset = mRanks ? summarizeDataset(name, entry->path, entry->dicomSeries, *mRanks, 0)
                                   : loadDataset(name, entry->path, entry->dicomSeries, *entry->header, 0);
             dataset->frames = entry->header->frames;
             std::lock_guard lock(mMutex); // loaded() reads dataset under mMutex
@@ -317,13 +319,13 @@ std::shared_ptr<const Dataset> DatasetRegistry::findOtherFrame(Entry& entry, con
         throw HttpError(400, "dataset '" + name + "' has no frame " + std::to_string(frame) + ": it holds " +
                                  std::to_string(frames) + (frames == 1 ? " frame" : " frames"));
     if (auto it = entry.otherFrames.find(frame); it != entry.otherFrames.end()) return it->second;
-    if (entry.dataset->samplesOnRanks)
-        throw HttpError(409, "under mpirun only frame 0 of a 4D dataset is drawn across the ranks yet");
-    // Admitted as frame 0 was: each frame is a volume of the same size, resident once loaded.
-    const MemoryReservation admitted =
-        mMemory.admit(entry.dataset->loadAndFitBytes, "frame " + std::to_string(frame) + " of dataset '" +
-                                                          name + "' (" + entry.header->describe() + ")");
-    auto dataset = loadDataset(name, entry.path, entry.dicomSeries, *entry.header, frame);
+    // Admitted as frame 0 was: each frame is a volume of the same size, resident once loaded. Under mpirun
+    // the ranks hold the samples (each its planes of the frame asked last) and this process the grid alone.
+    const MemoryReservation admitted = mMemory.admit(mRanks ? 0 : entry.dataset->loadAndFitBytes,
+                                                     "frame " + std::to_string(frame) + " of dataset '" +
+                                                         name + "' (" + entry.header->describe() + ")");
+    auto dataset = mRanks ? summarizeDataset(name, entry.path, entry.dicomSeries, *mRanks, frame)
+                          : loadDataset(name, entry.path, entry.dicomSeries, *entry.header, frame);
     dataset->frames = frames;
     std::lock_guard lock(mMutex); // loaded() reads the frames under mMutex
     entry.otherFrames.emplace(frame, dataset);

@@ -62,6 +62,7 @@ dist::FitRequest fitRequestFor(const Dataset& dataset, float eps, int degree, fi
     dist::FitRequest request;
     request.dataset = dataset.name;
     request.volumePath = dataset.path;
+    request.frame = dataset.frame;
     request.valueRange = dataset.range;
     request.eps = eps;
     request.degree = degree;

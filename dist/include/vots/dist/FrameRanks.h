@@ -20,6 +20,7 @@ namespace vots::dist { // render::GridRenderer and render::VotRenderer are decla
 struct FitRequest {
     std::string dataset;
     std::filesystem::path volumePath;          // the same path on every rank
+    int frame = 0;                             // the 3D volume of a 4D file (0-based); 0 for a 3D one
     std::array<float, 2> valueRange{0.f, 0.f}; // the whole volume's min and max sample
     float eps = 0.f;                           // data units
     int degree = 3;
@@ -83,9 +84,9 @@ public:
     /// Any thread, exclusive with draw(): every rank fits its cells, and holds the fit for the frames that
     /// follow; this process's fit reports through `progress` (when set), standing for every rank's.
     virtual RanksFit fit(const FitRequest& request, const FitProgress& progress) = 0;
-    /// Any thread, exclusive with draw(): every rank reads its planes of the volume file and gives its
-    /// part of the summary, which is returned.
-    virtual VolumeSummary summarize(const std::filesystem::path& volumePath) = 0;
+    /// Any thread, exclusive with draw(): every rank reads its planes of the volume file's `frame` and
+    /// gives its part of the summary, which is returned.
+    virtual VolumeSummary summarize(const std::filesystem::path& volumePath, int frame) = 0;
     /// The last composited frame's times, in rank order; empty before the first. Thread-safe.
     virtual std::vector<RankTimes> lastTimes() const = 0;
 };

@@ -65,14 +65,15 @@ class RankPart {
 public:
     RankPart(int rank, int ranks, RankSetup setup);
 
-    /// Reads (once) and fits this rank's planes unless the fit of (volume, eps, degree, norm) is held;
-    /// `range` is the whole volume's. The fit reports through `progress` when it is set. Needs no renderer.
-    RankFit fit(const std::string& volumePath, float eps, int degree, fit::FitNorm norm,
+    /// Reads (once) and fits this rank's planes of `frame` (the 3D volume of a 4D file; 0 otherwise)
+    /// unless the fit of (volume, frame, eps, degree, norm) is held; `range` is the whole volume's. The fit
+    /// reports through `progress` when it is set. Needs no renderer.
+    RankFit fit(const std::string& volumePath, int frame, float eps, int degree, fit::FitNorm norm,
                 std::array<float, 2> range, const FitProgress& progress = {});
-    /// Uploads the held fit of (volume, eps, degree, norm) to `vots` with the whole volume's background
-    /// fill (wholeVolumeFill of every rank's RankFit) unless `vots` holds it already; returns the
+    /// Uploads the held fit of (volume, frame, eps, degree, norm) to `vots` with the whole volume's
+    /// background fill (wholeVolumeFill of every rank's RankFit) unless `vots` holds it already; returns the
     /// milliseconds it took. Throws std::runtime_error when that fit is not the one held.
-    double uploadFit(const std::string& volumePath, float eps, int degree, fit::FitNorm norm,
+    double uploadFit(const std::string& volumePath, int frame, float eps, int degree, fit::FitNorm norm,
                      std::optional<float> wholeFill, render::VotRenderer& vots);
     /// Uploads this rank's Vots of the .vots file (votsOfCells: those whose box starts in its cells, or
     /// with `cutRays` every one that meets them) when they differ from what `vots` holds, reading the file
@@ -82,34 +83,36 @@ public:
     /// The frame's projection of this rank's Vots, rays cut to its cells where the composite needs it.
     RankFrame draw(const render::FrameRequest& frame, render::VotRenderer& vots) const;
 
-    /// Reads this rank's planes of the volume into `grid` when they are not the ones it holds; returns
-    /// the milliseconds it took (0 when it held them).
-    double ensureGrid(const std::string& volumePath, render::GridRenderer& grid);
+    /// Reads this rank's planes of the volume's `frame` into `grid` when they are not the ones it holds;
+    /// returns the milliseconds it took (0 when it held them).
+    double ensureGrid(const std::string& volumePath, int frame, render::GridRenderer& grid);
     /// The frame's projection of this rank's planes on the exact grid (ensureGrid first).
     static RankFrame drawGrid(const render::FrameRequest& frame, render::GridRenderer& grid);
 
     /// This rank's part of what the server knows of a volume (the samples' range, the content CRC), read
-    /// from its planes, which it keeps for the fits; see RankSummary.
-    RankSummary summarize(const std::string& volumePath);
+    /// from its planes of `frame`, which it keeps for the fits; see RankSummary.
+    RankSummary summarize(const std::string& volumePath, int frame);
 
     /// The Vots uploaded last (0 before the first).
     std::size_t votCount() const { return mVotCount; }
     /// What the fit (or read) of the Vots uploaded last took, upload included (0 before the first).
     double fitMs() const { return mFitMs; }
 
-    /// The identity of a rank's fit of its cells: the volume, the exact eps, the degree, the norm.
-    static std::string cellsFitId(const std::string& volumePath, float eps, int degree, fit::FitNorm norm);
+    /// The identity of a rank's fit of its cells: the volume and frame, the exact eps, the degree, the norm.
+    static std::string cellsFitId(const std::string& volumePath, int frame, float eps, int degree,
+                                  fit::FitNorm norm);
     /// The identity of the Vots of a .vots file a rank uploads for whole or cut rays.
     static std::string votsFileId(const std::string& votsPath, bool cutRays);
 
 private:
     using HeldPlanes = std::pair<RankCells, fit::PlanesOfGrid>;
-    /// This rank's planes of the volume in the file's sample type, read (readOwnPlanes) when they are not
-    /// the ones held; a new volume drops the box caches of the last.
-    const HeldPlanes& heldPlanes(const std::string& volumePath);
-    /// This rank's cells of the volume and its planes read with `storage`; throws RanksOverBudget, before
-    /// reading, when they (and their fit) would need more than the memory budget leaves.
-    HeldPlanes readOwnPlanes(const std::string& volumePath, fit::SampleStorage storage) const;
+    /// This rank's planes of the volume's frame in the file's sample type, read (readOwnPlanes) when they
+    /// are not the ones held; a new volume or frame drops the box caches of the last.
+    const HeldPlanes& heldPlanes(const std::string& volumePath, int frame);
+    /// This rank's cells of the volume and its planes of `frame` read with `storage`; throws
+    /// RanksOverBudget, before reading, when they (and their fit) would need more than the memory budget
+    /// leaves.
+    HeldPlanes readOwnPlanes(const std::string& volumePath, int frame, fit::SampleStorage storage) const;
     /// Uploads `space` (this rank's Vots of `cells`) and marks it as `vots`'s, under `id`.
     void upload(const fit::VotSpace& space, RankCells cells, const std::string& id, bool fromFile,
                 render::VotRenderer& vots);
@@ -128,8 +131,8 @@ private:
     std::optional<fit::VotSpace> mFitted;
     RankCells mFittedCells;
     RankFit mFitDone;
-    std::string mGridPath;   // the volume whose planes ensureGrid last uploaded
-    std::string mPlanesPath; // the volume heldPlanes holds
+    std::string mGridPath;   // volumeFrameId of the planes ensureGrid last uploaded
+    std::string mPlanesPath; // volumeFrameId of the planes heldPlanes holds
     std::optional<HeldPlanes> mPlanes;
     std::map<int, std::unique_ptr<fit::FitCache>> mBoxCaches; // per degree, bound to mPlanes
     std::string mFilePath;                                    // the .vots file mFileVots was read from

@@ -41,7 +41,7 @@ public:
     ComposedFrame draw(const DrawRequest& request, render::VotRenderer& vots,
                        render::GridRenderer& grid) override;
     RanksFit fit(const FitRequest& request, const FitProgress& progress) override;
-    VolumeSummary summarize(const std::filesystem::path& volumePath) override;
+    VolumeSummary summarize(const std::filesystem::path& volumePath, int frame) override;
     std::vector<RankTimes> lastTimes() const override;
     /// Tells the ranks still answering to leave their loop; after the server (its render thread) is gone.
     void releaseRanks();
@@ -71,7 +71,7 @@ private:
     std::optional<float> mFittedFill; // the whole volume's fill of that fit
     std::vector<double> mFitRoundMs;  // per rank: the last fit round's fitting (0 when held)
     std::string mSentFileId;          // the .vots file's Vots the ranks hold uploaded
-    std::string mSentGridPath;        // the volume whose planes they hold in their grids
+    std::string mSentGridPath;        // the volume and frame ("path|frame") whose planes their grids hold
     std::atomic<int> mLostRank = -1;
     std::string mLostMessage;
     mutable std::mutex mTimesMutex;
