@@ -71,7 +71,7 @@ std::optional<Refusal> screenApiRequest(const Server::Impl& s, const httplib::Re
 Server::Impl::Impl(ServerOptions opts)
     : options(std::move(opts)),
       memory(options.memoryBudgetBytes ? options.memoryBudgetBytes : fit::defaultMemoryBudget()),
-      registry(options.dataDirs, memory),
+      registry(options.dataDirs, memory, options.heldFrameBytes),
       cache(options.cacheDir, options.memoryCacheBytes, options.diskCacheBytes),
       fitJobs(cache, stats, foreground, memory, limitsFrom(options)),
       seriesOpens(options.dicomWebServices,

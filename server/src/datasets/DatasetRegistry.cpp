@@ -23,6 +23,9 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr float CT_MIN_HU = -900.f; // air is about -1000 HU; a minimum this low means CT
+// Frames beside frame 0 get a quarter of the budget by default: the rest is for frame 0s, fits and the
+// renderer, and a viewer cycling a cine reloads a frame in about the time it draws one.
+constexpr std::uint64_t HELD_FRAMES_SHARE = 4;
 
 /// The dataset name of a file ("cranium" for cranium.nhdr or cranium.nii.gz), empty if not a volume.
 std::string volumeStem(const fs::path& file) {
@@ -153,8 +156,10 @@ std::map<std::string, render::DisplaySettings> windowPresets(std::array<float, 2
     return presets;
 }
 
-DatasetRegistry::DatasetRegistry(const std::vector<fs::path>& dataDirs, MemoryAdmission& memory)
-    : mMemory(memory) {
+DatasetRegistry::DatasetRegistry(const std::vector<fs::path>& dataDirs, MemoryAdmission& memory,
+                                 std::uint64_t heldFrameBytes)
+    : mMemory(memory),
+      mHeldFrameBound(heldFrameBytes ? heldFrameBytes : memory.budget() / HELD_FRAMES_SHARE) {
     for (const fs::path& dir : dataDirs) {
         std::error_code ec;
         fs::directory_iterator it(dir, ec);
@@ -218,7 +223,7 @@ void DatasetRegistry::offerDicomFolder(const std::string& name, const fs::path& 
     entry->dicomSeries.clear();
     entry->isVots = false;
     entry->dataset.reset();
-    entry->otherFrames.clear();
+    dropFramesOfLocked(*entry);
     entry->header.reset();
     entry->loadError.clear();
 }
@@ -318,18 +323,66 @@ std::shared_ptr<const Dataset> DatasetRegistry::findOtherFrame(Entry& entry, con
     if (frame < 0 || static_cast<std::uint64_t>(frame) >= frames)
         throw HttpError(400, "dataset '" + name + "' has no frame " + std::to_string(frame) + ": it holds " +
                                  std::to_string(frames) + (frames == 1 ? " frame" : " frames"));
-    if (auto it = entry.otherFrames.find(frame); it != entry.otherFrames.end()) return it->second;
-    // Admitted as frame 0 was: each frame is a volume of the same size, resident once loaded. Under mpirun
-    // the ranks hold the samples (each its planes of the frame asked last) and this process the grid alone.
-    const MemoryReservation admitted = mMemory.admit(mRanks ? 0 : entry.dataset->loadAndFitBytes,
-                                                     "frame " + std::to_string(frame) + " of dataset '" +
-                                                         name + "' (" + entry.header->describe() + ")");
+    const std::string what =
+        "frame " + std::to_string(frame) + " of dataset '" + name + "' (" + entry.header->describe() + ")";
+    // Under mpirun the ranks hold the samples (each its planes of the frame asked last) and this process
+    // the grid alone.
+    const std::uint64_t bytes = mRanks ? 0 : fit::estimateLoadedVolumeBytes(*entry.header, DATASET_STORAGE);
+    const std::uint64_t admitBytes = mRanks ? 0 : entry.dataset->loadAndFitBytes;
+    {
+        std::lock_guard lock(mMutex);
+        if (auto it = entry.otherFrames.find(frame); it != entry.otherFrames.end()) {
+            const auto use = std::find_if(mFrameUse.begin(), mFrameUse.end(), [&](const HeldFrame& held) {
+                return held.entry == &entry && held.frame == frame;
+            });
+            mFrameUse.splice(mFrameUse.end(), mFrameUse, use); // the most recently used now
+            return it->second;
+        }
+        makeRoomForFrameLocked(bytes, admitBytes, what);
+    }
+    // Admitted as frame 0 was: each frame is a volume of the same size, resident once loaded.
+    const MemoryReservation admitted = mMemory.admit(admitBytes, what);
     auto dataset = mRanks ? summarizeDataset(name, entry.path, entry.dicomSeries, *mRanks, frame)
                           : loadDataset(name, entry.path, entry.dicomSeries, *entry.header, frame);
     dataset->frames = frames;
     std::lock_guard lock(mMutex); // loaded() reads the frames under mMutex
     entry.otherFrames.emplace(frame, dataset);
+    mFrameUse.push_back({&entry, name, frame, bytes});
+    mHeldFrameBytes += bytes;
     return dataset;
+}
+
+void DatasetRegistry::makeRoomForFrameLocked(std::uint64_t bytes, std::uint64_t admitBytes,
+                                             const std::string& what) {
+    while (!mFrameUse.empty() &&
+           (mHeldFrameBytes + bytes > mHeldFrameBound || !mMemory.refusal(admitBytes, what).empty())) {
+        const HeldFrame& oldest = mFrameUse.front();
+        oldest.entry->otherFrames.erase(oldest.frame);
+        mHeldFrameBytes -= oldest.bytes;
+        mFrameUse.pop_front();
+    }
+}
+
+void DatasetRegistry::dropFramesOfLocked(Entry& entry) {
+    for (auto it = mFrameUse.begin(); it != mFrameUse.end();) {
+        if (it->entry != &entry) {
+            ++it;
+            continue;
+        }
+        mHeldFrameBytes -= it->bytes;
+        it = mFrameUse.erase(it);
+    }
+    entry.otherFrames.clear();
+}
+
+HeldFramesSummary DatasetRegistry::heldFrames() const {
+    std::lock_guard lock(mMutex);
+    HeldFramesSummary summary;
+    summary.bytes = mHeldFrameBytes;
+    summary.boundBytes = mHeldFrameBound;
+    for (const HeldFrame& held : mFrameUse)
+        summary.frames.push_back(held.name + "/" + std::to_string(held.frame));
+    return summary;
 }
 
 std::optional<fit::VolumeHeaderInfo> DatasetRegistry::header(const std::string& name) const {

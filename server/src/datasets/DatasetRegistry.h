@@ -15,6 +15,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <list>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -88,9 +89,19 @@ struct VolumeSummary {
     std::uint32_t contentCrc = 0;              // fit::Volume::contentCrc()
 };
 
+/// The frames of 4D datasets held beside their frame 0 (GET /api/stats' `heldFrames`).
+struct HeldFramesSummary {
+    std::uint64_t bytes = 0;         // their samples, as estimated from the header
+    std::uint64_t boundBytes = 0;    // what they are held within
+    std::vector<std::string> frames; // "<dataset>/<frame>", least recently used first
+};
+
 class DatasetRegistry {
 public:
-    DatasetRegistry(const std::vector<std::filesystem::path>& dataDirs, MemoryAdmission& memory);
+    /// `heldFrameBytes`: frames of 4D datasets other than frame 0 stay loaded within this many bytes
+    /// (0: a quarter of the memory budget), least recently used dropped first.
+    DatasetRegistry(const std::vector<std::filesystem::path>& dataDirs, MemoryAdmission& memory,
+                    std::uint64_t heldFrameBytes = 0);
     /// From now on a volume dataset is summarized by the ranks (samplesOnRanks), not loaded here: this
     /// process holds none of its samples. Call before the first find().
     void summarizeOnRanks(dist::FrameRanks* ranks) { mRanks = ranks; }
@@ -120,6 +131,8 @@ public:
     DatasetKind kind(const std::string& name) const;
     /// Already loaded datasets only (never loads), for stats.
     std::vector<std::shared_ptr<const Dataset>> loaded() const;
+    /// The frames other than frame 0 held now.
+    HeldFramesSummary heldFrames() const;
 
 private:
     struct Entry {
@@ -127,8 +140,9 @@ private:
         std::string dicomSeries; // the SeriesInstanceUID when `path` is a folder holding several
         bool isVots = false;     // `path` is a Vot-Space file
         std::mutex loadMutex;    // held while this one file loads, so others load in parallel
-        std::shared_ptr<const Dataset> dataset;                    // frame 0
-        std::map<int, std::shared_ptr<const Dataset>> otherFrames; // of a 4D file, as they are asked for
+        std::shared_ptr<const Dataset> dataset; // frame 0
+        // Of a 4D file, as they are asked for, while mFrameUse keeps them; under mMutex.
+        std::map<int, std::shared_ptr<const Dataset>> otherFrames;
         std::optional<fit::VolumeHeaderInfo> header; // read before loading; written under mMutex
         std::string loadError;
     };
@@ -137,10 +151,26 @@ private:
     static void rememberLoadFailure(Entry& entry, const std::string& name);
     /// Frame `frame` (> 0) of a 4D volume whose frame 0 is loaded; under the entry's loadMutex.
     std::shared_ptr<const Dataset> findOtherFrame(Entry& entry, const std::string& name, int frame);
+    /// A frame held beside its frame 0, in the order of use.
+    struct HeldFrame {
+        Entry* entry = nullptr;
+        std::string name;
+        int frame = 0;
+        std::uint64_t bytes = 0;
+    };
+    /// Drops the least recently used frames (of any dataset) until one of `bytes` more stays within the
+    /// bound and the memory budget admits `admitBytes`; a frame still drawn or fitted is freed when that
+    /// ends. Under mMutex.
+    void makeRoomForFrameLocked(std::uint64_t bytes, std::uint64_t admitBytes, const std::string& what);
+    /// Forgets the entry's frames (its folder changed). Under mMutex.
+    void dropFramesOfLocked(Entry& entry);
     MemoryAdmission& mMemory;
     dist::FrameRanks* mRanks = nullptr;
     mutable std::mutex mMutex;
     std::map<std::string, std::unique_ptr<Entry>> mEntries;
+    const std::uint64_t mHeldFrameBound;
+    std::list<HeldFrame> mFrameUse; // least recently used first; under mMutex
+    std::uint64_t mHeldFrameBytes = 0;
 };
 
 } // namespace vots::server

@@ -31,6 +31,7 @@ void installStatsRoute(Server::Impl& s) {
         nlohmann::json loaded = nlohmann::json::array();
         for (const auto& d : s.registry.loaded())
             loaded.push_back(d->name);
+        const HeldFramesSummary held = s.registry.heldFrames();
 
         const WarmUpSummary warm = s.fitJobs.warmUps();
         const RenderQueue* queue = s.renderQueue.get();
@@ -64,6 +65,8 @@ void installStatsRoute(Server::Impl& s) {
                     {"rendered", kept.rendered},
                     {"shared", kept.shared},
                     {"cached", kept.cached}}},
+                  {"heldFrames",
+                   {{"bytes", held.bytes}, {"boundBytes", held.boundBytes}, {"frames", held.frames}}},
                   {"renderer", renderer},
                   {"fits", fits},
                   {"fitJobs", {{"active", s.fitJobs.activeCount()}}},

@@ -65,6 +65,10 @@ struct ServerOptions {
     // process's resident memory: never an allocation the kernel kills the server for. 0: the default,
     // fit::defaultMemoryBudget() (80 % of the memory available at start).
     std::uint64_t memoryBudgetBytes = 0;
+    // Frames of 4D datasets other than frame 0 stay loaded within this many bytes (their samples), least
+    // recently used dropped first (and before a load the memory budget would refuse). 0: a quarter of the
+    // memory budget.
+    std::uint64_t heldFrameBytes = 0;
     // Under mpirun (dist/mpi's MpiFrameRanks): frames and fits are made through it on every rank, the
     // frames composited; what it refuses is answered 409. Null: frames are drawn here alone.
     std::shared_ptr<dist::FrameRanks> ranks;
