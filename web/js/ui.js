@@ -15,11 +15,10 @@ import { createHashWriter, formatHash, parseHash } from './hash.js';
 import { attachInput } from './input.js';
 import { fitViewToDataset, isVotsDataset } from './kind.js';
 import { showOverlays } from './overlays.js';
-import { createPacsSend } from './pacs-send.js';
+import { attachPacsPanels } from './pacs-panels.js';
 import { applyRole } from './role.js';
 import { attachSlabControl } from './slab-control.js';
 import { statusLine } from './status.js';
-import { createStudyBrowser } from './study-browser.js';
 import { attachTimeControl } from './time.js';
 import { homeCamera, initialView, reconcileRenderer } from './view.js';
 
@@ -360,49 +359,10 @@ async function showOpenedDataset(name) {
   el.dataset.dispatchEvent(new Event('change'));
 }
 
-const pacsSend = createPacsSend({
-  el: {
-    root: $('pacs-send'),
-    what: $('pacs-send-what'),
-    thickness: $('pacs-send-thickness'),
-    step: $('pacs-send-step'),
-    note: $('pacs-send-note'),
-    send: $('pacs-send-button'),
-    cancel: $('pacs-send-cancel'),
-    progressBox: $('pacs-send-progress-box'),
-    progress: $('pacs-send-progress'),
-    label: $('pacs-send-progress-label'),
-    result: $('pacs-send-result'),
-    error: $('pacs-send-error'),
-  },
+const { pacsSend, studyBrowser } = attachPacsPanels({
   viewParams: () => frames.viewParams(),
   slab: () => view.slab,
-});
-
-const studyBrowser = createStudyBrowser({
-  el: {
-    root: $('pacs'),
-    form: $('pacs-form'),
-    serviceRow: $('pacs-service-row'),
-    service: $('pacs-service'),
-    patientName: $('pacs-patient-name'),
-    patientId: $('pacs-patient-id'),
-    dateFrom: $('pacs-date-from'),
-    dateTo: $('pacs-date-to'),
-    modality: $('pacs-modality'),
-    accession: $('pacs-accession'),
-    studies: $('pacs-studies'),
-    studiesNote: $('pacs-studies-note'),
-    seriesBox: $('pacs-series-box'),
-    series: $('pacs-series'),
-    progressBox: $('pacs-progress-box'),
-    progress: $('pacs-progress'),
-    progressLabel: $('pacs-progress-label'),
-    cancel: $('pacs-cancel'),
-    error: $('pacs-error'),
-  },
   onOpened: showOpenedDataset,
-  onServices: (names) => pacsSend.setServices(names),
 });
 
 // ---------- start ----------
