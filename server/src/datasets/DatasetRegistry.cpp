@@ -158,8 +158,7 @@ std::map<std::string, render::DisplaySettings> windowPresets(std::array<float, 2
 
 DatasetRegistry::DatasetRegistry(const std::vector<fs::path>& dataDirs, MemoryAdmission& memory,
                                  std::uint64_t heldFrameBytes)
-    : mMemory(memory),
-      mHeldFrameBound(heldFrameBytes ? heldFrameBytes : memory.budget() / HELD_FRAMES_SHARE) {
+    : mMemory(memory), mHeldFrames(heldFrameBytes ? heldFrameBytes : memory.budget() / HELD_FRAMES_SHARE) {
     for (const fs::path& dir : dataDirs) {
         std::error_code ec;
         fs::directory_iterator it(dir, ec);
@@ -223,7 +222,8 @@ void DatasetRegistry::offerDicomFolder(const std::string& name, const fs::path& 
     entry->dicomSeries.clear();
     entry->isVots = false;
     entry->dataset.reset();
-    dropFramesOfLocked(*entry);
+    entry->otherFrames.clear();
+    mHeldFrames.forget(name);
     entry->header.reset();
     entry->loadError.clear();
 }
@@ -332,13 +332,15 @@ std::shared_ptr<const Dataset> DatasetRegistry::findOtherFrame(Entry& entry, con
     {
         std::lock_guard lock(mMutex);
         if (auto it = entry.otherFrames.find(frame); it != entry.otherFrames.end()) {
-            const auto use = std::find_if(mFrameUse.begin(), mFrameUse.end(), [&](const HeldFrame& held) {
-                return held.entry == &entry && held.frame == frame;
-            });
-            mFrameUse.splice(mFrameUse.end(), mFrameUse, use); // the most recently used now
+            mHeldFrames.touch(name, frame);
             return it->second;
         }
-        makeRoomForFrameLocked(bytes, admitBytes, what);
+        // A frame still drawn or fitted is freed when that ends (the shared_ptr).
+        mHeldFrames.makeRoom(
+            bytes, [&] { return mMemory.refusal(admitBytes, what).empty(); },
+            [this](const std::string& dataset, int dropped) {
+                mEntries.at(dataset)->otherFrames.erase(dropped);
+            });
     }
     // Admitted as frame 0 was: each frame is a volume of the same size, resident once loaded.
     const MemoryReservation admitted = mMemory.admit(admitBytes, what);
@@ -347,42 +349,13 @@ std::shared_ptr<const Dataset> DatasetRegistry::findOtherFrame(Entry& entry, con
     dataset->frames = frames;
     std::lock_guard lock(mMutex); // loaded() reads the frames under mMutex
     entry.otherFrames.emplace(frame, dataset);
-    mFrameUse.push_back({&entry, name, frame, bytes});
-    mHeldFrameBytes += bytes;
+    mHeldFrames.add(name, frame, bytes);
     return dataset;
-}
-
-void DatasetRegistry::makeRoomForFrameLocked(std::uint64_t bytes, std::uint64_t admitBytes,
-                                             const std::string& what) {
-    while (!mFrameUse.empty() &&
-           (mHeldFrameBytes + bytes > mHeldFrameBound || !mMemory.refusal(admitBytes, what).empty())) {
-        const HeldFrame& oldest = mFrameUse.front();
-        oldest.entry->otherFrames.erase(oldest.frame);
-        mHeldFrameBytes -= oldest.bytes;
-        mFrameUse.pop_front();
-    }
-}
-
-void DatasetRegistry::dropFramesOfLocked(Entry& entry) {
-    for (auto it = mFrameUse.begin(); it != mFrameUse.end();) {
-        if (it->entry != &entry) {
-            ++it;
-            continue;
-        }
-        mHeldFrameBytes -= it->bytes;
-        it = mFrameUse.erase(it);
-    }
-    entry.otherFrames.clear();
 }
 
 HeldFramesSummary DatasetRegistry::heldFrames() const {
     std::lock_guard lock(mMutex);
-    HeldFramesSummary summary;
-    summary.bytes = mHeldFrameBytes;
-    summary.boundBytes = mHeldFrameBound;
-    for (const HeldFrame& held : mFrameUse)
-        summary.frames.push_back(held.name + "/" + std::to_string(held.frame));
-    return summary;
+    return mHeldFrames.summary();
 }
 
 std::optional<fit::VolumeHeaderInfo> DatasetRegistry::header(const std::string& name) const {

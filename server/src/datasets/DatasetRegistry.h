@@ -2,6 +2,7 @@
 // lazily once, then kept.
 #pragma once
 
+#include "datasets/HeldFrames.h"
 #include "datasets/MemoryAdmission.h"
 
 #include "vots/dist/FrameRanks.h"
@@ -15,7 +16,6 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
-#include <list>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -89,13 +89,6 @@ struct VolumeSummary {
     std::uint32_t contentCrc = 0;              // fit::Volume::contentCrc()
 };
 
-/// The frames of 4D datasets held beside their frame 0 (GET /api/stats' `heldFrames`).
-struct HeldFramesSummary {
-    std::uint64_t bytes = 0;         // their samples, as estimated from the header
-    std::uint64_t boundBytes = 0;    // what they are held within
-    std::vector<std::string> frames; // "<dataset>/<frame>", least recently used first
-};
-
 class DatasetRegistry {
 public:
     /// `heldFrameBytes`: frames of 4D datasets other than frame 0 stay loaded within this many bytes
@@ -141,7 +134,7 @@ private:
         bool isVots = false;     // `path` is a Vot-Space file
         std::mutex loadMutex;    // held while this one file loads, so others load in parallel
         std::shared_ptr<const Dataset> dataset; // frame 0
-        // Of a 4D file, as they are asked for, while mFrameUse keeps them; under mMutex.
+        // Of a 4D file, as they are asked for, while mHeldFrames keeps them; under mMutex.
         std::map<int, std::shared_ptr<const Dataset>> otherFrames;
         std::optional<fit::VolumeHeaderInfo> header; // read before loading; written under mMutex
         std::string loadError;
@@ -151,26 +144,11 @@ private:
     static void rememberLoadFailure(Entry& entry, const std::string& name);
     /// Frame `frame` (> 0) of a 4D volume whose frame 0 is loaded; under the entry's loadMutex.
     std::shared_ptr<const Dataset> findOtherFrame(Entry& entry, const std::string& name, int frame);
-    /// A frame held beside its frame 0, in the order of use.
-    struct HeldFrame {
-        Entry* entry = nullptr;
-        std::string name;
-        int frame = 0;
-        std::uint64_t bytes = 0;
-    };
-    /// Drops the least recently used frames (of any dataset) until one of `bytes` more stays within the
-    /// bound and the memory budget admits `admitBytes`; a frame still drawn or fitted is freed when that
-    /// ends. Under mMutex.
-    void makeRoomForFrameLocked(std::uint64_t bytes, std::uint64_t admitBytes, const std::string& what);
-    /// Forgets the entry's frames (its folder changed). Under mMutex.
-    void dropFramesOfLocked(Entry& entry);
     MemoryAdmission& mMemory;
     dist::FrameRanks* mRanks = nullptr;
     mutable std::mutex mMutex;
     std::map<std::string, std::unique_ptr<Entry>> mEntries;
-    const std::uint64_t mHeldFrameBound;
-    std::list<HeldFrame> mFrameUse; // least recently used first; under mMutex
-    std::uint64_t mHeldFrameBytes = 0;
+    HeldFrames mHeldFrames; // the entries' otherFrames in the order of use; under mMutex
 };
 
 } // namespace vots::server
