@@ -2,25 +2,24 @@
 #include "DicomScan.h"
 
 #include "DicomChild.h"
+#include "DicomFunctionalGroups.h"
+#include "DicomText.h"
 #include "InputFile.h"
 
 #include "vots/fit/Error.h"
 
 #include <gdcmReader.h>
-#include <gdcmSequenceOfItems.h>
 #include <gdcmStringFilter.h>
 #include <gdcmTrace.h>
 
 #include <algorithm>
 #include <cctype>
-#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <optional>
-#include <sstream>
 
 namespace vots::fit::detail {
 namespace {
@@ -28,44 +27,6 @@ namespace {
 namespace fs = std::filesystem;
 
 const gdcm::Tag PIXEL_DATA(0x7fe0, 0x0010);
-// The functional groups of multi-frame instances (Enhanced CT/MR, ...) and the macros read from them.
-const gdcm::Tag SHARED_GROUPS(0x5200, 0x9229), PER_FRAME_GROUPS(0x5200, 0x9230);
-const gdcm::Tag PLANE_POSITION(0x0020, 0x9113), PLANE_ORIENTATION(0x0020, 0x9116);
-const gdcm::Tag PIXEL_MEASURES(0x0028, 0x9110), FRAME_CONTENT(0x0020, 0x9111),
-    VALUE_TRANSFORM(0x0028, 0x9145);
-
-std::string trimmed(const std::string& text) {
-    const auto first = text.find_first_not_of(" \t\r\n");
-    if (first == std::string::npos) return {};
-    const auto last = text.find_last_not_of(" \t\r\n");
-    return text.substr(first, last - first + 1);
-}
-
-/// The value as text ("" when absent or empty); GDCM turns binary VRs (US, ...) into decimal text.
-std::string textOf(const gdcm::StringFilter& filter, const gdcm::DataSet& data, std::uint16_t group,
-                   std::uint16_t element) {
-    const gdcm::Tag tag(group, element);
-    if (!data.FindDataElement(tag) || data.GetDataElement(tag).IsEmpty()) return {};
-    std::string value = filter.ToString(data.GetDataElement(tag));         // also inside a sequence's item
-    value.erase(std::find(value.begin(), value.end(), '\0'), value.end()); // padding of UIDs
-    return trimmed(value);
-}
-
-/// Backslash-separated numbers ("0.5\0.5"); nullopt unless there are exactly `count` of them.
-std::optional<std::vector<double>> numbersOf(const std::string& text, std::size_t count) {
-    std::vector<double> values;
-    std::stringstream in(text);
-    std::string part;
-    while (std::getline(in, part, '\\')) {
-        part = trimmed(part);
-        char* end = nullptr;
-        const double value = std::strtod(part.c_str(), &end);
-        if (part.empty() || end != part.c_str() + part.size() || !std::isfinite(value)) return std::nullopt;
-        values.push_back(value);
-    }
-    if (values.size() != count) return std::nullopt;
-    return values;
-}
 
 int integerOf(const std::string& text, int fallback) {
     const auto values = numbersOf(text, 1);
@@ -73,8 +34,6 @@ int integerOf(const std::string& text, int fallback) {
     return static_cast<int>((*values)[0]);
 }
 
-/// The DICOM Part 10 signature: a 128-byte preamble, then "DICM". A file with it that GDCM cannot parse
-/// is a damaged DICOM file, not an unrelated file to skip.
 /// AcquisitionTime "HHMMSS.FFFFFF" (HH, HHMM and the fraction optional) as seconds of the day; nullopt for
 /// anything else.
 std::optional<double> secondsOfDay(const std::string& time) {
@@ -103,84 +62,8 @@ double timeOrderOf(const std::string& temporalPosition, const std::string& acqui
     return 0.0;
 }
 
-/// The items of sequence `tag` in `data`; null when it is absent or not a sequence.
-gdcm::SmartPointer<gdcm::SequenceOfItems> itemsOf(const gdcm::DataSet& data, const gdcm::Tag& tag) {
-    if (!data.FindDataElement(tag) || data.GetDataElement(tag).IsEmpty()) return nullptr;
-    return data.GetDataElement(tag).GetValueAsSQ();
-}
-
-/// The value of (group, element) in the first item of macro sequence `macro` of a functional group's data
-/// set (`groups`, null for none); "" when absent.
-std::string macroText(const gdcm::StringFilter& filter, const gdcm::DataSet* groups, const gdcm::Tag& macro,
-                      std::uint16_t group, std::uint16_t element) {
-    if (groups == nullptr) return {};
-    const gdcm::SmartPointer<gdcm::SequenceOfItems> items = itemsOf(*groups, macro);
-    if (!items || items->GetNumberOfItems() == 0) return {};
-    return textOf(filter, items->GetItem(1).GetNestedDataSet(), group, element);
-}
-
-/// Fills what a multi-frame instance keeps in its functional groups: the shared groups stand in for the
-/// top-level position, orientation, spacing and rescale an Enhanced CT/MR leaves out, and each per-frame
-/// group places its frame (position, temporal position, rescale).
-void readFunctionalGroups(const gdcm::StringFilter& filter, const gdcm::DataSet& data,
-                          DicomSliceHeader& slice) {
-    const gdcm::SmartPointer<gdcm::SequenceOfItems> sharedItems = itemsOf(data, SHARED_GROUPS);
-    const gdcm::DataSet* shared = sharedItems && sharedItems->GetNumberOfItems() > 0
-                                      ? &sharedItems->GetItem(1).GetNestedDataSet()
-                                      : nullptr;
-    const gdcm::SmartPointer<gdcm::SequenceOfItems> perFrame = itemsOf(data, PER_FRAME_GROUPS);
-    const gdcm::DataSet* firstFrame =
-        perFrame && perFrame->GetNumberOfItems() > 0 ? &perFrame->GetItem(1).GetNestedDataSet() : nullptr;
-    const auto sharedOrFirst = [&](const gdcm::Tag& macro, std::uint16_t group, std::uint16_t element) {
-        const std::string text = macroText(filter, shared, macro, group, element);
-        return text.empty() ? macroText(filter, firstFrame, macro, group, element) : text;
-    };
-    if (!numbersOf(textOf(filter, data, 0x0020, 0x0037), 6))
-        if (const auto orientation = numbersOf(sharedOrFirst(PLANE_ORIENTATION, 0x0020, 0x0037), 6))
-            std::copy(orientation->begin(), orientation->end(), slice.orientation.begin());
-    if (!numbersOf(textOf(filter, data, 0x0028, 0x0030), 2))
-        if (const auto spacing = numbersOf(sharedOrFirst(PIXEL_MEASURES, 0x0028, 0x0030), 2))
-            slice.pixelSpacing = {(*spacing)[0], (*spacing)[1]};
-    if (!numbersOf(textOf(filter, data, 0x0028, 0x1053), 1)) {
-        if (const auto slope = numbersOf(sharedOrFirst(VALUE_TRANSFORM, 0x0028, 0x1053), 1))
-            slice.slope = (*slope)[0];
-        if (const auto intercept = numbersOf(sharedOrFirst(VALUE_TRANSFORM, 0x0028, 0x1052), 1))
-            slice.intercept = (*intercept)[0];
-    }
-    for (const auto& [group, element] : {std::pair{0x0018, 0x0088}, std::pair{0x0018, 0x0050}}) {
-        std::string text = textOf(filter, data, group, element);
-        if (text.empty()) text = sharedOrFirst(PIXEL_MEASURES, group, element);
-        if (const auto gap = numbersOf(text, 1); gap && (*gap)[0] > 0) {
-            slice.frameGap = (*gap)[0];
-            break;
-        }
-    }
-    if (!perFrame) return;
-    bool placed = false;
-    for (gdcm::SequenceOfItems::SizeType i = 1; i <= perFrame->GetNumberOfItems(); ++i) {
-        const gdcm::DataSet* frame = &perFrame->GetItem(i).GetNestedDataSet();
-        FramePlace place;
-        place.slope = slice.slope;
-        place.intercept = slice.intercept;
-        if (const auto position = numbersOf(macroText(filter, frame, PLANE_POSITION, 0x0020, 0x0032), 3)) {
-            place.hasPosition = 1;
-            std::copy(position->begin(), position->end(), place.position);
-            placed = true;
-        }
-        if (const auto time = numbersOf(macroText(filter, frame, FRAME_CONTENT, 0x0020, 0x9128), 1)) {
-            place.hasTime = 1;
-            place.timeOrder = (*time)[0];
-        }
-        if (const auto slope = numbersOf(macroText(filter, frame, VALUE_TRANSFORM, 0x0028, 0x1053), 1))
-            place.slope = (*slope)[0];
-        if (const auto intercept = numbersOf(macroText(filter, frame, VALUE_TRANSFORM, 0x0028, 0x1052), 1))
-            place.intercept = (*intercept)[0];
-        slice.framePlaces.push_back(place);
-    }
-    // Groups that place no frame (only a rescale, say) leave the frames a stack.
-    if (!placed) slice.framePlaces.clear();
-}
-
+/// The DICOM Part 10 signature: a 128-byte preamble, then "DICM". A file with it that GDCM cannot parse
+/// is a damaged DICOM file, not an unrelated file to skip.
 bool hasDicomSignature(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     char bytes[132] = {};
