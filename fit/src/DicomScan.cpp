@@ -214,7 +214,8 @@ std::optional<DicomSliceHeader> receiveSliceHeader(const std::string& path, Pare
     DicomSliceHeader header = headerFrom(numbers, path, std::string(uid.begin(), uid.end()),
                                          std::string(description.begin(), description.end()));
     header.framePlaces.resize(places.size() / sizeof(FramePlace));
-    std::memcpy(header.framePlaces.data(), places.data(), header.framePlaces.size() * sizeof(FramePlace));
+    if (!header.framePlaces.empty()) // a single-frame file sends none: no copy from a null pointer
+        std::memcpy(header.framePlaces.data(), places.data(), header.framePlaces.size() * sizeof(FramePlace));
     return header;
 }
 
