@@ -6,8 +6,10 @@ goal: 8 clients rendering (a new camera angle per request), with and without 1,0
 ends), so the only difference between them is the hostile connections; the watchers watch that fit.
 soak: the same parts mixed for --seconds, plus eps changes and clients that disconnect mid-answer;
 samples the server's RSS and open descriptors. Exits 1 on any failure (see the summary it prints).
+With --tls-ca the server speaks HTTPS: every client goes through TLS, the idle connections are idle
+handshakes, and --slow-handshakes / --half-handshakes add ClientHellos sent a byte at a time or cut in half.
 """
-import argparse, http.client, json, multiprocessing, os, random, resource, selectors, socket, sys, threading, time
+import argparse, http.client, json, multiprocessing, os, random, resource, selectors, socket, ssl, sys, threading, time
 
 p = argparse.ArgumentParser()
 p.add_argument("mode", choices=["goal", "soak"])
@@ -25,7 +27,11 @@ p.add_argument("--idle-sockets", type=int, default=200, help="viewer WebSockets 
 p.add_argument("--seconds", type=float, default=30)
 p.add_argument("--sample-seconds", type=float, default=30)
 p.add_argument("--errors-only", action="store_true", help="report the latency goals but fail only on errors")
+p.add_argument("--tls-ca", help="the server speaks HTTPS with a certificate this CA signed")
+p.add_argument("--slow-handshakes", type=int, default=0, help="TLS: ClientHellos sent one byte every 0.5 s")
+p.add_argument("--half-handshakes", type=int, default=0, help="TLS: half a ClientHello, then silence")
 a = p.parse_args()
+tls = ssl.create_default_context(cafile=a.tls_ca) if a.tls_ca else None
 
 soft, hard = resource.getrlimit(resource.RLIMIT_NOFILE)
 resource.setrlimit(resource.RLIMIT_NOFILE, (hard, hard))
@@ -40,9 +46,32 @@ def fail(text):
             errors.append(text)
 
 
+def connect(source, timeout=None):
+    """A connection to the server, through TLS when it speaks HTTPS (the handshake done, blocking)."""
+    s = socket.create_connection(("127.0.0.1", a.port), source_address=(source, 0), timeout=timeout)
+    return tls.wrap_socket(s, server_hostname="127.0.0.1") if tls else s
+
+
+def client_hello():
+    """The bytes a TLS client opens with, made without a socket."""
+    context = ssl.create_default_context()
+    context.check_hostname = False
+    context.verify_mode = ssl.CERT_NONE
+    outgoing = ssl.MemoryBIO()
+    try:
+        context.wrap_bio(ssl.MemoryBIO(), outgoing).do_handshake()
+    except ssl.SSLWantReadError:
+        pass
+    return outgoing.read()
+
+
 def request(method, target, body=None, source="127.0.0.1", timeout=120):
     """One exchange; returns (status, headers, body bytes, seconds). A non-JSON error is a failure."""
-    c = http.client.HTTPConnection("127.0.0.1", a.port, timeout=timeout, source_address=(source, 0))
+    if tls:
+        c = http.client.HTTPSConnection("127.0.0.1", a.port, timeout=timeout, source_address=(source, 0),
+                                        context=tls)
+    else:
+        c = http.client.HTTPConnection("127.0.0.1", a.port, timeout=timeout, source_address=(source, 0))
     start = time.monotonic()
     try:
         headers = {"Content-Type": "application/json"} if body is not None else {}
@@ -102,7 +131,7 @@ def renderer(index, latencies, until, disconnect_every=0):
         target = f"/render?dataset={a.dataset}&size={a.size}&eps={a.eps}&cam=az%3D{az:.5f}%2Cel%3D{20 + index}"
         if disconnect_every and n % disconnect_every == 0:  # a client that goes away mid-answer
             try:
-                s = socket.create_connection(("127.0.0.1", a.port), source_address=(source, 0))
+                s = connect(source)
                 s.sendall(f"GET {target} HTTP/1.1\r\nHost: 127.0.0.1:{a.port}\r\n\r\n".encode())
                 s.close()
             except OSError as e:
@@ -138,6 +167,8 @@ class Hostiles:
     def __init__(self, fits):
         self.job = fits.shared_job
         self.idle = []
+        self.handshakes = []  # [socket, bytes still to send (None: half sent, then silent), opened]
+        self.handshake_count = multiprocessing.Value("q", 0)
         self.due = []  # when closed watchers come back: a browser's EventSource retries after 3 s
         self.open_idle_count = multiprocessing.Value("q", 0)
         self.watcher_count = multiprocessing.Value("q", 0)
@@ -151,13 +182,17 @@ class Hostiles:
 
     def start(self):
         self.process.start()
-        self.ready.wait(120)
+        if not self.ready.wait(120):
+            fail("the hostile connections were not all opened within 120 s (or their process died)")
 
     def run(self):
         global fail
         fail = lambda text: self.errors.put(text)  # noqa: E731 (the child's failures go to the parent)
         self.sel = selectors.DefaultSelector()
         self.open_idle(a.idle)
+        self.hello = client_hello() if tls else b""
+        for i in range(a.slow_handshakes + a.half_handshakes):
+            self.open_handshake(slow=i < a.slow_handshakes)
         for _ in range(a.watchers):
             try:
                 self.open_watcher()
@@ -173,6 +208,8 @@ class Hostiles:
         for key in list(self.sel.get_map().values()):
             key.fileobj.close()
         for s, _ in self.idle:
+            s.close()
+        for s, _, _ in self.handshakes:
             s.close()
 
     @property
@@ -190,6 +227,47 @@ class Hostiles:
     @property
     def idle_open(self):
         return self.open_idle_count.value
+
+    @property
+    def handshakes_open(self):
+        return self.handshake_count.value
+
+    def open_handshake(self, slow):
+        """A TLS handshake begun and never finished: the ClientHello a byte at a time, or half of it."""
+        try:
+            s = socket.create_connection(("127.0.0.1", a.port), source_address=(f"127.0.4.{len(self.handshakes) % 250 + 1}", 0))
+            s.setblocking(False)
+            half = len(self.hello) // 2
+            if not slow:
+                s.send(self.hello[:half])
+            self.handshakes.append([s, self.hello if slow else None, time.monotonic()])
+        except OSError as e:
+            fail(f"TLS handshake connection: {e}")
+        self.handshake_count.value = len(self.handshakes)
+
+    def advance_handshakes(self):
+        """Slow ones send their next byte; any the server closed (5 s without a request) begin again."""
+        now = time.monotonic()
+        ended = []
+        for entry in self.handshakes:
+            s, rest, opened = entry
+            try:
+                if rest:
+                    s.send(rest[:1])
+                    entry[1] = rest[1:]
+                closed = s.recv(1, socket.MSG_PEEK) == b""
+            except BlockingIOError:
+                closed = False
+            except OSError:
+                closed = True
+            if closed or now - opened > 4.5:
+                ended.append(entry)
+        for entry in ended:
+            self.handshakes.remove(entry)
+            entry[0].close()
+            self.reopen_count.value += 1
+            self.open_handshake(slow=entry[1] is not None)
+        self.handshake_count.value = len(self.handshakes)
 
     def open_idle(self, count):
         for i in range(count):
@@ -221,7 +299,7 @@ class Hostiles:
 
     def open_watcher(self):
         job = self.job.value  # the fit the load runs (both phases start the same fits)
-        s = socket.create_connection(("127.0.0.1", a.port), source_address=("127.0.2.1", 0))
+        s = connect("127.0.2.1")
         s.sendall(f"GET /api/jobs/{job}/events HTTP/1.1\r\nHost: 127.0.0.1:{a.port}\r\n\r\n".encode())
         s.setblocking(False)
         self.sel.register(s, selectors.EVENT_READ, bytearray())
@@ -231,7 +309,7 @@ class Hostiles:
         """A viewer's WebSocket that is upgraded and then left silent (32 at most per address: spread)."""
         self.sockets_opened += 1
         source = f"127.0.3.{self.sockets_opened % 250 + 1}"
-        s = socket.create_connection(("127.0.0.1", a.port), source_address=(source, 0), timeout=30)
+        s = connect(source, timeout=30)
         s.sendall((f"GET /api/stream HTTP/1.1\r\nHost: 127.0.0.1:{a.port}\r\nUpgrade: websocket\r\n"
                    "Connection: Upgrade\r\nSec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\n"
                    "Sec-WebSocket-Version: 13\r\n\r\n").encode())
@@ -256,7 +334,7 @@ class Hostiles:
                 s = key.fileobj
                 try:
                     data = s.recv(65536)
-                except BlockingIOError:
+                except (BlockingIOError, ssl.SSLWantReadError, ssl.SSLWantWriteError):
                     continue
                 except OSError:
                     data = b""
@@ -289,6 +367,7 @@ class Hostiles:
                     fail(f"watcher: {e}")
             if time.monotonic() - last_refresh > 0.5:
                 self.refresh_idle()
+                self.advance_handshakes()
                 last_refresh = time.monotonic()
 
     def close(self):
@@ -321,7 +400,7 @@ def phase(name, seconds, fits, hostiles=None):
     extra = ""
     if hostiles:
         extra = (f", idle {hostiles.idle_open} (reopened {hostiles.reopened}), watchers {hostiles.watchers}, "
-                 f"viewer sockets {hostiles.viewer_sockets}")
+                 f"viewer sockets {hostiles.viewer_sockets}, unfinished TLS handshakes {hostiles.handshakes_open}")
     print(f"{name}: renders {len(renders)}, p50 {percentile(renders, 50) * 1000:.0f} ms, "
           f"p99 {percentile(renders, 99) * 1000:.0f} ms; /api/* {len(probes)}, p50 {percentile(probes, 50) * 1000:.1f} ms, "
           f"p99 {percentile(probes, 99) * 1000:.1f} ms, max {max(probes or [0]) * 1000:.1f} ms; fits started {fits.started}{extra}", flush=True)
