@@ -11,6 +11,8 @@ handshakes, and --slow-handshakes / --half-handshakes add ClientHellos sent a by
 """
 import argparse, http.client, json, multiprocessing, os, random, resource, selectors, socket, ssl, sys, threading, time
 
+from tls_handshakes import UnfinishedHandshakes
+
 p = argparse.ArgumentParser()
 p.add_argument("mode", choices=["goal", "soak"])
 p.add_argument("--port", type=int, required=True)
@@ -50,19 +52,6 @@ def connect(source, timeout=None):
     """A connection to the server, through TLS when it speaks HTTPS (the handshake done, blocking)."""
     s = socket.create_connection(("127.0.0.1", a.port), source_address=(source, 0), timeout=timeout)
     return tls.wrap_socket(s, server_hostname="127.0.0.1") if tls else s
-
-
-def client_hello():
-    """The bytes a TLS client opens with, made without a socket."""
-    context = ssl.create_default_context()
-    context.check_hostname = False
-    context.verify_mode = ssl.CERT_NONE
-    outgoing = ssl.MemoryBIO()
-    try:
-        context.wrap_bio(ssl.MemoryBIO(), outgoing).do_handshake()
-    except ssl.SSLWantReadError:
-        pass
-    return outgoing.read()
 
 
 def request(method, target, body=None, source="127.0.0.1", timeout=120):
@@ -167,7 +156,7 @@ class Hostiles:
     def __init__(self, fits):
         self.job = fits.shared_job
         self.idle = []
-        self.handshakes = []  # [socket, bytes still to send (None: half sent, then silent), opened]
+        self.handshakes = None  # UnfinishedHandshakes, in the child process
         self.handshake_count = multiprocessing.Value("q", 0)
         self.due = []  # when closed watchers come back: a browser's EventSource retries after 3 s
         self.open_idle_count = multiprocessing.Value("q", 0)
@@ -190,9 +179,10 @@ class Hostiles:
         fail = lambda text: self.errors.put(text)  # noqa: E731 (the child's failures go to the parent)
         self.sel = selectors.DefaultSelector()
         self.open_idle(a.idle)
-        self.hello = client_hello() if tls else b""
-        for i in range(a.slow_handshakes + a.half_handshakes):
-            self.open_handshake(slow=i < a.slow_handshakes)
+        if tls:
+            self.handshakes = UnfinishedHandshakes(a.port, a.slow_handshakes, a.half_handshakes,
+                                                   lambda text: fail(text), self.reopen_count)
+            self.handshake_count.value = len(self.handshakes.open)
         for _ in range(a.watchers):
             try:
                 self.open_watcher()
@@ -209,8 +199,8 @@ class Hostiles:
             key.fileobj.close()
         for s, _ in self.idle:
             s.close()
-        for s, _, _ in self.handshakes:
-            s.close()
+        if self.handshakes:
+            self.handshakes.close()
 
     @property
     def watchers(self):
@@ -231,43 +221,6 @@ class Hostiles:
     @property
     def handshakes_open(self):
         return self.handshake_count.value
-
-    def open_handshake(self, slow):
-        """A TLS handshake begun and never finished: the ClientHello a byte at a time, or half of it."""
-        try:
-            s = socket.create_connection(("127.0.0.1", a.port), source_address=(f"127.0.4.{len(self.handshakes) % 250 + 1}", 0))
-            s.setblocking(False)
-            half = len(self.hello) // 2
-            if not slow:
-                s.send(self.hello[:half])
-            self.handshakes.append([s, self.hello if slow else None, time.monotonic()])
-        except OSError as e:
-            fail(f"TLS handshake connection: {e}")
-        self.handshake_count.value = len(self.handshakes)
-
-    def advance_handshakes(self):
-        """Slow ones send their next byte; any the server closed (5 s without a request) begin again."""
-        now = time.monotonic()
-        ended = []
-        for entry in self.handshakes:
-            s, rest, opened = entry
-            try:
-                if rest:
-                    s.send(rest[:1])
-                    entry[1] = rest[1:]
-                closed = s.recv(1, socket.MSG_PEEK) == b""
-            except BlockingIOError:
-                closed = False
-            except OSError:
-                closed = True
-            if closed or now - opened > 4.5:
-                ended.append(entry)
-        for entry in ended:
-            self.handshakes.remove(entry)
-            entry[0].close()
-            self.reopen_count.value += 1
-            self.open_handshake(slow=entry[1] is not None)
-        self.handshake_count.value = len(self.handshakes)
 
     def open_idle(self, count):
         for i in range(count):
@@ -367,7 +320,9 @@ class Hostiles:
                     fail(f"watcher: {e}")
             if time.monotonic() - last_refresh > 0.5:
                 self.refresh_idle()
-                self.advance_handshakes()
+                if self.handshakes:
+                    self.handshakes.advance()
+                    self.handshake_count.value = len(self.handshakes.open)
                 last_refresh = time.monotonic()
 
     def close(self):
