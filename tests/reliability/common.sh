@@ -17,7 +17,7 @@ start_server() {
     "$VOTS" serve --port 0 "$@" >"$log" 2>&1 &
     SERVER_PID=$!
     for _ in $(seq 1 600); do
-        SERVER_PORT=$(sed -n 's|.*listening on http://[^:]*:\([0-9]*\)/.*|\1|p' "$log" | head -1)
+        SERVER_PORT=$(sed -n 's|.*listening on https\?://[^:]*:\([0-9]*\)/.*|\1|p' "$log" | head -1)
         [[ -n $SERVER_PORT ]] && return 0
         kill -0 "$SERVER_PID" 2>/dev/null || { cat "$log"; return 1; }
         sleep 0.1
@@ -50,11 +50,12 @@ serve_volumes() {
     sed "s|^data file: .*|data file: $samples|" "$CRANIUM" >"$data/cranium.nhdr"
 }
 
-# serve_hostile_load_volumes WORK: starts `vots serve` on the brain MRI and the Cranium (serve_volumes
-# WORK/data, cache in WORK/cache, no warm-up), as the hostile and soak runs load it.
+# serve_hostile_load_volumes WORK [ARGS...]: starts `vots serve` on the brain MRI and the Cranium
+# (serve_volumes WORK/data, cache in WORK/cache, no warm-up, then ARGS), as the hostile and soak runs load it.
 serve_hostile_load_volumes() {
     local work=$1
+    shift
     serve_volumes "$work/data"
-    start_server "$work/server.log" --data "$work/data" --cache-dir "$work/cache" --no-warm-up
+    start_server "$work/server.log" --data "$work/data" --cache-dir "$work/cache" --no-warm-up "$@"
     echo "server pid $SERVER_PID, $(grep -m1 renderer "$work/server.log" | sed 's/^ *//')"
 }

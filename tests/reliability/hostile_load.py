@@ -6,8 +6,12 @@ goal: 8 clients rendering (a new camera angle per request), with and without 1,0
 ends), so the only difference between them is the hostile connections; the watchers watch that fit.
 soak: the same parts mixed for --seconds, plus eps changes and clients that disconnect mid-answer;
 samples the server's RSS and open descriptors. Exits 1 on any failure (see the summary it prints).
+With --tls-ca the server speaks HTTPS: every client goes through TLS, the idle connections are idle
+handshakes, and --slow-handshakes / --half-handshakes add ClientHellos sent a byte at a time or cut in half.
 """
-import argparse, http.client, json, multiprocessing, os, random, resource, selectors, socket, sys, threading, time
+import argparse, http.client, json, multiprocessing, os, random, resource, selectors, socket, ssl, sys, threading, time
+
+from tls_handshakes import UnfinishedHandshakes
 
 p = argparse.ArgumentParser()
 p.add_argument("mode", choices=["goal", "soak"])
@@ -25,7 +29,11 @@ p.add_argument("--idle-sockets", type=int, default=200, help="viewer WebSockets 
 p.add_argument("--seconds", type=float, default=30)
 p.add_argument("--sample-seconds", type=float, default=30)
 p.add_argument("--errors-only", action="store_true", help="report the latency goals but fail only on errors")
+p.add_argument("--tls-ca", help="the server speaks HTTPS with a certificate this CA signed")
+p.add_argument("--slow-handshakes", type=int, default=0, help="TLS: ClientHellos sent one byte every 0.5 s")
+p.add_argument("--half-handshakes", type=int, default=0, help="TLS: half a ClientHello, then silence")
 a = p.parse_args()
+tls = ssl.create_default_context(cafile=a.tls_ca) if a.tls_ca else None
 
 soft, hard = resource.getrlimit(resource.RLIMIT_NOFILE)
 resource.setrlimit(resource.RLIMIT_NOFILE, (hard, hard))
@@ -40,9 +48,19 @@ def fail(text):
             errors.append(text)
 
 
+def connect(source, timeout=None):
+    """A connection to the server, through TLS when it speaks HTTPS (the handshake done, blocking)."""
+    s = socket.create_connection(("127.0.0.1", a.port), source_address=(source, 0), timeout=timeout)
+    return tls.wrap_socket(s, server_hostname="127.0.0.1") if tls else s
+
+
 def request(method, target, body=None, source="127.0.0.1", timeout=120):
     """One exchange; returns (status, headers, body bytes, seconds). A non-JSON error is a failure."""
-    c = http.client.HTTPConnection("127.0.0.1", a.port, timeout=timeout, source_address=(source, 0))
+    if tls:
+        c = http.client.HTTPSConnection("127.0.0.1", a.port, timeout=timeout, source_address=(source, 0),
+                                        context=tls)
+    else:
+        c = http.client.HTTPConnection("127.0.0.1", a.port, timeout=timeout, source_address=(source, 0))
     start = time.monotonic()
     try:
         headers = {"Content-Type": "application/json"} if body is not None else {}
@@ -102,7 +120,7 @@ def renderer(index, latencies, until, disconnect_every=0):
         target = f"/render?dataset={a.dataset}&size={a.size}&eps={a.eps}&cam=az%3D{az:.5f}%2Cel%3D{20 + index}"
         if disconnect_every and n % disconnect_every == 0:  # a client that goes away mid-answer
             try:
-                s = socket.create_connection(("127.0.0.1", a.port), source_address=(source, 0))
+                s = connect(source)
                 s.sendall(f"GET {target} HTTP/1.1\r\nHost: 127.0.0.1:{a.port}\r\n\r\n".encode())
                 s.close()
             except OSError as e:
@@ -138,6 +156,8 @@ class Hostiles:
     def __init__(self, fits):
         self.job = fits.shared_job
         self.idle = []
+        self.handshakes = None  # UnfinishedHandshakes, in the child process
+        self.handshake_count = multiprocessing.Value("q", 0)
         self.due = []  # when closed watchers come back: a browser's EventSource retries after 3 s
         self.open_idle_count = multiprocessing.Value("q", 0)
         self.watcher_count = multiprocessing.Value("q", 0)
@@ -151,13 +171,18 @@ class Hostiles:
 
     def start(self):
         self.process.start()
-        self.ready.wait(120)
+        if not self.ready.wait(120):
+            fail("the hostile connections were not all opened within 120 s (or their process died)")
 
     def run(self):
         global fail
         fail = lambda text: self.errors.put(text)  # noqa: E731 (the child's failures go to the parent)
         self.sel = selectors.DefaultSelector()
         self.open_idle(a.idle)
+        if tls:
+            self.handshakes = UnfinishedHandshakes(a.port, a.slow_handshakes, a.half_handshakes,
+                                                   lambda text: fail(text), self.reopen_count)
+            self.handshake_count.value = len(self.handshakes.open)
         for _ in range(a.watchers):
             try:
                 self.open_watcher()
@@ -174,6 +199,8 @@ class Hostiles:
             key.fileobj.close()
         for s, _ in self.idle:
             s.close()
+        if self.handshakes:
+            self.handshakes.close()
 
     @property
     def watchers(self):
@@ -190,6 +217,10 @@ class Hostiles:
     @property
     def idle_open(self):
         return self.open_idle_count.value
+
+    @property
+    def handshakes_open(self):
+        return self.handshake_count.value
 
     def open_idle(self, count):
         for i in range(count):
@@ -221,7 +252,7 @@ class Hostiles:
 
     def open_watcher(self):
         job = self.job.value  # the fit the load runs (both phases start the same fits)
-        s = socket.create_connection(("127.0.0.1", a.port), source_address=("127.0.2.1", 0))
+        s = connect("127.0.2.1")
         s.sendall(f"GET /api/jobs/{job}/events HTTP/1.1\r\nHost: 127.0.0.1:{a.port}\r\n\r\n".encode())
         s.setblocking(False)
         self.sel.register(s, selectors.EVENT_READ, bytearray())
@@ -231,7 +262,7 @@ class Hostiles:
         """A viewer's WebSocket that is upgraded and then left silent (32 at most per address: spread)."""
         self.sockets_opened += 1
         source = f"127.0.3.{self.sockets_opened % 250 + 1}"
-        s = socket.create_connection(("127.0.0.1", a.port), source_address=(source, 0), timeout=30)
+        s = connect(source, timeout=30)
         s.sendall((f"GET /api/stream HTTP/1.1\r\nHost: 127.0.0.1:{a.port}\r\nUpgrade: websocket\r\n"
                    "Connection: Upgrade\r\nSec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\n"
                    "Sec-WebSocket-Version: 13\r\n\r\n").encode())
@@ -256,7 +287,7 @@ class Hostiles:
                 s = key.fileobj
                 try:
                     data = s.recv(65536)
-                except BlockingIOError:
+                except (BlockingIOError, ssl.SSLWantReadError, ssl.SSLWantWriteError):
                     continue
                 except OSError:
                     data = b""
@@ -289,6 +320,9 @@ class Hostiles:
                     fail(f"watcher: {e}")
             if time.monotonic() - last_refresh > 0.5:
                 self.refresh_idle()
+                if self.handshakes:
+                    self.handshakes.advance()
+                    self.handshake_count.value = len(self.handshakes.open)
                 last_refresh = time.monotonic()
 
     def close(self):
@@ -321,7 +355,7 @@ def phase(name, seconds, fits, hostiles=None):
     extra = ""
     if hostiles:
         extra = (f", idle {hostiles.idle_open} (reopened {hostiles.reopened}), watchers {hostiles.watchers}, "
-                 f"viewer sockets {hostiles.viewer_sockets}")
+                 f"viewer sockets {hostiles.viewer_sockets}, unfinished TLS handshakes {hostiles.handshakes_open}")
     print(f"{name}: renders {len(renders)}, p50 {percentile(renders, 50) * 1000:.0f} ms, "
           f"p99 {percentile(renders, 99) * 1000:.0f} ms; /api/* {len(probes)}, p50 {percentile(probes, 50) * 1000:.1f} ms, "
           f"p99 {percentile(probes, 99) * 1000:.1f} ms, max {max(probes or [0]) * 1000:.1f} ms; fits started {fits.started}{extra}", flush=True)

@@ -1,15 +1,23 @@
 // `vots serve --tls-cert/--tls-key`: HTTPS with a test CA made here by the openssl command, plain HTTP
-// refused on that port, clear start-up errors, SIGHUP reload, handshakes that hold no worker; and the
-// refusal to serve in clear beyond loopback.
+// refused on that port, the viewer socket over wss://, clear start-up errors, SIGHUP reload, handshakes
+// that hold no worker; and the refusal to serve in clear beyond loopback.
 #include "ServeProcess.h"
 
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/ssl.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/ssl.hpp>
+#include <boost/beast/websocket.hpp>
+#include <boost/beast/websocket/ssl.hpp>
 #include <netinet/in.h>
 #include <openssl/ssl.h>
 #include <sys/socket.h>
+#include <sys/time.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstdlib>
+#include <optional>
 
 namespace vots::test {
 namespace {
@@ -82,6 +90,52 @@ private:
     bool mConnected = false;
 };
 
+/// The viewer socket over wss://, trusting only `caFile` (checked for 127.0.0.1); blocking, with a time
+/// limit on every read.
+class SecureWebSocket {
+public:
+    SecureWebSocket(int port, const std::string& caFile)
+        : mContext(boost::asio::ssl::context::tls_client), mWs(mIo, mContext) {
+        namespace net = boost::asio;
+        boost::beast::error_code ec;
+        mContext.load_verify_file(caFile, ec);
+        auto& tls = mWs.next_layer();
+        tls.set_verify_mode(net::ssl::verify_peer);
+        X509_VERIFY_PARAM_set1_ip_asc(SSL_get0_param(tls.native_handle()), "127.0.0.1");
+        boost::beast::get_lowest_layer(mWs).connect(
+            {net::ip::make_address("127.0.0.1"), static_cast<unsigned short>(port)});
+        const timeval timeout{60, 0};
+        ::setsockopt(boost::beast::get_lowest_layer(mWs).native_handle(), SOL_SOCKET, SO_RCVTIMEO, &timeout,
+                     sizeof timeout);
+        tls.handshake(net::ssl::stream_base::client, mError);
+        if (!mError) mWs.handshake(mResponse, "127.0.0.1:" + std::to_string(port), "/api/stream", mError);
+        mOpen = !mError;
+    }
+
+    bool open() const { return mOpen; }
+    std::string error() const { return mError.message(); }
+    bool send(const std::string& text) {
+        mWs.text(true);
+        mWs.write(boost::asio::buffer(text), mError);
+        return !mError;
+    }
+    std::optional<std::string> read() {
+        boost::beast::flat_buffer buffer;
+        mWs.read(buffer, mError);
+        if (mError) return std::nullopt;
+        return boost::beast::buffers_to_string(buffer.data());
+    }
+    int closeCode() const { return static_cast<int>(mWs.reason().code); }
+
+private:
+    boost::asio::io_context mIo;
+    boost::asio::ssl::context mContext;
+    boost::beast::websocket::stream<boost::beast::ssl_stream<boost::asio::ip::tcp::socket>> mWs;
+    boost::beast::websocket::response_type mResponse;
+    boost::beast::error_code mError;
+    bool mOpen = false;
+};
+
 class ServeCommandTls : public ::testing::Test {
 protected:
     void SetUp() override { makeCertificate(world.dir(), "first"); }
@@ -120,16 +174,44 @@ TEST_F(ServeCommandTls, AnswersOverHttpsWithHstsAndRefusesPlainHttp) {
     EXPECT_EQ(serve.stop(), 0);
 }
 
-TEST_F(ServeCommandTls, TheViewerSocketIsRefusedOverHttpsSoTheViewerUsesHttp) {
+TEST_F(ServeCommandTls, TheViewerSocketServesFramesOverWss) {
     ServeProcess serve(world, tlsArgs());
     ASSERT_GT(serve.port(), 0) << serve.output();
-    const auto res = httpsClient(serve.port(), ca())
-                         ->Get("/api/stream", {{"Upgrade", "websocket"},
-                                               {"Connection", "Upgrade"},
-                                               {"Sec-WebSocket-Version", "13"},
-                                               {"Sec-WebSocket-Key", "dGhlIHNhbXBsZSBub25jZQ=="}});
-    ASSERT_TRUE(res) << httplib::to_string(res.error());
-    EXPECT_EQ(res->status, 501);
+    SecureWebSocket socket(serve.port(), ca());
+    ASSERT_TRUE(socket.open()) << socket.error();
+    const std::string view =
+        nlohmann::json{{"type", "view"},
+                       {"seq", 1},
+                       {"still", false},
+                       {"params", {{"dataset", BLOBS}, {"cam", "az=30"}, {"size", "96x64"}, {"mode", "mip"}}}}
+            .dump();
+    ASSERT_TRUE(socket.send(view)) << socket.error();
+    const auto header = socket.read();
+    ASSERT_TRUE(header) << socket.error();
+    const auto json = nlohmann::json::parse(*header);
+    EXPECT_EQ(json["type"], "frame") << *header;
+    EXPECT_EQ(json["seq"], 1);
+    const auto image = socket.read();
+    ASSERT_TRUE(image) << socket.error();
+    ASSERT_GT(image->size(), 2u);
+    EXPECT_EQ(image->substr(0, 2), "\xFF\xD8") << "a JPEG draft";
+
+    // The same bounds as in clear: a message above 8 KiB closes the socket with 1009.
+    ASSERT_TRUE(socket.send(std::string(9000, 'x')));
+    while (socket.read()) {
+    }
+    EXPECT_EQ(socket.closeCode(), 1009) << socket.error();
+
+    // And the same guard, its refusal answered through TLS: another page's Origin is refused.
+    TlsConnection foreign(serve.port(), ca());
+    ASSERT_TRUE(foreign.connected());
+    ASSERT_TRUE(foreign.send("GET /api/stream HTTP/1.1\r\nHost: 127.0.0.1:" + std::to_string(serve.port()) +
+                             "\r\nOrigin: https://elsewhere.example\r\nUpgrade: websocket\r\n"
+                             "Connection: Upgrade\r\nSec-WebSocket-Version: 13\r\n"
+                             "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\n\r\n"));
+    const std::string refusal = foreign.readAll();
+    EXPECT_EQ(refusal.rfind("HTTP/1.1 403", 0), 0u) << refusal.substr(0, 200);
+    EXPECT_NE(refusal.find("other origins"), std::string::npos) << refusal;
     EXPECT_EQ(serve.stop(), 0);
 }
 

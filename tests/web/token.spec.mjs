@@ -2,58 +2,32 @@
 // token in its hash; opened without it, it says why nothing shows.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { spawn } from 'node:child_process';
 import crypto from 'node:crypto';
 import fs from 'node:fs';
-import os from 'node:os';
 import path from 'node:path';
-import { fileURLToPath } from 'node:url';
 import { withPage, pickDataset } from './support/browser.mjs';
+import { CAN_START_OWN_SERVER, OWN_SERVER_NEEDS, ownServerFolder, startOwnServer } from './support/own-server.mjs';
 import { ViewerPage } from './pages/ViewerPage.mjs';
-
-const WEB = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..', 'web');
-const BIN = process.env.VOTS_BIN; // set by run.sh when it started the server itself
-const DATA = process.env.VOTS_DATA;
 
 // A second `vots serve` on a free loopback port that requires a token from a file.
 let server = null;
 
 async function startTokenServer() {
-  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'vots-web-token-'));
+  const dir = ownServerFolder();
   const token = crypto.randomBytes(16).toString('hex');
   fs.writeFileSync(path.join(dir, 'token'), `${token}\n`);
-  const child = spawn(BIN, ['serve', '--port', '0', '--data', DATA, '--web', WEB, '--cache-dir', path.join(dir, 'cache'),
-    '--prepare', '', '--no-warm-up', '--token-file', path.join(dir, 'token')], { stdio: ['ignore', 'pipe', 'pipe'] });
-  let output = '';
-  const url = await new Promise((resolve, reject) => {
-    const timer = setTimeout(() => reject(new Error(`no listening line within 60 s:\n${output}`)), 60000);
-    const read = (chunk) => {
-      output += chunk;
-      const m = output.match(/listening on (http:\/\/\S+?)\/\n/);
-      if (m && output.includes('renderer')) {
-        clearTimeout(timer);
-        resolve(m[1]);
-      }
-    };
-    child.stdout.on('data', read);
-    child.stderr.on('data', read);
-    child.on('exit', (code) => reject(new Error(`vots serve exited (${code}):\n${output}`)));
-  });
-  return { url, token, child, dir, output: () => output };
+  const own = await startOwnServer(dir, ['--token-file', path.join(dir, 'token')]);
+  return { ...own, token };
 }
 
 before(async () => {
-  if (BIN && DATA) server = await startTokenServer();
+  if (CAN_START_OWN_SERVER) server = await startTokenServer();
 });
 
-after(() => {
-  if (!server) return;
-  server.child.kill('SIGTERM');
-  fs.rmSync(server.dir, { recursive: true, force: true });
-});
+after(() => server?.stop());
 
 test('opened with #token=..., the viewer renders, refits and keeps the token in its hash', async (t) => {
-  assert.ok(server, 'needs VOTS_BIN and VOTS_DATA: run.sh sets them when it starts the server, not with VOTS_URL');
+  assert.ok(server, OWN_SERVER_NEEDS);
   const ds = await pickDataset();
   const denied = await fetch(`${server.url}/api/datasets`);
   assert.equal(denied.status, 401, 'the server must ask for the token');
@@ -90,7 +64,7 @@ test('opened with #token=..., the viewer renders, refits and keeps the token in 
 });
 
 test('opened without the token, the viewer names the refusal', async (t) => {
-  assert.ok(server, 'needs VOTS_BIN and VOTS_DATA: run.sh sets them when it starts the server, not with VOTS_URL');
+  assert.ok(server, OWN_SERVER_NEEDS);
   await withPage(t, async (page) => {
     const viewer = new ViewerPage(page);
     await page.goto(`${server.url}/`); // the shell itself loads without the token

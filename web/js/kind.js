@@ -1,4 +1,5 @@
 // What a dataset's kind allows: a .vots dataset ("kind": "vots") is drawn from its file alone. No DOM lookups.
+import { OPERATOR_REASON, isViewerRole } from './role.js';
 
 export function isVotsDataset(ds) {
   return ds?.kind === 'vots';
@@ -17,11 +18,12 @@ export function fitViewToDataset(view, ds) {
   view.renderer = 'vots';
 }
 
-// Disables the eps slider and the grid renderer for a .vots dataset, saying why in their tooltips.
+// Disables the eps slider and the grid renderer for a .vots dataset, saying why in their tooltips; the
+// slider stays greyed for a viewer's token (role.js), whatever the dataset.
 export function syncKindLimits(el, ds) {
   const vots = isVotsDataset(ds);
-  el.epsSlider.disabled = vots;
-  el.epsSlider.title = vots ? VOTS_EPS_REASON : '';
+  el.epsSlider.disabled = vots || isViewerRole();
+  el.epsSlider.title = vots ? VOTS_EPS_REASON : isViewerRole() ? OPERATOR_REASON : '';
   const grid = el.renderer.querySelector('option[value="grid"]');
   if (grid) {
     grid.disabled = vots;

@@ -1,6 +1,7 @@
 // The PACS panel's "Send to PACS": the view's slab sweep stored back on the PACS its dataset came from.
 import { viewName } from './camera.js';
 import { sendSweep } from './pacs-api.js';
+import { isViewerRole } from './role.js';
 import { DEFAULT_THICKNESS_MM } from './slab.js';
 
 export const DEFAULT_STEP_MM = 5;
@@ -63,7 +64,8 @@ export function createPacsSend({ el, viewParams, slab }) {
     const refusal = sweepRefusal(params);
     el.note.textContent = refusal;
     el.note.hidden = !refusal;
-    el.send.disabled = Boolean(sending) || Boolean(refusal);
+    // A viewer's token keeps it greyed (role.js): the server would refuse the store with 403.
+    el.send.disabled = Boolean(sending) || Boolean(refusal) || isViewerRole();
     el.cancel.hidden = !sending;
   }
 

@@ -2,9 +2,18 @@
 // start fits at a new ε nor store to a PACS, so those controls are greyed out for it.
 import { withToken } from './access.js';
 
+// Said by a control greyed out for a viewer's token.
+export const OPERATOR_REASON = "Needs an operator's token";
+
+let role = 'operator'; // until the server has said otherwise
+
+// Whether the token is a viewer's: the code that enables a control again keeps it greyed then.
+export function isViewerRole() {
+  return role === 'viewer';
+}
+
 // Marks the page with data-role and disables `controls` for a viewer; returns the role.
 export async function applyRole(controls) {
-  let role = 'operator';
   try {
     const res = await fetch('api/access', withToken());
     if (res.ok) role = (await res.json()).role;
@@ -12,10 +21,10 @@ export async function applyRole(controls) {
     // No answer: the requests themselves will say what is wrong.
   }
   document.body.dataset.role = role;
-  if (role === 'viewer') {
+  if (isViewerRole()) {
     for (const control of controls) {
       control.disabled = true;
-      control.title = "Needs an operator's token";
+      control.title = OPERATOR_REASON;
     }
   }
   return role;

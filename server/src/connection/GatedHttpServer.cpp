@@ -99,12 +99,7 @@ void GatedHttpServer::route(ArrivedRequest request) {
         if (auto client = forwardedClient(request.bytes)) request.peerAddress = std::move(*client);
     {
         std::lock_guard lock(mUpgradeMutex);
-        if (mIsUpgrade && mIsUpgrade(request.method, request.target)) {
-            // The WebSocket hub speaks plain TCP only; the viewer falls back to HTTP requests without it.
-            if (!request.tls) return mTakeUpgrade(std::move(request));
-            return answerAndClose(std::make_shared<ArrivedRequest>(std::move(request)), 501,
-                                  "the viewer socket is not served over HTTPS; use the HTTP routes");
-        }
+        if (mIsUpgrade && mIsUpgrade(request.method, request.target)) return mTakeUpgrade(std::move(request));
     }
     auto shared = std::make_shared<ArrivedRequest>(std::move(request));
     if (isEventStreamRequest(shared->method, shared->target)) {

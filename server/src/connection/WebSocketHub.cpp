@@ -2,6 +2,8 @@
 // close codes for floods and broken frames.
 #include "connection/WebSocketHub.h"
 
+#include "connection/TlsSocketStream.h"
+
 #include <boost/asio/executor_work_guard.hpp>
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
@@ -9,6 +11,8 @@
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
 #include <boost/beast/websocket.hpp>
+#include <openssl/err.h>
+#include <openssl/ssl.h>
 
 #include <sys/socket.h>
 #include <unistd.h>
@@ -18,6 +22,7 @@
 #include <map>
 #include <mutex>
 #include <thread>
+#include <type_traits>
 #include <vector>
 
 namespace vots::server {
@@ -36,13 +41,20 @@ constexpr std::uint16_t POLICY_CLOSE = 1008;
 constexpr std::uint16_t UNSUPPORTED_CLOSE = 1003;
 constexpr std::uint16_t GOING_AWAY_CLOSE = 1001;
 
-void refuseUpgrade(int fd, int status, const std::string& message) {
-    sendJsonErrorNow(fd, status, message);
-    ::shutdown(fd, SHUT_RDWR);
-    ::close(fd);
+void refuseUpgrade(const ArrivedRequest& request, int status, const std::string& message) {
+    if (request.tls) {
+        // A few hundred bytes: one write into an empty socket buffer, as sendJsonErrorNow's send.
+        const std::string answer = jsonErrorAnswer(status, message);
+        [[maybe_unused]] const int sent =
+            SSL_write(request.tls.get(), answer.data(), static_cast<int>(answer.size()));
+        SSL_shutdown(request.tls.get()); // close_notify, best effort
+        ERR_clear_error();
+    } else {
+        sendJsonErrorNow(request.fd, status, message);
+    }
+    ::shutdown(request.fd, SHUT_RDWR);
+    ::close(request.fd);
 }
-
-class Session;
 
 } // namespace
 
@@ -55,7 +67,7 @@ struct WebSocketHub::State {
     std::atomic<std::size_t> openCount{0};
     std::mutex mutex; // all below but io: a session's last owner can be a draw thread, which then ends it
     bool stopped = false;
-    std::map<Session*, std::weak_ptr<Session>> sessions;
+    std::map<WebSocketPeer*, std::weak_ptr<WebSocketPeer>> sessions;
     std::map<std::string, std::size_t> perAddress;
     // Last: destroyed first, with the handlers (and so the sessions) it still holds.
     net::io_context io{1};
@@ -63,15 +75,25 @@ struct WebSocketHub::State {
     std::thread thread;
 
     void adoptNow(ArrivedRequest request);
+    /// Counts a socket from `address` in (its Session counts it out), or says why it is refused.
+    std::optional<Refusal> countIn(const std::string& address);
+    template <class Stream>
+    void startSession(Stream stream, const std::string& address,
+                      beast::http::request<beast::http::empty_body> head, httplib::Request view);
 };
 
 namespace {
 
-class Session final : public WebSocketPeer, public std::enable_shared_from_this<Session> {
+/// Stream: beast::tcp_stream for plain HTTP, TlsSocketStream over HTTPS.
+template <class Stream>
+class Session final : public WebSocketPeer, public std::enable_shared_from_this<Session<Stream>> {
+    using std::enable_shared_from_this<Session<Stream>>::shared_from_this;
+    using std::enable_shared_from_this<Session<Stream>>::weak_from_this;
+
 public:
-    /// The hub has counted it (State::admitted) before it is made.
-    Session(WebSocketHub::State& hub, tcp::socket socket, std::string address)
-        : mHub(hub), mWs(beast::tcp_stream(std::move(socket))), mAddress(std::move(address)) {}
+    /// The hub has counted it (State::countIn) before it is made.
+    Session(WebSocketHub::State& hub, Stream stream, std::string address)
+        : mHub(hub), mWs(std::move(stream)), mAddress(std::move(address)) {}
     ~Session() override {
         std::lock_guard lock(mHub.mutex);
         mHub.sessions.erase(this);
@@ -81,7 +103,8 @@ public:
 
     void accept(http::request<http::empty_body> request, httplib::Request view) {
         mRequest = std::move(request);
-        beast::get_lowest_layer(mWs).expires_never(); // the WebSocket's own timeouts below
+        if constexpr (std::is_same_v<Stream, beast::tcp_stream>)
+            beast::get_lowest_layer(mWs).expires_never(); // the WebSocket's own timeouts below
         mWs.set_option(
             websocket::stream_base::timeout{mHub.limits.handshakeTimeout, mHub.limits.idleTimeout, true});
         mWs.set_option(websocket::stream_base::decorator(
@@ -181,7 +204,7 @@ private:
                         [self = shared_from_this()](beast::error_code ec, std::size_t) {
                             self->mWriting = false;
                             if (ec) { // the read fails too and ends the session
-                                beast::get_lowest_layer(self->mWs).close();
+                                beast::close_socket(beast::get_lowest_layer(self->mWs));
                                 return;
                             }
                             if (!self->mOutgoing.empty()) self->mOutgoing.pop_front();
@@ -190,7 +213,7 @@ private:
     }
 
     WebSocketHub::State& mHub;
-    websocket::stream<beast::tcp_stream> mWs;
+    websocket::stream<Stream> mWs;
     const std::string mAddress;
     http::request<http::empty_body> mRequest;
     beast::flat_buffer mBuffer;
@@ -215,11 +238,10 @@ tcp protocolOf(int fd) {
 } // namespace
 
 void WebSocketHub::State::adoptNow(ArrivedRequest request) {
-    const int fd = request.fd;
     http::request_parser<http::empty_body> parser;
     beast::error_code ec;
     parser.put(net::buffer(request.bytes), ec);
-    if (ec || !parser.is_header_done()) return refuseUpgrade(fd, 400, "malformed upgrade request");
+    if (ec || !parser.is_header_done()) return refuseUpgrade(request, 400, "malformed upgrade request");
     const auto& head = parser.get();
     httplib::Request view;
     view.method = std::string(head.method_string());
@@ -229,30 +251,46 @@ void WebSocketHub::State::adoptNow(ArrivedRequest request) {
         view.headers.emplace(std::string(field.name_string()), std::string(field.value()));
     view.remote_addr = request.peerAddress;
     view.remote_port = request.peerPort;
-    if (const auto refused = admit(view)) return refuseUpgrade(fd, refused->status, refused->message);
+    if (const auto refused = admit(view)) return refuseUpgrade(request, refused->status, refused->message);
     if (!websocket::is_upgrade(head))
-        return refuseUpgrade(fd, 400, "this path takes a WebSocket upgrade only");
+        return refuseUpgrade(request, 400, "this path takes a WebSocket upgrade only");
     tcp::socket socket(io);
-    socket.assign(protocolOf(fd), fd, ec);
-    if (ec) return refuseUpgrade(fd, 500, "cannot take over the socket");
-    std::shared_ptr<Session> session;
+    socket.assign(protocolOf(request.fd), request.fd, ec);
+    if (ec) return refuseUpgrade(request, 500, "cannot take over the socket");
+    if (const auto refused = countIn(request.peerAddress)) {
+        socket.release(ec); // the fd is ours again, to answer and close
+        return refuseUpgrade(request, refused->status, refused->message);
+    }
+    // The session's stream: over HTTPS, the TLS session whose handshake the gate has done.
+    if (request.tls)
+        startSession(TlsSocketStream(std::move(socket), std::move(request.tls)), request.peerAddress,
+                     parser.release(), std::move(view));
+    else
+        startSession(beast::tcp_stream(std::move(socket)), request.peerAddress, parser.release(),
+                     std::move(view));
+}
+
+std::optional<Refusal> WebSocketHub::State::countIn(const std::string& address) {
+    std::lock_guard lock(mutex);
+    const auto it = perAddress.find(address);
+    if (openCount.load() >= limits.maxSockets)
+        return Refusal{503, "too many viewer sockets open; try again later"};
+    if (it != perAddress.end() && it->second >= limits.maxSocketsPerAddress)
+        return Refusal{429, "too many viewer sockets from this address"};
+    ++perAddress[address];
+    ++openCount;
+    return std::nullopt;
+}
+
+template <class Stream>
+void WebSocketHub::State::startSession(Stream stream, const std::string& address,
+                                       http::request<http::empty_body> head, httplib::Request view) {
+    auto session = std::make_shared<Session<Stream>>(*this, std::move(stream), address);
     {
         std::lock_guard lock(mutex);
-        const auto it = perAddress.find(request.peerAddress);
-        if (openCount.load() >= limits.maxSockets ||
-            (it != perAddress.end() && it->second >= limits.maxSocketsPerAddress)) {
-            const bool full = openCount.load() >= limits.maxSockets;
-            socket.release(ec); // the fd is ours again, to answer and close
-            return refuseUpgrade(fd, full ? 503 : 429,
-                                 full ? "too many viewer sockets open; try again later"
-                                      : "too many viewer sockets from this address");
-        }
-        ++perAddress[request.peerAddress];
-        ++openCount;
-        session = std::make_shared<Session>(*this, std::move(socket), request.peerAddress);
         sessions[session.get()] = session;
     }
-    session->accept(parser.release(), std::move(view));
+    session->accept(std::move(head), std::move(view));
 }
 
 WebSocketHub::WebSocketHub(WebSocketLimits limits, Admit admit, Open open)
@@ -274,7 +312,7 @@ void WebSocketHub::adopt(ArrivedRequest request) {
             return;
         }
     }
-    ::close(request.fd);
+    ::close(request.fd); // the TLS session, if any, goes with the request
 }
 
 void WebSocketHub::stop() {
@@ -284,7 +322,7 @@ void WebSocketHub::stop() {
         mState->stopped = true;
     }
     net::post(mState->io, [state = mState.get()] {
-        std::vector<std::shared_ptr<Session>> open;
+        std::vector<std::shared_ptr<WebSocketPeer>> open;
         {
             std::lock_guard lock(state->mutex);
             for (auto& [raw, weak] : state->sessions)

@@ -3,17 +3,12 @@
 // Run by ctest as Pacs.WebStudyBrowser (tests/pacs/CMakeLists.txt); not in run.sh's default spec list.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { spawn } from 'node:child_process';
 import fs from 'node:fs';
-import os from 'node:os';
 import path from 'node:path';
-import { fileURLToPath } from 'node:url';
 import { artifactPath, withPage } from '../support/browser.mjs';
+import { CAN_START_OWN_SERVER, ownServerFolder, startOwnServer } from '../support/own-server.mjs';
 import { ViewerPage } from '../pages/ViewerPage.mjs';
 
-const WEB = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..', '..', 'web');
-const BIN = process.env.VOTS_BIN; // set by run.sh when it started the server itself
-const DATA = process.env.VOTS_DATA;
 const STATE = process.env.VOTS_ORTHANC_STATE;
 const CRANIUM_SERIES = '1.2.826.0.1.3680043.10.1234.202';
 const CRANIUM_DATASET = `orthanc-${CRANIUM_SERIES.replaceAll('.', '_')}`;
@@ -24,39 +19,18 @@ let server = null;
 
 // `vots serve` with the fixture's Orthanc twice: with its credentials ("orthanc") and without ("nocreds").
 async function startPacsServer() {
-  const dir = fs.mkdtempSync(path.join(os.tmpdir(), 'vots-web-pacs-'));
   const port = fs.readFileSync(path.join(STATE, 'port'), 'utf8').trim();
   const url = `dicomweb+http://127.0.0.1:${port}/dicom-web`;
-  const child = spawn(BIN, ['serve', '--port', '0', '--data', DATA, '--web', WEB, '--cache-dir', path.join(dir, 'cache'),
-    '--prepare', '', '--no-warm-up', '--dicomweb', `orthanc=${url}`, '--dicomweb-auth', `orthanc=${path.join(STATE, 'auth')}`,
-    '--dicomweb', `nocreds=${url}`], { stdio: ['ignore', 'pipe', 'pipe'] });
-  let output = '';
-  const base = await new Promise((resolve, reject) => {
-    const timer = setTimeout(() => reject(new Error(`no listening line within 60 s:\n${output}`)), 60000);
-    const read = (chunk) => {
-      output += chunk;
-      const m = output.match(/listening on (http:\/\/\S+?)\/\n/);
-      if (m && output.includes('renderer')) {
-        clearTimeout(timer);
-        resolve(m[1]);
-      }
-    };
-    child.stdout.on('data', read);
-    child.stderr.on('data', read);
-    child.on('exit', (code) => reject(new Error(`vots serve exited (${code}):\n${output}`)));
-  });
-  return { base, child, dir, password: fs.readFileSync(path.join(STATE, 'password'), 'utf8').trim() };
+  const own = await startOwnServer(ownServerFolder(), ['--dicomweb', `orthanc=${url}`,
+    '--dicomweb-auth', `orthanc=${path.join(STATE, 'auth')}`, '--dicomweb', `nocreds=${url}`]);
+  return { ...own, base: own.url, password: fs.readFileSync(path.join(STATE, 'password'), 'utf8').trim() };
 }
 
 before(async () => {
-  if (BIN && DATA && STATE) server = await startPacsServer();
+  if (CAN_START_OWN_SERVER && STATE) server = await startPacsServer();
 });
 
-after(() => {
-  if (!server) return;
-  server.child.kill('SIGTERM');
-  fs.rmSync(server.dir, { recursive: true, force: true });
-});
+after(() => server?.stop());
 
 test('search, list a study\'s series, open one with progress, and see it', async (t) => {
   assert.ok(server, 'needs VOTS_BIN, VOTS_DATA (run.sh) and VOTS_ORTHANC_STATE (the ctest Orthanc fixture)');

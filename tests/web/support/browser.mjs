@@ -30,14 +30,14 @@ export function artifactPath(name) {
 }
 
 // Opens a fresh browser profile and page; artefacts of a failed test are kept under artifacts/.
-// Usage: await withPage(t, async (page) => { ... }).
-export async function withPage(t, fn) {
+// Usage: await withPage(t, async (page) => { ... }); args: more chromium switches.
+export async function withPage(t, fn, { args = [] } = {}) {
   if (!BASE_URL) throw new Error('VOTS_URL is not set: run the specs through tests/web/run.sh');
   const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'vots-web-profile-'));
   const context = await chromium.launchPersistentContext(profile, {
     executablePath: CHROMIUM,
     headless: true,
-    args: CHROMIUM_ARGS,
+    args: [...CHROMIUM_ARGS, ...args],
     viewport: VIEWPORT,
     deviceScaleFactor: 1,
   });
