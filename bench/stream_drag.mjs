@@ -24,6 +24,8 @@ const median = (xs) => {
   const s = [...xs].sort((a, b) => a - b);
   return s.length ? s[Math.floor(s.length / 2)] : NaN;
 };
+// A server that sends fewer times (an older build) leaves parts unknown: '?'.
+const ms = (v) => (typeof v === 'number' && Number.isFinite(v) ? v.toFixed(0) : '?');
 const quantile = (xs, q) => {
   const s = [...xs].sort((a, b) => a - b);
   return s.length ? s[Math.min(s.length - 1, Math.floor(q * s.length))] : NaN;
@@ -59,7 +61,9 @@ async function dragOnce(page, viewer, run) {
   await viewer.waitForIdle(120000);
   const { moves, frames, up } = await page.evaluate(() => window.__bench);
   const duringDrag = frames.filter((f) => f.shownAt >= moves[0] && f.shownAt <= up && !f.still);
-  const still = frames.find((f) => f.still && f.shownAt >= up);
+  // The exact frame of the camera where the drag ended: asked for at release, or (socket) at a pause
+  // before it, when it can be on screen before the release (0 ms).
+  const still = frames.find((f) => f.still && f.sentAt >= moves.at(-1));
   // A move is shown by the first frame whose view was asked for after it.
   const latencies = [];
   for (const m of moves) {
@@ -70,12 +74,23 @@ async function dragOnce(page, viewer, run) {
     fps: (duringDrag.length * 1000) / (up - moves[0]),
     width: median(duringDrag.map((f) => f.width)),
     height: median(duringDrag.map((f) => f.height)),
-    releaseMs: still ? still.shownAt - up : NaN,
+    releaseMs: still ? Math.max(0, still.shownAt - up) : NaN,
     fullSize: still ? `${still.width}x${still.height}` : '?',
     p50: quantile(latencies, 0.5),
     p90: quantile(latencies, 0.9),
     transport: still?.transport || frames.at(-1)?.transport,
     stillDrawMs: still?.drawMs,
+    // Where release -> lossless goes (socket stills): the page's delay to ask, the server's wait before the
+    // draw (behind a draft of this socket), its render, the PNG, the rest of the draw (the render queue's
+    // wait), and the rest after the draw (send, transfer, decode, show).
+    stillParts: still && still.drawMs !== undefined ? {
+      ask: still.sentAt - up,
+      wait: still.waitMs,
+      render: still.frameMs,
+      png: still.encodeMs,
+      queue: still.drawMs - still.frameMs - still.encodeMs,
+      deliver: still.shownAt - still.sentAt - still.waitMs - still.drawMs,
+    } : undefined,
   };
 }
 
@@ -99,7 +114,8 @@ await withPage(fakeTest, async (socketPage) => {
         console.log(`${transport} run ${i + 1}: ${r.fps.toFixed(1)} frames/s at ${r.width}x${r.height} ` +
           `(full ${r.fullSize}), release -> lossless ${r.releaseMs.toFixed(0)} ms, move -> frame p50 ` +
           `${r.p50.toFixed(0)} ms p90 ${r.p90.toFixed(0)} ms [${r.transport}` +
-          `${r.stillDrawMs === undefined ? '' : `, still drawn in ${r.stillDrawMs.toFixed(0)} ms`}]`);
+          `${r.stillDrawMs === undefined ? '' : `, still drawn in ${r.stillDrawMs.toFixed(0)} ms`}]` +
+          (r.stillParts ? ` still: ${Object.entries(r.stillParts).map(([k, v]) => `${k} ${ms(v)}`).join(', ')} ms` : ''));
       }
     }
   });
@@ -110,4 +126,9 @@ for (const transport of ['socket', 'render']) {
     `${median(rs.map((r) => r.width))}x${median(rs.map((r) => r.height))}, release -> lossless ` +
     `${median(rs.map((r) => r.releaseMs)).toFixed(0)} ms, move -> frame p50 ${median(rs.map((r) => r.p50)).toFixed(0)} ms ` +
     `over ${rs.length} drags`);
+  const parts = rs.map((r) => r.stillParts).filter(Boolean);
+  if (parts.length) {
+    console.log(`  ${transport} still, medians: ` +
+      Object.keys(parts[0]).map((k) => `${k} ${ms(median(parts.map((p) => p[k])))}`).join(', ') + ' ms');
+  }
 }

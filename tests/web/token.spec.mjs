@@ -1,5 +1,6 @@
 // The viewer against a server that asks for a token: opened with #token=..., it renders, refits and keeps the
-// token in its hash; opened without it, it says why nothing shows.
+// token in its hash; opened without it, it says why nothing shows; its viewer socket asks for the token and
+// refuses a page of another site.
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { spawn } from 'node:child_process';
@@ -97,5 +98,45 @@ test('opened without the token, the viewer names the refusal', async (t) => {
     const message = await viewer.waitForError(20000);
     assert.match(message, /401/);
     assert.match(message, /token/);
+  });
+});
+
+// Opens a WebSocket from the page to `url`: {opened, error} with the handshake's error as Chromium words
+// it ("Unexpected response code: 403"), seen through Playwright's view of the page's sockets.
+async function trySocket(page, url) {
+  const errors = [];
+  const listener = (ws) => ws.on('socketerror', (message) => errors.push(message));
+  page.on('websocket', listener);
+  const opened = await page.evaluate((u) => new Promise((resolve) => {
+    const ws = new WebSocket(u);
+    ws.onopen = () => {
+      ws.close();
+      resolve(true);
+    };
+    ws.onclose = () => resolve(false);
+  }), url);
+  page.off('websocket', listener);
+  return { opened, error: errors.join(' ') };
+}
+
+test('the viewer socket opens with the token from the server\'s own page only', async (t) => {
+  assert.ok(server, 'needs VOTS_BIN and VOTS_DATA: run.sh sets them when it starts the server, not with VOTS_URL');
+  const socketUrl = `${server.url.replace(/^http/, 'ws')}/api/stream`;
+  await withPage(t, async (page) => {
+    await page.goto(`${server.url}/`);
+    const withToken = await trySocket(page, `${socketUrl}?token=${server.token}`);
+    assert.ok(withToken.opened, `the own page with the token was refused: ${withToken.error}`);
+    const without = await trySocket(page, socketUrl);
+    assert.ok(!without.opened, 'a socket without the token opened');
+    assert.match(without.error, /401/);
+  });
+  await withPage(t, async (page) => {
+    // A page of another site (served here by the test) that knows the token: its Origin is refused.
+    await page.route('http://foreign.example/**', (route) =>
+      route.fulfill({ contentType: 'text/html', body: '<!doctype html><title>foreign</title>' }));
+    await page.goto('http://foreign.example/');
+    const foreign = await trySocket(page, `${socketUrl}?token=${server.token}`);
+    assert.ok(!foreign.opened, 'a page of another site opened the viewer socket');
+    assert.match(foreign.error, /403/);
   });
 });

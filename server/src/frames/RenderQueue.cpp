@@ -19,6 +19,11 @@
 #include <stdexcept>
 
 namespace vots::server {
+namespace {
+
+constexpr std::size_t MAX_REMEMBERED_OWNERS = 256;
+
+} // namespace
 
 /// Everything GL lives here and is created, used and destroyed on the render thread only.
 /// Members are destroyed bottom-up, so the context outlives the renderers.
@@ -117,8 +122,7 @@ void RenderQueue::threadMain() {
             std::unique_lock lock(mMutex);
             mWake.wait(lock, [this] { return mStopping || !mQueue.empty(); });
             if (mStopping) return;
-            item = std::move(mQueue.front());
-            mQueue.pop_front();
+            item = takeNextLocked();
         }
         Outcome outcome;
         try {
@@ -129,6 +133,27 @@ void RenderQueue::threadMain() {
         }
         item.promise.set_value(std::move(outcome));
     }
+}
+
+RenderQueue::Item RenderQueue::takeNextLocked() {
+    const auto lastServed = [this](const std::string& owner) {
+        const auto it = mLastServed.find(owner);
+        return it == mLastServed.end() ? 0 : it->second;
+    };
+    auto pick = mQueue.begin();
+    for (auto it = std::next(pick); it != mQueue.end(); ++it)
+        if (lastServed(it->job.owner) < lastServed(pick->job.owner)) pick = it;
+    Item item = std::move(*pick);
+    mQueue.erase(pick);
+    mLastServed[item.job.owner] = ++mServed;
+    // Owners with nothing queued are forgotten now and then (a newcomer comes first anyway).
+    if (mLastServed.size() > MAX_REMEMBERED_OWNERS)
+        std::erase_if(mLastServed, [&](const auto& entry) {
+            return entry.first != item.job.owner &&
+                   std::none_of(mQueue.begin(), mQueue.end(),
+                                [&](const Item& queued) { return queued.job.owner == entry.first; });
+        });
+    return item;
 }
 
 RenderResult RenderQueue::draw(Renderers& r, const RenderJob& job) {
