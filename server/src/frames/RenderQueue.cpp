@@ -19,11 +19,6 @@
 #include <stdexcept>
 
 namespace vots::server {
-namespace {
-
-constexpr std::size_t MAX_REMEMBERED_OWNERS = 256;
-
-} // namespace
 
 /// Everything GL lives here and is created, used and destroyed on the render thread only.
 /// Members are destroyed bottom-up, so the context outlives the renderers.
@@ -136,23 +131,17 @@ void RenderQueue::threadMain() {
 }
 
 RenderQueue::Item RenderQueue::takeNextLocked() {
-    const auto lastServed = [this](const std::string& owner) {
-        const auto it = mLastServed.find(owner);
-        return it == mLastServed.end() ? 0 : it->second;
+    const auto ownersWaiting = [this] {
+        std::vector<std::string_view> owners;
+        owners.reserve(mQueue.size());
+        for (const Item& queued : mQueue)
+            owners.push_back(queued.job.owner);
+        return owners;
     };
-    auto pick = mQueue.begin();
-    for (auto it = std::next(pick); it != mQueue.end(); ++it)
-        if (lastServed(it->job.owner) < lastServed(pick->job.owner)) pick = it;
+    const auto pick = mQueue.begin() + static_cast<std::ptrdiff_t>(mTurns.pick(ownersWaiting()));
     Item item = std::move(*pick);
     mQueue.erase(pick);
-    mLastServed[item.job.owner] = ++mServed;
-    // Owners with nothing queued are forgotten now and then (a newcomer comes first anyway).
-    if (mLastServed.size() > MAX_REMEMBERED_OWNERS)
-        std::erase_if(mLastServed, [&](const auto& entry) {
-            return entry.first != item.job.owner &&
-                   std::none_of(mQueue.begin(), mQueue.end(),
-                                [&](const Item& queued) { return queued.job.owner == entry.first; });
-        });
+    mTurns.served(item.job.owner, ownersWaiting());
     return item;
 }
 

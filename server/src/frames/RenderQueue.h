@@ -1,6 +1,7 @@
 // The one render thread: owns the EglContext and renderers; handlers post jobs and wait on a future.
 #pragma once
 
+#include "frames/OwnerTurns.h"
 #include "routes/Params.h"
 #include "vots/dist/FrameRanks.h"
 #include "vots/fit/Volume.h"
@@ -12,7 +13,6 @@
 #include <cstdint>
 #include <deque>
 #include <future>
-#include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -107,8 +107,7 @@ private:
     mutable std::mutex mMutex;
     std::condition_variable mWake;
     std::deque<Item> mQueue;
-    std::map<std::string, std::uint64_t> mLastServed; // owner -> mServed when last served
-    std::uint64_t mServed = 0;                        // items taken so far
+    OwnerTurns mTurns; // which waiting job is next
     bool mStopping = false;
     bool mReady = false;
     bool mHasContext = false;
