@@ -1,6 +1,6 @@
 // Benchmark: a drag in headless Chromium at 1400x900 over the viewer socket and over GET /render, same run.
 //
-//   VOTS_URL=http://127.0.0.1:8080 node bench/stream_drag.mjs [dataset] [runs] [drag ms]
+//   VOTS_URL=http://127.0.0.1:8080 node bench/stream_drag.mjs [dataset] [runs] [drag ms] [pages]
 // For each transport (alternating, so both see the same machine load) and run: frames/s shown while the
 // mouse moves and their median size, release to the full-resolution lossless frame, and pointer move to
 // the first frame that shows it (p50, p90). Medians over the runs. Needs a running `vots serve` and
@@ -79,6 +79,7 @@ async function dragOnce(page, viewer, run) {
     p50: quantile(latencies, 0.5),
     p90: quantile(latencies, 0.9),
     transport: still?.transport || frames.at(-1)?.transport,
+    stillsWhileDragging: frames.filter((f) => f.still && f.shownAt >= moves[0] && f.shownAt <= up).length,
     stillDrawMs: still?.drawMs,
     // Where release -> lossless goes (socket stills): the page's delay to ask, the server's wait before the
     // draw (behind a draft of this socket), its render, the PNG, the rest of the draw (the render queue's
@@ -97,6 +98,55 @@ async function dragOnce(page, viewer, run) {
 const results = { socket: [], render: [] };
 const pages = {};
 const fakeTest = { name: 'stream-drag-bench' };
+// Several viewers at once (the 4th argument, N > 0): N socket pages, each its own camera, dragged at the
+// same time; per page frames/s and release -> lossless, and the refusals they met (HTTP 429/503 answers
+// and the socket's error messages). Without it: the socket against /render, as above.
+const manyPages = Number(process.argv[5] || 0);
+
+// Opens n fresh pages one inside the other, then fn(pages).
+function withPages(n, fn, opened = []) {
+  if (opened.length === n) return fn(opened);
+  return withPage(fakeTest, (page) => withPages(n, fn, [...opened, page]));
+}
+
+async function dragManyAtOnce() {
+  await withPages(manyPages, async (pageList) => {
+    const opened = [];
+    for (const [i, page] of pageList.entries()) {
+      await page.setViewportSize({ width: 1400, height: 900 });
+      const refusals = { count: 0 };
+      page.on('response', (r) => {
+        if (r.status() === 429 || r.status() === 503) refusals.count += 1;
+      });
+      page.on('websocket', (ws) => ws.on('framereceived', ({ payload }) => {
+        if (typeof payload === 'string' && payload.includes('"type":"error"')) refusals.count += 1;
+      }));
+      const viewer = new ViewerPage(page);
+      await viewer.open({ dataset, cam: `az=${START_AZ + 45 * i},el=15,zoom=1,pan=0:0,proj=ortho,fov=30` },
+        { transport: 'socket' });
+      opened.push({ page, viewer, refusals, fps: [], releaseMs: [] });
+    }
+    await Promise.all(opened.map(({ viewer }) => viewer.waitForIdle(600000)));
+    for (let i = 0; i < runs; i++) {
+      const rs = await Promise.all(opened.map(({ page, viewer }) => dragOnce(page, viewer, i)));
+      rs.forEach((r, k) => {
+        opened[k].fps.push(r.fps);
+        opened[k].releaseMs.push(r.releaseMs);
+      });
+      console.log(`run ${i + 1}: frames/s per page ${rs.map((r) => r.fps.toFixed(1)).join(' ')}; drafts ` +
+        `${rs.map((r) => `${r.width}x${r.height}`).join(' ')}; release -> lossless ` +
+        `${rs.map((r) => r.releaseMs.toFixed(0)).join(' ')} ms`);
+    }
+    opened.forEach((o, k) => console.log(`page ${k + 1}: median ${median(o.fps).toFixed(1)} frames/s, release -> ` +
+      `lossless ${median(o.releaseMs).toFixed(0)} ms, refusals ${o.refusals.count}`));
+  });
+}
+
+if (manyPages > 0) {
+  await dragManyAtOnce();
+  process.exit(0);
+}
+
 await withPage(fakeTest, async (socketPage) => {
   await withPage(fakeTest, async (renderPage) => {
     for (const [transport, page] of [['socket', socketPage], ['render', renderPage]]) {
@@ -113,7 +163,7 @@ await withPage(fakeTest, async (socketPage) => {
         results[transport].push(r);
         console.log(`${transport} run ${i + 1}: ${r.fps.toFixed(1)} frames/s at ${r.width}x${r.height} ` +
           `(full ${r.fullSize}), release -> lossless ${r.releaseMs.toFixed(0)} ms, move -> frame p50 ` +
-          `${r.p50.toFixed(0)} ms p90 ${r.p90.toFixed(0)} ms [${r.transport}` +
+          `${r.p50.toFixed(0)} ms p90 ${r.p90.toFixed(0)} ms, ${r.stillsWhileDragging} stills while dragging [${r.transport}` +
           `${r.stillDrawMs === undefined ? '' : `, still drawn in ${r.stillDrawMs.toFixed(0)} ms`}]` +
           (r.stillParts ? ` still: ${Object.entries(r.stillParts).map(([k, v]) => `${k} ${ms(v)}`).join(', ')} ms` : ''));
       }

@@ -14,8 +14,8 @@ const RESIZE_SETTLE_MS = 100; // a frame for the new view size once resizing pau
 // the socket for its exact frame at once, so that on release it is drawn already or drawing; moving on
 // drops it on the server. A loaded server draws slowly: the pause it takes for one grows with it, so
 // that hitches of the hand do not fill the render thread with full-size frames no one keeps.
-const STILL_AFTER_PAUSE_MS = 100;
-const PAUSE_DRAFTS = 3;
+const STILL_AFTER_PAUSE_MS = 250;
+const PAUSE_DRAFTS = 4;
 
 // ?transport=render in the page's URL keeps to GET /render (the benchmark's baseline).
 const SOCKET_WANTED = new URLSearchParams(window.location.search).get('transport') !== 'render';

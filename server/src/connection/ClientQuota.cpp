@@ -28,7 +28,8 @@ ClientQuota::Ticket ClientQuota::enter(const std::string& client) {
         ++places.inProgress;
         return Ticket(this, client);
     }
-    if (static_cast<int>(places.waiting.size()) >= mQueuedPerClient)
+    // Counted together: between a place freed and its waiter waking, the one that freed it may ask again.
+    if (places.inProgress + static_cast<int>(places.waiting.size()) >= mPerClient + mQueuedPerClient)
         throw HttpError(429, "too many " + mWhat + " in progress from " + client + " (at most " +
                                  std::to_string(mPerClient) + " per client, and " +
                                  std::to_string(mQueuedPerClient) +
