@@ -1,6 +1,6 @@
 // Benchmark: a drag in headless Chromium at 1400x900 over the viewer socket and over GET /render, same run.
 //
-//   VOTS_URL=http://127.0.0.1:8080 node bench/stream_drag.mjs [dataset] [runs] [drag ms]
+//   VOTS_URL=http://127.0.0.1:8080 node bench/stream_drag.mjs [dataset] [runs] [drag ms] [pages]
 // For each transport (alternating, so both see the same machine load) and run: frames/s shown while the
 // mouse moves and their median size, release to the full-resolution lossless frame, and pointer move to
 // the first frame that shows it (p50, p90). Medians over the runs. Needs a running `vots serve` and
@@ -24,6 +24,8 @@ const median = (xs) => {
   const s = [...xs].sort((a, b) => a - b);
   return s.length ? s[Math.floor(s.length / 2)] : NaN;
 };
+// A server that sends fewer times (an older build) leaves parts unknown: '?'.
+const ms = (v) => (typeof v === 'number' && Number.isFinite(v) ? v.toFixed(0) : '?');
 const quantile = (xs, q) => {
   const s = [...xs].sort((a, b) => a - b);
   return s.length ? s[Math.min(s.length - 1, Math.floor(q * s.length))] : NaN;
@@ -59,7 +61,9 @@ async function dragOnce(page, viewer, run) {
   await viewer.waitForIdle(120000);
   const { moves, frames, up } = await page.evaluate(() => window.__bench);
   const duringDrag = frames.filter((f) => f.shownAt >= moves[0] && f.shownAt <= up && !f.still);
-  const still = frames.find((f) => f.still && f.shownAt >= up);
+  // The exact frame of the camera where the drag ended: asked for at release, or (socket) at a pause
+  // before it, when it can be on screen before the release (0 ms).
+  const still = frames.find((f) => f.still && f.sentAt >= moves.at(-1));
   // A move is shown by the first frame whose view was asked for after it.
   const latencies = [];
   for (const m of moves) {
@@ -70,18 +74,79 @@ async function dragOnce(page, viewer, run) {
     fps: (duringDrag.length * 1000) / (up - moves[0]),
     width: median(duringDrag.map((f) => f.width)),
     height: median(duringDrag.map((f) => f.height)),
-    releaseMs: still ? still.shownAt - up : NaN,
+    releaseMs: still ? Math.max(0, still.shownAt - up) : NaN,
     fullSize: still ? `${still.width}x${still.height}` : '?',
     p50: quantile(latencies, 0.5),
     p90: quantile(latencies, 0.9),
     transport: still?.transport || frames.at(-1)?.transport,
+    stillsWhileDragging: frames.filter((f) => f.still && f.shownAt >= moves[0] && f.shownAt <= up).length,
     stillDrawMs: still?.drawMs,
+    // Where release -> lossless goes (socket stills): the page's delay to ask, the server's wait before the
+    // draw (behind a draft of this socket), its render, the PNG, the rest of the draw (the render queue's
+    // wait), and the rest after the draw (send, transfer, decode, show).
+    stillParts: still && still.drawMs !== undefined ? {
+      ask: still.sentAt - up,
+      wait: still.waitMs,
+      render: still.frameMs,
+      png: still.encodeMs,
+      queue: still.drawMs - still.frameMs - still.encodeMs,
+      deliver: still.shownAt - still.sentAt - still.waitMs - still.drawMs,
+    } : undefined,
   };
 }
 
 const results = { socket: [], render: [] };
 const pages = {};
 const fakeTest = { name: 'stream-drag-bench' };
+// Several viewers at once (the 4th argument, N > 0): N socket pages, each its own camera, dragged at the
+// same time; per page frames/s and release -> lossless, and the refusals they met (HTTP 429/503 answers
+// and the socket's error messages). Without it: the socket against /render, as above.
+const manyPages = Number(process.argv[5] || 0);
+
+// Opens n fresh pages one inside the other, then fn(pages).
+function withPages(n, fn, opened = []) {
+  if (opened.length === n) return fn(opened);
+  return withPage(fakeTest, (page) => withPages(n, fn, [...opened, page]));
+}
+
+async function dragManyAtOnce() {
+  await withPages(manyPages, async (pageList) => {
+    const opened = [];
+    for (const [i, page] of pageList.entries()) {
+      await page.setViewportSize({ width: 1400, height: 900 });
+      const refusals = { count: 0 };
+      page.on('response', (r) => {
+        if (r.status() === 429 || r.status() === 503) refusals.count += 1;
+      });
+      page.on('websocket', (ws) => ws.on('framereceived', ({ payload }) => {
+        if (typeof payload === 'string' && payload.includes('"type":"error"')) refusals.count += 1;
+      }));
+      const viewer = new ViewerPage(page);
+      await viewer.open({ dataset, cam: `az=${START_AZ + 45 * i},el=15,zoom=1,pan=0:0,proj=ortho,fov=30` },
+        { transport: 'socket' });
+      opened.push({ page, viewer, refusals, fps: [], releaseMs: [] });
+    }
+    await Promise.all(opened.map(({ viewer }) => viewer.waitForIdle(600000)));
+    for (let i = 0; i < runs; i++) {
+      const rs = await Promise.all(opened.map(({ page, viewer }) => dragOnce(page, viewer, i)));
+      rs.forEach((r, k) => {
+        opened[k].fps.push(r.fps);
+        opened[k].releaseMs.push(r.releaseMs);
+      });
+      console.log(`run ${i + 1}: frames/s per page ${rs.map((r) => r.fps.toFixed(1)).join(' ')}; drafts ` +
+        `${rs.map((r) => `${r.width}x${r.height}`).join(' ')}; release -> lossless ` +
+        `${rs.map((r) => r.releaseMs.toFixed(0)).join(' ')} ms`);
+    }
+    opened.forEach((o, k) => console.log(`page ${k + 1}: median ${median(o.fps).toFixed(1)} frames/s, release -> ` +
+      `lossless ${median(o.releaseMs).toFixed(0)} ms, refusals ${o.refusals.count}`));
+  });
+}
+
+if (manyPages > 0) {
+  await dragManyAtOnce();
+  process.exit(0);
+}
+
 await withPage(fakeTest, async (socketPage) => {
   await withPage(fakeTest, async (renderPage) => {
     for (const [transport, page] of [['socket', socketPage], ['render', renderPage]]) {
@@ -98,8 +163,9 @@ await withPage(fakeTest, async (socketPage) => {
         results[transport].push(r);
         console.log(`${transport} run ${i + 1}: ${r.fps.toFixed(1)} frames/s at ${r.width}x${r.height} ` +
           `(full ${r.fullSize}), release -> lossless ${r.releaseMs.toFixed(0)} ms, move -> frame p50 ` +
-          `${r.p50.toFixed(0)} ms p90 ${r.p90.toFixed(0)} ms [${r.transport}` +
-          `${r.stillDrawMs === undefined ? '' : `, still drawn in ${r.stillDrawMs.toFixed(0)} ms`}]`);
+          `${r.p50.toFixed(0)} ms p90 ${r.p90.toFixed(0)} ms, ${r.stillsWhileDragging} stills while dragging [${r.transport}` +
+          `${r.stillDrawMs === undefined ? '' : `, still drawn in ${r.stillDrawMs.toFixed(0)} ms`}]` +
+          (r.stillParts ? ` still: ${Object.entries(r.stillParts).map(([k, v]) => `${k} ${ms(v)}`).join(', ')} ms` : ''));
       }
     }
   });
@@ -110,4 +176,9 @@ for (const transport of ['socket', 'render']) {
     `${median(rs.map((r) => r.width))}x${median(rs.map((r) => r.height))}, release -> lossless ` +
     `${median(rs.map((r) => r.releaseMs)).toFixed(0)} ms, move -> frame p50 ${median(rs.map((r) => r.p50)).toFixed(0)} ms ` +
     `over ${rs.length} drags`);
+  const parts = rs.map((r) => r.stillParts).filter(Boolean);
+  if (parts.length) {
+    console.log(`  ${transport} still, medians: ` +
+      Object.keys(parts[0]).map((k) => `${k} ${ms(median(parts.map((p) => p[k])))}`).join(', ') + ' ms');
+  }
 }

@@ -77,7 +77,9 @@ Server::Impl::Impl(ServerOptions opts)
       seriesOpens(options.dicomWebServices,
                   options.cacheDir.empty() ? fs::path() : options.cacheDir / "dicomweb",
                   options.retrievedSeriesBytes, registry, memory),
-      frames(options.frameCacheBytes), renders(options.maxRendersPerClient, "renders"),
+      frames(options.frameCacheBytes),
+      // As many again wait their turn: the users or views behind one address are queued, not refused.
+      renders(options.maxRendersPerClient, "renders", options.maxRendersPerClient),
       guard(options.allowedHosts, options.accessTokens),
       tls(options.tlsCertificate.empty() && options.tlsKey.empty()
               ? nullptr

@@ -4,14 +4,17 @@
 goal: 8 clients rendering (a new camera angle per request), with and without 1,000 idle connections,
 200 event-stream watchers and 200 idle viewer sockets (WebSockets on /api/stream that never send); probes /api/* every 100 ms. Both phases keep one fit running (a new eps when one
 ends), so the only difference between them is the hostile connections; the watchers watch that fit.
-soak: the same parts mixed for --seconds, plus eps changes and clients that disconnect mid-answer;
-samples the server's RSS and open descriptors. Exits 1 on any failure (see the summary it prints).
+soak: the same parts mixed for --seconds, plus eps changes, clients that disconnect mid-answer and viewers
+dragging over the viewer socket (--draggers); samples the server's RSS and open descriptors. Exits 1 on any
+failure (see the summary it prints).
 With --tls-ca the server speaks HTTPS: every client goes through TLS, the idle connections are idle
 handshakes, and --slow-handshakes / --half-handshakes add ClientHellos sent a byte at a time or cut in half.
 """
 import argparse, http.client, json, multiprocessing, os, random, resource, selectors, socket, ssl, sys, threading, time
+import urllib.parse
 
 from tls_handshakes import UnfinishedHandshakes
+from viewer_drag import ViewerDrag
 
 p = argparse.ArgumentParser()
 p.add_argument("mode", choices=["goal", "soak"])
@@ -26,6 +29,7 @@ p.add_argument("--renderers", type=int, default=8)
 p.add_argument("--idle", type=int, default=1000)
 p.add_argument("--watchers", type=int, default=200)
 p.add_argument("--idle-sockets", type=int, default=200, help="viewer WebSockets that are opened and never used")
+p.add_argument("--draggers", type=int, default=0, help="soak: viewers dragging over the viewer socket")
 p.add_argument("--seconds", type=float, default=30)
 p.add_argument("--sample-seconds", type=float, default=30)
 p.add_argument("--errors-only", action="store_true", help="report the latency goals but fail only on errors")
@@ -134,6 +138,26 @@ def renderer(index, latencies, until, disconnect_every=0):
                 fail(f"/render: {status}")
         except Exception as e:
             fail(f"/render: {e!r}")
+
+
+def dragger(index, frames, until):
+    """A viewer dragging over its socket from an address of its own: a frame at a new camera after each."""
+    params = {"dataset": a.dataset, "size": a.size, "eps": urllib.parse.unquote(a.eps)}
+    try:
+        viewer = ViewerDrag(a.port, f"127.0.4.{index + 1}", params)
+    except Exception as e:
+        fail(f"viewer socket: {e!r}")
+        return
+    n = 0
+    while time.monotonic() < until and not stop_all.is_set():
+        n += 1
+        try:
+            viewer.frame(f"az={(index * 1000 + n) * 0.37 % 360 - 180:.3f},el={10 + index}")
+            frames.append(1)
+        except Exception as e:
+            fail(f"viewer socket: {e!r}")
+            break
+    viewer.close()
 
 
 def prober(latencies, until):
@@ -393,6 +417,8 @@ def soak():
     renders, probes = [], []
     threads = [threading.Thread(target=renderer, args=(i, renders, until, 7)) for i in range(a.renderers)]
     threads.append(threading.Thread(target=prober, args=(probes, until)))
+    dragged = []
+    threads += [threading.Thread(target=dragger, args=(i, dragged, until)) for i in range(a.draggers)]
     for t in threads:
         t.start()
     start = time.monotonic()
@@ -419,7 +445,7 @@ def soak():
     rss, fds, nthreads = server_sample()
     print(f"end: rss {rss} KiB, fds {fds}, threads {nthreads}; renders {len(renders)}, "
           f"p50 {percentile(renders, 50) * 1000:.0f} ms, p99 {percentile(renders, 99) * 1000:.0f} ms; "
-          f"/api/* max {max(probes or [0]) * 1000:.1f} ms")
+          f"/api/* max {max(probes or [0]) * 1000:.1f} ms; socket frames {len(dragged)} by {a.draggers} dragging viewers")
     return not errors
 
 

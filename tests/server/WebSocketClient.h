@@ -23,12 +23,15 @@ public:
         std::string bytes;
     };
 
-    /// Connects and sends the upgrade; handshakeOk() says whether the server took it, response() what it
-    /// said.
+    /// Connects from `source` (a loopback address: 127.0.0.2 is another client) and sends the upgrade;
+    /// handshakeOk() says whether the server took it, response() what it said.
     WebSocketClient(int port, const std::string& target,
-                    const std::map<std::string, std::string>& headers = {}, const std::string& host = "")
+                    const std::map<std::string, std::string>& headers = {}, const std::string& host = "",
+                    const std::string& source = "127.0.0.1")
         : mWs(mIo) {
         namespace net = boost::asio;
+        mWs.next_layer().open(net::ip::tcp::v4());
+        mWs.next_layer().bind({net::ip::make_address(source), 0});
         mWs.next_layer().connect({net::ip::make_address("127.0.0.1"), static_cast<unsigned short>(port)});
         const timeval timeout{60, 0}; // no test waits this long for a message that comes
         ::setsockopt(mWs.next_layer().native_handle(), SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);

@@ -147,17 +147,17 @@ TEST(ServerConnections, AClientFloodingRendersGets429AndAnotherIsServed) {
     ASSERT_TRUE(bodyJson(c->Get("/api/stats"))["renderer"]["available"].get<bool>())
         << "no EGL context (Mesa's llvmpipe gives one without a GPU)";
 
-    // Two renders that wait for a slow fit hold both of 127.0.0.2's places.
+    // Two renders that wait for a slow fit hold both of 127.0.0.2's places, and two more wait their turn.
     const std::string waiting = std::string("/render?dataset=") + NOISE + "&size=64x64&eps=0.02";
     OpenSockets held;
-    for (int i = 0; i < 2; ++i) {
+    for (int i = 0; i < 4; ++i) {
         held.fds.push_back(connectFrom("127.0.0.2", port));
         ASSERT_TRUE(sendAll(held.fds.back(), requestText("GET", waiting, port)));
     }
     waitForStats(*c, [](const nlohmann::json& s) {
         return s["fitJobs"]["active"] == 1 && s["connections"]["waiting"] == 0;
     });
-    std::this_thread::sleep_for(milliseconds(300)); // both handlers past their first line
+    std::this_thread::sleep_for(milliseconds(300)); // the four handlers past their first line
 
     const auto start = Clock::now();
     const RawAnswer flood = exchangeFrom("127.0.0.2", port, requestText("GET", waiting, port));

@@ -17,6 +17,10 @@ PendingView viewNumber(std::uint64_t seq, bool still = false) {
     return view;
 }
 
+std::optional<std::uint64_t> frame(std::uint64_t number) {
+    return number;
+}
+
 TEST(ViewerPacing, TheLatestViewWinsAndOlderOnesAreDropped) {
     ViewerPacing pacing(2);
     pacing.offer(viewNumber(1));
@@ -25,8 +29,8 @@ TEST(ViewerPacing, TheLatestViewWinsAndOlderOnesAreDropped) {
     EXPECT_EQ(first->seq, 1u);
     for (std::uint64_t seq = 2; seq <= 9; ++seq)
         pacing.offer(viewNumber(seq));
-    EXPECT_FALSE(pacing.next()) << "one draw at a time";
-    EXPECT_EQ(pacing.sent(), 1u);
+    EXPECT_FALSE(pacing.next()) << "one draft at a time";
+    EXPECT_EQ(pacing.sent(*first), frame(1));
     const auto second = pacing.next();
     ASSERT_TRUE(second);
     EXPECT_EQ(second->seq, 9u);
@@ -36,12 +40,12 @@ TEST(ViewerPacing, TheLatestViewWinsAndOlderOnesAreDropped) {
 
 TEST(ViewerPacing, NoMoreInFlightThanAcknowledged) {
     ViewerPacing pacing(2);
-    pacing.offer(viewNumber(1));
-    ASSERT_TRUE(pacing.next());
-    EXPECT_EQ(pacing.sent(), 1u);
-    pacing.offer(viewNumber(2));
-    ASSERT_TRUE(pacing.next());
-    EXPECT_EQ(pacing.sent(), 2u);
+    for (std::uint64_t seq = 1; seq <= 2; ++seq) {
+        pacing.offer(viewNumber(seq));
+        const auto taken = pacing.next();
+        ASSERT_TRUE(taken);
+        EXPECT_EQ(pacing.sent(*taken), frame(seq));
+    }
     pacing.offer(viewNumber(3));
     EXPECT_EQ(pacing.inFlight(), 2u);
     EXPECT_FALSE(pacing.next()) << "two frames unacknowledged";
@@ -52,7 +56,7 @@ TEST(ViewerPacing, NoMoreInFlightThanAcknowledged) {
     EXPECT_EQ(pacing.inFlight(), 2u);
     EXPECT_FALSE(pacing.acknowledge(5)) << "frame 5 was never sent";
     EXPECT_TRUE(pacing.acknowledge(1)) << "an old ack is harmless";
-    pacing.failed();
+    pacing.failed(*third);
     EXPECT_EQ(pacing.inFlight(), 1u);
 }
 
@@ -60,8 +64,9 @@ TEST(ViewerPacing, AStillDoesNotWaitForAcknowledgements) {
     ViewerPacing pacing(2);
     for (std::uint64_t seq = 1; seq <= 2; ++seq) {
         pacing.offer(viewNumber(seq));
-        ASSERT_TRUE(pacing.next());
-        pacing.sent();
+        const auto taken = pacing.next();
+        ASSERT_TRUE(taken);
+        pacing.sent(*taken);
     }
     pacing.offer(viewNumber(3));
     EXPECT_FALSE(pacing.next()) << "a draft waits for an ack";
@@ -71,7 +76,51 @@ TEST(ViewerPacing, AStillDoesNotWaitForAcknowledgements) {
     EXPECT_EQ(still->seq, 4u);
     EXPECT_TRUE(still->still);
     pacing.offer(viewNumber(5, true));
-    EXPECT_FALSE(pacing.next()) << "still one draw at a time";
+    const auto newerStill = pacing.next();
+    ASSERT_TRUE(newerStill) << "a newer still does not wait behind an older one";
+    EXPECT_TRUE(pacing.overtaken(*still));
+    pacing.offer(viewNumber(6, true));
+    EXPECT_FALSE(pacing.next()) << "two stills at a time at most";
+    EXPECT_EQ(pacing.sent(*newerStill), frame(3));
+    pacing.failed(*still); // superseded on the render queue
+    const auto third = pacing.next();
+    ASSERT_TRUE(third);
+    EXPECT_EQ(third->seq, 6u);
+}
+
+TEST(ViewerPacing, AStillDoesNotWaitBehindADraftWhoseFrameIsThenDropped) {
+    ViewerPacing pacing(2);
+    pacing.offer(viewNumber(1));
+    const auto draft = pacing.next();
+    ASSERT_TRUE(draft);
+    EXPECT_FALSE(pacing.overtaken(*draft));
+    pacing.offer(viewNumber(2, true));
+    const auto still = pacing.next();
+    ASSERT_TRUE(still) << "the still starts while the draft is drawn";
+    EXPECT_TRUE(pacing.overtaken(*draft)) << "the draft shows a camera the page has left";
+    EXPECT_FALSE(pacing.overtaken(*still));
+    EXPECT_EQ(pacing.sent(*still), frame(1));
+    EXPECT_EQ(pacing.sent(*draft), std::nullopt) << "older than a frame sent: dropped, not sent";
+    EXPECT_EQ(pacing.dropped(), 1u);
+    EXPECT_EQ(pacing.inFlight(), 1u) << "the still, until acknowledged";
+}
+
+TEST(ViewerPacing, ADraftMayStartWhileAnOlderStillIsDrawn) {
+    ViewerPacing pacing(2);
+    pacing.offer(viewNumber(1, true));
+    const auto still = pacing.next();
+    ASSERT_TRUE(still);
+    pacing.offer(viewNumber(2));
+    const auto draft = pacing.next();
+    ASSERT_TRUE(draft) << "the drag goes on: the draft queues behind the still";
+    EXPECT_TRUE(pacing.overtaken(*still));
+    pacing.offer(viewNumber(3));
+    EXPECT_FALSE(pacing.next()) << "one draft at a time";
+    EXPECT_EQ(pacing.sent(*draft), frame(1));
+    EXPECT_EQ(pacing.sent(*still), std::nullopt);
+    const auto third = pacing.next();
+    ASSERT_TRUE(third);
+    EXPECT_EQ(third->seq, 3u);
 }
 
 TEST(DraftSizer, HoldsTheBudgetWithinItsScaleLimits) {

@@ -1,5 +1,6 @@
 // The viewer socket (GET /api/stream): a drag shows JPEG drafts over the socket, the still after release is
-// /render's PNG byte for byte, and a page whose socket is refused falls back to /render.
+// /render's PNG byte for byte, a paused drag gets its still before the release, and a page whose socket is
+// refused falls back to /render.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { withPage, pickDataset, BASE_URL } from './support/browser.mjs';
@@ -129,5 +130,55 @@ test('while zooming over the socket the scale bar follows the frame shown, not t
     // Pixels per mm grow with the zoom of the frame's own camera: one ratio for every frame shown.
     const ratios = bars.map((b) => b.px / b.mm / b.zoom);
     for (const r of ratios) assert.ok(Math.abs(r / ratios[0] - 1) < 1e-3, `scale bar off its frame: ${JSON.stringify(bars)}`);
+  });
+});
+
+// The views the page sends on its viewer socket: {seq, still} in order.
+function recordSocketViews(page) {
+  const views = [];
+  page.on('websocket', (ws) => {
+    if (!ws.url().includes('/api/stream')) return;
+    ws.on('framesent', ({ payload }) => {
+      if (typeof payload !== 'string') return;
+      const message = JSON.parse(payload);
+      if (message.type === 'view') views.push({ seq: message.seq, still: message.still });
+    });
+  });
+  return views;
+}
+
+test('a drag that pauses gets its exact frame before the release, and the release asks for no other', async (t) => {
+  const ds = await pickDataset();
+  await withPage(t, async (page) => {
+    const frames = recordSocketFrames(page);
+    const views = recordSocketViews(page);
+    const viewer = await openIdle(page, ds.name);
+    const seqBefore = views.length ? views.at(-1).seq : 0;
+    const box = await viewer.image.boundingBox();
+    const x = box.x + box.width / 2;
+    const y = box.y + box.height / 2;
+    await page.mouse.move(x, y);
+    await page.mouse.down();
+    for (let i = 1; i <= 10; i++) {
+      await page.mouse.move(x + 8 * i, y);
+      await page.waitForTimeout(15);
+    }
+    // The hand rests with the button held: the still of this camera comes now.
+    const stillOfDrag = () => frames.find((f) => f.header.still && f.header.seq > seqBefore);
+    const deadline = Date.now() + 60000;
+    while (!stillOfDrag() && Date.now() < deadline) await page.waitForTimeout(50);
+    const still = stillOfDrag();
+    assert.ok(still, 'no still came while the drag paused');
+    await page.waitForTimeout(200);
+    const stillsAsked = views.filter((v) => v.still).length;
+    await page.mouse.up();
+    await viewer.waitForIdle();
+    assert.equal(views.filter((v) => v.still).length, stillsAsked, 'the release asked for another still');
+    const shown = await page.evaluate(() => document.querySelector('[data-testid="image"]').dataset.frameUrl);
+    const res = await page.request.get(`${BASE_URL}/${shown}`);
+    assert.equal(res.status(), 200);
+    const png = await res.body();
+    const last = frames.filter((f) => f.header.still).at(-1);
+    assert.ok(png.equals(last.bytes), 'the still shown after the release is not /render\'s PNG of its camera');
   });
 });

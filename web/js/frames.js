@@ -10,6 +10,12 @@ import { openViewerSocket } from './stream.js';
 const MAX_FRAME_PX = Math.min(2048, MAX_SERVED_SIDE); // longest side of a requested frame, in device pixels
 const DRAFT_DIVISOR = 3; // frames while dragging are this much smaller, scaled up by CSS
 const RESIZE_SETTLE_MS = 100; // a frame for the new view size once resizing pauses this long
+// A drag that pauses this long, and for the time of PAUSE_DRAFTS drafts as the server last drew them, asks
+// the socket for its exact frame at once, so that on release it is drawn already or drawing; moving on
+// drops it on the server. A loaded server draws slowly: the pause it takes for one grows with it, so
+// that hitches of the hand do not fill the render thread with full-size frames no one keeps.
+const STILL_AFTER_PAUSE_MS = 250;
+const PAUSE_DRAFTS = 4;
 
 // ?transport=render in the page's URL keeps to GET /render (the benchmark's baseline).
 const SOCKET_WANTED = new URLSearchParams(window.location.search).get('transport') !== 'render';
@@ -33,6 +39,8 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
   let shownObjectUrl = null;
   let lastFrame = null; // {w, h, frameMs}
   let resizeTimer = 0;
+  let pauseTimer = 0; // armed by each draft on the socket: the still of a paused drag
+  let draftDrawMs = 0; // the server's time for the last draft shown
   let socket = null; // the viewer socket once open; null: frames come from GET /render
   let socketTried = false;
   let streamPending = null; // {seq, preview}: the newest view sent on the socket and not shown yet
@@ -86,8 +94,16 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
   // Asks for a frame on the next animation frame; several changes in one frame cost one request.
   function schedule({ draft = false } = {}) {
     wantDraft = draft;
+    clearTimeout(pauseTimer);
+    const pauseMs = Math.max(STILL_AFTER_PAUSE_MS, PAUSE_DRAFTS * draftDrawMs);
+    pauseTimer = draft && socket ? setTimeout(stillOnPause, pauseMs) : 0;
     if (!rafId) rafId = requestAnimationFrame(flush);
     onChange();
+  }
+
+  function stillOnPause() {
+    pauseTimer = 0;
+    if (socket && !rafId && isMoving()) streamFlush(false);
   }
 
   function flush() {
@@ -148,8 +164,8 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
   }
 
   // A "vots:frame" event on the image once a frame is on screen: {sentAt (when its view was asked for,
-  // performance.now()), view (a copy of the view it shows), width, height, still, transport, drawMs (the
-  // server's, socket frames only)}. The overlays follow it (ui.js); bench/stream_drag.mjs times drags.
+  // performance.now()), view (a copy of the view it shows), width, height, still, transport, and socket
+  // frames only the server's times (docs/API.md): waitMs, frameMs, encodeMs, drawMs}. The overlays follow it (ui.js); bench/stream_drag.mjs times drags.
   function announceFrame(detail) {
     const shownSize = draftCanvas.hidden
       ? { width: Number(image.dataset.width), height: Number(image.dataset.height) }
@@ -246,6 +262,7 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
         bitmap.close();
         draftCanvas.hidden = false;
         image.dataset.quality = 'draft';
+        draftDrawMs = header.drawMs || 0;
         shownUrl = `draft ${url}`;
       }
     } catch (e) {
@@ -254,7 +271,8 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
     }
     shownSeq = header.seq;
     image.dataset.transport = 'socket';
-    announceFrame({ sentAt: sent.sentAt, view: sent.view, still: header.still, transport: 'socket', drawMs: header.drawMs });
+    const { waitMs, frameMs, encodeMs, drawMs } = header;
+    announceFrame({ sentAt: sent.sentAt, view: sent.view, still: header.still, transport: 'socket', waitMs, frameMs, encodeMs, drawMs });
     lastFrame = { w: header.width, h: header.height, frameMs: header.frameMs };
     const preview = streamPending ? streamPending.preview : previewing();
     if (streamPending && header.seq >= streamPending.seq) streamPending = null;

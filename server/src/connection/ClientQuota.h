@@ -1,8 +1,13 @@
-// ClientQuota: how many requests of one kind each client (remote address) may have in progress, so
-// that one client flooding the server is refused (429) while the others keep their place.
+// ClientQuota: how many requests of one kind each client (remote address) may have in progress, and how
+// many more may wait their turn in order, so that one client flooding the server is refused (429) while
+// the others keep their place, and the several users behind one address are queued, not refused.
 #pragma once
 
+#include <chrono>
+#include <condition_variable>
 #include <cstddef>
+#include <cstdint>
+#include <deque>
 #include <map>
 #include <mutex>
 #include <string>
@@ -12,8 +17,12 @@ namespace vots::server {
 /// Thread-safe.
 class ClientQuota {
 public:
-    /// perClient: in progress at once per client; 0 or less: unlimited. what: named in the 429 message.
-    ClientQuota(int perClient, std::string what) : mPerClient(perClient), mWhat(std::move(what)) {}
+    /// perClient: in progress at once per client; 0 or less: unlimited. queuedPerClient: more that wait
+    /// for a place, first come first served, at most maxWait each. what: named in the 429 message.
+    ClientQuota(int perClient, std::string what, int queuedPerClient = 0,
+                std::chrono::milliseconds maxWait = std::chrono::seconds(60))
+        : mPerClient(perClient), mQueuedPerClient(queuedPerClient), mMaxWait(maxWait),
+          mWhat(std::move(what)) {}
     ClientQuota(const ClientQuota&) = delete;
     ClientQuota& operator=(const ClientQuota&) = delete;
 
@@ -35,7 +44,8 @@ public:
         std::string mClient;
     };
 
-    /// A place for the client, or HttpError 429 when it already has perClient in progress.
+    /// A place for the client: at once, or after its earlier requests waiting for one (at most
+    /// queuedPerClient wait). HttpError 429 when that many wait already, 503 after waiting maxWait.
     Ticket enter(const std::string& client);
     /// In progress for the client now.
     int inProgress(const std::string& client) const;
@@ -44,10 +54,19 @@ public:
 private:
     void leave(const std::string& client);
 
+    struct Places {
+        int inProgress = 0;
+        std::deque<std::uint64_t> waiting; // the waiters' numbers, in the order they came
+    };
+
     const int mPerClient;
+    const int mQueuedPerClient;
+    const std::chrono::milliseconds mMaxWait;
     const std::string mWhat;
     mutable std::mutex mMutex;
-    std::map<std::string, int> mCounts; // only clients with something in progress
+    std::condition_variable mFreed;
+    std::map<std::string, Places> mClients; // only clients with something in progress or waiting
+    std::uint64_t mWaiters = 0;             // numbers given to waiters so far
 };
 
 } // namespace vots::server

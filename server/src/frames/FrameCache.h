@@ -26,6 +26,7 @@ public:
         std::size_t votCount = 0;
         double frameMs = 0.0;    // render-thread time of the render that made it
         double fitSeconds = 0.0; // of the fit it was drawn from (under mpirun: the slowest rank's)
+        double encodeMs = 0.0;   // the PNG encoding of the render that made it
     };
     enum class Source {
         Rendered, // made by this call's render()

@@ -102,6 +102,7 @@ PreparedRender prepareRender(Server::Impl& s, const RenderParams& params, const 
     PreparedRender prepared;
     RenderJob& job = prepared.job;
     job.params = params;
+    job.owner = client;
     // Under mpirun what the ranks cannot draw is refused before they read anything of the dataset.
     if (s.options.ranks) {
         const std::string refused = s.options.ranks->refusal(params.dataset, params);
@@ -146,11 +147,15 @@ std::shared_ptr<const FrameCache::Frame> cachedFrame(Server::Impl& s, const Prep
             job.params = params;
             const RenderResult result = s.renderQueue->render(std::move(job)); // throws HttpError
             // PNG encoding runs here, on the HTTP thread, in parallel with the next frame.
+            const auto encodeStart = std::chrono::steady_clock::now();
             const std::vector<std::uint8_t> png = render::encodePng(result.image);
+            const double encodeMs =
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - encodeStart)
+                    .count();
             const auto& space = prepared.job.space; // job was moved into the queue
             const double fitSeconds = space ? fitSecondsOf(*space) : result.fitMs / 1000.0;
             return FrameCache::Frame{std::string(png.begin(), png.end()), result.votCount, result.frameMs,
-                                     fitSeconds};
+                                     fitSeconds, encodeMs};
         },
         source);
 }

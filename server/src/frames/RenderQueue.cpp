@@ -117,8 +117,7 @@ void RenderQueue::threadMain() {
             std::unique_lock lock(mMutex);
             mWake.wait(lock, [this] { return mStopping || !mQueue.empty(); });
             if (mStopping) return;
-            item = std::move(mQueue.front());
-            mQueue.pop_front();
+            item = takeNextLocked();
         }
         Outcome outcome;
         try {
@@ -129,6 +128,21 @@ void RenderQueue::threadMain() {
         }
         item.promise.set_value(std::move(outcome));
     }
+}
+
+RenderQueue::Item RenderQueue::takeNextLocked() {
+    const auto ownersWaiting = [this] {
+        std::vector<std::string_view> owners;
+        owners.reserve(mQueue.size());
+        for (const Item& queued : mQueue)
+            owners.push_back(queued.job.owner);
+        return owners;
+    };
+    const auto pick = mQueue.begin() + static_cast<std::ptrdiff_t>(mTurns.pick(ownersWaiting()));
+    Item item = std::move(*pick);
+    mQueue.erase(pick);
+    mTurns.served(item.job.owner, ownersWaiting());
+    return item;
 }
 
 RenderResult RenderQueue::draw(Renderers& r, const RenderJob& job) {

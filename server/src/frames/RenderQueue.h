@@ -1,6 +1,7 @@
 // The one render thread: owns the EglContext and renderers; handlers post jobs and wait on a future.
 #pragma once
 
+#include "frames/OwnerTurns.h"
 #include "routes/Params.h"
 #include "vots/dist/FrameRanks.h"
 #include "vots/fit/Volume.h"
@@ -40,6 +41,9 @@ struct RenderJob {
     // Set for a frame kept in data units (a slab of a sweep stored as DICOM): RenderResult::values, no
     // display pass. Not on the ranks.
     bool values = false;
+    // Who asked (a remote address): the render thread takes turns between owners, so that one address's
+    // many requests or viewers do not hold back another's one. Empty: the server's own (warm-ups).
+    std::string owner;
 };
 
 struct RenderResult {
@@ -90,6 +94,8 @@ private:
         std::promise<Outcome> promise;
     };
     std::future<Outcome> submit(RenderJob job);
+    /// The next item to draw: the oldest of the owner served longest ago (round-robin between owners).
+    Item takeNextLocked();
     struct Renderers; // VotRenderer + GridRenderer + what they hold, render thread only
     void threadMain();
     RenderResult draw(Renderers& renderers, const RenderJob& job);
@@ -101,6 +107,7 @@ private:
     mutable std::mutex mMutex;
     std::condition_variable mWake;
     std::deque<Item> mQueue;
+    OwnerTurns mTurns; // which waiting job is next
     bool mStopping = false;
     bool mReady = false;
     bool mHasContext = false;

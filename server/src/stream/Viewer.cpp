@@ -11,7 +11,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <atomic>
 #include <chrono>
+#include <optional>
 
 namespace vots::server {
 namespace {
@@ -21,11 +23,17 @@ std::string sizerKey(const RenderParams& p) {
            std::string(render::rendererName(p.renderer));
 }
 
+std::uint64_t nextSocketNumber() {
+    static std::atomic<std::uint64_t> count{0};
+    return ++count;
+}
+
 } // namespace
 
 Viewer::Viewer(ViewerContext& context, std::weak_ptr<WebSocketPeer> peer, std::string address,
                bool mayStartFits)
-    : mContext(context), mPeer(std::move(peer)), mAddress(std::move(address)), mMayStartFits(mayStartFits) {}
+    : mContext(context), mPeer(std::move(peer)), mAddress(std::move(address)), mMayStartFits(mayStartFits),
+      mRenderClient("viewer-socket-" + std::to_string(nextSocketNumber())) {}
 
 void Viewer::onText(std::string text) {
     ClientMessage message;
@@ -44,12 +52,15 @@ void Viewer::onText(std::string text) {
     PendingView pending;
     pending.seq = view.seq;
     pending.still = view.still;
+    pending.arrived = std::chrono::steady_clock::now();
     try {
         pending.params = parseRenderParams(view.query);
     } catch (const HttpError& e) {
         return sendError(view.seq, e.status(), e.what());
     }
-    pending.params.client.clear(); // one draw at a time per viewer: nothing of its own to supersede
+    // The socket's own id on the render queue: a still replaces the draft still waiting there, and a
+    // draft the still (the camera moved again), as /render's requests of one page replace each other.
+    pending.params.client = mRenderClient;
     std::lock_guard lock(mMutex);
     mPacing.offer(std::move(pending));
     pumpLocked();
@@ -71,12 +82,19 @@ void Viewer::draw(const PendingView& view) {
     using Ms = std::chrono::duration<double, std::milli>;
     const auto start = std::chrono::steady_clock::now();
     Server::Impl& s = mContext.server;
-    nlohmann::json header{{"type", "frame"}, {"seq", view.seq}, {"still", view.still}};
+    nlohmann::json header{{"type", "frame"},
+                          {"seq", view.seq},
+                          {"still", view.still},
+                          {"waitMs", Ms(start - view.arrived).count()}};
     std::string bytes;
     try {
         {
             std::lock_guard lock(mMutex);
             if (mClosed) return;
+            if (mPacing.overtaken(view)) { // the camera has moved on, or stopped, since this was taken
+                mPacing.failed(view);
+                return pumpLocked();
+            }
         }
         const PreparedRender prepared = prepareRender(s, view.params, mAddress, mMayStartFits);
         const RenderParams& full = view.params;
@@ -88,20 +106,25 @@ void Viewer::draw(const PendingView& view) {
                            {"width", full.width},
                            {"height", full.height},
                            {"frameMs", frame->frameMs},
+                           {"encodeMs", frame->encodeMs},
                            {"votCount", frame->votCount},
                            {"fitSeconds", frame->fitSeconds}});
         } else {
             std::pair<int, int> size;
+            bool behindStill = false; // then its time says more of the still than of drafts of its size
             {
                 std::lock_guard lock(mMutex);
                 size = mSizers.try_emplace(sizerKey(full), DRAFT_BUDGET_MS)
                            .first->second.draftSize(full.width, full.height);
+                behindStill = mPacing.drawingStill();
             }
             RenderJob job = prepared.job;
             job.params.width = size.first;
             job.params.height = size.second;
             const RenderResult result = s.renderQueue->render(std::move(job)); // throws HttpError
+            const auto encodeStart = std::chrono::steady_clock::now();
             const std::vector<std::uint8_t> jpeg = render::encodeJpeg(result.image, DRAFT_QUALITY);
+            header["encodeMs"] = Ms(std::chrono::steady_clock::now() - encodeStart).count();
             bytes.assign(jpeg.begin(), jpeg.end());
             header.update({{"format", "image/jpeg"},
                            {"width", size.first},
@@ -109,19 +132,25 @@ void Viewer::draw(const PendingView& view) {
                            {"frameMs", result.frameMs},
                            {"votCount", result.votCount}});
             std::lock_guard lock(mMutex);
-            mSizers.at(sizerKey(full))
-                .observe(size.first, size.second, Ms(std::chrono::steady_clock::now() - start).count());
+            if (!behindStill && !mPacing.drawingStill())
+                mSizers.at(sizerKey(full))
+                    .observe(size.first, size.second, Ms(std::chrono::steady_clock::now() - start).count());
         }
     } catch (...) {
         const HttpFailure failure = httpFailureOf(std::current_exception(), "viewer socket frame failed");
-        sendError(view.seq, failure.status, failure.message);
         std::lock_guard lock(mMutex);
-        mPacing.failed();
+        // A frame superseded on the render queue by this socket's newer view needs no answer: that view's
+        // frame is the answer.
+        if (!(failure.status == 409 && mPacing.overtaken(view)))
+            sendError(view.seq, failure.status, failure.message);
+        mPacing.failed(view);
         return pumpLocked();
     }
     const auto peer = mPeer.lock();
     std::lock_guard lock(mMutex);
-    header["frame"] = mPacing.sent();
+    const std::optional<std::uint64_t> frameNumber = mPacing.sent(view);
+    if (!frameNumber) return pumpLocked(); // a newer view's frame went out first
+    header["frame"] = *frameNumber;
     header["drawMs"] = Ms(std::chrono::steady_clock::now() - start).count();
     if (peer) {
         // Header then image: the hub sends a socket's messages in order.

@@ -26,8 +26,9 @@ class Viewer final : public WebSocketHandler, public std::enable_shared_from_thi
 public:
     // Two: one frame drawn while the page decodes the last, and no queue of old frames anywhere.
     static constexpr std::size_t MAX_IN_FLIGHT = 2;
-    // From the queue to the JPEG: ~30 frames/s when the render thread is this viewer's alone.
-    static constexpr double DRAFT_BUDGET_MS = 30.0;
+    // From the queue to the JPEG: 24 frames/s when the render thread is this viewer's alone (with two in
+    // flight the page decodes one frame while the next is drawn, so the draw sets the pace).
+    static constexpr double DRAFT_BUDGET_MS = 1000.0 / 24;
     // trame sends 50-60 while interacting; 70 keeps thin bone edges and text in the frame readable.
     static constexpr int DRAFT_QUALITY = 70;
 
@@ -47,6 +48,7 @@ private:
     const std::weak_ptr<WebSocketPeer> mPeer;
     const std::string mAddress;
     const bool mMayStartFits;
+    const std::string mRenderClient; // RenderParams::client of its frames
     std::mutex mMutex;
     ViewerPacing mPacing{MAX_IN_FLIGHT};
     std::map<std::string, DraftSizer> mSizers; // by dataset, mode and renderer: their frames cost differently

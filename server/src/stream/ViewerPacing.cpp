@@ -1,4 +1,4 @@
-// ViewerPacing: latest view wins, frames paced by acknowledgements.
+// ViewerPacing: latest view wins, frames paced by acknowledgements, a still never behind a draft.
 #include "stream/ViewerPacing.h"
 
 namespace vots::server {
@@ -9,23 +9,34 @@ void ViewerPacing::offer(PendingView view) {
 }
 
 std::optional<PendingView> ViewerPacing::next() {
-    if (!mWaiting || mDrawing) return std::nullopt;
-    // A still goes without waiting for acknowledgements: the page waits for it alone, and it is at most
-    // one frame more than the limit.
-    if (!mWaiting->still && inFlight() >= mMaxInFlight) return std::nullopt;
+    if (!mWaiting) return std::nullopt;
+    if (mWaiting->still) {
+        // Without waiting for acknowledgements or the draft being drawn: the page waits for this frame
+        // alone, and it is at most one frame more than the limit.
+        if (mStillsDrawing >= MAX_STILLS_DRAWING) return std::nullopt;
+        ++mStillsDrawing;
+    } else {
+        if (mDrawingDraft || inFlight() >= mMaxInFlight) return std::nullopt;
+        mDrawingDraft = true;
+    }
+    if (mWaiting->seq > mNewestTaken) mNewestTaken = mWaiting->seq;
     std::optional<PendingView> view = std::move(mWaiting);
     mWaiting.reset();
-    mDrawing = true;
     return view;
 }
 
-std::uint64_t ViewerPacing::sent() {
-    mDrawing = false;
+std::optional<std::uint64_t> ViewerPacing::sent(const PendingView& drawn) {
+    doneDrawing(drawn);
+    if (drawn.seq < mNewestSentSeq) {
+        ++mDropped;
+        return std::nullopt;
+    }
+    mNewestSentSeq = drawn.seq;
     return ++mSent;
 }
 
-void ViewerPacing::failed() {
-    mDrawing = false;
+void ViewerPacing::failed(const PendingView& drawn) {
+    doneDrawing(drawn);
 }
 
 bool ViewerPacing::acknowledge(std::uint64_t frame) {

@@ -4,6 +4,7 @@
 
 #include "routes/Params.h"
 
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -15,35 +16,59 @@ struct PendingView {
     std::uint64_t seq = 0;
     bool still = false;
     RenderParams params;
+    std::chrono::steady_clock::time_point arrived; // when the page's message came (a frame's waitMs)
 };
 
-/// Not thread-safe: its viewer locks around it. "In flight": the frame being drawn plus the frames
-/// sent and not yet acknowledged.
+/// Not thread-safe: its viewer locks around it. "In flight": the frames being drawn plus the frames
+/// sent and not yet acknowledged. At most one draft and two stills are drawn at a time: a still never
+/// waits behind a draft or an older still (the page waits for the newest still alone; the older one is
+/// dropped from the render queue when it has not begun there), and a draft may start while an older
+/// still draws (it queues behind it on the render thread, so the drag goes on as soon as that is out).
 class ViewerPacing {
 public:
     explicit ViewerPacing(std::size_t maxInFlight) : mMaxInFlight(maxInFlight) {}
 
     /// The page's newest view; replaces one that was waiting (counted in dropped()).
     void offer(PendingView view);
-    /// The view to draw now, or none: nothing waits, one is being drawn, or (for a draft) the page has
-    /// not acknowledged enough. A view taken is being drawn until sent() or failed().
+    /// The view to draw now, or none: nothing waits, as many of its kind are being drawn as may be, or
+    /// (for a draft) the page has not acknowledged enough. A view taken is being drawn until sent() or
+    /// failed().
     std::optional<PendingView> next();
-    /// The view being drawn went out as a frame: its number (1, 2, ...).
-    std::uint64_t sent();
-    /// The view being drawn gave no frame (an error answer went out instead).
-    void failed();
+    /// The view `drawn` is ready: its frame number (1, 2, ...) to send it under; none when a newer view's
+    /// frame has gone out meanwhile, so this one shows an old camera (dropped, counted in dropped()).
+    std::optional<std::uint64_t> sent(const PendingView& drawn);
+    /// The view `drawn` gave no frame (an error answer went out instead, or none).
+    void failed(const PendingView& drawn);
     /// The page has shown every frame up to `frame`; false for a frame not sent yet (a broken page).
     bool acknowledge(std::uint64_t frame);
+    /// Whether a newer view than `drawn` has been taken (a still after a draft, a draft after a still): a
+    /// frame not drawn yet is then not worth drawing.
+    bool overtaken(const PendingView& drawn) const { return mNewestTaken > drawn.seq; }
 
-    std::size_t inFlight() const { return (mDrawing ? 1 : 0) + static_cast<std::size_t>(mSent - mAcked); }
+    std::size_t inFlight() const {
+        return (mDrawingDraft ? 1 : 0) + mStillsDrawing + static_cast<std::size_t>(mSent - mAcked);
+    }
     std::size_t dropped() const { return mDropped; }
+    bool drawingStill() const { return mStillsDrawing > 0; }
+
+    static constexpr std::size_t MAX_STILLS_DRAWING = 2;
 
 private:
+    void doneDrawing(const PendingView& drawn) {
+        if (drawn.still)
+            --mStillsDrawing;
+        else
+            mDrawingDraft = false;
+    }
+
     const std::size_t mMaxInFlight;
     std::optional<PendingView> mWaiting;
-    bool mDrawing = false;
-    std::uint64_t mSent = 0;  // frames sent so far (the last one's number)
-    std::uint64_t mAcked = 0; // highest frame acknowledged
+    bool mDrawingDraft = false;
+    std::size_t mStillsDrawing = 0;
+    std::uint64_t mNewestTaken = 0;   // the seq of the newest view taken
+    std::uint64_t mNewestSentSeq = 0; // the seq of the newest view whose frame went out
+    std::uint64_t mSent = 0;          // frames sent so far (the last one's number)
+    std::uint64_t mAcked = 0;         // highest frame acknowledged
     std::size_t mDropped = 0;
 };
 

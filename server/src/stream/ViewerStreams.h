@@ -16,8 +16,9 @@ namespace vots::server {
 class ViewerStreams {
 public:
     // Draws run here, each blocking on the render thread (or a fit) for one viewer; one viewer has at
-    // most one draw at a time, so viewers take turns in the pool's queue.
-    static constexpr std::size_t DRAW_THREADS = 4;
+    // most a draft and a still at a time. Enough threads that the draws of many viewers reach the render
+    // queue, which takes turns between addresses (the pool's own queue knows only first come).
+    static constexpr std::size_t DRAW_THREADS = 16;
 
     explicit ViewerStreams(Server::Impl& s);
     ~ViewerStreams(); // stop()

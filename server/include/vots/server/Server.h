@@ -41,7 +41,8 @@ struct ServerOptions {
     int httpThreads = 12;       // requests handled at once; idle connections and event streams hold none
     int maxEventStreams = 1000; // /api/jobs/{id}/events streams open at once (a thread each); more: 503
     // Per client (remote address; behind a proxy every user is the proxy's one client): renders in
-    // progress and fits queued or running that it started; more are refused with 429.
+    // progress (as many more wait their turn) and fits queued or running that it started; more are
+    // refused with 429.
     int maxRendersPerClient = 4;
     int maxFitsPerClient = 3;
     bool withRenderer = true; // false: never try EGL (tests of the 503 path)
