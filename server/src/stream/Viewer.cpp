@@ -24,8 +24,9 @@ std::string sizerKey(const RenderParams& p) {
 } // namespace
 
 Viewer::Viewer(ViewerContext& context, std::weak_ptr<WebSocketPeer> peer, std::string address,
-               bool mayStartFits)
-    : mContext(context), mPeer(std::move(peer)), mAddress(std::move(address)), mMayStartFits(mayStartFits) {}
+               bool mayStartFits, nlohmann::json user)
+    : mContext(context), mPeer(std::move(peer)), mAddress(std::move(address)), mMayStartFits(mayStartFits),
+      mAudit(context.server.audit.get(), mAddress, std::move(user)) {}
 
 void Viewer::onText(std::string text) {
     ClientMessage message;
@@ -56,6 +57,7 @@ void Viewer::onText(std::string text) {
 }
 
 void Viewer::onClosed() {
+    mAudit.closed();
     std::lock_guard lock(mMutex);
     mClosed = true;
 }
@@ -78,6 +80,7 @@ void Viewer::draw(const PendingView& view) {
             std::lock_guard lock(mMutex);
             if (mClosed) return;
         }
+        if (!mAudit.ready()) throw HttpError(503, "the audit log cannot be written; frames are refused");
         const PreparedRender prepared = prepareRender(s, view.params, mAddress, mMayStartFits);
         const RenderParams& full = view.params;
         if (view.still) {
@@ -114,11 +117,13 @@ void Viewer::draw(const PendingView& view) {
         }
     } catch (...) {
         const HttpFailure failure = httpFailureOf(std::current_exception(), "viewer socket frame failed");
+        mAudit.frame(view.params.dataset, view.still, failure.status);
         sendError(view.seq, failure.status, failure.message);
         std::lock_guard lock(mMutex);
         mPacing.failed();
         return pumpLocked();
     }
+    mAudit.frame(view.params.dataset, view.still, 200);
     const auto peer = mPeer.lock();
     std::lock_guard lock(mMutex);
     header["frame"] = mPacing.sent();
