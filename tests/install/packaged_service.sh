@@ -50,6 +50,11 @@ for script in postinst prerm postrm; do
 done
 dpkg-deb -f "$deb" Depends | grep -qw adduser || fail "Depends lacks adduser (the postinst's fallback)"
 
+# docs/API.md ("As the packaged service") shows the configuration in full: the packaged one, word for word.
+api_md="$(dirname "${BASH_SOURCE[0]}")/../../docs/API.md"
+diff <(sed -n '/^# \/etc\/vots\/vots.conf:/,/^# tls-key/p' "$api_md") <(dpkg-deb --fsys-tarfile "$deb" | tar -xO ./etc/vots/vots.conf) >&2 ||
+    fail "docs/API.md's copy of /etc/vots/vots.conf differs from the packaged one"
+
 # The unit against the packaged tree plus this machine's own units (its targets) and /bin/kill.
 root="$work/root"
 dpkg-deb -x "$deb" "$root"
