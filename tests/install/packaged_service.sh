@@ -3,8 +3,9 @@
 # are in it with their modes, the conffile and maintainer scripts are declared, `systemd-analyze verify`
 # has nothing to say about the unit and `systemd-analyze security` rates its sandboxing OK, sysusers and
 # tmpfiles make the user and folders, and the packaged vots serves HTTPS with the packaged configuration
-# plus its two TLS lines. Where systemd runs as PID 1 and VOTS_TEST_INSTALL_SERVICE=1 asks for it, it also
-# installs the package on this machine, starts vots.service and asks it over TLS (then purges it).
+# plus its two TLS lines; as root, the postinst runs in a private mount namespace (postinst_check.sh).
+# Where systemd runs as PID 1 and VOTS_TEST_INSTALL_SERVICE=1 asks for it, it also installs the package
+# on this machine, starts vots.service and asks it over TLS (then purges it).
 #
 # Usage: tests/install/packaged_service.sh BUILD_DIR      (ctest: Install.PackagedService)
 # Deletes nothing but its own temporary folder (and, when asked to install, the package it installed).
@@ -120,6 +121,14 @@ grep -q '"action":"list-datasets"' "$work/log/audit.log" || fail "no audit line 
 kill "$server_pid" && wait "$server_pid" || fail "the packaged server did not stop cleanly on SIGTERM"
 server_pid=""
 echo "packaged_service: the packaged vots.conf with its TLS lines serves $url"
+
+# The postinst as on an installation, in a private mount namespace so that this machine stays as it was.
+if [[ $(id -u) != 0 ]] || ! unshare -m --propagation private true 2>/dev/null; then
+    echo "packaged_service: not running the postinst: it needs root and a private mount namespace (unshare -m)"
+else
+    cp -a /etc "$work/etc-copy"
+    unshare -m --propagation private "$(dirname "${BASH_SOURCE[0]}")/postinst_check.sh" "$work" || exit 1
+fi
 
 # The real service, only where systemd is PID 1 (not in a container, where CI runs) and when asked for:
 # it installs the package on this machine.
