@@ -21,6 +21,7 @@ cleanup() {
 }
 trap cleanup EXIT
 trap 'exit 1' INT TERM HUP
+source "$(dirname "${BASH_SOURCE[0]}")/wait_for_listening.bash"
 for tool in cpack dpkg-deb systemd-analyze systemd-sysusers systemd-tmpfiles openssl curl; do
     command -v "$tool" >/dev/null || fail "$tool is missing (scripts/setup installs it)"
 done
@@ -101,14 +102,7 @@ grep -q "^tls-cert = $work/etc/tls/cert.pem$" "$work/etc/vots.conf" || fail "the
 : >"$work/server.log"
 "$root/usr/bin/vots" serve --config "$work/etc/vots.conf" >>"$work/server.log" 2>&1 &
 server_pid=$!
-url=""
-for _ in $(seq 1 300); do
-    kill -0 "$server_pid" 2>/dev/null || { cat "$work/server.log" >&2; fail "the packaged vots serve --config exited"; }
-    url="$(sed -n 's|^vots serve: listening on \(https://[^ ]*\)/$|\1|p' "$work/server.log")"
-    [[ -n $url ]] && break
-    sleep 0.2
-done
-[[ -n $url ]] || { cat "$work/server.log" >&2; fail "no 'listening on https://' line within 60 s"; }
+url="$(wait_for_listening "$server_pid" "$work/server.log" https)"
 curl -sf --max-time 30 --cacert "$work/etc/tls/ca.pem" -H "Authorization: Bearer $token" -o "$work/access.json" "$url/api/access" ||
     fail "GET /api/access over TLS with the token"
 grep -q '"role":"operator"' "$work/access.json" || fail "/api/access: $(cat "$work/access.json")"

@@ -11,6 +11,7 @@
 set -euo pipefail
 work=$1 root=$1/root
 fail() { echo "packaged_service: FAIL: postinst: $*" >&2; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/wait_for_listening.bash"
 
 mount --bind "$work/etc-copy" /etc
 mount -t tmpfs tmpfs /var/lib
@@ -44,14 +45,7 @@ log="$work/postinst-serve.log"
     --config /etc/vots/vots.conf --port 0) >>"$log" 2>&1 &
 pid=$!
 trap 'kill $pid 2>/dev/null || true' EXIT
-url=""
-for _ in $(seq 1 300); do
-    kill -0 "$pid" 2>/dev/null || { cat "$log" >&2; fail "vots serve as vots exited"; }
-    url="$(sed -n 's|^vots serve: listening on \(http://[^ ]*\)/$|\1|p' "$log")"
-    [[ -n $url ]] && break
-    sleep 0.2
-done
-[[ -n $url ]] || { cat "$log" >&2; fail "no 'listening on' line within 60 s"; }
+url="$(wait_for_listening "$pid" "$log" http)"
 token="$(awk '{print $3}' /etc/vots/tokens)"
 curl -sf --max-time 30 -H "Authorization: Bearer $token" "$url/api/access" | grep -q '"role":"operator"' ||
     fail "vots serve as vots does not take the made token"

@@ -106,8 +106,7 @@ TEST_F(ServeCommandConfig, TheCommandLineOverridesTheFile) {
     EXPECT_EQ(serve.stop(), 0);
 }
 
-/// Starts `vots serve --config FILE` over `text` (none: FILE does not exist) and expects exit 2 with
-/// `message` on stderr.
+/// Starts `vots serve --config PATH` and expects exit 2 with `message` as its one line on stderr.
 void expectRefused(const ServerWorld& world, const std::string& path, const std::string& message) {
     ServeProcess serve(world, {"--config", path});
     EXPECT_LT(serve.port(), 0) << path;
@@ -119,20 +118,20 @@ void expectRefused(const ServerWorld& world, const std::string& path, const std:
 TEST_F(ServeCommandConfig, ABadFileIsAClearStartUpError) {
     expectRefused(world, file("missing.conf"), "cannot read the configuration file " + file("missing.conf"));
     expectRefused(world, world.dir().path().string(), "it is a folder");
-    world.dir().write("unknown.conf", "frame-cache-mb = 3\ncolour = red\n");
-    expectRefused(world, file("unknown.conf"), "unknown key 'colour'");
-    world.dir().write("nested.conf", "config = other.conf\n");
-    expectRefused(world, file("nested.conf"), "unknown key 'config'");
-    world.dir().write("section.conf", "[serve]\nport = 8080\n");
-    expectRefused(world, file("section.conf"), "sections are not read");
-    world.dir().write("twice.conf", "frame-cache-mb = 3\nframe-cache-mb = 4\n");
-    expectRefused(world, file("twice.conf"), "key 'frame-cache-mb' takes one value");
-    world.dir().write("range.conf", "frame-cache-mb = 99999999\n");
-    expectRefused(world, file("range.conf"), "frame-cache-mb");
-    world.dir().write("word.conf", "renders-per-client = many\n");
-    expectRefused(world, file("word.conf"), "renders-per-client");
-    world.dir().write("lonely.conf", "tls-cert = " + file("tokens") + "\n");
-    expectRefused(world, file("lonely.conf"), "--tls-cert needs --tls-key");
+    struct BadFile {
+        std::string text, message;
+    };
+    for (const auto& [text, message] : std::vector<BadFile>{
+             {"frame-cache-mb = 3\ncolour = red\n", "unknown key 'colour'"},
+             {"config = other.conf\n", "unknown key 'config'"},
+             {"[serve]\nport = 8080\n", "sections are not read"},
+             {"frame-cache-mb = 3\nframe-cache-mb = 4\n", "key 'frame-cache-mb' takes one value"},
+             {"frame-cache-mb = 99999999\n", "frame-cache-mb"},
+             {"renders-per-client = many\n", "renders-per-client"},
+             {"tls-cert = " + file("tokens") + "\n", "--tls-cert needs --tls-key"}}) {
+        world.dir().write("bad.conf", text);
+        expectRefused(world, file("bad.conf"), message);
+    }
 }
 
 } // namespace

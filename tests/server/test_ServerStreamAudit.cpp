@@ -1,10 +1,10 @@
 // The viewer socket's audit trail: a line per still and per refused frame, one line per burst of drafts
 // with its frame count, each with /render's fields (who, from where, which dataset, the status) and never
 // the token; a log that cannot be written refuses frames (503).
+#include "AuditLines.h"
 #include "ServerFixture.h"
 #include "WebSocketClient.h"
 
-#include <fstream>
 #include <string>
 #include <vector>
 
@@ -12,19 +12,6 @@ namespace vots::test {
 namespace {
 
 constexpr const char* VIEWER = "stream-viewer-token-0123456789";
-
-std::vector<nlohmann::json> linesOf(const std::string& file) {
-    std::ifstream in(file);
-    std::vector<nlohmann::json> lines;
-    for (std::string line; std::getline(in, line);)
-        lines.push_back(nlohmann::json::parse(line));
-    return lines;
-}
-
-std::string rawFile(const std::string& file) {
-    std::ifstream in(file);
-    return std::string(std::istreambuf_iterator<char>(in), {});
-}
 
 std::string view(std::uint64_t seq, bool still, const std::string& cam, const std::string& eps = "") {
     nlohmann::json params{{"dataset", BLOBS}, {"cam", cam}, {"size", "48x32"}};
@@ -61,9 +48,9 @@ protected:
     }
     /// The log's lines once it has `n` (lines are written after their frames are sent).
     std::vector<nlohmann::json> waitForLines(std::size_t n) const {
-        for (int i = 0; i < 200 && linesOf(log).size() < n; ++i)
+        for (int i = 0; i < 200 && auditLinesOf(log).size() < n; ++i)
             std::this_thread::sleep_for(std::chrono::milliseconds(25));
-        return linesOf(log);
+        return auditLinesOf(log);
     }
 
     ServerWorld world;
@@ -87,7 +74,7 @@ TEST_F(ServerStreamAudit, AStillALineADragOneLineWithItsFramesARefusalItsOwn) {
     socket.reset();
 
     const auto lines = waitForLines(5);
-    ASSERT_EQ(lines.size(), 5u) << rawFile(log);
+    ASSERT_EQ(lines.size(), 5u) << auditTextOf(log);
     const std::vector<std::string> actions{"stream-still", "stream-drafts", "stream-still", "stream-draft",
                                            "stream-drafts"};
     const std::vector<int> statuses{200, 200, 200, 403, 200};
@@ -102,7 +89,7 @@ TEST_F(ServerStreamAudit, AStillALineADragOneLineWithItsFramesARefusalItsOwn) {
     EXPECT_EQ(lines[1]["frames"], 3);
     EXPECT_EQ(lines[4]["frames"], 2);
     EXPECT_LE(lines[1]["time"].get<std::string>(), lines[1]["until"].get<std::string>());
-    EXPECT_EQ(rawFile(log).find(VIEWER), std::string::npos);
+    EXPECT_EQ(auditTextOf(log).find(VIEWER), std::string::npos);
 }
 
 TEST(ServerStreamAuditFull, ALogThatCannotBeWrittenRefusesFrames) {
