@@ -1,5 +1,6 @@
 // `vots serve`: options -> vots::server::Server, then serve until SIGINT/SIGTERM; no HTTP logic here.
 #include "Commands.h"
+#include "ConfigFileOption.h"
 #include "FitNormOption.h"
 #include "MemoryBudgetOption.h"
 #include "ServeDicomWeb.h"
@@ -52,6 +53,7 @@ struct ServeArgs {
     int rendersPerClient = server::ServerOptions{}.maxRendersPerClient;
     int fitsPerClient = server::ServerOptions{}.maxFitsPerClient;
     ServeDicomWebArgs dicomWeb;
+    std::string config; // --config FILE: the options above that the command line leaves out
 };
 
 /// "host:port" as a URL writes it: an IPv6 address in brackets.
@@ -236,6 +238,7 @@ void addServeCommand(CLI::App& app) {
     cmd->add_option("--port", args->port, "TCP port (0: any free port)")
         ->check(CLI::Range(0, 65535))
         ->capture_default_str();
+    addConfigFileOption(*cmd, args->config);
     cmd->add_option(
         "--token-file", args->tokenFile,
         "File holding the access token (16..256 of A-Za-z0-9-._~+/=) that every API request must "
@@ -297,7 +300,8 @@ void addServeCommand(CLI::App& app) {
     cmd->add_flag(
         "--no-warm-up", args->noWarmUp,
         "Do not fit at half the last eps in idle time (it makes later refits to a smaller eps faster)");
-    cmd->callback([args] {
+    cmd->callback([args, cmd] {
+        if (!args->config.empty()) applyConfigFile(*cmd, args->config);
         dist::MpiWorld& world = dist::MpiWorld::get();
         if (!world.distributed() || world.rank() == 0) return runServe(*args);
         try {

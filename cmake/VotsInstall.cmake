@@ -16,6 +16,28 @@ if(TARGET vots_server)
   file(CREATE_LINK ${PROJECT_SOURCE_DIR}/web ${VOTS_BUILD_TREE_WEB} SYMBOLIC)
 endif()
 
+if(TARGET vots_server)
+  # The system service (packaging/): the unit, its user and folders, the default configuration (a conffile,
+  # kept on upgrades when edited) and the maintainer scripts that make the user and set /etc/vots's modes.
+  set(VOTS_PACKAGING ${PROJECT_SOURCE_DIR}/packaging)
+  install(FILES ${VOTS_PACKAGING}/systemd/vots.service DESTINATION lib/systemd/system)
+  install(FILES ${VOTS_PACKAGING}/sysusers.d/vots.conf DESTINATION lib/sysusers.d)
+  install(FILES ${VOTS_PACKAGING}/tmpfiles.d/vots.conf DESTINATION lib/tmpfiles.d)
+  # GNUInstallDirs' rule for the configuration folder, applied at install time when the prefix is known:
+  # /etc for the prefix /usr (the .deb, where the unit reads it), else <prefix>/etc (`--prefix ~/.local`);
+  # file(INSTALL) puts DESTDIR (cpack's staging folder) before it.
+  install(CODE "
+    set(vots_etc \"\${CMAKE_INSTALL_PREFIX}/etc\")
+    if(CMAKE_INSTALL_PREFIX STREQUAL \"/usr\")
+      set(vots_etc /etc)
+    endif()
+    file(INSTALL DESTINATION \"\${vots_etc}/vots\" TYPE FILE FILES \"${VOTS_PACKAGING}/etc/vots.conf\")")
+  file(WRITE ${PROJECT_BINARY_DIR}/packaging/conffiles "/etc/vots/vots.conf\n")
+  set(CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA ${VOTS_PACKAGING}/debian/postinst ${VOTS_PACKAGING}/debian/prerm
+                                         ${VOTS_PACKAGING}/debian/postrm ${PROJECT_BINARY_DIR}/packaging/conffiles)
+  set(CPACK_DEBIAN_PACKAGE_CONTROL_STRICT_PERMISSION ON)
+endif()
+
 set(CPACK_GENERATOR DEB)
 set(CPACK_PACKAGE_NAME vots)
 set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "Fits volumes into Vot-Spaces, renders them as MIP, serves them over HTTP")
@@ -25,7 +47,8 @@ set(CPACK_DEBIAN_PACKAGE_MAINTAINER "${VOTS_PACKAGE_MAINTAINER}")
 set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 # libEGL (glvnd) alone has no driver: a vendor must be installed (Mesa: llvmpipe without a GPU).
-set(VOTS_DEB_DEPENDS "libegl-mesa0 | libegl-vendor, libgl1-mesa-dri")
+# adduser: the postinst's way to make the vots user where systemd-sysusers is missing.
+set(VOTS_DEB_DEPENDS "libegl-mesa0 | libegl-vendor, libgl1-mesa-dri, adduser")
 find_program(VOTS_DPKG_SHLIBDEPS dpkg-shlibdeps)
 if(VOTS_DPKG_SHLIBDEPS)
   # The libraries the binary links, with versions, from dpkg-shlibdeps (package dpkg-dev).

@@ -15,6 +15,7 @@ work="$(mktemp -d "${TMPDIR:-/tmp}/vots-install-test.XXXXXX")"
 server_pid=""
 
 fail() { echo "installed_serve: FAIL: $*" >&2; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/wait_for_listening.bash"
 cleanup() {
     if [[ -n $server_pid ]]; then kill "$server_pid" 2>/dev/null || true; wait "$server_pid" 2>/dev/null || true; fi
     if [[ -d $moved && ! -e $build ]]; then mv "$moved" "$build"; fi
@@ -51,14 +52,7 @@ mv "$build" "$moved"
 (cd "$work/cwd" && exec "$vots" serve --host 127.0.0.1 --port 0 --data "$work/data" --cache-dir "$work/cache" \
     --no-warm-up --prepare '') >>"$work/server.log" 2>&1 &
 server_pid=$!
-url=""
-for _ in $(seq 1 300); do
-    kill -0 "$server_pid" 2>/dev/null || { cat "$work/server.log" >&2; fail "the installed vots serve exited"; }
-    url="$(sed -n 's|^vots serve: listening on \(http://[^ ]*\)/$|\1|p' "$work/server.log")"
-    [[ -n $url ]] && break
-    sleep 0.2
-done
-[[ -n $url ]] || { cat "$work/server.log" >&2; fail "no 'listening on' line within 60 s"; }
+url="$(wait_for_listening "$server_pid" "$work/server.log" http)"
 cat "$work/server.log"
 grep -qxF "  web:   $prefix/share/vots/web" "$work/server.log" || fail "the server does not name $prefix/share/vots/web"
 

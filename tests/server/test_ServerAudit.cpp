@@ -1,9 +1,9 @@
 // The audit trail (`--audit-log`): one JSON line per access to patient data with who, from where, what and
 // the status, never a token; rotated by size; a log that cannot be written makes data requests 503.
+#include "AuditLines.h"
 #include "ServerFixture.h"
 
 #include <algorithm>
-#include <fstream>
 #include <map>
 #include <set>
 #include <string>
@@ -12,14 +12,6 @@ namespace vots::test {
 namespace {
 
 constexpr const char* TOKEN = "audit-viewer-token-0123456789";
-
-std::vector<nlohmann::json> linesOf(const std::string& file) {
-    std::ifstream in(file);
-    std::vector<nlohmann::json> lines;
-    for (std::string line; std::getline(in, line);)
-        lines.push_back(nlohmann::json::parse(line));
-    return lines;
-}
 
 server::ServerOptions auditedOptions(const ServerWorld& world, const std::string& log) {
     server::ServerOptions o = world.options();
@@ -51,7 +43,7 @@ TEST(ServerAudit, OneLinePerDataAccessWithWhoWhatAndStatusAndNoToken) {
         ASSERT_EQ(c->Get("/api/stats", bearer())->status, 200); // no patient data: not audited
     }
     // Each line is written after its answer, so two close requests may be logged in either order.
-    const auto lines = linesOf(log);
+    const auto lines = auditLinesOf(log);
     ASSERT_EQ(lines.size(), 7u);
     std::map<std::string, std::vector<nlohmann::json>> byAction;
     for (const auto& line : lines) {
@@ -78,9 +70,7 @@ TEST(ServerAudit, OneLinePerDataAccessWithWhoWhatAndStatusAndNoToken) {
     EXPECT_EQ(byAction["pacs-query"][0]["study"], "1.2.3");
     EXPECT_EQ(byAction["pacs-retrieve"][0]["study"], "1.2.3");
     EXPECT_EQ(byAction["pacs-retrieve"][0]["series"], "4.5.6");
-    std::ifstream in(log);
-    const std::string all(std::istreambuf_iterator<char>(in), {});
-    EXPECT_EQ(all.find(TOKEN), std::string::npos);
+    EXPECT_EQ(auditTextOf(log).find(TOKEN), std::string::npos);
 }
 
 TEST(ServerAudit, TheLogIsRotatedBySize) {
@@ -92,7 +82,7 @@ TEST(ServerAudit, TheLogIsRotatedBySize) {
     auto c = server.client();
     for (int i = 0; i < 10; ++i)
         ASSERT_EQ(c->Get("/api/datasets", bearer())->status, 200);
-    const auto current = linesOf(log), previous = linesOf(log + ".1");
+    const auto current = auditLinesOf(log), previous = auditLinesOf(log + ".1");
     EXPECT_FALSE(previous.empty());
     EXPECT_LT(current.size(), 10u);
     EXPECT_LE(std::filesystem::file_size(log + ".1"), 400u + 200u);

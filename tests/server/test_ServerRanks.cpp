@@ -1,6 +1,8 @@
 // The ranks' port (dist::FrameRanks, `vots serve` under mpirun): frames and fits go through it, what it
-// refuses is 409, a lost rank is 503, and /api/stats shows its ranks; a fake stands for the MPI one.
+// refuses is 409, a lost rank is 503, /api/stats shows its ranks, and a viewer's token has the ranks fit
+// nothing new; a fake stands for the MPI one.
 #include "ServerFixture.h"
+#include "WebSocketClient.h"
 
 #include "vots/dist/FrameRanks.h"
 #include "vots/fit/VotSpaceFile.h"
@@ -239,6 +241,71 @@ TEST(ServerRanks, AVotsDatasetIsDrawnFromTheFileOnEveryRankAndCountedOnce) {
     const auto refit = c->Post("/api/fit", R"({"dataset":"head","eps":"1%"})", "application/json");
     ASSERT_TRUE(refit);
     EXPECT_EQ(refit->status, 409) << refit->body;
+}
+
+// Under mpirun the ranks fit a new eps before they draw it: a viewer's token gets 403 through /render,
+// /turntable and the socket, and the ranks are asked for nothing, until an operator has the ranks fit it.
+TEST(ServerRanks, AViewersTokenHasTheRanksFitNothingNew) {
+    ServerWorld world;
+    auto ranks = std::make_shared<FakeRanks>();
+    ranks->releaseFit = true;
+    server::ServerOptions options = world.options();
+    options.ranks = ranks;
+    options.warmUpFits = false;
+    const std::string viewer = "viewer-token-0123456789", operatorToken = "operator-token-0123456789";
+    options.accessTokens = {{"alice", server::Role::Viewer, viewer},
+                            {"bob", server::Role::Operator, operatorToken}};
+    LoopbackServer server(options);
+    auto c = server.client();
+    const httplib::Headers asViewer{{"Authorization", "Bearer " + viewer}};
+    const httplib::Headers asOperator{{"Authorization", "Bearer " + operatorToken}};
+    const std::string view = std::string("dataset=") + MRI_BRAIN + "&cam=az=30,el=20&size=40x30";
+
+    for (const std::string& path :
+         {"/render?" + view + "&eps=7%25", "/turntable?" + view + "&eps=7%25&frames=2"}) {
+        const auto refused = c->Get(path, asViewer);
+        ASSERT_TRUE(refused) << path;
+        EXPECT_EQ(refused->status, 403) << path << ": " << refused->body;
+        EXPECT_NE(bodyJson(refused)["error"].get<std::string>().find("viewer's"), std::string::npos);
+    }
+    WebSocketClient socket(server.port(), "/api/stream?token=" + viewer);
+    ASSERT_TRUE(socket.handshakeOk()) << socket.handshakeError();
+    ASSERT_TRUE(socket.sendText(nlohmann::json{
+        {"type", "view"},
+        {"seq", 1},
+        {"still", true},
+        {"params", {{"dataset", MRI_BRAIN}, {"cam", "az=30,el=20"}, {"size", "40x30"}, {"eps", "7%"}}}}
+                                    .dump()));
+    const auto error = socket.read();
+    ASSERT_TRUE(error && error->text) << "close code " << socket.closeCode();
+    EXPECT_EQ(nlohmann::json::parse(error->bytes)["status"], 403) << error->bytes;
+    {
+        std::lock_guard lock(ranks->mutex);
+        EXPECT_EQ(ranks->frames, 0) << "a viewer's frame reached the ranks";
+        EXPECT_FALSE(ranks->lastFit) << "a viewer's frame had the ranks fit";
+    }
+
+    // The default eps is the server's own fit: open to a viewer.
+    const auto first = c->Get("/render?" + view, asViewer);
+    ASSERT_TRUE(first);
+    EXPECT_EQ(first->status, 200) << first->body;
+
+    // An operator has the ranks fit 7 %; then the viewer draws it.
+    const auto job =
+        c->Post("/api/fit", asOperator, nlohmann::json{{"dataset", MRI_BRAIN}, {"eps", "7%"}}.dump(),
+                "application/json");
+    ASSERT_TRUE(job);
+    ASSERT_EQ(job->status, 202) << job->body;
+    const std::string jobPath = "/api/jobs/" + std::to_string(bodyJson(job)["job"].get<int>());
+    std::string state;
+    for (int i = 0; i < 600 && state != "done" && state != "failed"; ++i) {
+        state = bodyJson(c->Get(jobPath, asOperator))["state"].get<std::string>();
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    ASSERT_EQ(state, "done");
+    const auto drawn = c->Get("/render?" + view + "&eps=7%25", asViewer);
+    ASSERT_TRUE(drawn);
+    EXPECT_EQ(drawn->status, 200) << drawn->body;
 }
 
 } // namespace

@@ -8,6 +8,7 @@
 #include "vots/render/Colormap.h"
 #include "vots/render/Png.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 
@@ -35,16 +36,25 @@ std::string frameKeyFor(const std::string& drawnFrom, const RenderParams& p) {
     return key;
 }
 
+/// Whether a viewer's token (one that may not start fits) must be refused this key's fit unless it exists:
+/// the default eps is the server's own fit (warm-up and the first view), so every role may wait for it.
+bool viewerNeedsAMadeFit(bool mayStartFit, const Dataset& dataset, const FitKey& key) {
+    return !mayStartFit && key.eps != dataset.defaultEps;
+}
+
+HttpError noFitForAViewer(const FitKey& key) {
+    return HttpError(403, "this token is a viewer's: it draws the fits an operator has made, and eps " +
+                              exactText(key.eps) + " has none yet (an operator's token starts it)");
+}
+
 /// The Vot-Space for this request: from memory, else from the (possibly new) fit job.
 std::shared_ptr<const fit::VotSpace> spaceFor(Server::Impl& s, const std::shared_ptr<const Dataset>& dataset,
                                               const FitKey& key, const std::string& client,
                                               bool mayStartFit) {
     if (auto space = s.cache.findInMemory(key)) return space;
-    // The default eps is the server's own fit (warm-up and the first view), so every role may wait for it.
-    if (!mayStartFit && key.eps != dataset->defaultEps) {
+    if (viewerNeedsAMadeFit(mayStartFit, *dataset, key)) {
         if (auto space = s.cache.find(key)) return space;
-        throw HttpError(403, "this token is a viewer's: it draws the fits an operator has made, and eps " +
-                                 exactText(key.eps) + " has none yet (an operator's token starts it)");
+        throw noFitForAViewer(key);
     }
     const auto job = s.fitJobs.submit(dataset, key, client);
     const JobSnapshot done = job->waitFinished(FIT_WAIT);
@@ -70,10 +80,22 @@ dist::FitRequest fitRequestFor(const Dataset& dataset, float eps, int degree, fi
     return request;
 }
 
+/// Under mpirun a fit made through the ranks (FitJobs records it as theirs) stays with them: each keeps its
+/// cells' boxes and refits from them.
+bool madeOnRanks(const ServerStats& stats, const FitKey& key) {
+    const std::vector<FitRecord> fits = stats.fits();
+    const std::string text = key.text();
+    return std::any_of(fits.begin(), fits.end(),
+                       [&](const FitRecord& f) { return f.source == "ranks" && f.key == text; });
+}
+
 /// Under mpirun: the frame is drawn on every rank from its cells' own fit, so rank 0 fits nothing whole
 /// (what the ranks cannot composite was refused before the dataset was looked up); a .vots dataset from
-/// each rank's Vots of the file.
-PreparedRender prepareOnRanks(const Dataset& dataset, PreparedRender prepared, fit::FitNorm norm) {
+/// each rank's Vots of the file. The ranks fit a new eps before they draw: a viewer's token draws only the
+/// fits made.
+PreparedRender prepareOnRanks(const Server::Impl& s, const Dataset& dataset, PreparedRender prepared,
+                              bool mayStartFit) {
+    const fit::FitNorm norm = s.options.fitNorm;
     RenderJob& job = prepared.job;
     if (dataset.kind == DatasetKind::Vots) {
         dist::DrawRequest request;
@@ -84,6 +106,11 @@ PreparedRender prepareOnRanks(const Dataset& dataset, PreparedRender prepared, f
         job.space = dataset.space; // not drawn here: its meta gives the frame's fit time and Vot count
         prepared.drawnFrom = dataset.name + "_vots|ranks";
         return prepared;
+    }
+    if (job.params.renderer != render::RendererKind::Grid) {
+        const FitKey key = fitKeyFor(dataset, job.params.eps, job.params.degree, norm);
+        if (viewerNeedsAMadeFit(mayStartFit, dataset, key) && !madeOnRanks(s.stats, key))
+            throw noFitForAViewer(key);
     }
     dist::DrawRequest request;
     request.fit = fitRequestFor(dataset, resolveEps(dataset, job.params.eps), job.params.degree, norm);
@@ -117,7 +144,7 @@ PreparedRender prepareRender(Server::Impl& s, const RenderParams& params, const 
     if (!s.renderQueue || !s.renderQueue->hasContext())
         throw HttpError(503, s.renderQueue ? "rendering is unavailable: " + s.renderQueue->contextError()
                                            : "rendering is disabled");
-    if (s.options.ranks) return prepareOnRanks(*dataset, std::move(prepared), s.options.fitNorm);
+    if (s.options.ranks) return prepareOnRanks(s, *dataset, std::move(prepared), mayStartFit);
     if (dataset->kind == DatasetKind::Vots) {
         job.space = dataset->space;
         prepared.drawnFrom = dataset->name + "_vots"; // the file's one Vot-Space, loaded once

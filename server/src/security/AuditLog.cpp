@@ -18,19 +18,6 @@ namespace {
 const std::regex PACS_SEARCH(R"(/api/pacs/[^/]+/studies(/([0-9.]+)/series)?)");
 const std::regex PACS_OPEN(R"(/api/pacs/[^/]+/studies/([0-9.]+)/series/([0-9.]+)/open)");
 
-std::string utcNow() {
-    const auto now = std::chrono::system_clock::now();
-    const std::time_t seconds = std::chrono::system_clock::to_time_t(now);
-    const auto millis =
-        std::chrono::duration_cast<std::chrono::milliseconds>(now.time_since_epoch()).count() % 1000;
-    std::tm utc{};
-    gmtime_r(&seconds, &utc);
-    char text[32];
-    std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%S", &utc);
-    const std::string ms = std::to_string(1000 + millis).substr(1); // three digits
-    return std::string(text) + "." + ms + "Z";
-}
-
 /// The dataset a request names: its dataset= parameter, else the "dataset" of a JSON body (a fit), else
 /// that of its "params" (a PACS store).
 nlohmann::json datasetOf(const httplib::Request& req) {
@@ -46,6 +33,18 @@ nlohmann::json datasetOf(const httplib::Request& req) {
 
 } // namespace
 
+std::string auditTime(std::chrono::system_clock::time_point at) {
+    const std::time_t seconds = std::chrono::system_clock::to_time_t(at);
+    const auto millis =
+        std::chrono::duration_cast<std::chrono::milliseconds>(at.time_since_epoch()).count() % 1000;
+    std::tm utc{};
+    gmtime_r(&seconds, &utc);
+    char text[32];
+    std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%S", &utc);
+    const std::string ms = std::to_string(1000 + millis).substr(1); // three digits
+    return std::string(text) + "." + ms + "Z";
+}
+
 std::optional<std::string> auditAction(const std::string& method, const std::string& path) {
     if (method == "GET" && path == "/api/datasets") return "list-datasets";
     if (method == "GET" && path == "/render") return "render";
@@ -59,14 +58,21 @@ std::optional<std::string> auditAction(const std::string& method, const std::str
     return std::nullopt;
 }
 
+nlohmann::json auditUser(const AccessToken* token) {
+    return token ? nlohmann::json(token->name) : nlohmann::json(nullptr);
+}
+
+nlohmann::json auditFields(std::chrono::system_clock::time_point at, const std::string& client,
+                           const nlohmann::json& user, const std::string& action,
+                           const nlohmann::json& dataset, int status) {
+    return {{"time", auditTime(at)}, {"client", client},   {"user", user},
+            {"action", action},      {"dataset", dataset}, {"status", status}};
+}
+
 nlohmann::json auditLine(const std::string& action, const httplib::Request& req, const httplib::Response& res,
                          const AccessToken* token) {
-    nlohmann::json line{{"time", utcNow()},
-                        {"client", req.remote_addr},
-                        {"user", token ? nlohmann::json(token->name) : nlohmann::json(nullptr)},
-                        {"action", action},
-                        {"dataset", datasetOf(req)},
-                        {"status", res.status}};
+    nlohmann::json line = auditFields(std::chrono::system_clock::now(), req.remote_addr, auditUser(token),
+                                      action, datasetOf(req), res.status);
     std::smatch m;
     if (std::regex_match(req.path, m, PACS_OPEN)) {
         line["study"] = m[1].str();
@@ -105,7 +111,9 @@ bool AuditLog::ready() {
     if (mOut) return true;
     // After a failure only a line written proves the file works again; it also marks the gap.
     const std::string resumed =
-        nlohmann::json{{"time", utcNow()}, {"action", "audit-log-resumed"}}.dump() + "\n";
+        nlohmann::json{{"time", auditTime(std::chrono::system_clock::now())}, {"action", "audit-log-resumed"}}
+            .dump() +
+        "\n";
     if (!openLocked()) return false;
     if (std::fwrite(resumed.data(), 1, resumed.size(), mOut) == resumed.size() && std::fflush(mOut) == 0)
         return true;

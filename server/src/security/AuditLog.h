@@ -6,6 +6,7 @@
 #include <httplib.h>
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
@@ -20,6 +21,18 @@ struct AccessToken;
 /// The audit action of a request ("list-datasets", "render", "turntable", "fit", "pacs-query",
 /// "pacs-retrieve", "pacs-store"), nullopt for one that touches no patient data.
 std::optional<std::string> auditAction(const std::string& method, const std::string& path);
+
+/// A line's time: UTC with milliseconds, "2026-12-05T08:00:00.123Z".
+std::string auditTime(std::chrono::system_clock::time_point at);
+
+/// A line's user: the token's name, null without a token (never the token itself).
+nlohmann::json auditUser(const AccessToken* token);
+
+/// The fields of every line: time (UTC, milliseconds), client (after a trusted proxy), the token's name
+/// or null (never the token), action, dataset (or null) and status.
+nlohmann::json auditFields(std::chrono::system_clock::time_point at, const std::string& client,
+                           const nlohmann::json& user, const std::string& action,
+                           const nlohmann::json& dataset, int status);
 
 /// The line for an audited request: time (UTC), client (after a trusted proxy), the token's name (never
 /// the token), action, dataset, DICOM study and series UIDs where the request names them, and status.

@@ -31,9 +31,10 @@ std::uint64_t nextSocketNumber() {
 } // namespace
 
 Viewer::Viewer(ViewerContext& context, std::weak_ptr<WebSocketPeer> peer, std::string address,
-               bool mayStartFits)
+               bool mayStartFits, nlohmann::json user)
     : mContext(context), mPeer(std::move(peer)), mAddress(std::move(address)), mMayStartFits(mayStartFits),
-      mRenderClient("viewer-socket-" + std::to_string(nextSocketNumber())) {}
+      mRenderClient("viewer-socket-" + std::to_string(nextSocketNumber())),
+      mAudit(context.server.audit.get(), mAddress, std::move(user)) {}
 
 void Viewer::onText(std::string text) {
     ClientMessage message;
@@ -67,6 +68,7 @@ void Viewer::onText(std::string text) {
 }
 
 void Viewer::onClosed() {
+    mAudit.closed();
     std::lock_guard lock(mMutex);
     mClosed = true;
 }
@@ -96,6 +98,7 @@ void Viewer::draw(const PendingView& view) {
                 return pumpLocked();
             }
         }
+        if (!mAudit.ready()) throw HttpError(503, "the audit log cannot be written; frames are refused");
         const PreparedRender prepared = prepareRender(s, view.params, mAddress, mMayStartFits);
         const RenderParams& full = view.params;
         if (view.still) {
@@ -138,6 +141,7 @@ void Viewer::draw(const PendingView& view) {
         }
     } catch (...) {
         const HttpFailure failure = httpFailureOf(std::current_exception(), "viewer socket frame failed");
+        mAudit.frame(view.params.dataset, view.still, failure.status);
         std::lock_guard lock(mMutex);
         // A frame superseded on the render queue by this socket's newer view needs no answer: that view's
         // frame is the answer.
@@ -146,6 +150,7 @@ void Viewer::draw(const PendingView& view) {
         mPacing.failed(view);
         return pumpLocked();
     }
+    mAudit.frame(view.params.dataset, view.still, 200);
     const auto peer = mPeer.lock();
     std::lock_guard lock(mMutex);
     const std::optional<std::uint64_t> frameNumber = mPacing.sent(view);

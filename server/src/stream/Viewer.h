@@ -4,6 +4,7 @@
 #pragma once
 
 #include "connection/WebSocketHub.h"
+#include "security/StreamAudit.h"
 #include "stream/DraftSizer.h"
 #include "stream/ViewerPacing.h"
 #include "vots/server/Server.h"
@@ -32,8 +33,10 @@ public:
     // trame sends 50-60 while interacting; 70 keeps thin bone edges and text in the frame readable.
     static constexpr int DRAFT_QUALITY = 70;
 
-    /// mayStartFits: false for a viewer's token (see RequestGuard::mayStartFits).
-    Viewer(ViewerContext& context, std::weak_ptr<WebSocketPeer> peer, std::string address, bool mayStartFits);
+    /// mayStartFits: false for a viewer's token (see RequestGuard::mayStartFits); user: the token's name
+    /// or null, for the audit trail.
+    Viewer(ViewerContext& context, std::weak_ptr<WebSocketPeer> peer, std::string address, bool mayStartFits,
+           nlohmann::json user);
 
     void onText(std::string text) override;
     void onClosed() override;
@@ -49,6 +52,7 @@ private:
     const std::string mAddress;
     const bool mMayStartFits;
     const std::string mRenderClient; // RenderParams::client of its frames
+    StreamAudit mAudit;
     std::mutex mMutex;
     ViewerPacing mPacing{MAX_IN_FLIGHT};
     std::map<std::string, DraftSizer> mSizers; // by dataset, mode and renderer: their frames cost differently

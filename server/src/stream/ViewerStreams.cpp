@@ -2,6 +2,7 @@
 #include "stream/ViewerStreams.h"
 
 #include "ServerImpl.h"
+#include "security/AuditLog.h"
 
 namespace vots::server {
 
@@ -11,7 +12,7 @@ ViewerStreams::ViewerStreams(Server::Impl& s)
           WebSocketLimits{}, [&s](const httplib::Request& req) { return screenApiRequest(s, req); },
           [this, &s](std::weak_ptr<WebSocketPeer> peer, const httplib::Request& req) {
               return std::make_shared<Viewer>(mContext, std::move(peer), req.remote_addr,
-                                              s.guard.mayStartFits(req));
+                                              s.guard.mayStartFits(req), auditUser(s.guard.tokenOf(req)));
           }) {}
 
 ViewerStreams::~ViewerStreams() {
