@@ -287,9 +287,10 @@ void addServeCommand(CLI::App& app) {
         ->capture_default_str();
     addMemoryBudgetOption(*cmd, args->memoryBudget);
     addServeDicomWebOptions(*cmd, args->dicomWeb);
-    cmd->add_option("--renders-per-client", args->rendersPerClient,
-                    "Renders one client (remote address) may have in progress; more get 429 (0: no limit; "
-                    "behind a proxy every user is the proxy's one client)")
+    cmd->add_option(
+           "--renders-per-client", args->rendersPerClient,
+           "Renders one client (remote address; behind --behind-proxy its forwarded address) may have "
+           "in progress; as many more wait their turn, and beyond those 429 (0: no limit)")
         ->check(CLI::Range(0, 1 << 20))
         ->capture_default_str();
     cmd->add_option("--fits-per-client", args->fitsPerClient,
