@@ -11,7 +11,7 @@ source "$(dirname "$0")/serve_job.bash"
 
 mkdir "$work/data"
 file="$work/data/head.vots"
-"$vots" fit "$volume" -o "$file" --eps 2% >/dev/null 2>&1 || fail "vots fit failed"
+"$vots" fit "$volume" -o "$file" --eps 2% >/dev/null 2>"$work/fit.err" || fail "vots fit failed: $(cat "$work/fit.err")"
 start_job "$work/data" head
 
 view="cam=az=30,el=20&size=96x80"
