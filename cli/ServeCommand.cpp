@@ -38,6 +38,7 @@ struct ServeArgs {
     std::string web;
     std::string cacheDir = "data/cache";
     int frameCacheMb = 64;
+    int heldFramesMb = 0; // 0: a quarter of the memory budget
     int cacheDirGb = 16;
     bool noWarmUp = false;
     std::string norm{fit::nameOf(fit::SERVE_FIT_NORM)};
@@ -131,6 +132,7 @@ void runServe(const ServeArgs& a) {
     options.webDir = a.web.empty() ? server::defaultWebDir() : fs::path(a.web);
     options.cacheDir = a.cacheDir;
     options.frameCacheBytes = static_cast<std::size_t>(a.frameCacheMb) << 20;
+    options.heldFrameBytes = static_cast<std::uint64_t>(a.heldFramesMb) << 20;
     options.diskCacheBytes = static_cast<std::uint64_t>(a.cacheDirGb) << 30;
     options.warmUpFits = !a.noWarmUp;
     options.fitNorm = fit::parseName<fit::FitNorm>(a.norm);
@@ -280,6 +282,11 @@ void addServeCommand(CLI::App& app) {
     cmd->add_option("--frame-cache-mb", args->frameCacheMb,
                     "Memory for rendered images answered again to identical /render requests (0: none)")
         ->check(CLI::Range(0, 65536))
+        ->capture_default_str();
+    cmd->add_option("--held-frames-mb", args->heldFramesMb,
+                    "Memory for the loaded frames of 4D datasets other than frame 0; the least recently "
+                    "used are dropped beyond it (0: a quarter of the memory budget)")
+        ->check(CLI::Range(0, 1 << 24))
         ->capture_default_str();
     cmd->add_option("--prepare", args->prepare,
                     "Dataset to load, fit at its default eps and upload as the server starts, so the "

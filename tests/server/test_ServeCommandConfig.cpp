@@ -106,6 +106,20 @@ TEST_F(ServeCommandConfig, TheCommandLineOverridesTheFile) {
     EXPECT_EQ(serve.stop(), 0);
 }
 
+TEST_F(ServeCommandConfig, TheHeldFramesBoundIsItsFlagElseAQuarterOfTheBudget) {
+    const auto heldFramesBound = [&](const std::vector<std::string>& args) {
+        ServeProcess serve(world, args);
+        EXPECT_GT(serve.port(), 0) << serve.output();
+        const nlohmann::json stats = bodyJson(serve.client()->Get("/api/stats"));
+        EXPECT_EQ(serve.stop(), 0);
+        return stats["heldFrames"]["boundBytes"].get<long long>();
+    };
+    EXPECT_EQ(heldFramesBound({"--memory-budget", "4G"}), (4LL << 30) / 4);
+    EXPECT_EQ(heldFramesBound({"--memory-budget", "4G", "--held-frames-mb", "7"}), 7LL << 20);
+    world.dir().write("vots.conf", "held-frames-mb = 9\n");
+    EXPECT_EQ(heldFramesBound({"--config", file("vots.conf")}), 9LL << 20);
+}
+
 /// Starts `vots serve --config PATH` and expects exit 2 with `message` as its one line on stderr.
 void expectRefused(const ServerWorld& world, const std::string& path, const std::string& message) {
     ServeProcess serve(world, {"--config", path});
