@@ -141,20 +141,21 @@ void Viewer::draw(const PendingView& view) {
         }
     } catch (...) {
         const HttpFailure failure = httpFailureOf(std::current_exception(), "viewer socket frame failed");
-        mAudit.frame(view.params.dataset, view.still, failure.status);
         std::lock_guard lock(mMutex);
         // A frame superseded on the render queue by this socket's newer view needs no answer: that view's
-        // frame is the answer.
-        if (!(failure.status == 409 && mPacing.overtaken(view)))
+        // frame is the answer. Nor an audit line: nothing was shown or refused to the page.
+        if (!(failure.status == 409 && mPacing.overtaken(view))) {
+            mAudit.frame(view.params.dataset, view.still, failure.status);
             sendError(view.seq, failure.status, failure.message);
+        }
         mPacing.failed(view);
         return pumpLocked();
     }
-    mAudit.frame(view.params.dataset, view.still, 200);
     const auto peer = mPeer.lock();
     std::lock_guard lock(mMutex);
     const std::optional<std::uint64_t> frameNumber = mPacing.sent(view);
-    if (!frameNumber) return pumpLocked(); // a newer view's frame went out first
+    if (!frameNumber) return pumpLocked(); // a newer view's frame went out first: not sent, not audited
+    mAudit.frame(view.params.dataset, view.still, 200);
     header["frame"] = *frameNumber;
     header["drawMs"] = Ms(std::chrono::steady_clock::now() - start).count();
     if (peer) {
