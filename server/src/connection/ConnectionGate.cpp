@@ -78,11 +78,18 @@ std::string jsonErrorAnswer(int status, const std::string& message) {
            "\r\nConnection: close\r\n\r\n" + body;
 }
 
-void sendJsonErrorNow(int fd, int status, const std::string& message) {
-    const std::string answer = jsonErrorAnswer(status, message);
-    // A few hundred bytes: they fit in any socket's send buffer, so one send is enough.
-    [[maybe_unused]] const ssize_t sent =
-        ::send(fd, answer.data(), answer.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
+void sendBytesNow(int fd, ssl_st* tls, std::string_view bytes) {
+    if (tls) {
+        ERR_clear_error();
+        [[maybe_unused]] const int sent = SSL_write(tls, bytes.data(), static_cast<int>(bytes.size()));
+        ERR_clear_error();
+        return;
+    }
+    [[maybe_unused]] const ssize_t sent = ::send(fd, bytes.data(), bytes.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
+}
+
+void sendJsonErrorNow(int fd, int status, const std::string& message, ssl_st* tls) {
+    sendBytesNow(fd, tls, jsonErrorAnswer(status, message));
 }
 
 ConnectionGate::ConnectionGate(GateLimits limits, Dispatch dispatch, const TlsContext* tls)
@@ -247,15 +254,7 @@ ssize_t ConnectionGate::receive(Connection& c, char* buffer, std::size_t size) {
 }
 
 void ConnectionGate::sendNow(Connection& c, std::string_view bytes) {
-    if (c.tls) {
-        ERR_clear_error();
-        [[maybe_unused]] const int sent =
-            SSL_write(c.tls.get(), bytes.data(), static_cast<int>(bytes.size()));
-        ERR_clear_error();
-        return;
-    }
-    [[maybe_unused]] const ssize_t sent =
-        ::send(c.fd, bytes.data(), bytes.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
+    sendBytesNow(c.fd, c.tls.get(), bytes);
 }
 
 void ConnectionGate::readFrom(Connection& c) {

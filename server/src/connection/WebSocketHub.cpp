@@ -42,15 +42,10 @@ constexpr std::uint16_t UNSUPPORTED_CLOSE = 1003;
 constexpr std::uint16_t GOING_AWAY_CLOSE = 1001;
 
 void refuseUpgrade(const ArrivedRequest& request, int status, const std::string& message) {
+    sendJsonErrorNow(request.fd, status, message, request.tls.get());
     if (request.tls) {
-        // A few hundred bytes: one write into an empty socket buffer, as sendJsonErrorNow's send.
-        const std::string answer = jsonErrorAnswer(status, message);
-        [[maybe_unused]] const int sent =
-            SSL_write(request.tls.get(), answer.data(), static_cast<int>(answer.size()));
         SSL_shutdown(request.tls.get()); // close_notify, best effort
         ERR_clear_error();
-    } else {
-        sendJsonErrorNow(request.fd, status, message);
     }
     ::shutdown(request.fd, SHUT_RDWR);
     ::close(request.fd);
