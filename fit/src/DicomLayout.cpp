@@ -64,6 +64,13 @@ std::vector<DicomSliceHeader> pickSeries(const std::string& folder, const std::s
     return std::move(bySeries.begin()->second);
 }
 
+/// The bytes of one frame's pixels, at least 1 (so that a frame count checked against it stays bounded).
+std::uint64_t frameBytes(const DicomSliceHeader& s) {
+    return std::max<std::uint64_t>(1, static_cast<std::uint64_t>(s.rows) *
+                                          static_cast<std::uint64_t>(s.columns) *
+                                          static_cast<std::uint64_t>(std::max(1, s.bitsAllocated / 8)));
+}
+
 void checkAlike(const std::vector<DicomSliceHeader>& slices) {
     const DicomSliceHeader& first = slices.front();
     for (const DicomSliceHeader& s : slices) {
@@ -83,9 +90,7 @@ void checkAlike(const std::vector<DicomSliceHeader>& slices) {
             throwInputError(s.path, "mixed image sizes in the series: " + std::to_string(s.columns) + "x" +
                                         std::to_string(s.rows) + " here, " + std::to_string(first.columns) +
                                         "x" + std::to_string(first.rows) + " in " + fileName(first.path));
-        const std::uint64_t pixelBytes =
-            static_cast<std::uint64_t>(s.rows) * static_cast<std::uint64_t>(s.columns) *
-            static_cast<std::uint64_t>(s.bitsAllocated / 8) * static_cast<std::uint64_t>(s.frames);
+        const std::uint64_t pixelBytes = frameBytes(s) * static_cast<std::uint64_t>(s.frames);
         // Uncompressed pixel data has a known size: a file too short for it was cut off.
         if (!s.encapsulated && s.fileSize < s.pixelDataOffset + pixelBytes)
             throwInputError(s.path, "is truncated: its pixel data needs " + std::to_string(pixelBytes) +
@@ -107,13 +112,6 @@ void checkAlike(const std::vector<DicomSliceHeader>& slices) {
                 throwInputError(s.path,
                                 "PixelSpacing differs from " + fileName(first.path) + " or is not positive");
     }
-}
-
-/// The bytes of one frame's pixels, at least 1 (so that a frame count checked against it stays bounded).
-std::uint64_t frameBytes(const DicomSliceHeader& s) {
-    return std::max<std::uint64_t>(1, static_cast<std::uint64_t>(s.rows) *
-                                          static_cast<std::uint64_t>(s.columns) *
-                                          static_cast<std::uint64_t>(std::max(1, s.bitsAllocated / 8)));
 }
 
 /// Refuses a NumberOfFrames the file cannot hold: uncompressed frames need their bytes, compressed ones at
