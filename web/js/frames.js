@@ -97,6 +97,13 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
     clearTimeout(pauseTimer);
     const pauseMs = Math.max(STILL_AFTER_PAUSE_MS, PAUSE_DRAFTS * draftDrawMs);
     pauseTimer = draft && socket ? setTimeout(stillOnPause, pauseMs) : 0;
+    // A still over the socket goes out at once: it ends a gesture, so there is nothing to gather into
+    // one request, and waiting for the next animation frame added up to a frame's time to release -> lossless.
+    if (!draft && socket) {
+      cancelAnimationFrame(rafId);
+      rafId = 0;
+      return flush();
+    }
     if (!rafId) rafId = requestAnimationFrame(flush);
     onChange();
   }
