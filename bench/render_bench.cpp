@@ -194,9 +194,10 @@ int main(int argc, char** argv) {
                             pngDir + "/eps" + std::to_string(int(std::lround(eps))) + "_" + name;
                         vots::render::writePng(stem + "_walk.png", vots::render::applyDisplay(a, display));
                         vots::render::writePng(stem + "_raster.png", vots::render::applyDisplay(b, display));
-                        vots::render::writePng(
-                            stem + "_reference.png",
-                            vots::render::applyDisplay(grid.render(camera, size, size), display));
+                        if (!noReference) // the grid is uploaded only when timed
+                            vots::render::writePng(
+                                stem + "_reference.png",
+                                vots::render::applyDisplay(grid.render(camera, size, size), display));
                     }
                 }
                 std::printf("| %.4g | %s | %zu | %s | %.1f | %.1f | %.1f | %.2f | %.2f | %s | %.2f | %.2f | "
