@@ -107,17 +107,29 @@ private:
 /// corners of its edge, face or cell, x fastest, as BoxFitter::certify sums it.
 template <typename T> double latticeValue(const Volume& volume, const T* values, int tx, int ty, int tz) {
     const auto* base = values + volume.indexOf(tx >> 1, ty >> 1, tz >> 1);
-    const int xh = tx & 1, yh = ty & 1, zh = tz & 1;
     const std::size_t dy = static_cast<std::size_t>(volume.dims[0]);
     const std::size_t dz = dy * static_cast<std::size_t>(volume.dims[1]);
-    double sum = 0.0;
-    for (int k = 0; k <= zh; ++k)
-        for (int j = 0; j <= yh; ++j)
-            for (int i = 0; i <= xh; ++i)
-                sum += sampleAsFloat(base[static_cast<std::size_t>(k) * dz +
-                                          static_cast<std::size_t>(j) * dy + static_cast<std::size_t>(i)]);
-    const int count = (1 + xh) * (1 + yh) * (1 + zh);
-    return count == 1 ? sum : count == 2 ? 0.5 * sum : sum / count;
+    const auto at = [base](std::size_t k) -> double { return sampleAsFloat(base[k]); };
+    // The corners summed in that order, one case per kind of point (each half axis doubles the corners).
+    switch ((tx & 1) | (ty & 1) << 1 | (tz & 1) << 2) {
+    case 0:
+        return at(0);
+    case 1:
+        return 0.5 * (at(0) + at(1));
+    case 2:
+        return 0.5 * (at(0) + at(dy));
+    case 4:
+        return 0.5 * (at(0) + at(dz));
+    case 3:
+        return (at(0) + at(1) + at(dy) + at(dy + 1)) / 4;
+    case 5:
+        return (at(0) + at(1) + at(dz) + at(dz + 1)) / 4;
+    case 6:
+        return (at(0) + at(dy) + at(dz) + at(dz + dy)) / 4;
+    default:
+        return (at(0) + at(1) + at(dy) + at(dy + 1) + at(dz) + at(dz + 1) + at(dz + dy) + at(dz + dy + 1)) /
+               8;
+    }
 }
 
 /// Whether the minimax fit of a Certify::Cells fit holds this point of the half-integer lattice besides the
