@@ -20,10 +20,10 @@ namespace {
 constexpr int REGIONS = 3;
 constexpr int REGION_COUNT = REGIONS * REGIONS * REGIONS;
 constexpr std::size_t POOL_CAPACITY = 128;
-constexpr int REFACTOR_EVERY = 32; // pivots between fresh inverses of the basis
+constexpr int REFACTOR_EVERY = 64; // pivots between fresh inverses of the basis
 constexpr double PIVOT_TOLERANCE = 1e-9;
 // Shapes of at most this many samples keep their point matrix per thread, in at most this many bytes.
-constexpr std::int64_t MINIMAX_SHAPE_CACHE_SAMPLES = 128;
+constexpr std::int64_t MINIMAX_SHAPE_CACHE_SAMPLES = MINIMAX_DENSE_POINTS;
 constexpr std::size_t MINIMAX_SHAPE_CACHE_BYTES = std::size_t{16} << 20; // per thread, while the fit runs
 
 constexpr int MAX_N = static_cast<int>(MONOMIAL_COUNT) + 1;
@@ -107,17 +107,29 @@ private:
 /// corners of its edge, face or cell, x fastest, as BoxFitter::certify sums it.
 template <typename T> double latticeValue(const Volume& volume, const T* values, int tx, int ty, int tz) {
     const auto* base = values + volume.indexOf(tx >> 1, ty >> 1, tz >> 1);
-    const int xh = tx & 1, yh = ty & 1, zh = tz & 1;
     const std::size_t dy = static_cast<std::size_t>(volume.dims[0]);
     const std::size_t dz = dy * static_cast<std::size_t>(volume.dims[1]);
-    double sum = 0.0;
-    for (int k = 0; k <= zh; ++k)
-        for (int j = 0; j <= yh; ++j)
-            for (int i = 0; i <= xh; ++i)
-                sum += sampleAsFloat(base[static_cast<std::size_t>(k) * dz +
-                                          static_cast<std::size_t>(j) * dy + static_cast<std::size_t>(i)]);
-    const int count = (1 + xh) * (1 + yh) * (1 + zh);
-    return count == 1 ? sum : count == 2 ? 0.5 * sum : sum / count;
+    const auto at = [base](std::size_t k) -> double { return sampleAsFloat(base[k]); };
+    // The corners summed in that order, one case per kind of point (each half axis doubles the corners).
+    switch ((tx & 1) | (ty & 1) << 1 | (tz & 1) << 2) {
+    case 0:
+        return at(0);
+    case 1:
+        return 0.5 * (at(0) + at(1));
+    case 2:
+        return 0.5 * (at(0) + at(dy));
+    case 4:
+        return 0.5 * (at(0) + at(dz));
+    case 3:
+        return (at(0) + at(1) + at(dy) + at(dy + 1)) / 4;
+    case 5:
+        return (at(0) + at(1) + at(dz) + at(dz + 1)) / 4;
+    case 6:
+        return (at(0) + at(dy) + at(dz) + at(dz + dy)) / 4;
+    default:
+        return (at(0) + at(1) + at(dy) + at(dy + 1) + at(dz) + at(dz + 1) + at(dz + dy) + at(dz + dy + 1)) /
+               8;
+    }
 }
 
 /// Whether the minimax fit of a Certify::Cells fit holds this point of the half-integer lattice besides the
@@ -366,6 +378,7 @@ public:
                     const double factor = v[pivotColumn[k]];
                     factors[k] = factor;
                     if (factor == 0.0) continue;
+#pragma GCC unroll 22
                     for (int j = 0; j < WIDTH; ++j)
                         v[j] -= factor * echelon[k][j];
                 }
@@ -454,6 +467,7 @@ public:
             const double aj = s * phi[j];
             if (aj == 0.0) continue;
             const double* column = mInverse[j];
+#pragma GCC unroll 22
             for (int i = 0; i < WIDTH; ++i)
                 d[i] += aj * column[i];
         }
@@ -480,6 +494,7 @@ public:
         for (int j = 0; j < rows; ++j) {
             double* column = mInverse[j];
             const double pivotEntry = column[leave] * inverse;
+#pragma GCC unroll 22
             for (int i = 0; i < WIDTH; ++i)
                 column[i] -= pivotEntry * d[i];
             column[leave] = pivotEntry;
@@ -527,15 +542,19 @@ private:
                     std::swap(a[p][j], a[k][j]);
             const double inverse = 1.0 / a[k][k];
             a[k][k] = 1.0;
+            // The pivot row in a local copy, which no store to the other rows can alias: it stays in
+            // registers.
+            alignas(16) double pivotRow[WIDTH];
             for (int j = 0; j < WIDTH; ++j)
-                a[k][j] *= inverse;
+                pivotRow[j] = a[k][j] *= inverse;
             for (int i = 0; i < rows; ++i) {
                 if (i == k) continue;
                 const double factor = a[i][k];
                 if (factor == 0.0) continue;
                 a[i][k] = 0.0;
+#pragma GCC unroll 22
                 for (int j = 0; j < WIDTH; ++j)
-                    a[i][j] -= factor * a[k][j];
+                    a[i][j] -= factor * pivotRow[j];
             }
         }
         for (int k = rows - 1; k >= 0; --k)
@@ -603,24 +622,38 @@ void addCandidates(const Volume& volume, const Geometry& g, const Extremes& e, c
 
 /// The points of one box shape (point counts per axis, basis, certified points): their basis values in
 /// one matrix and their doubled coordinates from twice the low corner. The same for every box of the
-/// shape, so small shapes are kept per thread, as BoxFitter keeps its factors.
+/// shape, so small shapes are kept per thread, as BoxFitter keeps its factors. The cell points' rows (seven
+/// for each sample) are filled only when a search first prices them (fillCellRows).
 struct ShapePoints {
     ColumnPoints phi; // points x n, column by column: the samples' rows first
     std::vector<std::array<int, 3>> offsets;
     int samples = 0;
+    bool cellRowsFilled = false;
     void row(int point, double* out) const {
         for (Eigen::Index j = 0; j < phi.cols(); ++j)
             out[j] = phi(point, j);
     }
 };
 
+void fillRows(const Geometry& g, ShapePoints& shape, int begin, int end) {
+    const Box& box = g.box();
+    for (int row = begin; row < end; ++row) {
+        const auto& o = shape.offsets[static_cast<std::size_t>(row)];
+        const Point p = g.point({2 * box.lo[0] + o[0], 2 * box.lo[1] + o[1], 2 * box.lo[2] + o[2]}, 0.0);
+        for (int j = 0; j < g.n(); ++j)
+            shape.phi(row, j) = p.phi[static_cast<std::size_t>(j)];
+    }
+}
+
+/// The shape's points and the samples' rows.
 void buildShape(const Geometry& g, Certify points, ShapePoints& out) {
     const Box& box = g.box();
     const auto count = static_cast<Eigen::Index>(pointsToFit(box, points));
     out.phi.resize(count, g.n());
     out.offsets.resize(static_cast<std::size_t>(count));
     out.samples = static_cast<int>(box.pointCount());
-    Eigen::Index row = 0;
+    out.cellRowsFilled = count == out.samples;
+    std::size_t row = 0;
     // The grid samples first, then (Certify::Cells) the edge midpoints and cell centres.
     for (int pass = 0; pass < (points == Certify::Cells ? 2 : 1); ++pass)
         for (int z = 0; z <= 2 * box.cells(2); ++z)
@@ -628,16 +661,18 @@ void buildShape(const Geometry& g, Certify points, ShapePoints& out) {
                 for (int x = 0; x <= 2 * box.cells(0); ++x) {
                     const int halves = (x & 1) + (y & 1) + (z & 1);
                     if (pass == 0 ? halves != 0 : !isCellPoint(halves)) continue;
-                    const std::array<int, 3> twice{2 * box.lo[0] + x, 2 * box.lo[1] + y, 2 * box.lo[2] + z};
-                    const Point p = g.point(twice, 0.0);
-                    for (int j = 0; j < g.n(); ++j)
-                        out.phi(row, j) = p.phi[static_cast<std::size_t>(j)];
-                    out.offsets[static_cast<std::size_t>(row)] = {x, y, z};
-                    ++row;
+                    out.offsets[row++] = {x, y, z};
                 }
+    fillRows(g, out, 0, out.samples);
 }
 
-const ShapePoints& shapeOf(const Geometry& g, Certify points) {
+void fillCellRows(const Geometry& g, ShapePoints& shape) {
+    if (shape.cellRowsFilled) return;
+    fillRows(g, shape, shape.samples, static_cast<int>(shape.offsets.size()));
+    shape.cellRowsFilled = true;
+}
+
+ShapePoints& shapeOf(const Geometry& g, Certify points) {
     const Box& box = g.box();
     thread_local ShapePoints scratch;
     if (box.pointCount() > MINIMAX_SHAPE_CACHE_SAMPLES || box.points(0) > 255 || box.points(1) > 255 ||
@@ -677,6 +712,16 @@ void gatherValues(const Volume& volume, const Box& box, const ShapePoints& shape
                                 2 * box.lo[2] + o[2]);
         }
     });
+}
+
+/// The largest |v_i| and the first i that holds it, as maxCoeff(&i) finds them, but in a vectorised pass and
+/// a scan that stops there.
+template <typename V> double largestMagnitude(const V& v, Eigen::Index& at) {
+    const double largest = v.cwiseAbs().maxCoeff();
+    at = 0;
+    while (at + 1 < v.size() && !(std::abs(v(at)) == largest))
+        ++at;
+    return largest;
 }
 
 /// The dense method's points as Exchange::start reads candidates: rows of the shape in a given order.
@@ -725,7 +770,7 @@ MinimaxSolution fitDense(const Volume& volume, const Geometry& g, Certify points
     MinimaxSolution solution;
     const Box& box = g.box();
     const int n = g.n();
-    const ShapePoints& shape = shapeOf(g, points);
+    ShapePoints& shape = shapeOf(g, points);
     // The cell points (Certify::Cells: seven for each sample) are gathered only once some step prices them:
     // the first basis is chosen among the samples, and most searches end before the cells matter.
     const int m = static_cast<int>(shape.offsets.size());
@@ -796,7 +841,7 @@ MinimaxSolution fitDense(const Volume& volume, const Geometry& g, Certify points
         const double slack = MINIMAX_TOLERANCE * std::max(t, 0.0) + 1e-9 * scale;
         r.head(ms).noalias() = f.head(ms) - shape.phi.topRows(ms) * c;
         Eigen::Index worst = 0;
-        const double largestSample = r.head(ms).cwiseAbs().maxCoeff(&worst);
+        const double largestSample = largestMagnitude(r.head(ms), worst);
         const bool samplesDone = largestSample <= t + slack;
         const bool offer = offers < MINIMAX_MAX_OFFERS && largestSample <= target.acceptBelow;
         bool cellsPriced = m == ms;
@@ -805,11 +850,14 @@ MinimaxSolution fitDense(const Volume& volume, const Geometry& g, Certify points
         const auto priceCells = [&] {
             if (cellsPriced) return;
             cellsPriced = true;
-            if (!cellsGathered) gatherValues(volume, box, shape, ms, m, f);
-            cellsGathered = true;
+            if (!cellsGathered) {
+                fillCellRows(g, shape);
+                gatherValues(volume, box, shape, ms, m, f);
+                cellsGathered = true;
+            }
             r.tail(m - ms).noalias() = f.tail(m - ms) - shape.phi.bottomRows(m - ms) * c;
             Eigen::Index worstCell = 0;
-            const double largestCell = r.tail(m - ms).cwiseAbs().maxCoeff(&worstCell);
+            const double largestCell = largestMagnitude(r.tail(m - ms), worstCell);
             largest = std::max(largestSample, largestCell);
             if (largestCell > largestSample) worst = ms + worstCell;
         };
