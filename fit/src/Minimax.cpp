@@ -836,8 +836,8 @@ MinimaxSolution fitDense(const Volume& volume, const Geometry& g, Certify points
             c(j) = y[j];
         // The samples first; the cell points (far more of them) only when no sample is beyond t (or to see
         // whether a polynomial within the target is within it at the cell points too), and not even then
-        // when the curvature bound answers for them. What enters does not depend on the target: the worst
-        // sample while one is beyond t, else the worst point.
+        // when the curvature bound answers for them. What enters: the worst sample while one is beyond t,
+        // else the worst point, and the worst point after a failed offer (below).
         const double slack = MINIMAX_TOLERANCE * std::max(t, 0.0) + 1e-9 * scale;
         r.head(ms).noalias() = f.head(ms) - shape.phi.topRows(ms) * c;
         Eigen::Index worst = 0;
@@ -866,6 +866,10 @@ MinimaxSolution fitDense(const Volume& volume, const Geometry& g, Certify points
         if (endsSearch(g, c.data(), largest, samplesDone && largest <= t + slack,
                        offer && largest <= target.acceptBelow, target, offers, solution))
             return solution;
+        // A failed offer lets the worst cell point enter while samples are still beyond t (fewer pivots than
+        // the worst sample would take), so this search's path depends on the target's eps: what it ends with
+        // must not answer another eps (a minEarlier of -inf tells the box record so).
+        if (!samplesDone && worst >= ms) solution.minEarlier = -INFINITY;
         if (samplesDone) priceCells(); // (it was: the samples are within t, so some cell point is not)
         solution.minEarlier = std::min(solution.minEarlier, largestSample);
         if (exchange.pivots() >= MINIMAX_MAX_PIVOTS) return solution;
