@@ -89,6 +89,9 @@ function partsOf(marks, t0, newEps) {
     encodeMs: sharp ? (sharp.encodeMs ?? render?.encodeMs) : NaN,
     sharpAnswered: render ? after(render.at) : NaN,
     sharp: sharp ? after(sharp.shownAt) : NaN,
+    // After the page heard of the fit's end: what the fit's own time (noisy on a loaded box) leaves out.
+    firstAfterFit: first && fitDone ? first.shownAt - fitDone.at : NaN,
+    sharpAfterFit: sharp && fitDone ? sharp.shownAt - fitDone.at : NaN,
   };
 }
 
@@ -155,6 +158,8 @@ await withPage(fakeTest, async (page) => {
     `${ms(col('fitDone'))}, first asked ${ms(col('firstAsked'))}, first image ${ms(col('first'))}, sharp asked ${ms(col('sharpSent'))}, frame ` +
     `${ms(col('frameMs'))} (upload ${ms(col('uploadMs'))}), PNG ${ms(col('encodeMs'))}, answered ` +
     `${ms(col('sharpAnswered'))}, shown ${ms(col('sharp'))}`);
+  console.log(`median after the fit's end (ms): first image ${ms(col('firstAfterFit'))}, sharp image ` +
+    `${ms(col('sharpAfterFit'))}`);
   console.log(`median eps change -> first image at the new eps: ${ms(median(firsts))} ms over ${runs} runs`);
   console.log(`median eps change -> new image: ${median(times).toFixed(0)} ms over ${runs} runs`);
 });
