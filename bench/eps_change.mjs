@@ -1,8 +1,13 @@
-// Benchmark: time from an eps slider release to the refitted full-quality image in headless Chromium.
+// Benchmark: time from an eps slider release to the first image at the new eps and to the sharp one.
 //
 //   VOTS_URL=http://127.0.0.1:8080 node bench/eps_change.mjs [dataset] [runs] [pause ms]
 // The pause (default 0) is how long the "user" looks at each new image before the next move: the
-// server's warm-up fits (FitJobs.h) run in such pauses.
+// server's warm-up fits (FitJobs.h) run in such pauses. VOTS_TEST_TRANSPORT=socket draws over the viewer
+// socket (the viewer's default); without it the page keeps to GET /render (ViewerPage's default, as in
+// the earlier figures of bench/RESULTS.md).
+// Per move: "new image after" is the sharp (full-quality) image at the new eps with the new count shown,
+// the column of the earlier figures; "first image" is the first image at the new eps of any quality;
+// "parts" splits the way there (page clock from the slider's change event, and the server's own times).
 // needs a running `vots serve` and tests/web/node_modules (tests/web/run.sh installs it).
 import { withPage } from '../tests/web/support/browser.mjs';
 import { ViewerPage } from '../tests/web/pages/ViewerPage.mjs';
@@ -12,12 +17,98 @@ const runs = Number(process.argv[3] || 5);
 const pauseMs = Number(process.argv[4] || 0);
 const fakeTest = { name: 'eps-change-bench' };
 
+const median = (xs) => {
+  const s = xs.filter((x) => Number.isFinite(x)).sort((a, b) => a - b);
+  return s.length ? s[Math.floor(s.length / 2)] : NaN;
+};
+// A build that sends fewer times (the baseline) leaves those parts unknown: '?'.
+const ms = (v) => (Number.isFinite(v) ? v.toFixed(0) : '?');
+
+// Installed before the page's own scripts: the times of the fit's answer and its end, and of each frame
+// request's answer with the server's times, on the page's clock.
+function recordTimes() {
+  window.__epsMarks = { fitAnswered: [], fitDone: [], renders: [], frames: [] };
+  const marks = () => window.__epsMarks;
+  const plainFetch = window.fetch.bind(window);
+  window.fetch = async (input, init) => {
+    const url = String(input instanceof Request ? input.url : input);
+    const sentAt = performance.now();
+    const res = await plainFetch(input, init);
+    const at = performance.now();
+    const header = (name) => (res.headers.get(name) === null ? NaN : Number(res.headers.get(name)));
+    if (url.includes('api/fit')) marks().fitAnswered.push(at);
+    if (url.includes('render?')) {
+      marks().renders.push({
+        url, sentAt, at, frameMs: header('X-Vots-Frame-Ms'), uploadMs: header('X-Vots-Upload-Ms'),
+        encodeMs: header('X-Vots-Encode-Ms'), cache: res.headers.get('X-Vots-Frame-Cache'),
+      });
+    }
+    return res;
+  };
+  const PlainEventSource = window.EventSource;
+  window.EventSource = class extends PlainEventSource {
+    constructor(...args) {
+      super(...args);
+      // Registered before the page's listener: the time the page hears of the fit's end.
+      this.addEventListener('done', (e) => {
+        let fitSeconds = NaN;
+        try {
+          fitSeconds = Number(JSON.parse(e.data).fitSeconds);
+        } catch { /* no figure */ }
+        marks().fitDone.push({ at: performance.now(), fitSeconds });
+      });
+    }
+  };
+}
+
+// The parts of one move, from what the page recorded (times from the change event).
+function partsOf(marks, t0, newEps) {
+  const after = (t) => t - t0;
+  const fitAnswered = marks.fitAnswered.find((t) => t >= t0);
+  const fitDone = marks.fitDone.find((d) => d.at >= t0);
+  const epsOfUrl = (url) => Number(new URLSearchParams(url.split('?')[1]).get('eps'));
+  // A frame at the new eps: its eps says so (frames of this build); an older build's say none, and
+  // there the first frame after the fit's end is the first at the new eps (it draws none meanwhile).
+  const atNewEps = (f) => (f.eps !== undefined ? f.eps === newEps : fitDone !== undefined && f.shownAt >= fitDone.at);
+  const frames = marks.frames.filter((f) => f.shownAt >= t0 && atNewEps(f));
+  const first = frames[0];
+  const sharp = frames.find((f) => f.still);
+  const render = sharp && sharp.transport === 'render'
+    ? marks.renders.find((r) => r.sentAt >= sharp.sentAt - 1 && epsOfUrl(r.url) === newEps && !r.url.includes('grid'))
+    : undefined;
+  return {
+    fitAnswered: fitAnswered !== undefined ? after(fitAnswered) : NaN,
+    fitMs: fitDone ? 1000 * fitDone.fitSeconds : NaN,
+    fitDone: fitDone ? after(fitDone.at) : NaN,
+    firstAsked: first ? after(first.sentAt) : NaN,
+    first: first ? after(first.shownAt) : NaN,
+    firstKind: first ? `${first.still ? 'still' : 'draft'} ${first.width}x${first.height}` : '?',
+    sharpSent: sharp ? after(sharp.sentAt) : NaN,
+    frameMs: sharp ? (sharp.frameMs ?? render?.frameMs) : NaN,
+    uploadMs: sharp ? (sharp.uploadMs ?? render?.uploadMs) : NaN,
+    encodeMs: sharp ? (sharp.encodeMs ?? render?.encodeMs) : NaN,
+    sharpAnswered: render ? after(render.at) : NaN,
+    sharp: sharp ? after(sharp.shownAt) : NaN,
+    // After the page heard of the fit's end: what the fit's own time (noisy on a loaded box) leaves out.
+    firstAfterFit: first && fitDone ? first.shownAt - fitDone.at : NaN,
+    sharpAfterFit: sharp && fitDone ? sharp.shownAt - fitDone.at : NaN,
+  };
+}
+
 await withPage(fakeTest, async (page) => {
+  await page.addInitScript(recordTimes);
   const viewer = new ViewerPage(page);
   await viewer.open({ dataset, cam: 'az=30,el=15,zoom=1,pan=0:0,proj=ortho,fov=30' });
   await viewer.waitForIdle(600000);
+  await page.evaluate(() => {
+    document.querySelector('[data-testid="image"]').addEventListener('vots:frame', (e) => {
+      window.__epsMarks.frames.push({ ...e.detail, shownAt: performance.now() });
+    });
+  });
   const start = Number(await viewer.epsSlider.inputValue());
   const times = [];
+  const firsts = [];
+  const rows = [];
   for (let i = 1; i <= runs; i++) {
     // A new eps each time (no cache hit on the whole Vot-Space), alternating around the start.
     const position = start + (i % 2 ? 1 : -1) * (10 + 7 * i);
@@ -46,11 +137,29 @@ await withPage(fakeTest, async (page) => {
     }, countBefore);
     await viewer.setEpsSlider(position);
     await page.waitForFunction(() => window.__epsDone !== null, null, { timeout: 600000, polling: 200 });
-    const ms = await page.evaluate(() => window.__epsDone);
-    times.push(ms);
+    const done = await page.evaluate(() => window.__epsDone);
+    const newEps = await page.evaluate(() => Number(new URLSearchParams(location.hash.slice(1)).get('eps')));
+    const parts = await page.evaluate(
+      ([fn, eps]) => new Function(`return (${fn})`)()(window.__epsMarks, window.__epsT0, eps),
+      [partsOf.toString(), newEps]);
+    times.push(done);
+    firsts.push(parts.first);
+    rows.push(parts);
     console.log(`eps position ${position}: ${(await viewer.epsValue.textContent()).trim()}, ` +
-      `${(await viewer.votCount.textContent()).trim()} Vots, new image after ${ms.toFixed(0)} ms`);
+      `${(await viewer.votCount.textContent()).trim()} Vots, new image after ${done.toFixed(0)} ms, ` +
+      `first image after ${ms(parts.first)} ms (${parts.firstKind})`);
+    console.log(`  parts (ms from the change): fit answered ${ms(parts.fitAnswered)}, fit ${ms(parts.fitMs)} on the ` +
+      `server, fit done ${ms(parts.fitDone)}, first asked ${ms(parts.firstAsked)}, sharp asked ${ms(parts.sharpSent)}, its frame ${ms(parts.frameMs)} ` +
+      `(upload ${ms(parts.uploadMs)}), PNG ${ms(parts.encodeMs)}, answered ${ms(parts.sharpAnswered)}, ` +
+      `shown ${ms(parts.sharp)}`);
   }
-  times.sort((a, b) => a - b);
-  console.log(`median eps change -> new image: ${times[Math.floor(times.length / 2)].toFixed(0)} ms over ${runs} runs`);
+  const col = (name) => median(rows.map((r) => r[name]));
+  console.log(`median parts (ms): fit answered ${ms(col('fitAnswered'))}, fit ${ms(col('fitMs'))}, fit done ` +
+    `${ms(col('fitDone'))}, first asked ${ms(col('firstAsked'))}, first image ${ms(col('first'))}, sharp asked ${ms(col('sharpSent'))}, frame ` +
+    `${ms(col('frameMs'))} (upload ${ms(col('uploadMs'))}), PNG ${ms(col('encodeMs'))}, answered ` +
+    `${ms(col('sharpAnswered'))}, shown ${ms(col('sharp'))}`);
+  console.log(`median after the fit's end (ms): first image ${ms(col('firstAfterFit'))}, sharp image ` +
+    `${ms(col('sharpAfterFit'))}`);
+  console.log(`median eps change -> first image at the new eps: ${ms(median(firsts))} ms over ${runs} runs`);
+  console.log(`median eps change -> new image: ${median(times).toFixed(0)} ms over ${runs} runs`);
 });

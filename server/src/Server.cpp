@@ -94,6 +94,11 @@ Server::Impl::Impl(ServerOptions opts)
             [this](const Dataset& dataset, const FitKey& key, const fit::FitProgress& progress) {
                 return fitOnRanks(*this, dataset, key, progress);
             });
+    // Under mpirun the ranks hold the fits and upload them with their first frame.
+    if (renderQueue && !options.ranks)
+        fitJobs.uploadFitsThrough([this](const Dataset& dataset, std::shared_ptr<const fit::VotSpace> space) {
+            uploadAhead(*this, dataset, std::move(space), false);
+        });
     cache.deferDiskWritesWhile([this] { return foreground.busyWithin(DISK_WRITE_QUIET); });
     if (!options.auditLog.empty())
         audit = std::make_unique<AuditLog>(options.auditLog, options.auditLogBytes);

@@ -117,6 +117,54 @@ TEST_F(ServerRender, SameUrlSameBytesAndHeaders) {
     EXPECT_EQ(a->body.substr(1, 3), "PNG");
 }
 
+TEST_F(ServerRender, AFrameThatBeginsWithAnUploadSaysSoTheNextNone) {
+    // A server of its own: what its render thread has uploaded depends on this test's requests alone.
+    server::ServerOptions options = world().options();
+    options.cacheDir.clear();
+    const LoopbackServer own(options);
+    const auto uploadAndFrameMs = [&](const std::string& query) {
+        const auto res =
+            own.client()->Get(("/render?dataset=blobs_64x64x64_uint8&size=48x48&" + query).c_str());
+        EXPECT_TRUE(res && res->status == 200) << query;
+        if (!res || res->status != 200) return std::pair{-1.0, -1.0};
+        EXPECT_GE(std::stod(res->get_header_value("X-Vots-Encode-Ms")), 0.0);
+        return std::pair{std::stod(res->get_header_value("X-Vots-Upload-Ms")),
+                         std::stod(res->get_header_value("X-Vots-Frame-Ms"))};
+    };
+    // Each fit is uploaded as it is made (its frames then find it there); going back to the first one,
+    // still in memory, is a frame that uploads it again.
+    EXPECT_EQ(uploadAndFrameMs("eps=5%25&cam=az=10").first, 0.0);
+    EXPECT_EQ(uploadAndFrameMs("eps=3%25&cam=az=10").first, 0.0);
+    const auto [upload, frame] = uploadAndFrameMs("eps=5%25&cam=az=20");
+    EXPECT_GT(upload, 0.0);
+    EXPECT_LE(upload, frame); // a part of the frame's time
+    EXPECT_EQ(uploadAndFrameMs("eps=5%25&cam=az=30").first, 0.0);
+}
+
+TEST_F(ServerRender, ARequestedFitIsUploadedBeforeItsFirstFrameIsAskedFor) {
+    server::ServerOptions options = world().options();
+    options.cacheDir.clear();
+    const LoopbackServer own(options);
+    auto c = own.client();
+    const std::string query = "/render?dataset=blobs_64x64x64_uint8&size=40x40&cam=az=15&eps=6%25";
+    const auto first = c->Get(query.c_str());
+    ASSERT_TRUE(first && first->status == 200);
+    const int framesBefore = bodyJson(c->Get("/api/stats"))["frames"]["count"].get<int>();
+
+    // As the viewer's eps slider does: the fit, then its first frame once the job is done.
+    const auto posted = bodyJson(
+        c->Post("/api/fit", R"({"dataset":"blobs_64x64x64_uint8","eps":"3.5%"})", "application/json"));
+    ASSERT_EQ(waitForJob(*c, posted)["state"], "done");
+    // The upload's own small frame, queued by the fit before it was announced done.
+    const auto stats = waitForStats(
+        *c, [&](const nlohmann::json& s) { return s["frames"]["count"].get<int>() > framesBefore; });
+    EXPECT_EQ(stats["frames"]["count"].get<int>(), framesBefore + 1);
+    const auto refitted = c->Get("/render?dataset=blobs_64x64x64_uint8&size=40x40&cam=az=15&eps=3.5%25");
+    ASSERT_TRUE(refitted && refitted->status == 200);
+    EXPECT_EQ(std::stod(refitted->get_header_value("X-Vots-Upload-Ms")), 0.0);
+    EXPECT_NE(refitted->body, first->body);
+}
+
 TEST_F(ServerRender, WithoutFrameCacheTheSameUrlRendersAgainToTheSameBytes) {
     server::ServerOptions options = world().options();
     options.frameCacheBytes = 0;

@@ -2,8 +2,9 @@
 import { followJob, startFit } from './api.js';
 
 // progress: {box, bar, label} elements. banner: createBanner's object. showFacts({votCount, fitSeconds})
-// shows a finished fit's numbers; onStart(eps) runs when a fit starts being waited for; onReady(eps) runs once
-// frames may use eps; onChange() whenever the status may differ.
+// shows a finished fit's numbers; onStart(eps) runs when a fit starts being waited for; onReady(eps, {refitted})
+// runs once frames may use eps (refitted: through a fit job, a Vot-Space the page has not drawn yet); onChange()
+// whenever the status may differ.
 export function createFits({ progress, banner, showFacts, onStart, onReady, onChange }) {
   const fitted = new Map(); // "dataset/frame" -> Set of eps known to be fitted
   let token = 0; // bumped per request, so the answers of a superseded one are dropped
@@ -78,7 +79,7 @@ export function createFits({ progress, banner, showFacts, onStart, onReady, onCh
         fitSeconds: Number.isFinite(Number(result.fitSeconds)) ? Number(result.fitSeconds) : undefined,
       });
       banner.clear('fit');
-      onReady(eps);
+      onReady(eps, { refitted: true });
     } catch (e) {
       if (mine !== token) return;
       if (e.status === 403) {

@@ -46,6 +46,10 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
   let streamPending = null; // {seq, preview}: the newest view sent on the socket and not shown yet
   let streamSentKey = null; // what was sent last ("draft URL" or "still URL"): a repeat sends nothing
   let shownSeq = 0; // the socket frame shown last: an older one arriving later is not shown
+  // A refit's new Vot-Space is first shown as a draft (drawn in a fraction of the still's time after its
+  // upload), then as the still: the new eps is on screen as soon as it exists.
+  let draftAtNewEps = false; // the next frame is the first at a new eps: a draft
+  let stillAfterDraft = null; // that draft's request ({seq} on the socket, {url} on /render) until it lands
   const sentUrls = new Map(); // seq -> {url: its /render URL, sentAt: performance.now(), view: a copy}
 
   function frameSize(draft) {
@@ -116,9 +120,11 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
   function flush() {
     rafId = 0;
     if (!view.dataset || (renderEps === null && !previewing())) return onChange();
-    const draft = wantDraft;
+    const newEpsDraft = draftAtNewEps && !wantDraft; // not a drag's: the still follows when it lands
+    const draft = wantDraft || newEpsDraft;
+    draftAtNewEps = false;
     openSocketOnce();
-    if (socket) return streamFlush(draft);
+    if (socket) return streamFlush(draft, newEpsDraft);
     const url = frameUrl(draft);
     if (inflight) {
       if (inflight.url === url) return onChange();
@@ -132,21 +138,31 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
       inflight = null;
     }
     if (url === shownUrl) return onChange();
+    if (newEpsDraft) stillAfterDraft = { url };
     send(url, draft);
+  }
+
+  // The draft at a new eps has landed (shown or not): its still follows.
+  function followWithStill() {
+    stillAfterDraft = null;
+    schedule({ draft: isMoving() });
   }
 
   async function send(url, draft) {
     const mine = { url, draft, controller: new AbortController(), sentAt: performance.now(), view: structuredClone(view) };
     const preview = previewing(); // a grid frame in place of Vots still being fitted: it says nothing of them
     inflight = mine;
-    if (!draft) draftPending = false;
+    if (!draft) {
+      draftPending = false;
+      stillAfterDraft = null;
+    }
     onChange();
     try {
       const frame = await fetchFrame(url, mine.controller.signal);
       if (inflight !== mine) return;
       if (!(await showPng(frame.blob, url, draft, () => inflight === mine))) return;
       image.dataset.transport = 'render';
-      announceFrame({ sentAt: mine.sentAt, view: mine.view, still: !draft, transport: 'render' });
+      announceFrame({ sentAt: mine.sentAt, view: mine.view, still: !draft, transport: 'render', url, votCount: frame.votCount });
       lastFrame = { w: Number(image.dataset.width), h: Number(image.dataset.height), frameMs: frame.frameMs };
       if (!preview) {
         showFacts({
@@ -161,9 +177,9 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
     } finally {
       if (inflight === mine) {
         inflight = null;
-        if (draftPending) {
+        if (draftPending || stillAfterDraft?.url === url) {
           draftPending = false;
-          schedule({ draft: isMoving() });
+          followWithStill();
         }
       }
       onChange();
@@ -171,13 +187,17 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
   }
 
   // A "vots:frame" event on the image once a frame is on screen: {sentAt (when its view was asked for,
-  // performance.now()), view (a copy of the view it shows), width, height, still, transport, and socket
-  // frames only the server's times (docs/API.md): waitMs, frameMs, encodeMs, drawMs}. The overlays follow it (ui.js); bench/stream_drag.mjs times drags.
-  function announceFrame(detail) {
+  // performance.now()), view (a copy of the view it shows), width, height, still, transport, eps (the
+  // eps it was drawn at, null for the exact grid), votCount, and socket frames only the server's times
+  // (docs/API.md): waitMs, frameMs, uploadMs, encodeMs, drawMs}. The overlays follow it (ui.js);
+  // bench/stream_drag.mjs times drags, bench/eps_change.mjs refits. url: the frame's /render URL.
+  function announceFrame({ url, ...detail }) {
     const shownSize = draftCanvas.hidden
       ? { width: Number(image.dataset.width), height: Number(image.dataset.height) }
       : { width: draftCanvas.width, height: draftCanvas.height };
-    image.dispatchEvent(new CustomEvent('vots:frame', { detail: { ...detail, ...shownSize } }));
+    const params = new URLSearchParams(url.split('?')[1]);
+    const eps = params.get('renderer') === 'grid' ? null : Number(params.get('eps'));
+    image.dispatchEvent(new CustomEvent('vots:frame', { detail: { ...detail, ...shownSize, eps } }));
   }
 
   // Shows a PNG (or any image) blob as the frame of `url`; false when current() says it is stale by then.
@@ -217,11 +237,13 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
       onFrame: showStreamFrame,
       onError: (message) => {
         if (streamPending && message.seq >= streamPending.seq) streamPending = null;
+        if (stillAfterDraft && message.seq >= stillAfterDraft.seq) followWithStill();
         banner.show(`Rendering: ${message.error} (HTTP ${message.status})`, 'render');
         onChange();
       },
       onDown: () => {
         socket = null;
+        stillAfterDraft = null;
         streamPending = null;
         streamSentKey = null;
         schedule({ draft: isMoving() });
@@ -238,20 +260,25 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
     });
   }
 
-  // The view at full size goes out; the server draws drafts at the size its frame budget allows.
-  function streamFlush(draft) {
-    const params = frameParams(false, undefined);
+  // The view at full size goes out; the server draws drafts at the size its frame budget allows. The
+  // draft at a new eps goes out at /render's draft size (the server scales it by its budget again): the
+  // still waits for it, so it must be quick.
+  function streamFlush(draft, newEpsDraft = false) {
+    const params = frameParams(newEpsDraft, undefined);
     const url = renderUrl(params);
     const key = `${draft ? 'draft' : 'still'} ${url}`;
     if (key === streamSentKey || (!draft && url === shownUrl)) return onChange();
     streamSentKey = key;
     const seq = socket.sendView(viewParamsRecord(params), !draft);
+    stillAfterDraft = newEpsDraft ? { seq } : null;
     sentUrls.set(seq, { url, sentAt: performance.now(), view: structuredClone(view) });
     streamPending = { seq, preview: previewing() };
     onChange();
   }
 
   async function showStreamFrame(header, blob) {
+    // The still is asked for as soon as the draft at a new eps is here, while the page decodes the draft.
+    if (stillAfterDraft && header.seq >= stillAfterDraft.seq) followWithStill();
     const sent = sentUrls.get(header.seq);
     for (const seq of sentUrls.keys()) if (seq < header.seq) sentUrls.delete(seq); // drawn no more
     if (header.seq < shownSeq || sent === undefined) return;
@@ -278,8 +305,8 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
     }
     shownSeq = header.seq;
     image.dataset.transport = 'socket';
-    const { waitMs, frameMs, encodeMs, drawMs } = header;
-    announceFrame({ sentAt: sent.sentAt, view: sent.view, still: header.still, transport: 'socket', waitMs, frameMs, encodeMs, drawMs });
+    const { waitMs, frameMs, uploadMs, encodeMs, drawMs, votCount } = header;
+    announceFrame({ url, sentAt: sent.sentAt, view: sent.view, still: header.still, transport: 'socket', waitMs, frameMs, uploadMs, encodeMs, drawMs, votCount });
     lastFrame = { w: header.width, h: header.height, frameMs: header.frameMs };
     const preview = streamPending ? streamPending.preview : previewing();
     if (streamPending && header.seq >= streamPending.seq) streamPending = null;
@@ -299,8 +326,10 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
 
   return {
     schedule,
-    // Frames from now on use this eps (null: none until a fit is done).
-    useEps(eps) {
+    // Frames from now on use this eps (null: none until a fit is done). refitted: its Vot-Space has just
+    // been fitted, so the server has yet to upload it: the first frame at it is a draft, then the still.
+    useEps(eps, { refitted = false } = {}) {
+      draftAtNewEps = refitted && eps !== null && renderEps !== null && eps !== renderEps;
       renderEps = eps;
       if (eps === null) previewEps = null;
     },
@@ -311,7 +340,7 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
     },
     // Whether the frames now come from the grid in place of the Vots that are still being fitted.
     previewing,
-    busy: () => Boolean(inflight || rafId || resizeTimer || draftPending || streamPending),
+    busy: () => Boolean(inflight || rafId || resizeTimer || draftPending || streamPending || stillAfterDraft),
     // The full-quality frame's parameters without the page's id (for download links), null before a fit.
     viewParams: () => (view.dataset && renderEps !== null ? frameParams(false, undefined) : null),
     hasShownFrame: () => shownUrl !== null,

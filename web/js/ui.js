@@ -112,8 +112,8 @@ const fits = createFits({
   onStart(eps) {
     frames.previewWhileFitting(eps);
   },
-  onReady(eps) {
-    frames.useEps(eps);
+  onReady(eps, { refitted = false } = {}) {
+    frames.useEps(eps, { refitted });
     syncDownloads(el.downloads, frames.viewParams());
     pacsSend.sync();
     frames.schedule();

@@ -30,15 +30,7 @@ void readyStartupDataset(Server::Impl& s, const std::string& name) {
             if (s.options.ranks) return;
             space = fit->space();
         }
-        if (!s.renderQueue || !s.renderQueue->hasContext()) return;
-        // A small frame is enough: drawing one uploads the Vot-Space, which is what a first frame waits on.
-        RenderJob job;
-        job.params.dataset = name;
-        job.params.width = job.params.height = 16;
-        job.space = space;
-        job.volume = dataset->volume;
-        if (dataset->kind == DatasetKind::Volume) job.valueRange = dataset->range;
-        s.renderQueue->render(job);
+        uploadAhead(s, *dataset, std::move(space), true);
     } catch (const std::exception& e) {
         // Nothing is lost: the first request for the dataset will load and fit it, and say what fails.
         std::cerr << "vots serve: could not prepare dataset '" << name << "': " << e.what() << "\n";

@@ -153,6 +153,7 @@ void FitJobs::run(const Pending& pending) {
             return;
         }
         if (auto space = mCache.find(key)) { // fitted by an earlier run of the server
+            if (mUploadFit) mUploadFit(*pending.dataset, space);
             const double seconds = fitSecondsOf(*space);
             job.finish(std::move(space), seconds);
             mStats.addFit(recordFor(job.snapshot(), "disk"));
@@ -168,6 +169,7 @@ void FitJobs::run(const Pending& pending) {
         result.space.metaJson = cacheMetaFor(key, *pending.dataset, result.stats, result.space);
         auto space = std::make_shared<const fit::VotSpace>(std::move(result.space));
         mCache.storeInMemory(key, space);
+        if (mUploadFit) mUploadFit(*pending.dataset, space);
         job.finish(space, result.stats.seconds);
         mStats.addFit(recordFor(job.snapshot(), "fit"));
         mCache.storeOnDiskLater(key, space); // after the announcement: a waiting viewer needs only memory

@@ -71,6 +71,12 @@ public:
     fitOnRanksThrough(std::function<FitOnRanks(const Dataset&, const FitKey&, const fit::FitProgress&)> fit) {
         mFitOnRanks = std::move(fit);
     }
+    /// `upload` is given each Vot-Space a requested fit makes (or reads from the disk cache), on the fit's
+    /// worker, before the job is announced done: the server has the renderer upload it meanwhile, so that
+    /// the viewer's first frame at the new eps does not begin with the upload. Set before the first submit.
+    void uploadFitsThrough(std::function<void(const Dataset&, std::shared_ptr<const fit::VotSpace>)> upload) {
+        mUploadFit = std::move(upload);
+    }
 
 private:
     struct Pending {
@@ -104,6 +110,7 @@ private:
     std::deque<std::uint64_t> mFinishedOrder;
     std::vector<std::thread> mWorkers;
     std::function<FitOnRanks(const Dataset&, const FitKey&, const fit::FitProgress&)> mFitOnRanks;
+    std::function<void(const Dataset&, std::shared_ptr<const fit::VotSpace>)> mUploadFit;
 };
 
 } // namespace vots::server

@@ -27,6 +27,7 @@ public:
         double frameMs = 0.0;    // render-thread time of the render that made it
         double fitSeconds = 0.0; // of the fit it was drawn from (under mpirun: the slowest rank's)
         double encodeMs = 0.0;   // the PNG encoding of the render that made it
+        double uploadMs = 0.0;   // of frameMs: the upload that render began with (0: none)
     };
     enum class Source {
         Rendered, // made by this call's render()

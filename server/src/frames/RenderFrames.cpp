@@ -158,6 +158,26 @@ PreparedRender prepareRender(Server::Impl& s, const RenderParams& params, const 
     return prepared;
 }
 
+void uploadAhead(Server::Impl& s, const Dataset& dataset, std::shared_ptr<const fit::VotSpace> space,
+                 bool wait) {
+    if (!s.renderQueue || !s.renderQueue->hasContext()) return;
+    RenderJob job;
+    job.params.dataset = dataset.name;
+    job.params.width = job.params.height = 16;
+    job.space = std::move(space);
+    job.volume = dataset.volume;
+    if (dataset.kind == DatasetKind::Volume) job.valueRange = dataset.range;
+    if (wait) {
+        s.renderQueue->render(std::move(job));
+        return;
+    }
+    try {
+        s.renderQueue->post(std::move(job));
+    } catch (const HttpError&) {
+        // A full queue or a stopping server: the viewer's own frame uploads it.
+    }
+}
+
 FitOnRanks fitOnRanks(Server::Impl& s, const Dataset& dataset, const FitKey& key,
                       const fit::FitProgress& progress) {
     const dist::RanksFit done =
@@ -181,8 +201,12 @@ std::shared_ptr<const FrameCache::Frame> cachedFrame(Server::Impl& s, const Prep
                     .count();
             const auto& space = prepared.job.space; // job was moved into the queue
             const double fitSeconds = space ? fitSecondsOf(*space) : result.fitMs / 1000.0;
-            return FrameCache::Frame{std::string(png.begin(), png.end()), result.votCount, result.frameMs,
-                                     fitSeconds, encodeMs};
+            return FrameCache::Frame{std::string(png.begin(), png.end()),
+                                     result.votCount,
+                                     result.frameMs,
+                                     fitSeconds,
+                                     encodeMs,
+                                     result.uploadMs};
         },
         source);
 }

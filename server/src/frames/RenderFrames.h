@@ -31,6 +31,12 @@ PreparedRender prepareRender(Server::Impl& s, const RenderParams& params, const 
 FitOnRanks fitOnRanks(Server::Impl& s, const Dataset& dataset, const FitKey& key,
                       const fit::FitProgress& progress);
 
+/// Has the render thread upload `space` (of `dataset`) by drawing a 16x16 frame of it: the upload is what
+/// a first frame of a Vot-Space waits on. `wait`: returns once it is drawn (throws what render() throws);
+/// else it only queues the frame, and a queue that takes none (full, no renderer) is no error.
+void uploadAhead(Server::Impl& s, const Dataset& dataset, std::shared_ptr<const fit::VotSpace> space,
+                 bool wait);
+
 /// The PNG of the frame `params` names (the job's data with these parameters), from the frame cache,
 /// else drawn on the render queue and kept there. Throws HttpError from the queue (409, 503, ...).
 std::shared_ptr<const FrameCache::Frame> cachedFrame(Server::Impl& s, const PreparedRender& prepared,

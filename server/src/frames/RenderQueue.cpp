@@ -19,6 +19,13 @@
 #include <stdexcept>
 
 namespace vots::server {
+namespace {
+
+double msSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+} // namespace
 
 /// Everything GL lives here and is created, used and destroyed on the render thread only.
 /// Members are destroyed bottom-up, so the context outlives the renderers.
@@ -168,8 +175,7 @@ RenderResult RenderQueue::draw(Renderers& r, const RenderJob& job) {
         // A file's Vot crossing the face between two ranks' cells is drawn by both (minip, aip) but is one
         // Vot.
         if (job.space) result.votCount = job.space->vots.size();
-        result.frameMs =
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        result.frameMs = msSince(start);
         mStats.addFrame(result.frameMs);
         return result;
     }
@@ -177,11 +183,13 @@ RenderResult RenderQueue::draw(Renderers& r, const RenderJob& job) {
         if (r.uploadedVolume != job.volume) {
             r.grid->upload(*job.volume);
             r.uploadedVolume = job.volume;
+            result.uploadMs = msSince(start);
         }
     } else {
         if (r.uploadedSpace != job.space) {
             r.vots->upload(*job.space);
             r.uploadedSpace = job.space;
+            result.uploadMs = msSince(start);
         }
         result.votCount = job.space->vots.size();
     }
@@ -193,8 +201,7 @@ RenderResult RenderQueue::draw(Renderers& r, const RenderJob& job) {
     } else {
         result.image = render::renderFrame(p, r.vots.get(), r.grid.get(), job.valueRange);
     }
-    result.frameMs =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    result.frameMs = msSince(start);
     mStats.addFrame(result.frameMs);
     return result;
 }

@@ -51,6 +51,7 @@ struct RenderResult {
     render::FloatImage values; // RenderJob::values: the frame in data units instead of `image`
     std::array<float, 2> drawable{0, 0}; // RenderJob::values: every value the renderer can draw
     double frameMs = 0.0;                // render + display pass on the GPU, without PNG encoding
+    double uploadMs = 0.0; // of frameMs: the upload of a Vot-Space or volume not drawn just before (else 0)
     std::size_t votCount = 0; // Vots in the Vot-Space drawn (0 for reference); under mpirun, all ranks'
     double fitMs = 0.0; // under mpirun: the slowest rank's fit the frame was drawn from (made now or before)
 };
@@ -77,6 +78,9 @@ public:
     /// same non-empty client id arrived while this one waited, 503 without a context or when the queue
     /// is full, 400 for input the renderer refuses.
     RenderResult render(RenderJob job);
+    /// Queues a job whose result nobody waits for (it uploads what it draws). Throws as render() does
+    /// before the job is queued.
+    void post(RenderJob job) { (void)submit(std::move(job)); }
     std::size_t waiting() const;
 
 private:

@@ -29,6 +29,8 @@ void installRenderRoute(Server::Impl& s) {
         res.status = 200;
         res.set_header("X-Vots-Vot-Count", std::to_string(frame->votCount));
         res.set_header("X-Vots-Frame-Ms", formatMs(frame->frameMs));
+        res.set_header("X-Vots-Upload-Ms", formatMs(frame->uploadMs));
+        res.set_header("X-Vots-Encode-Ms", formatMs(frame->encodeMs));
         res.set_header("X-Vots-Frame-Cache", std::string(fit::nameOf(source)));
         res.set_header("X-Vots-Fit-Seconds", formatMs(frame->fitSeconds));
         res.set_header("Cache-Control", "no-cache");

@@ -110,6 +110,7 @@ void Viewer::draw(const PendingView& view) {
                            {"height", full.height},
                            {"frameMs", frame->frameMs},
                            {"encodeMs", frame->encodeMs},
+                           {"uploadMs", frame->uploadMs},
                            {"votCount", frame->votCount},
                            {"fitSeconds", frame->fitSeconds}});
         } else {
@@ -133,9 +134,12 @@ void Viewer::draw(const PendingView& view) {
                            {"width", size.first},
                            {"height", size.second},
                            {"frameMs", result.frameMs},
+                           {"uploadMs", result.uploadMs},
                            {"votCount", result.votCount}});
             std::lock_guard lock(mMutex);
-            if (!behindStill && !mPacing.drawingStill())
+            // A draft that began with the upload of a new Vot-Space (the first frame after a refit) says
+            // nothing of the time a draft of its size takes.
+            if (!behindStill && !mPacing.drawingStill() && result.uploadMs == 0.0)
                 mSizers.at(sizerKey(full))
                     .observe(size.first, size.second, Ms(std::chrono::steady_clock::now() - start).count());
         }
