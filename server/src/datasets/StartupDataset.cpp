@@ -24,11 +24,10 @@ void readyStartupDataset(Server::Impl& s, const std::string& name) {
             // The viewer's first fit.
             const FitKey key = fitKeyFor(*dataset, EpsSpec{}, DEFAULT_DEGREE, s.options.fitNorm);
             const auto fit = s.fitJobs.submit(dataset, key);
-            const JobSnapshot done = fit->waitFinished(std::chrono::minutes(10));
-            if (done.state != JobState::Done) return; // failed (the job says why) or the server is stopping
-            // Under mpirun the ranks hold their fit; the first frame uploads it.
-            if (s.options.ranks) return;
-            space = fit->space();
+            (void)fit->waitFinished(std::chrono::minutes(10)); // failed: the job says why
+            // The fit job has had the render thread upload its Vot-Space as it ended (uploadAhead); under
+            // mpirun the ranks hold their fit and the first frame uploads it.
+            return;
         }
         uploadAhead(s, *dataset, std::move(space), true);
     } catch (const std::exception& e) {
