@@ -119,21 +119,21 @@ check "and audited as 127.0.0.2, not the forged 10.9.8.7" test "$(audit_clients 
 # The per-client quota (--renders-per-client 1, and as many waiting) counts forwarded clients, not nginx:
 # while a turntable of 127.0.0.3's holds its place and a render of its waits, its next /render is
 # refused, 127.0.0.4's is drawn.
-through 127.0.0.3 -o /dev/null "$site/turntable?dataset=$dataset&cam=az=30&size=256x256&frames=360" &
+# The turntable must hold the place before the render that waits is sent: were that render first, the
+# turntable would be the one waiting and the next render would wait behind it, not be refused. Its
+# frames being drawn (the server's frame count rising) says it holds the place.
+frames_drawn() { curl -s "http://127.0.0.1:$vots_port/api/stats" | python3 -c 'import json, sys; print(json.load(sys.stdin)["frames"]["count"])'; }
+drawn_before=$(frames_drawn)
+through 127.0.0.3 -o /dev/null "$site/turntable?dataset=$dataset&cam=az=30&size=512x512&frames=360" &
 turn=$!
-refused=""
-waiting=""
-for i in $(seq 1 100); do # until the turntable has its place; a new camera each time (no cached frame)
-    if [[ -z $waiting ]]; then
-        through 127.0.0.3 -o /dev/null --max-time 10 "$site/render?dataset=$dataset&cam=az=-$i&size=96x64" &
-        waiting=$!
-        sleep 0.2
-    fi
-    refused=$(through 127.0.0.3 "$site/render?dataset=$dataset&cam=az=$i&size=96x64" | tr -d '\0')
-    [[ $refused == *"too many renders"* ]] && break
-    [[ $refused == *PNG* ]] && waiting="" # the turntable had not started yet: that render got its place
-    sleep 0.05
+for _ in $(seq 1 500); do
+    (($(frames_drawn) > drawn_before + 1)) && break
+    sleep 0.02
 done
+through 127.0.0.3 -o /dev/null --max-time 20 "$site/render?dataset=$dataset&cam=az=-1&size=96x64" &
+waiting=$!
+sleep 0.2
+refused=$(through 127.0.0.3 "$site/render?dataset=$dataset&cam=az=1&size=96x64" | tr -d '\0')
 other=$(through 127.0.0.4 -o /dev/null -w '%{http_code}' "$site/render?dataset=$dataset&cam=az=-1&size=96x64")
 still_turning=no
 kill -0 "$turn" 2>/dev/null && still_turning=yes
