@@ -10,19 +10,13 @@
 // "parts" splits the way there (page clock from the slider's change event, and the server's own times).
 // needs a running `vots serve` and tests/web/node_modules (tests/web/run.sh installs it).
 import { withPage } from '../tests/web/support/browser.mjs';
+import { median, ms } from './stats.mjs';
 import { ViewerPage } from '../tests/web/pages/ViewerPage.mjs';
 
 const dataset = process.argv[2] || 'cranium';
 const runs = Number(process.argv[3] || 5);
 const pauseMs = Number(process.argv[4] || 0);
 const fakeTest = { name: 'eps-change-bench' };
-
-const median = (xs) => {
-  const s = xs.filter((x) => Number.isFinite(x)).sort((a, b) => a - b);
-  return s.length ? s[Math.floor(s.length / 2)] : NaN;
-};
-// A build that sends fewer times (the baseline) leaves those parts unknown: '?'.
-const ms = (v) => (Number.isFinite(v) ? v.toFixed(0) : '?');
 
 // Installed before the page's own scripts: the times of the fit's answer and its end, and of each frame
 // request's answer with the server's times, on the page's clock.

@@ -6,6 +6,7 @@
 // the first frame that shows it (p50, p90). Medians over the runs. Needs a running `vots serve` and
 // tests/web/node_modules (tests/web/run.sh installs it).
 import { withPage } from '../tests/web/support/browser.mjs';
+import { median, ms, quantile } from './stats.mjs';
 import { ViewerPage } from '../tests/web/pages/ViewerPage.mjs';
 
 const dataset = process.argv[2] || 'cranium';
@@ -18,17 +19,6 @@ const START_AZ = Math.round((Date.now() / 1000) % 3600) / 10;
 const CAMS = {
   socket: `az=${START_AZ},el=15,zoom=1,pan=0:0,proj=ortho,fov=30`,
   render: `az=${START_AZ + 90},el=10,zoom=1,pan=0:0,proj=ortho,fov=30`,
-};
-
-const median = (xs) => {
-  const s = [...xs].sort((a, b) => a - b);
-  return s.length ? s[Math.floor(s.length / 2)] : NaN;
-};
-// A server that sends fewer times (an older build) leaves parts unknown: '?'.
-const ms = (v) => (typeof v === 'number' && Number.isFinite(v) ? v.toFixed(0) : '?');
-const quantile = (xs, q) => {
-  const s = [...xs].sort((a, b) => a - b);
-  return s.length ? s[Math.min(s.length - 1, Math.floor(q * s.length))] : NaN;
 };
 
 // One drag: the page records its pointer moves and the frames it shows (vots:frame); returns the figures.
