@@ -60,33 +60,58 @@ public:
     explicit BoxCorners(const std::vector<FittedBox>& boxes) {
         mByLow.reserve(boxes.size());
         mByHigh.reserve(boxes.size());
-        for (std::size_t i = 0; i < boxes.size(); ++i)
+        for (std::size_t i = 0; i < boxes.size(); ++i) {
+            // A merge's corners are corners of the boxes it joins, so checking these checks them all.
+            for (int a = 0; a < 3; ++a)
+                if (boxes[i].box.lo[a] < 0 || boxes[i].box.hi[a] >= 1 << BITS)
+                    throw InputError("a box corner beyond 2^21 cells to merge");
             add(boxes[i].box, static_cast<std::uint32_t>(i));
+        }
     }
 
-    /// The live box whose low corner is `corner`, or NONE.
-    std::uint32_t withLow(const std::array<int, 3>& corner) const { return find(mByLow, corner); }
-    /// The live box whose high corner is `corner`, or NONE.
-    std::uint32_t withHigh(const std::array<int, 3>& corner) const { return find(mByHigh, corner); }
+    /// A live box as the maps find it: its index and the box itself, kept in the map's slot so that testing
+    /// a face needs no second random read into the boxes (the merge across zones is bound by such reads).
+    struct Found {
+        std::uint32_t index = NONE;
+        Box box;
+    };
+    /// The live box whose low corner is `corner`, or one with index NONE.
+    Found withLow(const std::array<int, 3>& corner) const { return find(mByLow, corner, true); }
+    /// The live box whose high corner is `corner`, or one with index NONE.
+    Found withHigh(const std::array<int, 3>& corner) const { return find(mByHigh, corner, false); }
 
     /// Boxes i and j were replaced by box k.
     void merged(const Box& i, const Box& j, const Box& k, std::uint32_t kIndex) {
         for (const Box* gone : {&i, &j}) {
-            mByLow.erase(gone->lo);
-            mByHigh.erase(gone->hi);
+            mByLow.erase(keyOf(gone->lo));
+            mByHigh.erase(keyOf(gone->hi));
         }
         add(k, kIndex);
     }
 
 private:
-    using Map = absl::flat_hash_map<std::array<int, 3>, std::uint32_t>;
-    static std::uint32_t find(const Map& map, const std::array<int, 3>& corner) {
-        const auto it = map.find(corner);
-        return it == map.end() ? NONE : it->second;
+    // A corner packed into one integer: hashing and comparing it is a few instructions, where the array's
+    // equality was a memcmp call, on the path a refit from a full cache spends most of its time in.
+    // The value: the box's index and its other corner (the key is one of its corners).
+    struct Entry {
+        std::uint32_t index;
+        std::array<int, 3> other;
+    };
+    using Map = absl::flat_hash_map<std::uint64_t, Entry>;
+    static constexpr int BITS = 21;
+    static std::uint64_t keyOf(const std::array<int, 3>& corner) {
+        return static_cast<std::uint64_t>(corner[0]) | static_cast<std::uint64_t>(corner[1]) << BITS |
+               static_cast<std::uint64_t>(corner[2]) << (2 * BITS);
+    }
+    static Found find(const Map& map, const std::array<int, 3>& corner, bool cornerIsLow) {
+        const auto it = map.find(keyOf(corner));
+        if (it == map.end()) return {};
+        const Entry& e = it->second;
+        return {e.index, cornerIsLow ? Box{corner, e.other} : Box{e.other, corner}};
     }
     void add(const Box& box, std::uint32_t index) {
-        mByLow[box.lo] = index;
-        mByHigh[box.hi] = index;
+        mByLow[keyOf(box.lo)] = {index, box.hi};
+        mByHigh[keyOf(box.hi)] = {index, box.lo};
     }
     Map mByLow, mByHigh;
 };
@@ -221,11 +246,12 @@ void mergeNeighbours(std::vector<FittedBox>& boxes, const BoxTester& tester, con
                 // The only box that can share this whole face has a corner on the face's plane.
                 std::array<int, 3> corner = high ? box.lo : box.hi;
                 corner[a] = high ? box.hi[a] : box.lo[a];
-                const std::uint32_t j = high ? corners.withLow(corner) : corners.withHigh(corner);
-                if (j == BoxCorners::NONE || j == i || !shareFace(box, boxes[j].box, a, high)) continue;
+                const BoxCorners::Found n = high ? corners.withLow(corner) : corners.withHigh(corner);
+                const std::uint32_t j = n.index;
+                if (j == BoxCorners::NONE || j == i || !shareFace(box, n.box, a, high)) continue;
                 Box merged = box;
-                merged.lo[a] = std::min(box.lo[a], boxes[j].box.lo[a]);
-                merged.hi[a] = std::max(box.hi[a], boxes[j].box.hi[a]);
+                merged.lo[a] = std::min(box.lo[a], n.box.lo[a]);
+                merged.hi[a] = std::max(box.hi[a], n.box.hi[a]);
                 tester.willTest(merged);
                 candidates[static_cast<std::size_t>(count++)] = {j, merged};
             }
