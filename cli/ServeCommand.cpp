@@ -158,7 +158,7 @@ void runServe(const ServeArgs& a) {
     if (ranks) {
         options.ranks = ranks;
         // --prepare has each rank fit its own cells at the default eps (rank 0 fits nothing whole). The ranks
-        // refit from box caches of their own, but the eps / 2 warm-up fits are one process's.
+        // refit from box caches of their own, but the warm-up fits are one process's.
         options.warmUpFits = false;
     }
 
@@ -307,7 +307,7 @@ void addServeCommand(CLI::App& app) {
     addFitNormOption(*cmd, args->norm);
     cmd->add_flag(
         "--no-warm-up", args->noWarmUp,
-        "Do not fit at half the last eps in idle time (it makes later refits to a smaller eps faster)");
+        "Do not fit near the last eps in idle time (0.8, 1.25 and 0.5 times it), which speeds later refits");
     cmd->callback([args, cmd] {
         if (!args->config.empty()) applyConfigFile(*cmd, args->config);
         dist::MpiWorld& world = dist::MpiWorld::get();

@@ -1,5 +1,5 @@
-// Warm-up fits: an idle server fits half the last eps into the box cache at idle priority, a new job
-// cancels a running warm-up, and --no-warm-up means none.
+// Warm-up fits: an idle server fits the eps around the last one into the box cache at idle priority, each
+// eps once, a new job cancels a running warm-up, and --no-warm-up means none.
 #include "LoopbackServer.h"
 #include "ServerFixture.h"
 
@@ -29,7 +29,7 @@ template <class Until> nlohmann::json waitForWarmUps(httplib::Client& c, Until u
     return waitForStats(c, [&](const nlohmann::json& stats) { return until(stats["warmUps"]); })["warmUps"];
 }
 
-TEST(ServerWarmUp, AnIdleServerFitsHalfTheLastEps) {
+TEST(ServerWarmUp, AnIdleServerFitsTheEpsAroundTheLastOneEachOnce) {
     ServerWorld world;
     auto options = world.options();
     options.withRenderer = false;
@@ -37,14 +37,18 @@ TEST(ServerWarmUp, AnIdleServerFitsHalfTheLastEps) {
     auto c = server.client();
     const auto job = waitForJob(*c, postFit(*c, MRI_BRAIN, "\"8%\""));
     ASSERT_EQ(job["state"], "done") << job.dump();
-    const auto warm = waitForWarmUps(*c, [](const nlohmann::json& w) { return w["finished"] == 1; });
-    EXPECT_EQ(warm["started"], 1) << warm.dump();
-    EXPECT_EQ(warm["finished"], 1) << warm.dump();
+    // 8 % -> 6.4, 10 and 4 %, in that order (WarmUpFits::FACTORS).
+    const auto warm = waitForWarmUps(
+        *c, [](const nlohmann::json& w) { return w["finished"] == 3 && !w["running"].get<bool>(); });
+    EXPECT_EQ(warm["started"], 3) << warm.dump();
+    EXPECT_EQ(warm["cancelled"], 0) << warm.dump();
     EXPECT_FLOAT_EQ(warm["lastEps"].get<float>(), job["eps"].get<float>() / 2) << warm.dump();
-    // 4 % -> 2 %, 2 % -> 1 %, and 1 % -> none: half of it is below 1 % of the range.
-    // A warm-up starts a moment after its fit is done (the worker first returns freed memory), so each
-    // round waits for its warm-up to have started and finished before the next fit.
-    const std::pair<const char*, int> rounds[] = {{"\"4%\"", 2}, {"\"2%\"", 3}, {"\"1%\"", 3}};
+    // 4 % -> 3.2, 5 and 2 %; 2 % -> 1.6, 2.5 and 1 %; 1 % -> 1.25 % only (the others are below 1 % of the
+    // range); 8 % again -> none (all three were fitted). A warm-up starts a moment after its fit is done
+    // (the worker first returns freed memory), so each round waits for its warm-ups to have started and
+    // finished before the next fit.
+    const std::pair<const char*, int> rounds[] = {
+        {"\"4%\"", 6}, {"\"2%\"", 9}, {"\"1%\"", 10}, {"\"8%\"", 10}};
     for (const auto& [eps, started] : rounds) {
         ASSERT_EQ(waitForJob(*c, postFit(*c, MRI_BRAIN, eps))["state"], "done");
         waitForWarmUps(*c, [started = started](const nlohmann::json& w) {
@@ -53,15 +57,15 @@ TEST(ServerWarmUp, AnIdleServerFitsHalfTheLastEps) {
     }
     std::this_thread::sleep_for(200ms);
     const auto last = bodyJson(c->Get("/api/stats"))["warmUps"];
-    EXPECT_EQ(last["started"], 3) << last.dump();
-    EXPECT_EQ(last["finished"], 3) << last.dump();
-    EXPECT_FLOAT_EQ(last["lastEps"].get<float>(), warm["lastEps"].get<float>() / 4) << last.dump();
+    EXPECT_EQ(last["started"], 10) << last.dump();
+    EXPECT_EQ(last["finished"], 10) << last.dump();
+    EXPECT_FLOAT_EQ(last["lastEps"].get<float>(), job["eps"].get<float>() / 8 * 1.25f) << last.dump();
 }
 
 TEST(ServerWarmUp, ANewJobCancelsARunningWarmUp) {
     ServerWorld world;
     // Uniform noise: at eps = a quarter of the range the fit needs many small boxes, so the warm-up
-    // (at half the first fit's eps) runs long enough to be caught.
+    // (the first at 0.8 of the first fit's eps) runs long enough to be caught.
     std::mt19937 random(7);
     std::string noise = "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 64 64 64\nencoding: raw\n\n";
     for (int i = 0; i < 64 * 64 * 64; ++i)

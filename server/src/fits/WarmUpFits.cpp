@@ -1,4 +1,5 @@
-// WarmUpFits: one low-priority thread that fits eps / 2 into the box cache and gives way to frames.
+// WarmUpFits: one low-priority thread that fits eps around the last one into the box cache, giving way to
+// frames.
 #include "fits/WarmUpFits.h"
 
 #include "fits/BoxCaches.h"
@@ -46,48 +47,71 @@ WarmUpSummary WarmUpFits::summary() const {
 void WarmUpFits::afterIdleFit(std::shared_ptr<const Dataset> dataset, const FitKey& done) {
     std::lock_guard lock(mMutex);
     if (!mEnabled || mStopping || mSummary.running || done.focus) return;
-    FitKey key = done;
-    key.eps = done.eps / 2.f;
-    if (!(key.eps >= FLOOR * (dataset->range[1] - dataset->range[0]))) return;
-    if (mWarmed.size() >= MAX_WARMED_KEYS || !mWarmed.insert(key.text()).second) return;
+    std::vector<FitKey> keys;
+    for (const float factor : FACTORS) {
+        FitKey key = done;
+        key.eps = done.eps * factor;
+        if (!(key.eps >= FLOOR * (dataset->range[1] - dataset->range[0]))) continue;
+        if (mWarmed.size() >= MAX_WARMED_KEYS || !mWarmed.insert(key.text()).second) continue;
+        keys.push_back(key);
+    }
+    if (keys.empty()) return;
     if (mThread.joinable()) mThread.join(); // the last one has ended: it cleared mSummary.running
     mSummary.running = true;
-    ++mSummary.started;
-    mSummary.lastKey = key.text();
-    mSummary.lastEps = key.eps;
     mCancel = false;
-    mThread = std::thread([this, dataset = std::move(dataset), key] { run(dataset, key); });
+    mThread = std::thread([this, dataset = std::move(dataset), keys] { run(dataset, keys); });
 }
 
-void WarmUpFits::run(std::shared_ptr<const Dataset> dataset, const FitKey& key) {
+void WarmUpFits::run(std::shared_ptr<const Dataset> dataset, const std::vector<FitKey>& keys) {
     // Lowest priority, inherited by the fit's worker threads: it must not slow a frame or a fit. Nice 19
     // rather than SCHED_IDLE, which a busy machine can starve for minutes.
     lowerThisThreadToNice19();
-    const auto t0 = std::chrono::steady_clock::now();
-    enum class End { Finished, Cancelled, Failed } end = End::Finished;
-    try {
-        fit::FitOptions options = fitOptionsFor(key);
-        options.cancel = &mCancel;
-        // Called after each brick: there the warm-up waits while frames are being drawn. Even at nice 19
-        // it slows the frames of an orbiting viewer (cores, caches, memory bus).
-        options.progress = [this](double, const char*) {
-            while (!mCancel && mForeground.renderedWithin(QUIET))
-                std::this_thread::sleep_for(std::chrono::milliseconds(10));
-        };
-        const auto boxCache = mBoxCaches.forFits(key.dataset, key.frame, key.degree);
-        fit::fitVotSpace(*dataset->volume, options, boxCache.get());
-    } catch (const fit::FitCancelled&) {
-        end = End::Cancelled;
-    } catch (const std::exception& e) { // out of memory, say: the cache keeps what it got
-        std::cerr << "vots serve: warm-up fit " << key.text() << " failed: " << e.what() << "\n";
-        end = End::Failed;
+    for (std::size_t k = 0; k < keys.size(); ++k) {
+        const FitKey& key = keys[k];
+        {
+            std::lock_guard lock(mMutex);
+            if (mCancel) { // given way before this one started: it and the rest may run again later
+                for (std::size_t rest = k; rest < keys.size(); ++rest)
+                    mWarmed.erase(keys[rest].text());
+                break;
+            }
+            ++mSummary.started;
+            mSummary.lastKey = key.text();
+            mSummary.lastEps = key.eps;
+        }
+        const auto t0 = std::chrono::steady_clock::now();
+        enum class End { Finished, Cancelled, Failed } end = End::Finished;
+        try {
+            fit::FitOptions options = fitOptionsFor(key);
+            options.cancel = &mCancel;
+            // Called after each brick: there the warm-up waits while frames are being drawn. Even at nice
+            // 19 it slows the frames of an orbiting viewer (cores, caches, memory bus).
+            options.progress = [this](double, const char*) {
+                while (!mCancel && mForeground.renderedWithin(QUIET))
+                    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+            };
+            const auto boxCache = mBoxCaches.forFits(key.dataset, key.frame, key.degree);
+            fit::fitVotSpace(*dataset->volume, options, boxCache.get());
+        } catch (const fit::FitCancelled&) {
+            end = End::Cancelled;
+        } catch (const std::exception& e) { // out of memory, say: the cache keeps what it got
+            std::cerr << "vots serve: warm-up fit " << key.text() << " failed: " << e.what() << "\n";
+            end = End::Failed;
+        }
+        std::lock_guard lock(mMutex);
+        mSummary.lastSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        ++(end == End::Finished    ? mSummary.finished
+           : end == End::Cancelled ? mSummary.cancelled
+                                   : mSummary.failed);
+        if (end != End::Finished) {
+            // A cancelled one and the rest may run again later (the cancelled one from where it got to);
+            // a failed one is not tried again.
+            for (std::size_t rest = end == End::Cancelled ? k : k + 1; rest < keys.size(); ++rest)
+                mWarmed.erase(keys[rest].text());
+            break;
+        }
     }
     std::lock_guard lock(mMutex);
-    mSummary.lastSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    ++(end == End::Finished    ? mSummary.finished
-       : end == End::Cancelled ? mSummary.cancelled
-                               : mSummary.failed);
-    if (end == End::Cancelled) mWarmed.erase(key.text()); // may run again later, from where it got to
     mSummary.running = false;
 }
 
