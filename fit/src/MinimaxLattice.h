@@ -87,7 +87,8 @@ private:
 
 /// The trilinear value at a point of the half-integer lattice (doubled coordinates): the mean of the
 /// corners of its edge, face or cell, x fastest, as BoxFitter::certify sums it.
-template <typename T> inline double latticeValue(const Volume& volume, const T* values, int tx, int ty, int tz) {
+template <typename T>
+inline double latticeValue(const Volume& volume, const T* values, int tx, int ty, int tz) {
     const auto* base = values + volume.indexOf(tx >> 1, ty >> 1, tz >> 1);
     const std::size_t dy = static_cast<std::size_t>(volume.dims[0]);
     const std::size_t dz = dy * static_cast<std::size_t>(volume.dims[1]);

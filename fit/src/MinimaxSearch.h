@@ -57,12 +57,11 @@ inline double cellBound(const Geometry& g, const double* c, double scale) {
     return bound * (1.0 + 1e-9) + 1e-12 * scale;
 }
 
-
 /// The end of one step of a search whose polynomial (coefficients y of the basis) has this largest residual:
 /// converged, it is the answer; within the target, it is offered to the target's accept (counted in
 /// `offers`). True when the search ends with `solution` (Converged or Found).
 inline bool endsSearch(const Geometry& g, const double* y, double largest, bool converged, bool withinTarget,
-                const MinimaxTarget& target, int& offers, MinimaxSolution& solution) {
+                       const MinimaxTarget& target, int& offers, MinimaxSolution& solution) {
     if (!converged && !withinTarget) return false;
     for (int j = 0; j < g.n(); ++j)
         solution.scaled[static_cast<std::size_t>(g.basis(j))] = y[j];
