@@ -11,12 +11,7 @@
 #include <cmath>
 
 using namespace vots::fit;
-using vots::test::loadShared;
-using vots::test::options;
-using vots::test::evaluate;
-using vots::test::Independent;
-using vots::test::recompute;
-using vots::test::sampleVolume;
+using namespace vots::test;
 
 namespace {
 

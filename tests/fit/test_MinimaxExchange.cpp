@@ -10,8 +10,7 @@
 #include <thread>
 
 using namespace vots::fit;
-using vots::test::loadShared;
-using vots::test::options;
+using namespace vots::test;
 
 namespace {
 

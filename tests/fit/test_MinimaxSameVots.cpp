@@ -12,8 +12,7 @@
 #include <string>
 
 using namespace vots::fit;
-using vots::test::loadShared;
-using vots::test::options;
+using namespace vots::test;
 
 namespace {
 
