@@ -54,8 +54,8 @@ struct Independent {
 };
 
 /// Every sample of every Vot, and the cover of the foreground cells, recomputed without the verifier.
-inline Independent recompute(const VotSpace& space, const Volume& volume, const EpsField& eps, float background,
-                      bool cellPoints) {
+inline Independent recompute(const VotSpace& space, const Volume& volume, const EpsField& eps,
+                             float background, bool cellPoints) {
     Independent out;
     const int cx = volume.dims[0] - 1, cy = volume.dims[1] - 1, cz = volume.dims[2] - 1;
     std::vector<std::uint8_t> covered(static_cast<std::size_t>(cx) * cy * cz, 0);

@@ -1,4 +1,5 @@
-// The minimax exchange (white box, fit/src): it reaches the minimax polynomial, whatever its shape cache held.
+// The minimax exchange (white box, fit/src): it reaches the minimax polynomial, whatever its shape cache
+// held.
 #include "BoxFit.h"
 #include "Minimax.h"
 #include "MinimaxChecks.h"
