@@ -131,6 +131,8 @@ private:
     /// A box holding a NaN or Inf sample is rejected whatever eps (its error counts as infinite), so the
     /// generators split it until no Vot holds one (docs/DESIGN.md §4 "Non-finite samples").
     bool holdsNoData(const Box& box) const;
+    /// The outcome of such a box: rejected, with infinite errors.
+    static BoxOutcome rejectedForNoData(const Box& box);
     /// The least-squares coefficients (uncertified); rejected when the RSS alone proves that some sample
     /// is beyond epsMax (errCriterion then holds the root-mean-square residual, a lower bound).
     BoxOutcome leastSquares(const Box& box, double epsMax, bool& rssRejected) const;
@@ -150,5 +152,10 @@ private:
 /// The monomials a box can determine: degree <= N and a_axis < points along that axis; a one-cell
 /// box always gets the 8-term trilinear basis whatever N. Returns a bit mask over MONOMIAL_EXPONENTS.
 std::uint32_t basisMask(const Box& box, int degree);
+
+/// A box of one cell, whose trilinear basis is exact.
+inline bool isSingleCell(const Box& box) {
+    return box.cells(0) == 1 && box.cells(1) == 1 && box.cells(2) == 1;
+}
 
 } // namespace vots::fit

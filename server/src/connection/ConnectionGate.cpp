@@ -2,9 +2,9 @@
 // complete ones.
 #include "connection/ConnectionGate.h"
 
+#include "connection/ErrorAnswer.h"
 #include "connection/RequestHead.h"
 
-#include <nlohmann/json.hpp>
 #include <openssl/err.h>
 #include <openssl/ssl.h>
 
@@ -33,23 +33,6 @@ using Clock = std::chrono::steady_clock;
 constexpr auto DRAIN_TIME = std::chrono::seconds(2);
 constexpr int SWEEP_MS = 100;
 
-const char* reasonPhrase(int status) {
-    switch (status) {
-    case 400:
-        return "Bad Request";
-    case 411:
-        return "Length Required";
-    case 414:
-        return "URI Too Long";
-    case 431:
-        return "Request Header Fields Too Large";
-    case 503:
-        return "Service Unavailable";
-    default:
-        return "Error";
-    }
-}
-
 void setBlocking(int fd, bool blocking) {
     const int flags = ::fcntl(fd, F_GETFL, 0);
     if (flags >= 0) ::fcntl(fd, F_SETFL, blocking ? flags & ~O_NONBLOCK : flags | O_NONBLOCK);
@@ -70,27 +53,6 @@ void addressOf(const sockaddr_storage& addr, std::string& text, int& port) {
 }
 
 } // namespace
-
-std::string jsonErrorAnswer(int status, const std::string& message) {
-    const std::string body = nlohmann::json{{"error", message}}.dump();
-    return "HTTP/1.1 " + std::to_string(status) + " " + reasonPhrase(status) +
-           "\r\nContent-Type: application/json\r\nContent-Length: " + std::to_string(body.size()) +
-           "\r\nConnection: close\r\n\r\n" + body;
-}
-
-void sendBytesNow(int fd, ssl_st* tls, std::string_view bytes) {
-    if (tls) {
-        ERR_clear_error();
-        [[maybe_unused]] const int sent = SSL_write(tls, bytes.data(), static_cast<int>(bytes.size()));
-        ERR_clear_error();
-        return;
-    }
-    [[maybe_unused]] const ssize_t sent = ::send(fd, bytes.data(), bytes.size(), MSG_NOSIGNAL | MSG_DONTWAIT);
-}
-
-void sendJsonErrorNow(int fd, int status, const std::string& message, ssl_st* tls) {
-    sendBytesNow(fd, tls, jsonErrorAnswer(status, message));
-}
 
 ConnectionGate::ConnectionGate(GateLimits limits, Dispatch dispatch, const TlsContext* tls)
     : mLimits(limits), mDispatch(std::move(dispatch)), mTls(tls) {

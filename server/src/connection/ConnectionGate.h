@@ -111,12 +111,4 @@ private:
     std::thread mThread;
 };
 
-/// A complete JSON error answer, with Connection: close.
-std::string jsonErrorAnswer(int status, const std::string& message);
-/// Writes bytes at once to a plain socket, or through `tls` when it is set; best effort, never blocks on a
-/// non-blocking socket (the few hundred bytes of an answer fit in any empty send buffer).
-void sendBytesNow(int fd, ssl_st* tls, std::string_view bytes);
-/// Writes jsonErrorAnswer() at once, as sendBytesNow().
-void sendJsonErrorNow(int fd, int status, const std::string& message, ssl_st* tls = nullptr);
-
 } // namespace vots::server

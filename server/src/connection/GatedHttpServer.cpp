@@ -1,6 +1,7 @@
 // GatedHttpServer: hands accepted sockets to the gate and serves arrived requests on workers or streams.
 #include "connection/GatedHttpServer.h"
 
+#include "connection/ErrorAnswer.h"
 #include "connection/RequestHead.h"
 
 #include <sys/socket.h>

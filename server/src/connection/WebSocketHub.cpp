@@ -2,6 +2,7 @@
 // close codes for floods and broken frames.
 #include "connection/WebSocketHub.h"
 
+#include "connection/ErrorAnswer.h"
 #include "connection/TlsSocketStream.h"
 
 #include <boost/asio/executor_work_guard.hpp>

@@ -1,0 +1,88 @@
+// The two methods of a minimax fit, and what their steps share: the cell points' bound, a step's end.
+#pragma once
+
+#include "MinimaxExchange.h"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace vots::fit::minimax {
+
+using Vector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, MAX_N, 1>;
+
+/// An upper bound of |residual| at the cell points beyond the largest at the samples: for a cubic, the
+/// mean of P at the 2, 4 or 8 corners of an edge, face or cell is P at its centre plus a/8 of the sum of the
+/// second derivatives along its a half axes, and the reference there is the mean of the samples; second
+/// derivatives are affine in position, so their sums take their largest magnitude at a corner of the box.
+/// `c` holds the coefficients of the basis over scaled coordinates. A relative 1e-9 and 1e-12 scale cover
+/// the rounding of the residuals computed with them.
+inline double cellBound(const Geometry& g, const double* c, double scale) {
+    const Box& box = g.box();
+    // Second derivative along axis a, in index units: (grad0 + sum_b grad[b] u_b) / half_a^2.
+    double second[3][4] = {};
+    for (int j = 0; j < g.n(); ++j) {
+        const auto& e = MONOMIAL_EXPONENTS[static_cast<std::size_t>(g.basis(j))];
+        for (int a = 0; a < 3; ++a) {
+            if (e[a] < 2) continue;
+            std::array<int, 3> rest = e;
+            rest[a] -= 2;
+            const double factor = c[j] * e[a] * (e[a] - 1);
+            const int term = rest[0] ? 1 : rest[1] ? 2 : rest[2] ? 3 : 0; // the degree is at most 3
+            second[a][term] += factor;
+        }
+    }
+    double inverseHalfSquared[3];
+    for (int a = 0; a < 3; ++a) {
+        const double half = 0.5 * box.cells(a);
+        inverseHalfSquared[a] = 1.0 / (half * half);
+    }
+    double largest = 0.0;
+    for (int corner = 0; corner < 8; ++corner) {
+        double d[3];
+        const double u[3] = {(corner & 1) ? 1.0 : -1.0, (corner & 2) ? 1.0 : -1.0, (corner & 4) ? 1.0 : -1.0};
+        for (int a = 0; a < 3; ++a)
+            d[a] = (second[a][0] + second[a][1] * u[0] + second[a][2] * u[1] + second[a][3] * u[2]) *
+                   inverseHalfSquared[a];
+        // Edges: one axis; faces: two (MINIMAX_FACE_CENTRES); cells: three.
+        largest =
+            std::max({largest, std::abs(d[0]), std::abs(d[1]), std::abs(d[2]), std::abs(d[0] + d[1] + d[2])});
+        if (MINIMAX_FACE_CENTRES)
+            largest =
+                std::max({largest, std::abs(d[0] + d[1]), std::abs(d[0] + d[2]), std::abs(d[1] + d[2])});
+    }
+    const double bound = largest / 8.0;
+    return bound * (1.0 + 1e-9) + 1e-12 * scale;
+}
+
+/// The end of one step of a search whose polynomial (coefficients y of the basis) has this largest residual:
+/// converged, it is the answer; within the target, it is offered to the target's accept (counted in
+/// `offers`). True when the search ends with `solution` (Converged or Found).
+inline bool endsSearch(const Geometry& g, const double* y, double largest, bool converged, bool withinTarget,
+                       const MinimaxTarget& target, int& offers, MinimaxSolution& solution) {
+    if (!converged && !withinTarget) return false;
+    for (int j = 0; j < g.n(); ++j)
+        solution.scaled[static_cast<std::size_t>(g.basis(j))] = y[j];
+    solution.maxResidual = largest;
+    if (converged) {
+        solution.result = MinimaxSolution::Result::Converged;
+        return true;
+    }
+    ++offers;
+    if (target.accept && target.accept(solution.scaled)) {
+        solution.result = MinimaxSolution::Result::Found;
+        return true;
+    }
+    return false;
+}
+
+/// A box of at most MINIMAX_DENSE_POINTS samples (MinimaxDense.cpp).
+MinimaxSolution fitDense(const Volume& volume, const Geometry& g, Certify points,
+                         const std::array<double, MONOMIAL_COUNT>& start, const MinimaxTarget& target);
+/// A larger box, scanned for its worst residuals (MinimaxScan.cpp).
+MinimaxSolution fitByScans(const Volume& volume, const Geometry& g, Certify points,
+                           const std::array<double, MONOMIAL_COUNT>& start, const MinimaxTarget& target);
+
+} // namespace vots::fit::minimax

@@ -1,0 +1,87 @@
+// Minimax acceptance (docs/DESIGN.md §3, "Minimax"; white box, fit/src): a box least squares refuses is kept.
+#include "BoxFit.h"
+#include "MinimaxChecks.h"
+#include "SyntheticFields.h"
+
+#include "vots/fit/Fitter.h"
+#include "vots/fit/Verify.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace vots::fit;
+using namespace vots::test;
+
+namespace {
+
+/// A polynomial plus +-`amplitude` eps: minus everywhere but plus at one corner. The polynomial itself is
+/// within amplitude eps of every sample, and of every trilinear value between them when it is of degree 1;
+/// least squares spreads the corner over the whole box and misses it by 2 amplitude eps times one minus its
+/// leverage (0.12 here): 1.23 eps for amplitude 0.7, under the gate (MINIMAX_GATE) but over eps.
+Volume cornerSpike(double eps, double amplitude, int degree) {
+    const std::array<int, 3> dims{9, 9, 9};
+    const vots::test::Polynomial p = vots::test::randomPolynomial(degree, dims, 11u, 400.0);
+    return sampleVolume(dims, [&](int x, int y, int z) {
+        const bool corner = x == 0 && y == 0 && z == 0;
+        return p(x, y, z) + (corner ? amplitude : -amplitude) * eps;
+    });
+}
+
+} // namespace
+
+TEST(Minimax, KeepsWholeABoxThatACubicFitsWithinEpsButLeastSquaresDoesNot) {
+    const float eps = 10.f;
+    const Volume volume = cornerSpike(eps, 0.7, 3);
+    const Box box{{0, 0, 0}, {8, 8, 8}};
+    const EpsField field(eps);
+    FitCounters counters;
+
+    const BoxFitter lsq(volume, 3, Certify::Samples, FitNorm::Lsq);
+    const BoxOutcome byLsq = lsq.fit(box, field, counters);
+    EXPECT_FALSE(byLsq.accepted) << "least squares must refuse the box for the test to mean anything";
+
+    const BoxFitter minimax(volume, 3, Certify::Samples, FitNorm::Minimax);
+    BoxRecord record;
+    const BoxOutcome byMinimax = minimax.decide(box, field, record, counters);
+    ASSERT_TRUE(byMinimax.accepted);
+    EXPECT_LE(byMinimax.errSamples, eps);
+    Vot vot;
+    vot.box = box;
+    vot.p = byMinimax.p;
+    vot.c = byMinimax.c;
+    double worst = 0.0;
+    for (int z = 0; z <= 8; ++z)
+        for (int y = 0; y <= 8; ++y)
+            for (int x = 0; x <= 8; ++x)
+                worst = std::max(worst, std::abs(evaluate(vot, x, y, z) - volume.at(x, y, z)));
+    EXPECT_LE(worst, eps);
+    EXPECT_GE(byMinimax.errSamples, worst * (1.0 - 1e-6)); // the recorded error bounds the samples'
+
+    // Whole volumes: the split cuts the box with least squares, the merge puts it together again.
+    const FitResult fitLsq = fitVotSpace(volume, options(eps, 3, FitNorm::Lsq));
+    const FitResult fitMinimax = fitVotSpace(volume, options(eps, 3, FitNorm::Minimax));
+    EXPECT_GT(fitLsq.space.vots.size(), 1u);
+    ASSERT_EQ(fitMinimax.space.vots.size(), 1u);
+    EXPECT_EQ(fitMinimax.space.vots[0].box, box);
+    EXPECT_TRUE(verifyVotSpace(fitMinimax.space, volume).ok);
+    EXPECT_GT(fitMinimax.stats.minimaxAccepted, 0u);
+}
+
+TEST(Minimax, KeepsSuchABoxWholeWhenCertifiedAtTheCellsToo) {
+    // A plane plus +-0.7 eps: the trilinear values between the samples are means of theirs, so the plane is
+    // within 0.7 eps everywhere (under the cells' target of 0.9 eps), and least squares is not within eps.
+    const float eps = 10.f;
+    const Volume volume = cornerSpike(eps, 0.7, 1);
+    const Box box{{0, 0, 0}, {8, 8, 8}};
+    FitCounters counters;
+    const BoxFitter lsq(volume, 3, Certify::Cells, FitNorm::Lsq);
+    EXPECT_FALSE(lsq.fit(box, EpsField(eps), counters).accepted);
+    const FitResult fitLsq = fitVotSpace(volume, options(eps, 3, FitNorm::Lsq, Certify::Cells));
+    const FitResult fitMinimax = fitVotSpace(volume, options(eps, 3, FitNorm::Minimax, Certify::Cells));
+    EXPECT_GT(fitLsq.space.vots.size(), 1u);
+    ASSERT_EQ(fitMinimax.space.vots.size(), 1u);
+    const Independent check = recompute(fitMinimax.space, volume, EpsField(eps), -INFINITY, true);
+    EXPECT_EQ(check.beyondEps, 0u);
+    EXPECT_LE(check.worstCellPoint, 1.0);
+}
