@@ -15,7 +15,9 @@ namespace vots::server {
 namespace {
 
 constexpr std::size_t MAX_WARMED_KEYS = 4096;
-constexpr auto QUIET = std::chrono::milliseconds(250); // without frames before a warm-up goes on
+// Without frames (and, before a warm-up starts, without a requested fit) for this long before a warm-up goes
+// on.
+constexpr auto QUIET = std::chrono::milliseconds(250);
 
 } // namespace
 
@@ -68,6 +70,10 @@ void WarmUpFits::run(std::shared_ptr<const Dataset> dataset, const std::vector<F
     lowerThisThreadToNice19();
     for (std::size_t k = 0; k < keys.size(); ++k) {
         const FitKey& key = keys[k];
+        // Not while the fit that asked for these is still being shown: its upload and first frames follow
+        // it at once, and a warm-up beside them, even at nice 19, delays the image the user waits for.
+        while (!mCancel && mForeground.busyWithin(QUIET))
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
         {
             std::lock_guard lock(mMutex);
             if (mCancel) { // given way before this one started: it and the rest may run again later
