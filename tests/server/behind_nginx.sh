@@ -42,6 +42,9 @@ sed "s|^data file: .*|data file: $samples|" "$cranium" >"$data/cranium.nhdr"
 # nginx's port, one the kernel just gave; vots answers to that name (Host) as --allow-host says.
 port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
 
+# The log exists before the server starts: the background job opens it only when the kernel runs it, which
+# on a busy machine can be after the first look for its "listening on" line.
+: >"$work/vots.log"
 "$vots" serve --host 127.0.0.1 --port 0 --behind-proxy 127.0.0.1 --data "$data" --cache-dir "$work/cache" \
     --prepare '' --no-warm-up --audit-log "$work/audit.log" --renders-per-client 1 --allow-host "127.0.0.1:$port" >"$work/vots.log" 2>&1 &
 vots_pid=$!
