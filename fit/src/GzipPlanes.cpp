@@ -48,4 +48,8 @@ Volume readGzipPlanes(const std::string& path, const GzipSamples& stored, int fi
     return volume;
 }
 
+Volume readGzipVolume(const std::string& path, const GzipSamples& stored, SampleStorage storage) {
+    return readGzipPlanes(path, stored, 0, stored.grid.dims[2] - 1, storage);
+}
+
 } // namespace vots::fit::detail
