@@ -12,12 +12,7 @@ namespace vots::fit::detail {
 Volume readGzipPlanes(const std::string& path, const GzipSamples& stored, int first, int last,
                       SampleStorage storage) {
     Volume volume = gridOfPlanes(stored.grid, first, last);
-    const std::size_t plane =
-        static_cast<std::size_t>(stored.grid.dims[0]) * static_cast<std::size_t>(stored.grid.dims[1]);
-    const std::size_t count = plane * static_cast<std::size_t>(volume.dims[2]);
-    const std::size_t sampleBytes = scalarTypeSize(stored.type);
-    const std::uint64_t from =
-        static_cast<std::uint64_t>(plane) * static_cast<std::uint64_t>(first) * sampleBytes;
+    const auto [count, sampleBytes, from] = payloadRangeOf(stored, volume, first);
     const std::uint64_t to = from + static_cast<std::uint64_t>(count) * sampleBytes;
     // Grown with the data actually decompressed (Inflater::readExactly), not the header's claim.
     std::vector<unsigned char> payload;
@@ -46,6 +41,10 @@ Volume readGzipPlanes(const std::string& path, const GzipSamples& stored, int fi
                  scaled ? SampleStorage::Float : storage);
     if (scaled) applyScaling(path, volume.values, stored.slope, stored.inter);
     return volume;
+}
+
+Volume readGzipVolume(const std::string& path, const GzipSamples& stored, SampleStorage storage) {
+    return readGzipPlanes(path, stored, 0, stored.grid.dims[2] - 1, storage);
 }
 
 } // namespace vots::fit::detail

@@ -1,6 +1,8 @@
 // Private: runs of z planes of a gzip-compressed payload, decompressed as a stream and kept from the first.
 #pragma once
 
+#include "SampleFormat.h"
+
 #include "vots/fit/Volume.h"
 #include "vots/fit/VolumeLoad.h"
 
@@ -23,15 +25,10 @@ struct GzipPiece {
     bool endsStream = true; // false: more follows (later frames of a 4D file, MGH's trailing tags)
 };
 
-/// A volume file whose payload is gzip or zlib streams, header already checked: the grid and the streams
+/// A volume file whose payload is gzip or zlib streams, header already checked: its format and the streams
 /// that, one after the other, decompress to the payload.
-struct GzipSamples {
-    Volume grid;
-    ScalarType type = ScalarType::UInt8;
-    bool bigEndian = false;
+struct GzipSamples : SampleFormat {
     std::vector<GzipPiece> pieces;
-    double slope = 0.0; // NIfTI scl_slope and scl_inter; slope 0: the samples are not scaled
-    double inter = 0.0;
 };
 
 /// NRRD's header pass for gzip encoding, NIfTI's for a .nii.gz (its header read from the stream's start),
@@ -49,5 +46,8 @@ std::optional<GzipSamples> gzipMetaImageSamples(const std::string& path);
 /// compressed input). A stream whose end is read must end there, as the whole load checks.
 Volume readGzipPlanes(const std::string& path, const GzipSamples& stored, int first, int last,
                       SampleStorage storage);
+
+/// The whole volume: readGzipPlanes of every plane.
+Volume readGzipVolume(const std::string& path, const GzipSamples& stored, SampleStorage storage);
 
 } // namespace vots::fit::detail

@@ -209,10 +209,8 @@ MetaPayload locatePayload(const std::string& path, const MetaHeader& header, std
 
 // A MetaImage file whose header passed every check.
 struct MetaFile {
-    Volume grid; // no samples yet
+    SampleFormat format; // the grid has no samples yet
     CheckedShape shape;
-    ScalarType type = ScalarType::UInt8;
-    bool bigEndian = false;
     MetaPayload payload;
 };
 
@@ -246,9 +244,9 @@ MetaFile openMetaImage(const std::string& path) {
 
     MetaFile file;
     file.shape = shape;
-    file.type = type;
-    file.bigEndian = bigEndian;
-    Volume& volume = file.grid;
+    file.format.type = type;
+    file.format.bigEndian = bigEndian;
+    Volume& volume = file.format.grid;
     volume.dims = shape.dims;
     volume.spacing = spacingOf(path, header);
     volume.origin = originOf(path, header);
@@ -263,23 +261,13 @@ MetaFile openMetaImage(const std::string& path) {
 }
 
 StoredSamples storedSamplesOf(MetaFile file) {
-    StoredSamples stored;
-    stored.grid = std::move(file.grid);
-    stored.type = file.type;
-    stored.bigEndian = file.bigEndian;
-    stored.pieces.push_back({file.payload.file, file.payload.start, file.shape.bytes});
-    return stored;
+    return {std::move(file.format), {{file.payload.file, file.payload.start, file.shape.bytes}}};
 }
 
 // A compressed payload as one zlib stream of CompressedDataSize bytes (or to the file's end).
 GzipSamples gzipSamplesOf(MetaFile file) {
-    GzipSamples stored;
-    stored.grid = std::move(file.grid);
-    stored.type = file.type;
-    stored.bigEndian = file.bigEndian;
-    stored.pieces.push_back(
-        {file.payload.file, file.payload.start, 0, file.shape.bytes, file.payload.packedSize});
-    return stored;
+    return {std::move(file.format),
+            {{file.payload.file, file.payload.start, 0, file.shape.bytes, file.payload.packedSize}}};
 }
 
 } // namespace
@@ -300,8 +288,7 @@ Volume loadMetaImage(const std::string& path, SampleStorage storage) {
     MetaFile file = openMetaImage(path);
     if (!file.payload.compressed) return readStoredVolume(path, storedSamplesOf(std::move(file)), storage);
     // The same stream reader as a rank's planes, over every plane: streamed, never held compressed.
-    const GzipSamples stored = gzipSamplesOf(std::move(file));
-    return readGzipPlanes(path, stored, 0, stored.grid.dims[2] - 1, storage);
+    return readGzipVolume(path, gzipSamplesOf(std::move(file)), storage);
 }
 
 } // namespace vots::fit

@@ -21,17 +21,17 @@ std::uint64_t frameOffset(const std::string& path, const MghInfo& info, int fram
     return MGH_HEADER_BYTES + static_cast<std::uint64_t>(frame) * info.shape.bytes;
 }
 
+// MGH stores big-endian, unscaled.
+SampleFormat formatOf(const std::string& path, const MghInfo& info) {
+    return {gridOfHeader(path, info), info.type, true, 0.0, 0.0};
+}
+
 StoredSamples storedPlain(const std::string& path, int frame) {
     const std::vector<unsigned char> header = readFileBytes(path, 0, MGH_HEADER_BYTES);
     const MghInfo info = parseMghHeader(path, header.data());
     // Every frame must be there, whichever is read (optional scan parameters and tags may follow).
     checkFileHolds(path, MGH_HEADER_BYTES, static_cast<std::size_t>(info.frames * info.shape.bytes));
-    StoredSamples stored;
-    stored.grid = gridOfHeader(path, info);
-    stored.type = info.type;
-    stored.bigEndian = true;
-    stored.pieces.push_back({path, frameOffset(path, info, frame), info.shape.bytes});
-    return stored;
+    return {formatOf(path, info), {{path, frameOffset(path, info, frame), info.shape.bytes}}};
 }
 
 } // namespace
@@ -46,19 +46,14 @@ std::optional<GzipSamples> detail::gzipMghSamples(const std::string& path, int f
     Inflater inflater(path, path, 0);
     const std::vector<unsigned char> header = inflater.readExactly(MGH_HEADER_BYTES);
     const MghInfo info = parseMghHeader(path, header.data());
-    GzipSamples stored;
-    stored.grid = gridOfHeader(path, info);
-    stored.type = info.type;
-    stored.bigEndian = true;
     // The stream goes on after the samples (scan parameters, tags): its end is not checked.
-    stored.pieces.push_back({path, 0, frameOffset(path, info, frame), info.shape.bytes, std::nullopt, false});
-    return stored;
+    return GzipSamples{formatOf(path, info),
+                       {{path, 0, frameOffset(path, info, frame), info.shape.bytes, std::nullopt, false}}};
 }
 
 Volume loadMgh(const std::string& path, SampleStorage storage, int frame) {
     if (auto stored = storedMghSamples(path, frame)) return readStoredVolume(path, *stored, storage);
-    const GzipSamples stored = *gzipMghSamples(path, frame);
-    return readGzipPlanes(path, stored, 0, stored.grid.dims[2] - 1, storage);
+    return readGzipVolume(path, *gzipMghSamples(path, frame), storage);
 }
 
 } // namespace vots::fit

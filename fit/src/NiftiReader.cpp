@@ -20,6 +20,10 @@ namespace {
 
 using namespace detail;
 
+SampleFormat formatOf(const std::string& path, const NiftiInfo& info) {
+    return {gridOfHeader(path, info), info.type, info.bigEndian, info.slope, info.inter};
+}
+
 StoredSamples storedPlain(const std::string& path, std::uint64_t fileSize, int frame) {
     if (fileSize < NIFTI1_HEADER_BYTES)
         throwInputError(path, "too short for a NIfTI header (" + std::to_string(fileSize) + " bytes)");
@@ -33,14 +37,7 @@ StoredSamples storedPlain(const std::string& path, std::uint64_t fileSize, int f
                                   std::to_string(expected) + " (wrong dims or datatype?)");
     // The whole payload must be there, whichever frame is read: a short file is refused alike for all.
     checkFileHolds(path, info.voxOffset, static_cast<std::size_t>(expected - info.voxOffset));
-    StoredSamples stored;
-    stored.grid = gridOfHeader(path, info);
-    stored.type = info.type;
-    stored.bigEndian = info.bigEndian;
-    stored.pieces.push_back({path, frameOffset(path, info, frame), info.shape.bytes});
-    stored.slope = info.slope;
-    stored.inter = info.inter;
-    return stored;
+    return {formatOf(path, info), {{path, frameOffset(path, info, frame), info.shape.bytes}}};
 }
 
 } // namespace
@@ -58,16 +55,10 @@ std::optional<GzipSamples> detail::gzipNiftiSamples(const std::string& path, int
     const std::vector<unsigned char> rest = inflater.readExactly(niftiHeaderBytes(path, header.data()) - 4);
     header.insert(header.end(), rest.begin(), rest.end());
     const NiftiInfo info = parseNiftiHeader(path, header.data());
-    GzipSamples stored;
-    stored.grid = gridOfHeader(path, info);
-    stored.type = info.type;
-    stored.bigEndian = info.bigEndian;
     const bool lastFrame = static_cast<std::uint64_t>(frame) + 1 == info.frames;
-    stored.pieces.push_back(
-        {path, 0, frameOffset(path, info, frame), info.shape.bytes, std::nullopt, lastFrame});
-    stored.slope = info.slope;
-    stored.inter = info.inter;
-    return stored;
+    return GzipSamples{
+        formatOf(path, info),
+        {{path, 0, frameOffset(path, info, frame), info.shape.bytes, std::nullopt, lastFrame}}};
 }
 
 void detail::applyScaling(const std::string& path, std::vector<float>& values, double slope, double inter) {
@@ -85,8 +76,7 @@ void detail::applyScaling(const std::string& path, std::vector<float>& values, d
 
 Volume loadNifti(const std::string& path, SampleStorage storage, int frame) {
     if (auto stored = storedNiftiSamples(path, frame)) return readStoredVolume(path, *stored, storage);
-    const GzipSamples stored = *gzipNiftiSamples(path, frame);
-    return readGzipPlanes(path, stored, 0, stored.grid.dims[2] - 1, storage);
+    return readGzipVolume(path, *gzipNiftiSamples(path, frame), storage);
 }
 
 } // namespace vots::fit

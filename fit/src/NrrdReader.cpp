@@ -287,10 +287,8 @@ std::uint64_t rawDataStart(const NrrdHeader& header, const std::string& file, st
 // A NRRD file whose header passed every check: its grid, sample layout and data files.
 struct NrrdFile {
     NrrdHeader header;
-    Volume grid; // no samples yet
+    SampleFormat format; // the grid has no samples yet
     CheckedShape shape;
-    ScalarType type = ScalarType::UInt8;
-    bool bigEndian = false;
     bool gzip = false;
     std::vector<std::pair<std::string, std::uint64_t>> sources; // each data file and where its data starts
     std::size_t perFile = 0;                                    // payload bytes in each data file
@@ -326,15 +324,15 @@ NrrdFile openNrrd(const std::string& path) {
     if (header.lineSkip < 0) throwInputError(path, "'line skip' is negative");
     if (header.byteSkip < -1) throwInputError(path, "'byte skip' must be -1 or at least 0");
 
-    Volume& volume = file.grid;
+    Volume& volume = file.format.grid;
     volume.dims = file.shape.dims;
     volume.spacing = readSpacing(path, header);
     volume.origin = readOrigin(path, header);
     readOrientation(path, header, volume);
     volume.sourceType = *type;
     volume.name = fileStem(path);
-    file.type = *type;
-    file.bigEndian = header.endian == "big";
+    file.format.type = *type;
+    file.format.bigEndian = header.endian == "big";
 
     file.sources = dataSources(path, header);
     if (file.shape.bytes % file.sources.size() != 0)
@@ -346,10 +344,7 @@ NrrdFile openNrrd(const std::string& path) {
 
 // The raw payload's place in the data files.
 StoredSamples storedSamplesOf(NrrdFile file) {
-    StoredSamples stored;
-    stored.grid = std::move(file.grid);
-    stored.type = file.type;
-    stored.bigEndian = file.bigEndian;
+    StoredSamples stored{std::move(file.format), {}};
     // Every file's size is checked before the samples' memory is taken.
     for (const auto& [name, offset] : file.sources)
         stored.pieces.push_back({name, rawDataStart(file.header, name, offset, file.perFile), file.perFile});
@@ -359,10 +354,7 @@ StoredSamples storedSamplesOf(NrrdFile file) {
 // The gzip streams in the data files: each starts after the file's line skip; the byte skip counts
 // decompressed bytes.
 GzipSamples gzipSamplesOf(NrrdFile file) {
-    GzipSamples stored;
-    stored.grid = std::move(file.grid);
-    stored.type = file.type;
-    stored.bigEndian = file.bigEndian;
+    GzipSamples stored{std::move(file.format), {}};
     for (const auto& [name, offset] : file.sources) {
         if (file.header.byteSkip < 0)
             throwInputError(name, "'byte skip: -1' cannot be used with gzip encoding");
@@ -391,8 +383,7 @@ std::optional<GzipSamples> detail::gzipNrrdSamples(const std::string& path) {
 Volume loadNrrd(const std::string& path, SampleStorage storage) {
     NrrdFile file = openNrrd(path);
     if (!file.gzip) return readStoredVolume(path, storedSamplesOf(std::move(file)), storage);
-    const int planes = file.shape.dims[2];
-    return readGzipPlanes(path, gzipSamplesOf(std::move(file)), 0, planes - 1, storage);
+    return readGzipVolume(path, gzipSamplesOf(std::move(file)), storage);
 }
 
 } // namespace vots::fit

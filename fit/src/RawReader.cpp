@@ -29,12 +29,8 @@ StoredSamples detail::storedRawSamples(const std::string& path, const RawLayout&
                                   std::to_string(shape.dims[2]) + " " + scalarTypeName(layout.type) +
                                   " with " + std::to_string(layout.headerBytes) + " header bytes needs " +
                                   std::to_string(expected));
-    StoredSamples stored;
-    stored.grid = std::move(volume);
-    stored.type = layout.type;
-    stored.bigEndian = layout.bigEndian;
-    stored.pieces.push_back({path, layout.headerBytes, shape.bytes});
-    return stored;
+    return {{std::move(volume), layout.type, layout.bigEndian, 0.0, 0.0},
+            {{path, layout.headerBytes, shape.bytes}}};
 }
 
 Volume loadRaw(const std::string& path, const RawLayout& layout, SampleStorage storage) {

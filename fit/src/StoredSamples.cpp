@@ -38,12 +38,7 @@ Volume readStoredPlanes(const std::string& path, const StoredSamples& stored, in
     // by every reader of a slab of it.
     for (const PayloadPiece& piece : stored.pieces)
         checkFileHolds(piece.file, piece.start, piece.bytes);
-    const std::size_t plane =
-        static_cast<std::size_t>(stored.grid.dims[0]) * static_cast<std::size_t>(stored.grid.dims[1]);
-    const std::size_t count = plane * static_cast<std::size_t>(volume.dims[2]);
-    const std::size_t sampleBytes = scalarTypeSize(stored.type);
-    const std::uint64_t from =
-        static_cast<std::uint64_t>(plane) * static_cast<std::uint64_t>(first) * sampleBytes;
+    const auto [count, sampleBytes, from] = payloadRangeOf(stored, volume, first);
     const bool scaled = stored.slope != 0.0;
     // Scaled samples are not integers any more: only unscaled ones stay compact.
     readSamples(volume, count, stored.type, stored.bigEndian, scaled ? SampleStorage::Float : storage,

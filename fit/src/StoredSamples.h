@@ -1,6 +1,8 @@
 // Private: where an uncompressed volume file keeps its samples, so any run of z planes is read by offset.
 #pragma once
 
+#include "SampleFormat.h"
+
 #include "vots/fit/Volume.h"
 #include "vots/fit/VolumeLoad.h"
 
@@ -18,15 +20,10 @@ struct PayloadPiece {
     std::size_t bytes = 0;
 };
 
-/// A volume file whose payload lies uncompressed in one or more files, header already checked: the grid
-/// (a Volume without samples) and the runs that, one after the other, make up the payload.
-struct StoredSamples {
-    Volume grid;
-    ScalarType type = ScalarType::UInt8;
-    bool bigEndian = false;
+/// A volume file whose payload lies uncompressed in one or more files, header already checked: its
+/// format and the runs that, one after the other, make up the payload.
+struct StoredSamples : SampleFormat {
     std::vector<PayloadPiece> pieces;
-    double slope = 0.0; // NIfTI scl_slope and scl_inter; slope 0: the samples are not scaled
-    double inter = 0.0;
 };
 
 /// Each reader's header pass: the layout of an uncompressed file, or nullopt when its payload is

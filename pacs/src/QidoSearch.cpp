@@ -35,6 +35,48 @@ int countOf(const nlohmann::json& dataset, const char* tag) {
     return static_cast<int>(dicomNumber(dataset, tag).value_or(0.0));
 }
 
+/// GETs the search `path` and reads each dataset of the list it answers with `read`, keeping the summaries
+/// that have a UID (`uidOf`): an entry without one cannot be opened. Malformed unless the answer is a list.
+template <class Summary, class Read>
+std::vector<Summary> searchList(const DicomWebEndpoint& endpoint, const DicomWebAccess& access,
+                                const std::string& path, const std::string& what, Read read,
+                                std::string Summary::*uidOf) {
+    DicomWebConnection connection(endpoint, access);
+    const nlohmann::json answer = connection.getJson(path, what);
+    if (!answer.is_array())
+        throw PacsError(PacsFailure::Malformed, connection.name() + ": " + what + " did not answer a list");
+    std::vector<Summary> summaries;
+    for (const nlohmann::json& d : answer) {
+        Summary s = read(d);
+        if (!(s.*uidOf).empty()) summaries.push_back(std::move(s));
+    }
+    return summaries;
+}
+
+StudySummary studyOf(const nlohmann::json& d) {
+    StudySummary s;
+    s.studyUid = dicomString(d, "0020000D");
+    s.patientName = dicomString(d, "00100010");
+    s.patientId = dicomString(d, "00100020");
+    s.studyDate = dicomString(d, "00080020");
+    s.studyDescription = dicomString(d, "00081030");
+    s.accessionNumber = dicomString(d, "00080050");
+    s.modalities = dicomStrings(d, "00080061");
+    s.seriesCount = countOf(d, "00201206");
+    s.instanceCount = countOf(d, "00201208");
+    return s;
+}
+
+SeriesSummary seriesOf(const nlohmann::json& d) {
+    SeriesSummary s;
+    s.seriesUid = dicomString(d, "0020000E");
+    s.modality = dicomString(d, "00080060");
+    s.description = dicomString(d, "0008103E");
+    s.seriesNumber = countOf(d, "00200011");
+    s.instanceCount = countOf(d, "00201209");
+    return s;
+}
+
 } // namespace
 
 std::vector<StudySummary> searchStudies(const DicomWebEndpoint& endpoint, const DicomWebAccess& access,
@@ -51,26 +93,8 @@ std::vector<StudySummary> searchStudies(const DicomWebEndpoint& endpoint, const 
     for (const char* field : {"00081030", "00201206", "00201208", "00080061"})
         addParameter(query, "includefield", field);
 
-    DicomWebConnection connection(endpoint, access);
-    const nlohmann::json answer = connection.getJson("/studies" + query, "the study search");
-    if (!answer.is_array())
-        throw PacsError(PacsFailure::Malformed,
-                        connection.name() + ": the study search did not answer a list");
-    std::vector<StudySummary> studies;
-    for (const nlohmann::json& d : answer) {
-        StudySummary s;
-        s.studyUid = dicomString(d, "0020000D");
-        s.patientName = dicomString(d, "00100010");
-        s.patientId = dicomString(d, "00100020");
-        s.studyDate = dicomString(d, "00080020");
-        s.studyDescription = dicomString(d, "00081030");
-        s.accessionNumber = dicomString(d, "00080050");
-        s.modalities = dicomStrings(d, "00080061");
-        s.seriesCount = countOf(d, "00201206");
-        s.instanceCount = countOf(d, "00201208");
-        if (!s.studyUid.empty()) studies.push_back(std::move(s));
-    }
-    return studies;
+    return searchList(endpoint, access, "/studies" + query, "the study search", studyOf,
+                      &StudySummary::studyUid);
 }
 
 std::vector<SeriesSummary> searchSeries(const DicomWebEndpoint& endpoint, const DicomWebAccess& access,
@@ -80,22 +104,9 @@ std::vector<SeriesSummary> searchSeries(const DicomWebEndpoint& endpoint, const 
                      [](char c) { return c == '.' || (c >= '0' && c <= '9'); }))
         throw PacsError(PacsFailure::BadRequest, "the study UID '" + studyUid.substr(0, 80) +
                                                      "' is not a DICOM UID (digits and dots)");
-    DicomWebConnection connection(endpoint, access);
-    const nlohmann::json answer = connection.getJson(
-        "/studies/" + studyUid + "/series?includefield=0008103E&includefield=00201209", "the series search");
-    if (!answer.is_array())
-        throw PacsError(PacsFailure::Malformed,
-                        connection.name() + ": the series search did not answer a list");
-    std::vector<SeriesSummary> series;
-    for (const nlohmann::json& d : answer) {
-        SeriesSummary s;
-        s.seriesUid = dicomString(d, "0020000E");
-        s.modality = dicomString(d, "00080060");
-        s.description = dicomString(d, "0008103E");
-        s.seriesNumber = countOf(d, "00200011");
-        s.instanceCount = countOf(d, "00201209");
-        if (!s.seriesUid.empty()) series.push_back(std::move(s));
-    }
+    std::vector<SeriesSummary> series = searchList(
+        endpoint, access, "/studies/" + studyUid + "/series?includefield=0008103E&includefield=00201209",
+        "the series search", seriesOf, &SeriesSummary::seriesUid);
     std::stable_sort(series.begin(), series.end(), [](const SeriesSummary& a, const SeriesSummary& b) {
         return a.seriesNumber < b.seriesNumber;
     });

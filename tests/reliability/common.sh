@@ -10,6 +10,12 @@ build_rel() {
     nice cmake --build build/rel -j2 --target vots >/dev/null
 }
 
+# make_work: sets $work to a new temporary folder, removed (after stopping the server) when the script exits.
+make_work() {
+    work=$(mktemp -d)
+    trap 'stop_server; rm -rf "$work"' EXIT
+}
+
 # start_server LOG ARGS...: starts `vots serve --port 0 ARGS` and waits for its "listening on" line.
 start_server() {
     local log=$1

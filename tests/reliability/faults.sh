@@ -8,8 +8,7 @@ cd "$(dirname "${BASH_SOURCE[0]}")/../.."
 source tests/reliability/common.sh
 build_rel
 
-work=$(mktemp -d)
-trap 'stop_server; rm -rf "$work"' EXIT
+make_work
 # A volume whose fit takes seconds (the kill lands mid-fit: the Cranium at 0.1 %, about 4 s on a 2-core
 # box; at 2 % it took 0.5 s and a fast machine finished before the kill) and a small one for the rest.
 serve_volumes "$work/data"

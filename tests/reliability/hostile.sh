@@ -17,8 +17,7 @@ source tests/reliability/common.sh
 source tests/support/test-certificate.sh
 build_rel
 
-work=$(mktemp -d)
-trap 'stop_server; rm -rf "$work"' EXIT
+make_work
 serve_args=()
 load_args=()
 if [[ ${1:-} == --tls ]]; then

@@ -20,8 +20,7 @@ done
 command -v wrk >/dev/null || { echo "wrk is missing: apt-get install -y wrk"; exit 2; }
 build_rel
 
-work=$(mktemp -d)
-trap 'stop_server; rm -rf "$work"' EXIT
+make_work
 serve_volumes "$work/data"
 # Every wrk connection comes from 127.0.0.1: without --renders-per-client 0 all but 4 would be 429.
 start_server "$work/server.log" --data "$work/data" --cache-dir "$work/cache" --renders-per-client 0

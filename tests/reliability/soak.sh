@@ -12,8 +12,7 @@ cd "$(dirname "${BASH_SOURCE[0]}")/../.."
 source tests/reliability/common.sh
 build_rel
 
-work=$(mktemp -d)
-trap 'stop_server; rm -rf "$work"' EXIT
+make_work
 serve_hostile_load_volumes "$work"
 status=0
 python3 tests/reliability/hostile_load.py soak --port "$SERVER_PORT" --pid "$SERVER_PID" --seconds 1800 \

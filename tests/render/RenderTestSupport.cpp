@@ -1,7 +1,9 @@
 // Implementation of the renderer test helpers and the test main (creates the GL context once).
 #include "RenderTestSupport.h"
 
+#include "vots/fit/Fitter.h"
 #include "vots/fit/Monomials.h"
+#include "vots/fit/VolumeLoad.h"
 #include "vots/render/DisplayPass.h"
 #include "vots/render/Png.h"
 
@@ -201,6 +203,40 @@ void saveForInspection(const render::FloatImage& image, const std::string& name)
     std::filesystem::create_directories("/tmp/vots_render_tests");
     render::writePng("/tmp/vots_render_tests/" + name + ".png",
                      render::applyDisplay(image, render::windowForRange(lo, hi)));
+}
+
+double worstDifference(const render::FloatImage& image, const std::function<double(int, int)>& expect,
+                       int* hits) {
+    double worst = 0;
+    *hits = 0;
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            const double want = expect(x, y);
+            const float got = image.at(x, y);
+            if (!std::isfinite(want)) {
+                EXPECT_FALSE(std::isfinite(got)) << x << "," << y;
+                continue;
+            }
+            ++*hits;
+            worst = std::max(worst, std::abs(got - want));
+        }
+    return worst;
+}
+
+FittedVolume fitForImages(const std::string& path, float epsOfRange) {
+    FittedVolume f;
+    f.volume = fit::loadVolume(path);
+    const auto range = f.volume.valueRange();
+    fit::FitOptions options;
+    options.eps = epsOfRange * (range[1] - range[0]);
+    options.degree = 3;
+    options.background = fit::defaultBackground(f.volume);
+    // Samples-only certification lets a cubic overshoot between grid samples next to bone (docs/DESIGN.md
+    // §3); a projection picks exactly those spikes, so the image tests certify the cell centres too.
+    options.certify = fit::Certify::Cells;
+    f.space = fit::fitVotSpace(f.volume, options).space;
+    f.eps = options.eps;
+    return f;
 }
 
 ImageComparison compareImages(const render::FloatImage& a, const render::FloatImage& b, double tolerance) {

@@ -61,6 +61,21 @@ RayProfile cpuRayProfile(const render::CameraMatrices& m, const std::array<int, 
 double cpuRayMax(const render::CameraMatrices& m, const std::array<int, 3>& dims, int width, int height,
                  int px, int py, const std::function<double(double, double, double)>& f, int samples);
 
+/// The worst |image - expect(x, y)| over the pixels whose expected value is finite; a pixel whose expected
+/// value is not (the ray misses) must be non-finite in the image too (a test failure otherwise). `hits`
+/// gets the number of finite expected pixels.
+double worstDifference(const render::FloatImage& image, const std::function<double(int, int)>& expect,
+                       int* hits);
+
+/// A real volume fitted for the image tests: cubic, the default background, certified at the cell
+/// centres too (the images see between samples), eps the given fraction of the value range.
+struct FittedVolume {
+    fit::Volume volume;
+    fit::VotSpace space;
+    float eps = 0.f;
+};
+FittedVolume fitForImages(const std::string& path, float epsOfRange);
+
 /// How two float images of one size differ, pixel by pixel.
 struct ImageComparison {
     std::size_t finiteMismatch = 0; // background (non-finite) in one image only

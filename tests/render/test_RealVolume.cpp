@@ -2,7 +2,6 @@
 #include "RenderTestSupport.h"
 
 #include "vots/fit/Fitter.h"
-#include "vots/fit/VolumeLoad.h"
 #include "vots/render/CameraText.h"
 #include "vots/render/GridRenderer.h"
 #include "vots/render/VotRenderer.h"
@@ -17,30 +16,11 @@ using namespace vots::render;
 
 namespace {
 
-struct Fitted {
-    fit::Volume volume;
-    fit::VotSpace space;
-    float eps = 0.f;
-};
-
 // The Cranium CT at a quarter of its in-plane resolution: 64x64x108 int16, 3.83 x 3.83 x 1.5 mm
 // (anisotropic).
-const Fitted& headCt() {
-    static const Fitted fitted = [] {
-        Fitted f;
-        f.volume = fit::loadVolume(std::string(VOTS_TEST_DATA_DIR) + "/cranium-quarter_64x64x108_int16.nrrd");
-        const auto range = f.volume.valueRange();
-        fit::FitOptions options;
-        options.eps = 0.01f * (range[1] - range[0]);
-        options.degree = 3;
-        options.background = fit::defaultBackground(f.volume);
-        // Samples-only certification lets a cubic overshoot between grid samples next to bone (docs/DESIGN.md
-        // §3); MIP picks exactly those spikes, so the image test uses the cell-centre certification.
-        options.certify = fit::Certify::Cells;
-        f.space = fit::fitVotSpace(f.volume, options).space;
-        f.eps = options.eps;
-        return f;
-    }();
+const test::FittedVolume& headCt() {
+    static const test::FittedVolume fitted =
+        test::fitForImages(std::string(VOTS_TEST_DATA_DIR) + "/cranium-quarter_64x64x108_int16.nrrd", 0.01f);
     return fitted;
 }
 
@@ -48,7 +28,7 @@ const Fitted& headCt() {
 
 TEST(RealVolume, VotMipMatchesReferenceWithinEps) {
     test::glContext();
-    const Fitted& f = headCt();
+    const test::FittedVolume& f = headCt();
     VotRenderer vots;
     vots.upload(f.space);
     GridRenderer grid;
@@ -91,7 +71,7 @@ TEST(RealVolume, VotMipMatchesReferenceWithinEps) {
 
 TEST(RealVolume, BrightestPixelIsTheDataMaximum) {
     test::glContext();
-    const Fitted& f = headCt();
+    const test::FittedVolume& f = headCt();
     VotRenderer vots;
     vots.upload(f.space);
     GridRenderer grid;
@@ -120,7 +100,7 @@ TEST(RealVolume, BrightestPixelIsTheDataMaximum) {
 
 TEST(RealVolume, CullingDoesNotChangeTheImage) {
     test::glContext();
-    const Fitted& f = headCt();
+    const test::FittedVolume& f = headCt();
     VotRenderer vots;
     vots.upload(f.space);
     for (const auto strategy : {VotRenderer::Strategy::Walk, VotRenderer::Strategy::Raster}) {

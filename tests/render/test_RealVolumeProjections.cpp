@@ -2,8 +2,6 @@
 // a thick slab: the error the tests report is the Vots' own.
 #include "RenderTestSupport.h"
 
-#include "vots/fit/Fitter.h"
-#include "vots/fit/VolumeLoad.h"
 #include "vots/render/CameraText.h"
 #include "vots/render/GridRenderer.h"
 #include "vots/render/Slab.h"
@@ -20,26 +18,8 @@ using namespace vots::render;
 
 namespace {
 
-struct Fitted {
-    fit::Volume volume;
-    fit::VotSpace space;
-    float eps = 0.f;
-};
-
-const Fitted& cranium() {
-    static const Fitted fitted = [] {
-        Fitted f;
-        f.volume = fit::loadVolume(VOTS_CRANIUM_HEADER);
-        const auto range = f.volume.valueRange();
-        fit::FitOptions options;
-        options.eps = 0.02f * (range[1] - range[0]);
-        options.degree = 3;
-        options.background = fit::defaultBackground(f.volume);
-        options.certify = fit::Certify::Cells; // the projections see between samples too
-        f.space = fit::fitVotSpace(f.volume, options).space;
-        f.eps = options.eps;
-        return f;
-    }();
+const test::FittedVolume& cranium() {
+    static const test::FittedVolume fitted = test::fitForImages(VOTS_CRANIUM_HEADER, 0.02f);
     return fitted;
 }
 
@@ -53,7 +33,7 @@ struct Agreement {
 
 TEST(RealVolumeProjections, VotsMatchTheExactGridInEveryModeWithAndWithoutASlab) {
     test::glContext();
-    const Fitted& f = cranium();
+    const test::FittedVolume& f = cranium();
     VotRenderer vots;
     vots.upload(f.space);
     GridRenderer grid;
@@ -126,7 +106,7 @@ TEST(RealVolumeProjections, VotsMatchTheExactGridInEveryModeWithAndWithoutASlab)
 
 TEST(RealVolumeProjections, MinNeverAboveMeanNeverAboveMax) {
     test::glContext();
-    const Fitted& f = cranium();
+    const test::FittedVolume& f = cranium();
     VotRenderer vots;
     vots.upload(f.space);
     for (const std::optional<Slab>& slab : {std::optional<Slab>{}, std::optional<Slab>{Slab{-10.0, 15.0}}}) {

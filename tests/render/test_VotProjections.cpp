@@ -23,24 +23,6 @@ constexpr double AMPLITUDE = 100.0;
 constexpr int W = 64, H = 48;
 constexpr int SAMPLES = 4000;
 
-// The worst |image - oracle| over pixels the oracle sees; a pixel whose ray misses must be non-finite.
-template <class Expect> double worstDifference(const FloatImage& image, Expect expect, int* hits) {
-    double worst = 0;
-    *hits = 0;
-    for (int y = 0; y < H; ++y)
-        for (int x = 0; x < W; ++x) {
-            const double want = expect(x, y);
-            const float got = image.at(x, y);
-            if (!std::isfinite(want)) {
-                EXPECT_FALSE(std::isfinite(got)) << x << "," << y;
-                continue;
-            }
-            ++*hits;
-            worst = std::max(worst, std::abs(got - want));
-        }
-    return worst;
-}
-
 // The CPU oracle's profile of every pixel's ray (slab: only the part of the ray inside it).
 std::vector<test::RayProfile> oracleProfiles(const CameraMatrices& m, const test::Polynomial& p,
                                              const std::optional<SlabPlanes>& slab = std::nullopt) {
@@ -74,10 +56,10 @@ TEST_P(PolynomialProjections, MinAndMeanMatchDenseCpuProfile) {
     const FloatImage maxImage = renderer.render(cam, W, H, RenderMode::Mip);
     const std::vector<test::RayProfile> oracle = oracleProfiles(m, p);
     int hits = 0;
-    const double minWorst = worstDifference(
+    const double minWorst = test::worstDifference(
         minImage, [&](int x, int y) { return oracle[y * W + x].min; }, &hits);
     EXPECT_GT(hits, W * H / 4);
-    const double meanWorst = worstDifference(
+    const double meanWorst = test::worstDifference(
         meanImage, [&](int x, int y) { return oracle[y * W + x].mean; }, &hits);
     // The min as exact as the max (PolynomialMip: dense sampling misses extrema by ~1e-5 of the
     // amplitude); the mean sums float integrals of up to ~20 Vots along a ray (measured 5e-6).
@@ -108,7 +90,7 @@ TEST_P(PolynomialProjections, EveryModeHonoursTheSlabPlanes) {
     int hits = 0;
     const auto check = [&](RenderMode mode, auto pick, double tolerance) {
         const FloatImage image = renderer.render(cam, W, H, RenderOptions{mode, slab});
-        const double worst = worstDifference(
+        const double worst = test::worstDifference(
             image, [&](int x, int y) { return pick(oracle[y * W + x]); }, &hits);
         EXPECT_GT(hits, W * H / 8) << renderModeName(mode);
         EXPECT_LT(worst, tolerance) << renderModeName(mode) << " degree " << k.degree;
@@ -184,13 +166,13 @@ TEST(VotProjections, BackgroundCellsCountAsTheFillOrWithoutOneTheBackgroundValue
                 if (oracle[y * W + x].min == holeValue) ++throughHole;
             }
         EXPECT_GT(throughHole, 50);
-        EXPECT_LT(worstDifference(
+        EXPECT_LT(test::worstDifference(
                       minImage, [&](int x, int y) { return oracle[y * W + x].min; }, &hits),
                   1e-4 * AMPLITUDE)
             << holeValue;
         // Simpson's rule across the hole's faces, where the field jumps by ~11 amplitudes (~16 with the
         // fill), errs by about jump x step / path length.
-        EXPECT_LT(worstDifference(
+        EXPECT_LT(test::worstDifference(
                       meanImage, [&](int x, int y) { return oracle[y * W + x].mean; }, &hits),
                   5e-3 * AMPLITUDE * (holeValue / BACKGROUND))
             << holeValue;

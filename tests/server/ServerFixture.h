@@ -10,8 +10,11 @@
 
 #include <chrono>
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <thread>
 
@@ -66,6 +69,23 @@ inline nlohmann::json bodyJson(const httplib::Result& res) {
     auto json = nlohmann::json::parse(res->body, nullptr, false);
     if (json.is_discarded()) ADD_FAILURE() << "not JSON: " << res->body.substr(0, 200);
     return json;
+}
+
+/// The file's bytes ("" when it cannot be read).
+inline std::string fileBytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream bytes;
+    bytes << in.rdbuf();
+    return bytes.str();
+}
+
+/// Runs the real CLI, `vots render 'input' -o 'out' args` (its stderr dropped), expects it to succeed and
+/// returns the bytes it wrote: what a server's answer must equal.
+inline std::string cliRenderBytes(const std::string& input, const std::string& out, const std::string& args) {
+    const std::string command =
+        std::string(VOTS_CLI) + " render '" + input + "' -o '" + out + "' " + args + " 2>/dev/null";
+    EXPECT_EQ(std::system(command.c_str()), 0) << command;
+    return fileBytes(out);
 }
 
 /// Polls /api/jobs/{id} of a POST /api/fit answer until the job is done or failed (about a minute at

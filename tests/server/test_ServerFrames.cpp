@@ -38,13 +38,6 @@ std::string writeFourDimensional(const TempDir& dir) {
     return dir.write(std::string("data/") + FOUR + ".nii", niftiFloat32({NX, NY, NZ}, FRAMES, values));
 }
 
-std::string fileBytes(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream bytes;
-    bytes << in.rdbuf();
-    return bytes.str();
-}
-
 class ServerFrames : public ::testing::Test {
 protected:
     ServerWorld world;

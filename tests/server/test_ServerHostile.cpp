@@ -49,10 +49,7 @@ std::string expand(const std::string& text) {
 }
 
 HostileRequest loadHostile(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    std::ostringstream all;
-    all << in.rdbuf();
-    std::string text = all.str();
+    std::string text = fileBytes(file.string());
     HostileRequest r;
     if (text.rfind("# expect ", 0) == 0) {
         r.expect = std::stoi(text.substr(9, 3));

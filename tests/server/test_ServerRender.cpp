@@ -24,13 +24,7 @@ protected:
             args.find("--fit-norm") == std::string::npos
                 ? std::string(" --fit-norm ") + std::string(fit::nameOf(fit::SERVE_FIT_NORM))
                 : std::string();
-        const std::string command = std::string(VOTS_CLI) + " render '" + VOTS_TEST_DATA_DIR + "/" + file +
-                                    "' -o '" + out + "' " + args + norm + " 2>/dev/null";
-        EXPECT_EQ(std::system(command.c_str()), 0) << command;
-        std::ifstream in(out, std::ios::binary);
-        std::ostringstream bytes;
-        bytes << in.rdbuf();
-        return bytes.str();
+        return cliRenderBytes(std::string(VOTS_TEST_DATA_DIR) + "/" + file, out, args + norm);
     }
     static std::string serverRender(const std::string& query) {
         const auto res = client()->Get(("/render?" + query).c_str());

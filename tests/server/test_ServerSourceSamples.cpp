@@ -103,13 +103,6 @@ TEST(ServerSourceSamples, TheCompactStudyDrawsBitForBitAsTheFloatLoadedOne) {
         }
 }
 
-std::string fileBytes(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream bytes;
-    bytes << in.rdbuf();
-    return bytes.str();
-}
-
 TEST(ServerSourceSamples, RenderAndFitOfTheCompactStudyMatchTheCli) {
     ServerWorld world;
     const std::string path = writeInt16Study(world.dir(), "data");

@@ -44,14 +44,7 @@ protected:
     }
     static std::string cliRender(const std::string& args) {
         const std::string out = sWorld->dir().file("cli-" + std::to_string(sCount++) + ".png");
-        const std::string command = std::string(VOTS_CLI) + " render '" +
-                                    (sWorld->data() / "head.vots").string() + "' -o '" + out + "' " + args +
-                                    " 2>/dev/null";
-        EXPECT_EQ(std::system(command.c_str()), 0) << command;
-        std::ifstream in(out, std::ios::binary);
-        std::ostringstream bytes;
-        bytes << in.rdbuf();
-        return bytes.str();
+        return cliRenderBytes((sWorld->data() / "head.vots").string(), out, args);
     }
     static std::string serverRender(const std::string& query) {
         const auto res = client()->Get(("/render?" + query).c_str());

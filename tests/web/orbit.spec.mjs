@@ -6,12 +6,19 @@ import { ViewerPage } from './pages/ViewerPage.mjs';
 
 const START_CAM = 'az=10,el=5,zoom=1,pan=0:0,proj=ortho,fov=30';
 
-test('left-drag orbits: hash cam and image change, drafts while dragging, full frame on release', async (t) => {
+// Runs `body(viewer, page)` on a page showing a dataset at START_CAM, its first frame drawn.
+async function atStartCam(t, body) {
   const ds = await pickDataset();
   await withPage(t, async (page) => {
     const viewer = new ViewerPage(page);
     await viewer.open({ dataset: ds.name, cam: START_CAM });
     await viewer.waitForIdle();
+    await body(viewer, page);
+  });
+}
+
+test('left-drag orbits: hash cam and image change, drafts while dragging, full frame on release', async (t) => {
+  await atStartCam(t, async (viewer, page) => {
     const before = await viewer.framePixels();
     await viewer.screenshotView('orbit-before');
 
@@ -37,11 +44,7 @@ test('left-drag orbits: hash cam and image change, drafts while dragging, full f
 });
 
 test('elevation clamps at +90 when dragging far up', async (t) => {
-  const ds = await pickDataset();
-  await withPage(t, async (page) => {
-    const viewer = new ViewerPage(page);
-    await viewer.open({ dataset: ds.name, cam: START_CAM });
-    await viewer.waitForIdle();
+  await atStartCam(t, async (viewer) => {
     await viewer.drag(0, -700);
     await viewer.waitForIdle();
     assert.equal((await viewer.camValues()).el, 90);
@@ -49,11 +52,7 @@ test('elevation clamps at +90 when dragging far up', async (t) => {
 });
 
 test('shift-drag pans and the wheel zooms', async (t) => {
-  const ds = await pickDataset();
-  await withPage(t, async (page) => {
-    const viewer = new ViewerPage(page);
-    await viewer.open({ dataset: ds.name, cam: START_CAM });
-    await viewer.waitForIdle();
+  await atStartCam(t, async (viewer) => {
     const before = await viewer.framePixels();
 
     await viewer.drag(120, 60, { shift: true });

@@ -343,16 +343,25 @@ window.addEventListener('hashchange', () => {
   ensureFitted();
 });
 
-// A PACS series the study browser opened is a dataset now: list it and show it as if picked.
-async function showOpenedDataset(name) {
+// The server's datasets, all of them, with `datasets` set to those that can be opened: the ones over the
+// server's memory budget are listed (disabled, with the reason) but never opened. Null, with the banner
+// shown, when the list cannot be fetched.
+async function listDatasets() {
   let listed;
   try {
     listed = await fetchDatasets();
   } catch (e) {
     banner.show(e.message, 'datasets');
-    return;
+    return null;
   }
   datasets = listed.filter((d) => d.fits !== false);
+  return listed;
+}
+
+// A PACS series the study browser opened is a dataset now: list it and show it as if picked.
+async function showOpenedDataset(name) {
+  const listed = await listDatasets();
+  if (!listed) return;
   fillDatasetPicker(el.dataset, listed);
   banner.clear('datasets');
   el.dataset.value = name;
@@ -373,15 +382,8 @@ async function start() {
   applyRole([el.epsSlider, $('pacs-send-button')]);
   updateStatus();
   studyBrowser.start();
-  let listed;
-  try {
-    listed = await fetchDatasets();
-  } catch (e) {
-    banner.show(e.message, 'datasets');
-    return;
-  }
-  // Datasets over the server's memory budget are listed (disabled, with the reason) but never opened.
-  datasets = listed.filter((d) => d.fits !== false);
+  const listed = await listDatasets();
+  if (!listed) return;
   if (!datasets.length) {
     const refused = listed.find((d) => d.fits === false);
     banner.show(refused ? refused.error : 'The server has no datasets to show.', 'datasets');

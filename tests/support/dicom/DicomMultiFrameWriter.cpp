@@ -1,6 +1,7 @@
 // Writes a multi-frame DICOM instance: GDCM's ImageWriter for the pixels, then its file rewritten with the
 // functional groups of an Enhanced CT in place of the top-level position, spacing and rescale.
 #include "DicomMultiFrameWriter.h"
+#include "DicomTextElement.h"
 
 #include <gdcmImageChangeTransferSyntax.h>
 #include <gdcmImageWriter.h>
@@ -18,14 +19,6 @@ namespace vots::test {
 namespace {
 
 const char* const ENHANCED_CT = "1.2.840.10008.5.1.4.1.1.2.1"; // SOP class UID
-
-gdcm::DataElement textElement(std::uint16_t group, std::uint16_t element, gdcm::VR vr, std::string text) {
-    if (text.size() % 2 == 1) text += vr == gdcm::VR::UI ? '\0' : ' ';
-    gdcm::DataElement de(gdcm::Tag(group, element));
-    de.SetVR(vr);
-    de.SetByteValue(text.data(), static_cast<std::uint32_t>(text.size()));
-    return de;
-}
 
 std::string decimals(std::initializer_list<double> values) {
     std::string text;

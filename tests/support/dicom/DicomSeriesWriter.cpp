@@ -1,5 +1,6 @@
 // Writes DICOM test series with GDCM's ImageWriter; compressed syntaxes through ImageChangeTransferSyntax.
 #include "DicomSeriesWriter.h"
+#include "DicomTextElement.h"
 
 #include <gdcmAttribute.h>
 #include <gdcmImageChangeTransferSyntax.h>
@@ -32,13 +33,8 @@ gdcm::TransferSyntax syntaxNamed(const std::string& name) {
     return it->second;
 }
 
-/// A text element, padded to even length as DICOM requires (UIDs with NUL, others with a space).
 void setText(gdcm::DataSet& data, std::uint16_t group, std::uint16_t element, gdcm::VR vr, std::string text) {
-    if (text.size() % 2 == 1) text += vr == gdcm::VR::UI ? '\0' : ' ';
-    gdcm::DataElement de(gdcm::Tag(group, element));
-    de.SetVR(vr);
-    de.SetByteValue(text.data(), static_cast<std::uint32_t>(text.size()));
-    data.Replace(de);
+    data.Replace(textElement(group, element, vr, std::move(text)));
 }
 
 std::string decimal(double value) {
