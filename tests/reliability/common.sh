@@ -20,6 +20,7 @@ make_work() {
 start_server() {
     local log=$1
     shift
+    : >"$log" # before the server: its background job may open the log only after the first look below
     "$VOTS" serve --port 0 "$@" >"$log" 2>&1 &
     SERVER_PID=$!
     for _ in $(seq 1 600); do
