@@ -90,8 +90,6 @@ public:
     }
 
 private:
-    // A corner packed into one integer: hashing and comparing it is a few instructions, where the array's
-    // equality was a memcmp call, on the path a refit from a full cache spends most of its time in.
     // The value: the box's index and its other corner (the key is one of its corners).
     struct Entry {
         std::uint32_t index;
@@ -99,6 +97,8 @@ private:
     };
     using Map = absl::flat_hash_map<std::uint64_t, Entry>;
     static constexpr int BITS = 21;
+    // A corner packed into one integer: hashing and comparing it is a few instructions, where the array's
+    // equality was a memcmp call, on the path a refit from a full cache spends most of its time in.
     static std::uint64_t keyOf(const std::array<int, 3>& corner) {
         return static_cast<std::uint64_t>(corner[0]) | static_cast<std::uint64_t>(corner[1]) << BITS |
                static_cast<std::uint64_t>(corner[2]) << (2 * BITS);

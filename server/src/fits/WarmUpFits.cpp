@@ -68,57 +68,55 @@ void WarmUpFits::run(std::shared_ptr<const Dataset> dataset, const std::vector<F
     // Lowest priority, inherited by the fit's worker threads: it must not slow a frame or a fit. Nice 19
     // rather than SCHED_IDLE, which a busy machine can starve for minutes.
     lowerThisThreadToNice19();
-    for (std::size_t k = 0; k < keys.size(); ++k) {
-        const FitKey& key = keys[k];
+    std::size_t done = 0; // keys finished, or failed
+    for (; done < keys.size(); ++done) {
+        const FitKey& key = keys[done];
         // Not while the fit that asked for these is still being shown: its upload and first frames follow
         // it at once, and a warm-up beside them, even at nice 19, delays the image the user waits for.
         while (!mCancel && mForeground.busyWithin(QUIET))
             std::this_thread::sleep_for(std::chrono::milliseconds(10));
         {
             std::lock_guard lock(mMutex);
-            if (mCancel) { // given way before this one started: it and the rest may run again later
-                for (std::size_t rest = k; rest < keys.size(); ++rest)
-                    mWarmed.erase(keys[rest].text());
-                break;
-            }
+            if (mCancel) break; // given way before this one started
             ++mSummary.started;
             mSummary.lastKey = key.text();
             mSummary.lastEps = key.eps;
         }
         const auto t0 = std::chrono::steady_clock::now();
-        enum class End { Finished, Cancelled, Failed } end = End::Finished;
-        try {
-            fit::FitOptions options = fitOptionsFor(key);
-            options.cancel = &mCancel;
-            // Called after each brick: there the warm-up waits while frames are being drawn. Even at nice
-            // 19 it slows the frames of an orbiting viewer (cores, caches, memory bus).
-            options.progress = [this](double, const char*) {
-                while (!mCancel && mForeground.renderedWithin(QUIET))
-                    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-            };
-            const auto boxCache = mBoxCaches.forFits(key.dataset, key.frame, key.degree);
-            fit::fitVotSpace(*dataset->volume, options, boxCache.get());
-        } catch (const fit::FitCancelled&) {
-            end = End::Cancelled;
-        } catch (const std::exception& e) { // out of memory, say: the cache keeps what it got
-            std::cerr << "vots serve: warm-up fit " << key.text() << " failed: " << e.what() << "\n";
-            end = End::Failed;
-        }
+        const End end = fitOne(*dataset, key);
         std::lock_guard lock(mMutex);
         mSummary.lastSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         ++(end == End::Finished    ? mSummary.finished
            : end == End::Cancelled ? mSummary.cancelled
                                    : mSummary.failed);
-        if (end != End::Finished) {
-            // A cancelled one and the rest may run again later (the cancelled one from where it got to);
-            // a failed one is not tried again.
-            for (std::size_t rest = end == End::Cancelled ? k : k + 1; rest < keys.size(); ++rest)
-                mWarmed.erase(keys[rest].text());
-            break;
-        }
+        if (end == End::Failed) ++done;
+        if (end != End::Finished) break;
     }
     std::lock_guard lock(mMutex);
+    for (std::size_t rest = done; rest < keys.size(); ++rest)
+        mWarmed.erase(keys[rest].text());
     mSummary.running = false;
+}
+
+WarmUpFits::End WarmUpFits::fitOne(const Dataset& dataset, const FitKey& key) {
+    try {
+        fit::FitOptions options = fitOptionsFor(key);
+        options.cancel = &mCancel;
+        // Called after each brick: there the warm-up waits while frames are being drawn. Even at nice 19
+        // it slows the frames of an orbiting viewer (cores, caches, memory bus).
+        options.progress = [this](double, const char*) {
+            while (!mCancel && mForeground.renderedWithin(QUIET))
+                std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        };
+        const auto boxCache = mBoxCaches.forFits(key.dataset, key.frame, key.degree);
+        fit::fitVotSpace(*dataset.volume, options, boxCache.get());
+        return End::Finished;
+    } catch (const fit::FitCancelled&) {
+        return End::Cancelled;
+    } catch (const std::exception& e) { // out of memory, say: the cache keeps what it got
+        std::cerr << "vots serve: warm-up fit " << key.text() << " failed: " << e.what() << "\n";
+        return End::Failed;
+    }
 }
 
 } // namespace vots::server

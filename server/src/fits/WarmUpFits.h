@@ -57,7 +57,12 @@ public:
     WarmUpSummary summary() const;
 
 private:
+    enum class End { Finished, Cancelled, Failed };
+    /// Runs the keys in turn until one does not finish; those not finished may run again later (a
+    /// cancelled one from where it got to in the box cache), a failed one is not tried again.
     void run(std::shared_ptr<const Dataset> dataset, const std::vector<FitKey>& keys);
+    /// One warm-up fit, giving way to frames between bricks.
+    End fitOne(const Dataset& dataset, const FitKey& key);
 
     BoxCaches& mBoxCaches;
     const ForegroundActivity& mForeground;
