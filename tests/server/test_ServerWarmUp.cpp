@@ -33,6 +33,7 @@ TEST(ServerWarmUp, AnIdleServerFitsTheEpsAroundTheLastOneEachOnce) {
     ServerWorld world;
     auto options = world.options();
     options.withRenderer = false;
+    options.warmUpFits = true;
     LoopbackServer server(options);
     auto c = server.client();
     const auto job = waitForJob(*c, postFit(*c, MRI_BRAIN, "\"8%\""));
@@ -73,6 +74,7 @@ TEST(ServerWarmUp, ANewJobCancelsARunningWarmUp) {
     world.dir().write("data/noise.nrrd", noise);
     auto options = world.options();
     options.withRenderer = false;
+    options.warmUpFits = true;
     LoopbackServer server(options);
     auto c = server.client();
     ASSERT_EQ(waitForJob(*c, postFit(*c, "noise", "128"))["state"], "done");

@@ -35,7 +35,9 @@ struct ServerOptions {
     std::size_t frameCacheBytes = std::size_t{64} << 20;    // encoded /render answers kept in memory
     int maxRunningFits = 2;
     int maxQueuedFits = 8;
-    bool warmUpFits = true; // fit eps / 2 into the box cache while idle (WarmUpFits)
+    // Fit the eps around the last one into the box cache while idle (WarmUpFits). Off unless asked
+    // (`vots serve` asks unless --no-warm-up): an embedding program or a test pays no background fits.
+    bool warmUpFits = false;
     // How every fit of the server accepts a box (`vots serve --fit-norm`, docs/DESIGN.md §3).
     fit::FitNorm fitNorm = fit::SERVE_FIT_NORM;
     int httpThreads = 12;       // requests handled at once; idle connections and event streams hold none
