@@ -162,7 +162,10 @@ check "the fit's events come through nginx to 'done'" grep -q '^event: done' <<<
 check "the fit is audited under 127.0.0.3" test "$(audit_clients fit | tail -1)" = 127.0.0.3
 
 # Unbuffered: a long fit's progress events arrive through nginx as they come, well before its end (a
-# buffering proxy passes them on together when the stream ends), on a fast machine as on a slow one.
+# buffering proxy passes them on together when the stream ends), on a fast machine as on a slow one. The
+# stream is read until its end or for a second past the first progress, whichever comes first: either
+# shows the progress went through while the fit ran (under ThreadSanitizer this fit outlasts curl's
+# --max-time, so waiting for its end would fail a proxy that streams).
 job=$(through 127.0.0.3 -X POST -H 'Content-Type: application/json' \
     -d '{"dataset": "cranium", "eps": "0.5%"}' "$site/api/fit" |
     python3 -c 'import json, sys; print(json.load(sys.stdin)["job"])') || true
@@ -174,9 +177,11 @@ for line in sys.stdin:
     t = time.monotonic() - start
     if line.startswith("event: progress") and first is None: first = t
     if line.startswith("event: done"): end = t
-print(f"first progress {first}, done {end}")
-ok = first is not None and end is not None and end - first >= 0.2
-sys.exit(0 if ok else 1)' && echo streamed || true)
+    if end is not None or (first is not None and t - first >= 1.0): break
+seen = end if end is not None else time.monotonic() - start
+print(f"first progress {first}, done {end}, read until {seen:.2f} s")
+# Said here, not by the exit status: leaving early ends curl with a write error, which pipefail reports.
+if first is not None and seen - first >= 0.2: print("streamed")' || true)
 check "a running fit's progress comes through nginx before its end ($arrivals)" grep -q streamed <<<"$arrivals"
 
 if ((failures > 0)); then
