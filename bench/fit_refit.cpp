@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <string_view>
 #include <vector>
 
 using namespace vots::fit;
@@ -73,10 +74,24 @@ int main(int argc, char** argv) {
             }
             // CLOCK_MONOTONIC, for `perf record -k mono` and `perf report --time` around the refit alone.
             const auto refitStart = std::chrono::steady_clock::now();
-            const FitResult refit = fitVotSpace(volume, optionsAt(target), &cache);
+            // The fast method's phases by its progress stages: the zones (split and merge inside each, in
+            // parallel), then the merge across zone planes (in bands of MERGE_BAND_CELLS along z).
+            auto refitOptions = optionsAt(target);
+            auto mergeStart = refitStart, mergeEnd = refitStart;
+            refitOptions.progress = [&](double, const char* stage) {
+                if (std::string_view(stage) == "merge") mergeStart = std::chrono::steady_clock::now();
+                if (std::string_view(stage) == "done") mergeEnd = std::chrono::steady_clock::now();
+            };
+            const FitResult refit = fitVotSpace(volume, refitOptions, &cache);
+            const auto seconds = [](auto from, auto to) {
+                return std::chrono::duration<double>(to - from).count();
+            };
             std::fprintf(
-                stderr, "refit %g %%: %zu box fits, %zu scans; monotonic %.6f .. %.6f s\n", target,
-                refit.stats.boxFits, refit.stats.boxScans,
+                stderr,
+                "refit %g %%: %zu box fits, %zu scans; zones %.3f s, merge across zones %.3f s; "
+                "monotonic %.6f .. %.6f s\n",
+                target, refit.stats.boxFits, refit.stats.boxScans, seconds(refitStart, mergeStart),
+                seconds(mergeStart, mergeEnd),
                 std::chrono::duration<double>(refitStart.time_since_epoch()).count(),
                 std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count());
             std::printf("| %s | %s %% | %g %% | %.3f | %.3f | %zu | %zu |\n", volume.name.c_str(),
