@@ -38,12 +38,13 @@ Volume readStoredPlanes(const std::string& path, const StoredSamples& stored, in
     // by every reader of a slab of it.
     for (const PayloadPiece& piece : stored.pieces)
         checkFileHolds(piece.file, piece.start, piece.bytes);
-    const auto [count, sampleBytes, from] = payloadRangeOf(stored, volume, first);
+    // A named range, not structured bindings: clang 14 (the fuzz preset's compiler) cannot capture those.
+    const PayloadRange range = payloadRangeOf(stored, volume, first);
     const bool scaled = stored.slope != 0.0;
     // Scaled samples are not integers any more: only unscaled ones stay compact.
-    readSamples(volume, count, stored.type, stored.bigEndian, scaled ? SampleStorage::Float : storage,
+    readSamples(volume, range.count, stored.type, stored.bigEndian, scaled ? SampleStorage::Float : storage,
                 [&](unsigned char* destination) {
-                    readPayloadRange(stored.pieces, from, count * sampleBytes, destination);
+                    readPayloadRange(stored.pieces, range.from, range.count * range.sampleBytes, destination);
                 });
     if (scaled) applyScaling(path, volume.values, stored.slope, stored.inter);
     return volume;

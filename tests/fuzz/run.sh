@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs the libFuzzer targets (preset fuzz) on seeded corpora, two at a time, and prints one summary line each.
 #
-# Usage: tests/fuzz/run.sh [--seconds N] [--runs N] [target...]   (default: all ten, 600 s or 1,000,000 runs)
+# Usage: tests/fuzz/run.sh [--seconds N] [--runs N] [target...]   (default: all eleven, 600 s or 1,000,000 runs)
 # Needs: cmake --preset fuzz && cmake --build --preset fuzz -j2, and a `vots` binary for .vots seeds
 # (VOTS_BIN, default build/rel/cli/vots, else build/asan/cli/vots). Logs, corpora and crash artifacts go
 # to build/fuzz/{logs,corpus,artifacts}/<target>/.
@@ -19,7 +19,7 @@ while [[ $# -gt 0 ]]; do
     esac
 done
 [[ ${#targets[@]} -gt 0 ]] ||
-    targets=(fuzz_votspace_reader fuzz_nrrd fuzz_nifti fuzz_nifti2 fuzz_mgh fuzz_metaimage fuzz_dicom fuzz_camera fuzz_render_query fuzz_multipart)
+    targets=(fuzz_votspace_reader fuzz_nrrd fuzz_nifti fuzz_nifti2 fuzz_mgh fuzz_metaimage fuzz_dicom fuzz_camera fuzz_render_query fuzz_multipart fuzz_stream_message)
 
 fuzz=build/fuzz
 volumes=$fuzz/volumes
