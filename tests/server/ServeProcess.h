@@ -24,15 +24,16 @@ inline std::string readWholeFile(const std::string& path) {
 /// `vots serve --port 0 ...` over the world's folders, output captured in files; SIGTERM at stop().
 class ServeProcess {
 public:
-    ServeProcess(const ServerWorld& world, std::vector<std::string> extra)
+    /// warmUps: leave out --no-warm-up, for the command's own default.
+    ServeProcess(const ServerWorld& world, std::vector<std::string> extra, bool warmUps = false)
         : mOut(world.dir().file("serve.out")), mErr(world.dir().file("serve.err")) {
         std::vector<std::string> words{VOTS_CLI,      "serve",
                                        "--port",      "0",
                                        "--data",      world.data().string(),
                                        "--web",       world.web().string(),
                                        "--cache-dir", world.cache().string(),
-                                       "--prepare",   "",
-                                       "--no-warm-up"};
+                                       "--prepare",   ""};
+        if (!warmUps) words.emplace_back("--no-warm-up");
         words.insert(words.end(), extra.begin(), extra.end());
         std::vector<char*> argv;
         for (std::string& w : words)

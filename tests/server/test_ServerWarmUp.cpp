@@ -1,6 +1,8 @@
 // Warm-up fits: an idle server fits the eps around the last one into the box cache at idle priority, each
-// eps once, a new job cancels a running warm-up, and --no-warm-up means none.
+// eps once, a new job cancels a running warm-up, and --no-warm-up means none; `vots serve` warms up unless
+// told not to (the library's ServerOptions do not).
 #include "LoopbackServer.h"
+#include "ServeProcess.h"
 #include "ServerFixture.h"
 
 #include <gtest/gtest.h>
@@ -96,6 +98,16 @@ TEST(ServerWarmUp, NoneWhenTurnedOff) {
     ASSERT_EQ(waitForJob(*c, postFit(*c, MRI_BRAIN, "\"8%\""))["state"], "done");
     std::this_thread::sleep_for(300ms);
     EXPECT_EQ(bodyJson(c->Get("/api/stats"))["warmUps"]["started"], 0);
+}
+
+TEST(ServerWarmUp, VotsServeWarmsUpUnlessToldNotTo) {
+    ServerWorld world;
+    ServeProcess serve(world, {}, /*warmUps=*/true);
+    ASSERT_GT(serve.port(), 0);
+    auto c = serve.client();
+    ASSERT_EQ(waitForJob(*c, postFit(*c, MRI_BRAIN, "\"8%\""))["state"], "done");
+    const auto warm = waitForWarmUps(*c, [](const nlohmann::json& w) { return w["started"].get<int>() > 0; });
+    EXPECT_GT(warm["started"].get<int>(), 0) << warm.dump();
 }
 
 } // namespace
