@@ -21,6 +21,20 @@ const CAMS = {
   render: `az=${START_AZ + 90},el=10,zoom=1,pan=0:0,proj=ortho,fov=30`,
 };
 
+// Medians of a socket frame's parts: the server's wait before the draw, its render, the encoding, the rest
+// of the draw (preparing, the render queue), and the rest after it (send, transfer, decode, show).
+function framePartMedians(fs) {
+  const part = (f) => ({
+    wait: f.waitMs,
+    render: f.frameMs,
+    encode: f.encodeMs,
+    queue: f.drawMs - f.frameMs - f.encodeMs,
+    deliver: f.shownAt - f.sentAt - f.waitMs - f.drawMs,
+  });
+  const parts = fs.map(part);
+  return Object.fromEntries(Object.keys(parts[0]).map((k) => [k, median(parts.map((p) => p[k]))]));
+}
+
 // One drag: the page records its pointer moves and the frames it shows (vots:frame); returns the figures.
 async function dragOnce(page, viewer, run) {
   await page.evaluate(() => {
@@ -71,6 +85,8 @@ async function dragOnce(page, viewer, run) {
     transport: still?.transport || frames.at(-1)?.transport,
     stillsWhileDragging: frames.filter((f) => f.still && f.shownAt >= moves[0] && f.shownAt <= up).length,
     stillDrawMs: still?.drawMs,
+    // Where a draft's time goes (socket drafts, medians over the drag): the same parts as the still's.
+    draftParts: duringDrag.some((f) => f.drawMs !== undefined) ? framePartMedians(duringDrag.filter((f) => f.drawMs !== undefined)) : undefined,
     // Where release -> lossless goes (socket stills): the page's delay to ask, the server's wait before the
     // draw (behind a draft of this socket), its render, the PNG, the rest of the draw (the render queue's
     // wait), and the rest after the draw (send, transfer, decode, show).
@@ -155,7 +171,8 @@ await withPage(fakeTest, async (socketPage) => {
           `(full ${r.fullSize}), release -> lossless ${r.releaseMs.toFixed(0)} ms, move -> frame p50 ` +
           `${r.p50.toFixed(0)} ms p90 ${r.p90.toFixed(0)} ms, ${r.stillsWhileDragging} stills while dragging [${r.transport}` +
           `${r.stillDrawMs === undefined ? '' : `, still drawn in ${r.stillDrawMs.toFixed(0)} ms`}]` +
-          (r.stillParts ? ` still: ${Object.entries(r.stillParts).map(([k, v]) => `${k} ${ms(v)}`).join(', ')} ms` : ''));
+          (r.stillParts ? ` still: ${Object.entries(r.stillParts).map(([k, v]) => `${k} ${ms(v)}`).join(', ')} ms` : '') +
+          (r.draftParts ? `; drafts: ${Object.entries(r.draftParts).map(([k, v]) => `${k} ${ms(v)}`).join(', ')} ms` : ''));
       }
     }
   });

@@ -60,10 +60,12 @@ class ViewerDrag:
             if b0 & 0x80:
                 return opcode, payload
 
-    def frame(self, cam):
-        """Asks for the view at cam and acknowledges its frame; returns the frame's header."""
+    def frame(self, cam, still=None):
+        """Asks for the view at cam (a still if `still`; by default each 20th) and acknowledges its frame;
+        returns the frame's header."""
         self.seq += 1
-        view = {"type": "view", "seq": self.seq, "still": self.seq % 20 == 0, "params": {**self.params, "cam": cam}}
+        still = self.seq % 20 == 0 if still is None else still
+        view = {"type": "view", "seq": self.seq, "still": still, "params": {**self.params, "cam": cam}}
         self.send(TEXT, json.dumps(view).encode())
         header = None
         while True:
