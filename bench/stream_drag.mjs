@@ -1,11 +1,11 @@
 // Benchmark: a drag in headless Chromium at 1400x900 over the viewer socket and over GET /render, same run.
 //
-//   VOTS_URL=http://127.0.0.1:8080 node bench/stream_drag.mjs [dataset] [runs] [drag ms] [pages]
+//   VOTS_URL=http://127.0.0.1:8080 [VOTS_BENCH_BROWSERS=separate] node bench/stream_drag.mjs [dataset] [runs] [drag ms] [pages]
 // For each transport (alternating, so both see the same machine load) and run: frames/s shown while the
 // mouse moves and their median size, release to the full-resolution lossless frame, and pointer move to
 // the first frame that shows it (p50, p90). Medians over the runs. Needs a running `vots serve` and
 // tests/web/node_modules (tests/web/run.sh installs it).
-import { withPage } from '../tests/web/support/browser.mjs';
+import { withPage, withPages } from '../tests/web/support/browser.mjs';
 import { median, ms, quantile } from './stats.mjs';
 import { ViewerPage } from '../tests/web/pages/ViewerPage.mjs';
 
@@ -109,14 +109,19 @@ const fakeTest = { name: 'stream-drag-bench' };
 // and the socket's error messages). Without it: the socket against /render, as above.
 const manyPages = Number(process.argv[5] || 0);
 
-// Opens n fresh pages one inside the other, then fn(pages).
-function withPages(n, fn, opened = []) {
+// VOTS_BENCH_BROWSERS=separate: each page in a browser of its own (eight users on one machine), else all
+// pages in one browser, each in a window of its own (eight views in one browser).
+const separateBrowsers = process.env.VOTS_BENCH_BROWSERS === 'separate';
+
+// Opens n fresh pages, then fn(pages).
+function openPages(n, fn, opened = []) {
+  if (!separateBrowsers) return withPages(n, fn);
   if (opened.length === n) return fn(opened);
-  return withPage(fakeTest, (page) => withPages(n, fn, [...opened, page]));
+  return withPage(fakeTest, (page) => openPages(n, fn, [...opened, page]));
 }
 
 async function dragManyAtOnce() {
-  await withPages(manyPages, async (pageList) => {
+  await openPages(manyPages, async (pageList) => {
     const opened = [];
     for (const [i, page] of pageList.entries()) {
       await page.setViewportSize({ width: 1400, height: 900 });

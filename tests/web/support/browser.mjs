@@ -70,6 +70,24 @@ export async function withPage(t, fn, { args = [] } = {}) {
   }
 }
 
+// Opens one browser with n pages, each in a context (a window) of its own: tabs of one window would share
+// its compositor, which draws only the front tab at full rate. For benchmarks of several viewers at once;
+// no artefacts are kept. Usage: await withPages(8, async (pages) => { ... }).
+export async function withPages(n, fn, { args = [] } = {}) {
+  if (!BASE_URL) throw new Error('VOTS_URL is not set: run the specs through tests/web/run.sh');
+  const browser = await chromium.launch({ executablePath: CHROMIUM, headless: true, args: [...CHROMIUM_ARGS, ...args] });
+  try {
+    const pages = [];
+    for (let i = 0; i < n; i++) {
+      const context = await browser.newContext({ viewport: VIEWPORT, deviceScaleFactor: 1 });
+      pages.push(await context.newPage());
+    }
+    return await fn(pages);
+  } finally {
+    await browser.close();
+  }
+}
+
 // The dataset the specs use: VOTS_TEST_DATASET, else the small brain MRI (run.sh serves it in index
 // space), else the fewest voxels.
 export async function pickDataset() {
