@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Everything to measure on a machine with a GPU, in one go: which EGL platform and renderer were chosen,
 # render_bench at 512^2 and 1024^2 with the walk as a compute and as a fragment shader, a 1024^2 image
-# to look at, and /render latency with 1 and 8 clients. Writes the logs to OUT_DIR and prints the tables.
+# to look at, /render latency with 1 and 8 clients, and the viewer socket's drafts for 1 and 8 viewers
+# dragging at 1140x900 (issue 37: 60 frames/s at full resolution). Writes the logs to OUT_DIR and prints
+# the tables.
 #
 # Usage: bench/gpu_bench.sh [OUT_DIR]   (default bench/out/gpu)
 # Environment: BUILD=build/release, PORT=18080, FRAMES=21, WARMUP=3, STRATEGY=both (walk: no raster).
@@ -45,3 +47,8 @@ for size in 512x512 1024x1024; do
         --size "$size" 2>&1 | tee "$out/latency_$size.txt"
 done
 stats
+for viewers in 1 8; do
+    echo "== viewer socket, $viewers viewer(s) dragging at 1140x900 (bench/viewer_capacity.py)"
+    timeout 120 python3 bench/viewer_capacity.py --port "$port" --viewers "$viewers" --seconds 10 --pid "$server" \
+        2>&1 | tee "$out/viewers_$viewers.txt"
+done
