@@ -7,11 +7,11 @@
 // (tests/web/run.sh installs it).
 import { withPage } from '../tests/web/support/browser.mjs';
 import { ViewerPage } from '../tests/web/pages/ViewerPage.mjs';
+import { dragAcrossImage } from './drag.mjs';
 
 const dataset = process.argv[2] || 'cranium';
 const dragMs = Number(process.argv[3] || 4000);
 const top = Number(process.argv[4] || 15);
-const MOVE_EVERY_MS = 16; // a 60 Hz mouse, as bench/stream_drag.mjs
 const CATEGORIES = ['devtools.timeline', 'disabled-by-default-devtools.timeline', 'toplevel', 'v8', 'blink', 'cc',
   'viz', 'gpu', 'input', 'renderer.scheduler', 'skia'];
 
@@ -60,19 +60,7 @@ await withPage({ name: 'page-trace-bench' }, async (page) => {
   cdp.on('Tracing.dataCollected', (d) => { for (const e of d.value) events.push(e); });
   const complete = new Promise((resolve) => cdp.once('Tracing.tracingComplete', resolve));
   await cdp.send('Tracing.start', { transferMode: 'ReportEvents', traceConfig: { includedCategories: CATEGORIES } });
-  const box = await viewer.image.boundingBox();
-  const x = box.x + box.width / 2;
-  const y = box.y + box.height / 2;
-  await page.mouse.move(x, y);
-  await page.mouse.down();
-  const steps = Math.round(dragMs / MOVE_EVERY_MS);
-  const start = Date.now();
-  for (let i = 1; i <= steps; i++) {
-    await page.mouse.move(x + 200 * (i / steps), y + 40 * Math.sin((2 * Math.PI * i) / steps));
-    const wait = start + i * MOVE_EVERY_MS - Date.now();
-    if (wait > 0) await page.waitForTimeout(wait);
-  }
-  await page.mouse.up();
+  await dragAcrossImage(page, viewer, dragMs, 200);
   await viewer.waitForIdle(120000);
   await cdp.send('Tracing.end');
   await complete;

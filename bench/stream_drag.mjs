@@ -8,11 +8,11 @@
 import { withPage, withPages } from '../tests/web/support/browser.mjs';
 import { median, ms, quantile } from './stats.mjs';
 import { ViewerPage } from '../tests/web/pages/ViewerPage.mjs';
+import { dragAcrossImage } from './drag.mjs';
 
 const dataset = process.argv[2] || 'cranium';
 const runs = Number(process.argv[3] || 5);
 const dragMs = Number(process.argv[4] || 2000);
-const MOVE_EVERY_MS = 16; // a 60 Hz mouse
 // The two pages start at different cameras, and each invocation elsewhere, so that no frame is met in the
 // server's frame cache (an earlier run's, or the other page's).
 const START_AZ = Math.round((Date.now() / 1000) % 3600) / 10;
@@ -47,21 +47,8 @@ async function dragOnce(page, viewer, run) {
     view.addEventListener('pointerup', () => { window.__bench.up = performance.now(); }, { capture: true });
     img.addEventListener('vots:frame', (e) => window.__bench.frames.push({ ...e.detail, shownAt: performance.now() }));
   });
-  const box = await viewer.image.boundingBox();
-  const x = box.x + box.width / 2;
-  const y = box.y + box.height / 2;
-  await page.mouse.move(x, y);
-  await page.mouse.down();
-  const steps = Math.round(dragMs / MOVE_EVERY_MS);
-  const start = Date.now();
-  for (let i = 1; i <= steps; i++) {
-    // Each drag ends at a camera not drawn before (no frame-cache hit for the exact frame).
-    const reach = 150 + 23 * run;
-    await page.mouse.move(x + reach * (i / steps), y + 40 * Math.sin((2 * Math.PI * i) / steps));
-    const wait = start + i * MOVE_EVERY_MS - Date.now();
-    if (wait > 0) await page.waitForTimeout(wait);
-  }
-  await page.mouse.up();
+  // Each drag ends at a camera not drawn before (no frame-cache hit for the exact frame).
+  await dragAcrossImage(page, viewer, dragMs, 150 + 23 * run);
   await viewer.waitForIdle(120000);
   const { moves, frames, up } = await page.evaluate(() => window.__bench);
   const duringDrag = frames.filter((f) => f.shownAt >= moves[0] && f.shownAt <= up && !f.still);
