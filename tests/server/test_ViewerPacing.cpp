@@ -38,6 +38,38 @@ TEST(ViewerPacing, TheLatestViewWinsAndOlderOnesAreDropped) {
     EXPECT_FALSE(pacing.next()) << "nothing new";
 }
 
+TEST(ViewerPacing, TheNextDraftStartsOnceTheLastIsRenderedWhileItIsEncoded) {
+    ViewerPacing pacing(2);
+    pacing.offer(viewNumber(1));
+    const auto first = pacing.next();
+    ASSERT_TRUE(first);
+    pacing.offer(viewNumber(2));
+    EXPECT_FALSE(pacing.next()) << "one draft rendered at a time";
+    pacing.rendered(*first);
+    const auto second = pacing.next();
+    ASSERT_TRUE(second) << "the render thread goes on while the first is encoded";
+    EXPECT_EQ(second->seq, 2u);
+    EXPECT_EQ(pacing.inFlight(), 2u) << "one encoded, one rendered";
+    pacing.offer(viewNumber(3));
+    pacing.rendered(*second);
+    EXPECT_FALSE(pacing.next()) << "two in flight, both still being encoded";
+    EXPECT_EQ(pacing.sent(*first), frame(1));
+    EXPECT_FALSE(pacing.next()) << "frame 1 is not acknowledged yet";
+    EXPECT_TRUE(pacing.acknowledge(1));
+    const auto third = pacing.next();
+    ASSERT_TRUE(third);
+    EXPECT_EQ(third->seq, 3u);
+    // A rendered draft that fails in its encoding leaves the draft being rendered as it is.
+    pacing.failed(*second);
+    pacing.offer(viewNumber(4));
+    EXPECT_FALSE(pacing.next()) << "the third is still rendered";
+    EXPECT_EQ(pacing.sent(*third), frame(2));
+    EXPECT_EQ(pacing.inFlight(), 1u) << "frame 2, until acknowledged";
+    const auto fourth = pacing.next();
+    ASSERT_TRUE(fourth);
+    EXPECT_EQ(fourth->seq, 4u);
+}
+
 TEST(ViewerPacing, NoMoreInFlightThanAcknowledged) {
     ViewerPacing pacing(2);
     for (std::uint64_t seq = 1; seq <= 2; ++seq) {

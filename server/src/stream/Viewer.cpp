@@ -126,6 +126,15 @@ void Viewer::draw(const PendingView& view) {
             job.params.width = size.first;
             job.params.height = size.second;
             const RenderResult result = s.renderQueue->render(std::move(job)); // throws HttpError
+            if (s.renderQueue->waiting() == 0) {
+                // The render thread would wait for this JPEG: the next draft may start there while this one
+                // is encoded. Not while other jobs wait: they keep the thread busy, and a second draft of
+                // this socket taken now only queues (eight viewers lost frames that way: bench/RESULTS.md,
+                // "Drafts rendered while the last is encoded").
+                std::lock_guard lock(mMutex);
+                mPacing.rendered(view);
+                pumpLocked();
+            }
             const auto encodeStart = std::chrono::steady_clock::now();
             const std::vector<std::uint8_t> jpeg = render::encodeJpeg(result.image, DRAFT_QUALITY);
             header["encodeMs"] = Ms(std::chrono::steady_clock::now() - encodeStart).count();

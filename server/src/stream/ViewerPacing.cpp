@@ -16,13 +16,19 @@ std::optional<PendingView> ViewerPacing::next() {
         if (mStillsDrawing >= MAX_STILLS_DRAWING) return std::nullopt;
         ++mStillsDrawing;
     } else {
-        if (mDrawingDraft || inFlight() >= mMaxInFlight) return std::nullopt;
-        mDrawingDraft = true;
+        if (mRenderingDraft || inFlight() >= mMaxInFlight) return std::nullopt;
+        mRenderingDraft = mWaiting->seq;
     }
     if (mWaiting->seq > mNewestTaken) mNewestTaken = mWaiting->seq;
     std::optional<PendingView> view = std::move(mWaiting);
     mWaiting.reset();
     return view;
+}
+
+void ViewerPacing::rendered(const PendingView& drawn) {
+    if (drawn.still || mRenderingDraft != drawn.seq) return;
+    mRenderingDraft.reset();
+    ++mEncodingDrafts;
 }
 
 std::optional<std::uint64_t> ViewerPacing::sent(const PendingView& drawn) {

@@ -20,7 +20,9 @@ struct PendingView {
 };
 
 /// Not thread-safe: its viewer locks around it. "In flight": the frames being drawn plus the frames
-/// sent and not yet acknowledged. At most one draft and two stills are drawn at a time: a still never
+/// sent and not yet acknowledged. At most one draft is rendered at a time, and the next may start as soon
+/// as the last one's render is done, while that one is still encoded and sent: the render thread goes on
+/// to the next draft instead of waiting for a JPEG. At most two stills are drawn at a time: a still never
 /// waits behind a draft or an older still (the page waits for the newest still alone; the older one is
 /// dropped from the render queue when it has not begun there), and a draft may start while an older
 /// still draws (it queues behind it on the render thread, so the drag goes on as soon as that is out).
@@ -34,6 +36,8 @@ public:
     /// (for a draft) the page has not acknowledged enough. A view taken is being drawn until sent() or
     /// failed().
     std::optional<PendingView> next();
+    /// The draft `drawn` has been rendered (its image is being encoded): the next draft may be taken.
+    void rendered(const PendingView& drawn);
     /// The view `drawn` is ready: its frame number (1, 2, ...) to send it under; none when a newer view's
     /// frame has gone out meanwhile, so this one shows an old camera (dropped, counted in dropped()).
     std::optional<std::uint64_t> sent(const PendingView& drawn);
@@ -46,7 +50,8 @@ public:
     bool overtaken(const PendingView& drawn) const { return mNewestTaken > drawn.seq; }
 
     std::size_t inFlight() const {
-        return (mDrawingDraft ? 1 : 0) + mStillsDrawing + static_cast<std::size_t>(mSent - mAcked);
+        return (mRenderingDraft ? 1 : 0) + mEncodingDrafts + mStillsDrawing +
+               static_cast<std::size_t>(mSent - mAcked);
     }
     std::size_t dropped() const { return mDropped; }
     bool drawingStill() const { return mStillsDrawing > 0; }
@@ -57,13 +62,16 @@ private:
     void doneDrawing(const PendingView& drawn) {
         if (drawn.still)
             --mStillsDrawing;
+        else if (mRenderingDraft == drawn.seq)
+            mRenderingDraft.reset();
         else
-            mDrawingDraft = false;
+            --mEncodingDrafts;
     }
 
     const std::size_t mMaxInFlight;
     std::optional<PendingView> mWaiting;
-    bool mDrawingDraft = false;
+    std::optional<std::uint64_t> mRenderingDraft; // the seq of the draft taken and not yet rendered
+    std::size_t mEncodingDrafts = 0;               // drafts rendered, not yet sent or failed
     std::size_t mStillsDrawing = 0;
     std::uint64_t mNewestTaken = 0;   // the seq of the newest view taken
     std::uint64_t mNewestSentSeq = 0; // the seq of the newest view whose frame went out
