@@ -71,7 +71,7 @@ private:
     const std::size_t mMaxInFlight;
     std::optional<PendingView> mWaiting;
     std::optional<std::uint64_t> mRenderingDraft; // the seq of the draft taken and not yet rendered
-    std::size_t mEncodingDrafts = 0;               // drafts rendered, not yet sent or failed
+    std::size_t mEncodingDrafts = 0;              // drafts rendered, not yet sent or failed
     std::size_t mStillsDrawing = 0;
     std::uint64_t mNewestTaken = 0;   // the seq of the newest view taken
     std::uint64_t mNewestSentSeq = 0; // the seq of the newest view whose frame went out
