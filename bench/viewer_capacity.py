@@ -13,7 +13,7 @@ the server's CPU use over the run."""
 import argparse, json, os, statistics, sys, threading, time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests", "reliability"))
-from viewer_drag import BINARY, CLOSE, TEXT, ViewerDrag  # noqa: E402
+from viewer_drag import TEXT, ViewerDrag  # noqa: E402
 
 
 def cpu_seconds(pid):
@@ -63,18 +63,8 @@ def drag_as_a_page(viewer, params, start_az, index, until, headers):
 
     sender = threading.Thread(target=views)
     sender.start()
-    header = None
     while time.monotonic() < until:
-        opcode, payload = viewer.read_message()
-        if opcode == CLOSE:
-            raise OSError(f"closed by the server: {payload[:2].hex()} {payload[2:]!r}")
-        if opcode == TEXT:
-            header = json.loads(payload)
-            if header.get("type") == "error":
-                raise RuntimeError(f"answered {header}")
-        elif opcode == BINARY and header is not None:
-            send({"type": "ack", "frame": header["frame"]})
-            headers.append(header)
+        headers.append(viewer.next_frame(send))
     sender.join()
 
 

@@ -67,6 +67,13 @@ class ViewerDrag:
         still = self.seq % 20 == 0 if still is None else still
         view = {"type": "view", "seq": self.seq, "still": still, "params": {**self.params, "cam": cam}}
         self.send(TEXT, json.dumps(view).encode())
+        return self.next_frame()
+
+    def next_frame(self, send_json=None):
+        """Reads up to the next frame (its header, then its image), acknowledges it and returns the header;
+        raises on an error answer or a close. send_json: how the ack goes out (a caller whose other thread
+        sends too passes one that locks)."""
+        send_json = send_json or (lambda message: self.send(TEXT, json.dumps(message).encode()))
         header = None
         while True:
             opcode, payload = self.read_message()
@@ -78,7 +85,7 @@ class ViewerDrag:
                     raise RuntimeError(f"answered {message}")
                 header = message
             elif opcode == BINARY and header is not None:
-                self.send(TEXT, json.dumps({"type": "ack", "frame": header["frame"]}).encode())
+                send_json({"type": "ack", "frame": header["frame"]})
                 return header
 
     def close(self):
