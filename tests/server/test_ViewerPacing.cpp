@@ -70,6 +70,26 @@ TEST(ViewerPacing, TheNextDraftStartsOnceTheLastIsRenderedWhileItIsEncoded) {
     EXPECT_EQ(fourth->seq, 4u);
 }
 
+TEST(ViewerPacing, APageRepeatingItsSequenceNumbersCannotWedgeThePacing) {
+    // A broken or hostile page may send the same seq twice: whatever the order the drafts end in, the
+    // places they held come back.
+    ViewerPacing pacing(2);
+    pacing.offer(viewNumber(5));
+    const auto first = pacing.next();
+    ASSERT_TRUE(first);
+    pacing.rendered(*first);
+    pacing.offer(viewNumber(5));
+    const auto second = pacing.next();
+    ASSERT_TRUE(second);
+    EXPECT_TRUE(pacing.sent(*first));
+    pacing.rendered(*second);
+    pacing.failed(*second);
+    EXPECT_TRUE(pacing.acknowledge(1));
+    EXPECT_EQ(pacing.inFlight(), 0u);
+    pacing.offer(viewNumber(6));
+    EXPECT_TRUE(pacing.next()) << "a draft can be taken again";
+}
+
 TEST(ViewerPacing, NoMoreInFlightThanAcknowledged) {
     ViewerPacing pacing(2);
     for (std::uint64_t seq = 1; seq <= 2; ++seq) {
