@@ -21,17 +21,21 @@ const CAMS = {
   render: `az=${START_AZ + 90},el=10,zoom=1,pan=0:0,proj=ortho,fov=30`,
 };
 
-// Medians of a socket frame's parts: the server's wait before the draw, its render, the encoding, the rest
-// of the draw (preparing, the render queue), and the rest after it (send, transfer, decode, show).
-function framePartMedians(fs) {
-  const part = (f) => ({
+// A socket frame's parts: the server's wait before the draw, its render, the encoding (named encodedAs),
+// the rest of the draw (preparing, the render queue), and the rest after it (send, transfer, decode, show).
+function frameParts(f, encodedAs = 'encode') {
+  return {
     wait: f.waitMs,
     render: f.frameMs,
-    encode: f.encodeMs,
+    [encodedAs]: f.encodeMs,
     queue: f.drawMs - f.frameMs - f.encodeMs,
     deliver: f.shownAt - f.sentAt - f.waitMs - f.drawMs,
-  });
-  const parts = fs.map(part);
+  };
+}
+
+// The medians of the frames' parts, part by part.
+function framePartMedians(fs) {
+  const parts = fs.map((f) => frameParts(f));
   return Object.fromEntries(Object.keys(parts[0]).map((k) => [k, median(parts.map((p) => p[k]))]));
 }
 
@@ -52,6 +56,7 @@ async function dragOnce(page, viewer, run) {
   await viewer.waitForIdle(120000);
   const { moves, frames, up } = await page.evaluate(() => window.__bench);
   const duringDrag = frames.filter((f) => f.shownAt >= moves[0] && f.shownAt <= up && !f.still);
+  const socketDrafts = duringDrag.filter((f) => f.drawMs !== undefined); // (the server's times come with them)
   // The exact frame of the camera where the drag ended: asked for at release, or (socket) at a pause
   // before it, when it can be on screen before the release (0 ms).
   const still = frames.find((f) => f.still && f.sentAt >= moves.at(-1));
@@ -73,18 +78,10 @@ async function dragOnce(page, viewer, run) {
     stillsWhileDragging: frames.filter((f) => f.still && f.shownAt >= moves[0] && f.shownAt <= up).length,
     stillDrawMs: still?.drawMs,
     // Where a draft's time goes (socket drafts, medians over the drag): the same parts as the still's.
-    draftParts: duringDrag.some((f) => f.drawMs !== undefined) ? framePartMedians(duringDrag.filter((f) => f.drawMs !== undefined)) : undefined,
-    // Where release -> lossless goes (socket stills): the page's delay to ask, the server's wait before the
-    // draw (behind a draft of this socket), its render, the PNG, the rest of the draw (the render queue's
-    // wait), and the rest after the draw (send, transfer, decode, show).
-    stillParts: still && still.drawMs !== undefined ? {
-      ask: still.sentAt - up,
-      wait: still.waitMs,
-      render: still.frameMs,
-      png: still.encodeMs,
-      queue: still.drawMs - still.frameMs - still.encodeMs,
-      deliver: still.shownAt - still.sentAt - still.waitMs - still.drawMs,
-    } : undefined,
+    draftParts: socketDrafts.length ? framePartMedians(socketDrafts) : undefined,
+    // Where release -> lossless goes (socket stills): the page's delay to ask, then the frame's parts (the
+    // server's wait is behind a draft of this socket, the encoding is the PNG).
+    stillParts: still && still.drawMs !== undefined ? { ask: still.sentAt - up, ...frameParts(still, 'png') } : undefined,
   };
 }
 

@@ -3,13 +3,14 @@
 socket, without browsers on the same cores (bench/stream_drag.mjs measures the pages too).
 
     python3 bench/viewer_capacity.py --port 8080 --viewers 8 --seconds 10 [--pid SERVER_PID] [--one-address]
+        [--pace closed|page]
 
 Each viewer (a thread, from an address of its own unless --one-address) asks for a draft at a new camera as
 soon as the last one has come and acknowledges it (one frame in flight), or with --pace page sends a view
 every 16 ms and acknowledges each frame as it comes (the page's pacing: the server keeps up to two in
-flight); the cameras are distinct per viewer and per run, so the frame cache answers nothing. Prints per viewer the drafts per
-second, their median size and the server's median times (waitMs, frameMs, encodeMs, drawMs), and with --pid
-the server's CPU use over the run."""
+flight); the cameras are distinct per viewer and per run, so the frame cache answers nothing. Prints per
+viewer the drafts per second, their median size and the server's median times (waitMs, frameMs, encodeMs,
+drawMs), and with --pid the server's CPU use over the run."""
 import argparse, json, os, statistics, sys, threading, time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests", "reliability"))
