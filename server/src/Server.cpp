@@ -229,7 +229,7 @@ bool Server::servesTls() const {
 }
 
 bool Server::listenAfterBind() {
-    return mImpl->http.listen_after_bind();
+    return mImpl->http.listenUntilStopped();
 }
 std::uint64_t Server::memoryBudget() const {
     return mImpl->memory.budget();
@@ -241,7 +241,7 @@ bool Server::isRunning() const {
 
 void Server::stop() {
     mImpl->fitJobs.shutdown(); // handlers waiting on fits are answered at once
-    mImpl->http.stop();
+    mImpl->http.stopListening();
     mImpl->http.stopConnections(); // waiting connections closed, running handlers and streams joined
     if (mImpl->viewers) mImpl->viewers->stop(); // sockets closed, their draws finished
 }

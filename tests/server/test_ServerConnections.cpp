@@ -1,5 +1,6 @@
 // Hostile connections on a loopback server: idle sockets and event-stream watchers cost no worker, so a
-// plain request is answered at once; one client flooding renders or fits gets 429, another is served.
+// plain request is answered at once; one client flooding renders or fits gets 429, another is served;
+// a stop however early ends listening.
 #include "RawClient.h"
 #include "ServerFixture.h"
 
@@ -10,7 +11,9 @@
 
 #include <chrono>
 #include <cstdint>
+#include <future>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace vots::test {
@@ -173,6 +176,39 @@ TEST(ServerConnections, AClientFloodingRendersGets429AndAnotherIsServed) {
         requestText("GET", std::string("/render?dataset=") + BLOBS + "&size=64x64&mode=reference", port));
     EXPECT_EQ(other.status, 200) << other.body.substr(0, 200);
     EXPECT_EQ(bodyJson(c->Get("/api/stats"))["fitJobs"]["active"], 1) << "the held renders were not waiting";
+}
+
+/// Listens on a thread; true when that listening ended within `limit` (else stops it again once it runs,
+/// so that a failing test still ends).
+bool listeningEndsAfterStop(server::Server& srv, std::chrono::seconds limit) {
+    std::promise<void> ended;
+    auto endedFuture = ended.get_future();
+    std::thread listener([&] {
+        srv.listenAfterBind();
+        ended.set_value();
+    });
+    srv.stop(); // at once: listening has most likely not begun yet
+    const bool inTime = endedFuture.wait_for(limit) == std::future_status::ready;
+    while (!inTime && endedFuture.wait_for(milliseconds(10)) != std::future_status::ready)
+        srv.stop();
+    listener.join();
+    return inTime;
+}
+
+TEST(ServerConnections, AStopThatComesBeforeListeningBeginsStillEndsIt) {
+    ServerWorld world;
+    auto options = world.options();
+    options.withRenderer = false;
+    // The stop's race with the listening thread's start is lost only now and then: try it many times.
+    for (int attempt = 0; attempt < 40; ++attempt) {
+        server::Server srv(options);
+        ASSERT_GT(srv.bindToAnyPort("127.0.0.1"), 0);
+        ASSERT_TRUE(listeningEndsAfterStop(srv, std::chrono::seconds(20))) << "attempt " << attempt;
+    }
+    server::Server stopped(options);
+    ASSERT_GT(stopped.bindToAnyPort("127.0.0.1"), 0);
+    stopped.stop();
+    EXPECT_FALSE(stopped.listenAfterBind()) << "listening began after stop()";
 }
 
 } // namespace

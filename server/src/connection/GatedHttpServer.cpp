@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <thread>
 
 namespace vots::server {
 namespace {
@@ -70,6 +71,32 @@ void GatedHttpServer::stopConnections() {
     if (mGate) mGate->stop();
     if (mWorkers) mWorkers->shutdown(); // runs what is queued, then joins
     if (mStreams) mStreams->joinAll();  // streams end with their job, or at once once stop() has run
+}
+
+bool GatedHttpServer::listenUntilStopped() {
+    {
+        std::lock_guard lock(mListenMutex);
+        if (mListenStopped) return false;
+        mListenEntered = true;
+    }
+    const bool listened = listen_after_bind();
+    std::lock_guard lock(mListenMutex);
+    mListenEntered = false;
+    return listened;
+}
+
+void GatedHttpServer::stopListening() {
+    // Once inside listen_after_bind(), httplib marks itself running before its first accept; until then
+    // its stop() would be a no-op, so wait for that mark (a few microseconds of thread start-up).
+    for (;;) {
+        {
+            std::lock_guard lock(mListenMutex);
+            mListenStopped = true;
+            if (!mListenEntered || is_running()) break;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    stop();
 }
 
 void GatedHttpServer::takeUpgrades(std::function<bool(const std::string&, const std::string&)> isUpgrade,

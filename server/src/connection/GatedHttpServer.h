@@ -33,8 +33,15 @@ public:
 
     /// Starts the gate and the workers; call once, before listen_after_bind().
     void startConnections(const ConnectionLimits& limits);
-    /// After stop(): closes waiting connections, then waits for the handlers and streams running.
+    /// After stopListening(): closes waiting connections, then waits for the handlers and streams running.
     void stopConnections();
+
+    /// listen_after_bind() that stopListening() ends whenever it comes, even before listening has begun:
+    /// httplib's own stop() does nothing until its accept loop runs, so a stop a moment earlier was lost
+    /// and the loop then ran for ever (a SIGTERM right after `vots serve` printed its address hung it).
+    /// Returns false at once after stopListening().
+    bool listenUntilStopped();
+    void stopListening();
 
     /// Requests for which isUpgrade(method, target) holds go to `take` (on the gate's thread: it must only
     /// hand them on) instead of a worker: the WebSocket upgrades. Call before listen_after_bind().
@@ -60,6 +67,9 @@ private:
     std::string mTrustedProxy;
     std::mutex mMutex; // start and stop
     bool mStopped = false;
+    std::mutex mListenMutex;
+    bool mListenEntered = false; // inside listen_after_bind()
+    bool mListenStopped = false;
     std::unique_ptr<httplib::ThreadPool> mWorkers;
     std::unique_ptr<StreamThreads> mStreams;
     // Its own lock: stopConnections() holds mMutex while it joins the gate thread, which routes.

@@ -99,7 +99,7 @@ public:
     /// Binds; returns false (bindToPort) or -1 (bindToAnyPort) on failure.
     bool bindToPort(const std::string& host, int port);
     int bindToAnyPort(const std::string& host);
-    /// Serves until stop(); blocks the calling thread.
+    /// Serves until stop(), whenever that comes (false at once after it); blocks the calling thread.
     bool listenAfterBind();
     void stop();
     bool isRunning() const;
