@@ -65,14 +65,19 @@ public:
         c->set_read_timeout(60);
         return c;
     }
-    /// Stops it (SIGTERM) and returns its exit code; stdout and stderr are complete afterwards.
+    /// Stops it (SIGTERM) and returns its exit code; stdout and stderr are complete afterwards. One that
+    /// has not ended a minute later fails the test and is killed: a hang costs a minute, not ctest's limit.
     int stop() {
+        if (mPid <= 0) return mExit;
+        ::kill(mPid, SIGTERM);
+        for (int i = 0; i < 1200 && running(); ++i)
+            std::this_thread::sleep_for(std::chrono::milliseconds(50));
         if (mPid > 0) {
-            ::kill(mPid, SIGTERM);
-            int status = 0;
-            ::waitpid(mPid, &status, 0);
-            mExit = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+            ADD_FAILURE() << "vots serve did not stop within a minute of SIGTERM; it wrote:\n" << output();
+            ::kill(mPid, SIGKILL);
+            ::waitpid(mPid, nullptr, 0);
             mPid = -1;
+            mExit = -1;
         }
         return mExit;
     }
