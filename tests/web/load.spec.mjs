@@ -1,4 +1,5 @@
-// The viewer loads, fills the view with a non-blank frame at the view's size, and writes its state into the hash.
+// The viewer loads with nothing in the console's errors, fills the view with a non-blank frame at the view's
+// size, and writes its state into the hash.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { withPage, pickDataset, VIEWPORT } from './support/browser.mjs';
@@ -6,9 +7,17 @@ import { ViewerPage } from './pages/ViewerPage.mjs';
 
 test('page loads and shows a non-blank image that fills the view', async (t) => {
   await withPage(t, async (page) => {
+    // A resource the page asks for and does not get (its icon was one) is an error in every user's console.
+    const consoleErrors = [];
+    page.on('console', (m) => {
+      if (m.type() === 'error') consoleErrors.push(`${m.text()} (${m.location().url})`);
+    });
     const viewer = new ViewerPage(page);
     await viewer.open();
     await viewer.waitForIdle();
+    const icon = await page.request.get(new URL('favicon.svg', page.url()).href);
+    assert.equal(icon.status(), 200);
+    assert.equal(icon.headers()['content-type'], 'image/svg+xml');
     await viewer.screenshotPage('load-page');
 
     const frame = await viewer.framePixels();
@@ -24,6 +33,7 @@ test('page loads and shows a non-blank image that fills the view', async (t) => 
     for (const key of ['dataset', 'cam', 'eps', 'mode', 'window', 'colormap']) assert.ok(h[key], `hash lacks ${key}: ${JSON.stringify(h)}`);
     assert.match(await viewer.votCount.textContent(), /\d/);
     assert.ok(!(await viewer.error.isVisible()), `unexpected error: ${await viewer.error.textContent()}`);
+    assert.deepEqual(consoleErrors, [], 'errors in the console');
   });
 });
 
