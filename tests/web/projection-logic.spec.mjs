@@ -103,6 +103,10 @@ test('the scale bar: the image height in mm is exact for ortho and at the centre
   assert.equal(scaleBarOf(CRANIUM, cam({ zoom: 4 }), 700).label, '1 cm');
   assert.equal(scaleBarOf(CRANIUM, cam({ zoom: 8 }), 700).label, '5 mm');
   assert.equal(scaleBarOf(CRANIUM, cam({ zoom: 80 }), 700).label, '0.5 mm');
+  // In perspective the bar holds at the volume's centre only, and its label says so.
+  const persp = scaleBarOf(CRANIUM, cam({ proj: 'persp', fov: 30 }), 700);
+  near(persp.px * (imageHeightMm(CRANIUM, cam({ proj: 'persp', fov: 30 })) / 700), persp.mm, 'persp bar');
+  assert.equal(persp.label, `${persp.mm / 10} cm at centre`);
 });
 
 test('the colour bar gives the window\'s ends in HU for CT and no unit for the density view', () => {

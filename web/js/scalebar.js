@@ -1,5 +1,6 @@
 // The scale bar: a round length in mm and its width on screen for the view's camera; no DOM.
 import { imageHeightMm } from './geometry.js';
+import { PROJECTIONS } from './contract.js';
 
 const TARGET_PX = 120; // the bar is the largest 1-2-5 length in mm that is at most about this wide
 
@@ -18,6 +19,9 @@ export function scaleBarOf(ds, cam, viewHeightPx) {
   const mmPerPx = imageHeightMm(ds, cam) / viewHeightPx;
   if (!(mmPerPx > 0) || !Number.isFinite(mmPerPx)) return null;
   const mm = roundDown125(TARGET_PX * mmPerPx);
-  const label = mm >= 10 && mm % 10 === 0 ? `${mm / 10} cm` : `${Number(mm.toPrecision(3))} mm`;
+  const length = mm >= 10 && mm % 10 === 0 ? `${mm / 10} cm` : `${Number(mm.toPrecision(3))} mm`;
+  // In perspective a length on screen depends on its depth: the bar holds at the volume's centre only,
+  // and says so, since nearer parts look larger and farther ones smaller.
+  const label = cam.proj === PROJECTIONS.persp ? `${length} at centre` : length;
   return { mm, px: mm / mmPerPx, label };
 }
