@@ -1,4 +1,5 @@
-// The float32 residual certification scan of a box: its samples, and with Certify::Cells its cell points.
+// The float32 residual certification scan of a box: its samples, and with Certify::Cells its cell points;
+// the range of the residuals over the same points.
 #include "BoxFit.h"
 
 #include "FloatBounds.h"
@@ -66,6 +67,75 @@ double maxSecondDerivative(const Box& box, const std::array<float, MONOMIAL_COUN
     return largest;
 }
 
+/// Calls visit(x, y, z, residual), residual = P - sample, at the box's samples (x fastest) while it returns
+/// true; false when a visit stopped the walk.
+template <typename Visit>
+bool visitSampleResiduals(const Volume& volume, const Box& box, const BoxOutcome& o, Visit&& visit) {
+    const double px = o.p[0], py = o.p[1], pz = o.p[2];
+    return visitSamples(volume, [&](const auto* values) {
+        for (int z = box.lo[2]; z <= box.hi[2]; ++z) {
+            const SliceCoefficients q = sliceCoefficients(o.c, z - pz);
+            for (int y = box.lo[1]; y <= box.hi[1]; ++y) {
+                const auto r = rowCoefficients(q, y - py);
+                const auto* row = values + volume.indexOf(0, y, z);
+                for (int x = box.lo[0]; x <= box.hi[0]; ++x)
+                    if (!visit(x, y, z, horner(r, x - px) - static_cast<double>(sampleAsFloat(row[x]))))
+                        return false;
+            }
+        }
+        return true;
+    });
+}
+
+/// The same at the cell points Certify::Cells checks, against their trilinear value (docs/DESIGN.md §3):
+/// edge midpoints and cell centres, walked on the half-integer lattice so each slice and row polynomial is
+/// built once.
+template <typename Visit>
+bool visitCellPointResiduals(const Volume& v, const Box& box, const BoxOutcome& o, Visit&& visit) {
+    const double px = o.p[0], py = o.p[1], pz = o.p[2];
+    const int n[3] = {2 * box.cells(0), 2 * box.cells(1), 2 * box.cells(2)};
+    return visitSamples(v, [&](const auto* values) {
+        for (int zi = 0; zi <= n[2]; ++zi) {
+            const double z = box.lo[2] + 0.5 * zi;
+            const int z0 = box.lo[2] + zi / 2, zh = zi & 1;
+            const SliceCoefficients q = sliceCoefficients(o.c, z - pz);
+            for (int yi = 0; yi <= n[1]; ++yi) {
+                const int yh = yi & 1;
+                const double y = box.lo[1] + 0.5 * yi;
+                const int y0 = box.lo[1] + yi / 2;
+                const auto r = rowCoefficients(q, y - py);
+                // Only points with 1 or 3 half coordinates count (h = xh + yh + zh): one parity of xi.
+                const int xhWanted = (yh + zh) % 2 == 0 ? 1 : 0;
+                const bool centres = yh + zh == 2;
+                const auto* c00 = values + v.indexOf(0, y0, z0); // corners (y0|y0+1, z0|z0+1)
+                const auto* c10 = yh ? c00 + v.dims[0] : c00;
+                const auto* c01 = zh ? c00 + v.indexOf(0, 0, 1) : c00;
+                const auto* c11 = zh ? c10 + v.indexOf(0, 0, 1) : c10;
+                for (int xi = xhWanted; xi <= n[0]; xi += 2) {
+                    const int x0 = box.lo[0] + xi / 2;
+                    double reference = 0.0;
+                    // The same sums in the same order (and precision) as evaluating the trilinear
+                    // interpolant corner by corner, so the certified errors do not change.
+                    if (centres) { // h == 3: mean of the cell's 8 corners, x fastest, then y, then z
+                        for (const auto* base : {c00, c10, c01, c11}) {
+                            reference += sampleAsFloat(base[x0]);
+                            reference += sampleAsFloat(base[x0 + 1]);
+                        }
+                        reference /= 8.0;
+                    } else if (xhWanted) { // edge along x
+                        reference = 0.5 * (sampleAsFloat(c00[x0]) + sampleAsFloat(c00[x0 + 1]));
+                    } else { // edge along y or z
+                        reference = 0.5 * (sampleAsFloat(c00[x0]) + sampleAsFloat(c11[x0]));
+                    }
+                    const double x = box.lo[0] + 0.5 * xi;
+                    if (!visit(x, y, z, horner(r, x - px) - reference)) return false;
+                }
+            }
+        }
+        return true;
+    });
+}
+
 } // namespace
 
 void BoxFitter::certify(const Box& box, const EpsField& eps, BoxOutcome& outcome, FitCounters& counters,
@@ -80,39 +150,25 @@ void BoxFitter::certify(const Box& box, const EpsField& eps, BoxOutcome& outcome
     const bool alwaysAccept = isSingleCell(box);
     const bool varies = eps.varies();
     const double epsMin = eps.minOverBox(box);
-    const double px = outcome.p[0], py = outcome.p[1], pz = outcome.p[2];
     double maxSample = 0.0;
     double maxCriterion = 0.0;
     bool violated = false;
-    bool stopped = false; // the sample scan ended before the last sample (at once when scanOnTo is 0)
 
     auto allowed = [&](double x, double y, double z, double absResidual) {
         if (absResidual <= epsMin) return true;
         return varies && absResidual <= eps.at(x, y, z);
     };
 
-    visitSamples(mVolume, [&](const auto* values) {
-        for (int z = box.lo[2]; z <= box.hi[2] && !stopped; ++z) {
-            const SliceCoefficients q = sliceCoefficients(outcome.c, z - pz);
-            for (int y = box.lo[1]; y <= box.hi[1] && !stopped; ++y) {
-                const auto r = rowCoefficients(q, y - py);
-                const auto* row = values + mVolume.indexOf(0, y, z);
-                for (int x = box.lo[0]; x <= box.hi[0]; ++x) {
-                    const double res =
-                        std::abs(horner(r, x - px) - static_cast<double>(sampleAsFloat(row[x])));
-                    maxSample = std::max(maxSample, res);
-                    if (!alwaysAccept && !allowed(x, y, z, res)) {
-                        violated = true;
-                        // A violation is above eps >= 0, so scanOnTo 0 stops at the first one.
-                        if (res > scanOnTo) {
-                            stopped = true;
-                            break;
-                        }
-                    }
-                }
-            }
-        }
-    });
+    // The sample scan ends before the last sample at the first violation when scanOnTo is 0.
+    const bool stopped =
+        !visitSampleResiduals(mVolume, box, outcome, [&](int x, int y, int z, double residual) {
+            const double res = std::abs(residual);
+            maxSample = std::max(maxSample, res);
+            if (alwaysAccept || allowed(x, y, z, res)) return true;
+            violated = true;
+            // A violation is above eps >= 0, so scanOnTo 0 stops at the first one.
+            return res <= scanOnTo;
+        });
     maxCriterion = maxSample;
     outcome.samplesComplete = !stopped;
 
@@ -131,53 +187,12 @@ void BoxFitter::certify(const Box& box, const EpsField& eps, BoxOutcome& outcome
         }
     }
     if (!violated && mCertify == Certify::Cells && !cellsBounded) {
-        // Trilinear reference at cell centres and edge midpoints (docs/DESIGN.md §3), walked on the
-        // half-integer lattice so each slice and row polynomial is built once: h counts the half coordinates.
-        const Volume& v = mVolume;
-        const int n[3] = {2 * box.cells(0), 2 * box.cells(1), 2 * box.cells(2)};
-        visitSamples(v, [&](const auto* values) {
-            for (int zi = 0; zi <= n[2] && !violated; ++zi) {
-                const double z = box.lo[2] + 0.5 * zi;
-                const int z0 = box.lo[2] + zi / 2, zh = zi & 1;
-                const SliceCoefficients q = sliceCoefficients(outcome.c, z - pz);
-                for (int yi = 0; yi <= n[1] && !violated; ++yi) {
-                    const int yh = yi & 1;
-                    const double y = box.lo[1] + 0.5 * yi;
-                    const int y0 = box.lo[1] + yi / 2;
-                    const auto r = rowCoefficients(q, y - py);
-                    // Only points with 1 or 3 half coordinates count (h = xh + yh + zh): one parity of xi.
-                    const int xhWanted = (yh + zh) % 2 == 0 ? 1 : 0;
-                    const bool centres = yh + zh == 2;
-                    const auto* c00 = values + v.indexOf(0, y0, z0); // corners (y0|y0+1, z0|z0+1)
-                    const auto* c10 = yh ? c00 + v.dims[0] : c00;
-                    const auto* c01 = zh ? c00 + v.indexOf(0, 0, 1) : c00;
-                    const auto* c11 = zh ? c10 + v.indexOf(0, 0, 1) : c10;
-                    for (int xi = xhWanted; xi <= n[0]; xi += 2) {
-                        const int x0 = box.lo[0] + xi / 2;
-                        double reference = 0.0;
-                        // The same sums in the same order (and precision) as evaluating the trilinear
-                        // interpolant corner by corner, so the certified errors do not change.
-                        if (centres) { // h == 3: mean of the cell's 8 corners, x fastest, then y, then z
-                            for (const auto* base : {c00, c10, c01, c11}) {
-                                reference += sampleAsFloat(base[x0]);
-                                reference += sampleAsFloat(base[x0 + 1]);
-                            }
-                            reference /= 8.0;
-                        } else if (xhWanted) { // edge along x
-                            reference = 0.5 * (sampleAsFloat(c00[x0]) + sampleAsFloat(c00[x0 + 1]));
-                        } else { // edge along y or z
-                            reference = 0.5 * (sampleAsFloat(c00[x0]) + sampleAsFloat(c11[x0]));
-                        }
-                        const double x = box.lo[0] + 0.5 * xi;
-                        const double res = std::abs(horner(r, x - px) - reference);
-                        maxCriterion = std::max(maxCriterion, res);
-                        if (!alwaysAccept && !allowed(x, y, z, res)) {
-                            violated = true;
-                            break;
-                        }
-                    }
-                }
-            }
+        visitCellPointResiduals(mVolume, box, outcome, [&](double x, double y, double z, double residual) {
+            const double res = std::abs(residual);
+            maxCriterion = std::max(maxCriterion, res);
+            if (alwaysAccept || allowed(x, y, z, res)) return true;
+            violated = true;
+            return false;
         });
     }
     outcome.accepted = !violated;
@@ -185,6 +200,18 @@ void BoxFitter::certify(const Box& box, const EpsField& eps, BoxOutcome& outcome
     outcome.errSamples = roundUpToFloat(maxSample);
     outcome.errCriterion = roundUpToFloat(maxCriterion);
     if (outcome.exact) outcome.errCriterionBound = outcome.errCriterion;
+}
+
+ResidualRange BoxFitter::residualRange(const Box& box, const BoxOutcome& outcome) const {
+    ResidualRange range;
+    auto widen = [&](auto, auto, auto, double residual) {
+        range.low = std::min(range.low, residual);
+        range.high = std::max(range.high, residual);
+        return true;
+    };
+    visitSampleResiduals(mVolume, box, outcome, widen);
+    if (mCertify == Certify::Cells) visitCellPointResiduals(mVolume, box, outcome, widen);
+    return range;
 }
 
 } // namespace vots::fit

@@ -24,12 +24,14 @@ public:
         mine().minimaxScans.fetch_add(static_cast<std::size_t>(scans), std::memory_order_relaxed);
         if (accepted) mine().minimaxAccepted.fetch_add(1, std::memory_order_relaxed);
     }
+    void addCentredAccepted() { mine().centredAccepted.fetch_add(1, std::memory_order_relaxed); }
     std::size_t fits() const { return total(&Slot::fits); }
     std::size_t scans() const { return total(&Slot::scans); }
     std::size_t cacheHits() const { return total(&Slot::cacheHits); }
     std::size_t minimaxFits() const { return total(&Slot::minimaxFits); }
     std::size_t minimaxScans() const { return total(&Slot::minimaxScans); }
     std::size_t minimaxAccepted() const { return total(&Slot::minimaxAccepted); }
+    std::size_t centredAccepted() const { return total(&Slot::centredAccepted); }
 
 private:
     struct alignas(64) Slot {
@@ -39,6 +41,7 @@ private:
         std::atomic<std::size_t> minimaxFits{0};
         std::atomic<std::size_t> minimaxScans{0};
         std::atomic<std::size_t> minimaxAccepted{0};
+        std::atomic<std::size_t> centredAccepted{0};
     };
     // Threads get slots in the order they first count; threads that share a slot still count right.
     static constexpr std::size_t SLOTS = 16;
@@ -64,6 +67,12 @@ struct BoxOutcome {
     std::array<float, MONOMIAL_COUNT> c{}; // index-unit coefficients, float as stored
 };
 
+/// The smallest and largest residual P - value of a polynomial over a box's certified points.
+struct ResidualRange {
+    double low = INFINITY;
+    double high = -INFINITY;
+};
+
 /// Minimax acceptance runs the exchange only on a box whose least-squares polynomial is within this many
 /// times the minimax target (eps, or MINIMAX_CELLS_TARGET eps) at every sample: further out the minimax one
 /// is rarely within it, and the exchange would mostly prove that at the price of a search (docs/DESIGN.md
@@ -86,7 +95,8 @@ struct BoxRecord {
         NotRun,    // (or gave up)
         Above,     // stopped once its lower bound (lowerBound) passed the eps of the time
         Converged, // `minimax` holds the minimax coefficients and their last certification
-        Found      // `minimax` holds coefficients found within the eps of the time, and their certification
+        Found,     // `minimax` holds coefficients found within the eps of the time, and their certification
+        Centred    // `minimax` holds the centred least-squares polynomial (below) and its last certification
     };
     BoxOutcome lsq;      // the least-squares coefficients and what their last certification found
     bool fitted = false; // lsq holds coefficients
@@ -99,6 +109,10 @@ struct BoxRecord {
     /// of the polynomial it ended with (rounded up), which say at which eps it would end there again.
     float minEarlier = 0.f;
     float offered = INFINITY;
+    /// The least-squares polynomial with its constant moved to the middle of its residuals' range over the
+    /// certified points: half that range (rounded up; NaN until computed) and the moved constant.
+    float centredHalfRange = NAN;
+    float centredConstant = 0.f;
     bool changed = false; // decide() learned something a cache should keep
 };
 
@@ -139,6 +153,11 @@ private:
     bool decideLeastSquares(const Box& box, const EpsField& eps, BoxRecord& record, FitCounters& counters,
                             bool minimax) const;
     bool decideMinimax(const Box& box, const EpsField& eps, BoxRecord& record, FitCounters& counters) const;
+    /// The centred least-squares polynomial, tried before any exchange: accepted when half its residuals'
+    /// range is within the target's smallest eps over the box and its certification at `tight` passes.
+    bool decideCentred(const Box& box, const EpsField& tight, BoxRecord& record, FitCounters& counters) const;
+    /// The smallest and largest residual of the outcome's coefficients over the points certify() checks.
+    ResidualRange residualRange(const Box& box, const BoxOutcome& outcome) const;
     /// The fraction of eps a minimax polynomial must keep to (MINIMAX_CELLS_TARGET with Certify::Cells).
     double minimaxTarget() const { return mCertify == Certify::Cells ? MINIMAX_CELLS_TARGET : 1.0; }
 

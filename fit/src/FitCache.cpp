@@ -3,6 +3,8 @@
 
 #include "SampleAccess.h"
 
+#include <cmath>
+
 namespace vots::fit {
 
 FitCache::FitCache() : mImpl(std::make_unique<Impl>()) {}
@@ -82,6 +84,8 @@ void FitCache::Impl::find(const Box& box, BoxRecord& record) {
         record.minimax = found.outcome;
         record.minEarlier = found.minEarlier;
         record.offered = found.offered;
+        record.centredHalfRange = found.centredHalfRange;
+        record.centredConstant = found.centredConstant;
     }
 }
 
@@ -95,8 +99,10 @@ void FitCache::Impl::store(const Box& box, const BoxRecord& record) {
     entry.hasCoefficients = record.fitted;
     entry.lowerBound = record.lowerBound;
     entry.minimaxState = record.state;
-    if (record.state == BoxRecord::Minimax::Converged || record.state == BoxRecord::Minimax::Found) {
-        const CachedMinimax found{record.minimax, record.minEarlier, record.offered};
+    if (record.state == BoxRecord::Minimax::Converged || record.state == BoxRecord::Minimax::Found ||
+        record.state == BoxRecord::Minimax::Centred || !std::isnan(record.centredHalfRange)) {
+        const CachedMinimax found{record.minimax, record.minEarlier, record.offered, record.centredHalfRange,
+                                  record.centredConstant};
         if (entry.minimaxEntry == CachedBox::NO_ENTRY) {
             entry.minimaxEntry = static_cast<std::uint32_t>(shard.minimaxes.size());
             shard.minimaxes.push_back(found);

@@ -41,11 +41,13 @@ struct CachedBox {
     static constexpr std::uint32_t NO_ENTRY = 0xffffffffu;
 };
 
-/// A minimax polynomial found for a box (BoxRecord's).
+/// A minimax polynomial found for a box, and its centred least-squares one (BoxRecord's).
 struct CachedMinimax {
     BoxOutcome outcome;
     float minEarlier = 0.f;
     float offered = INFINITY;
+    float centredHalfRange = NAN;
+    float centredConstant = 0.f;
 };
 
 struct FitCache::Impl {

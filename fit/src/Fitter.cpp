@@ -128,6 +128,7 @@ FitResult fitVotSpace(const Volume& volume, const FitOptions& options, FitCache*
     result.stats.minimaxFits = counters.minimaxFits();
     result.stats.minimaxScans = counters.minimaxScans();
     result.stats.minimaxAccepted = counters.minimaxAccepted();
+    result.stats.centredAccepted = counters.centredAccepted();
     result.stats.coveredCells = static_cast<std::size_t>(mask.totalForeground());
     result.stats.backgroundCells = static_cast<std::size_t>(mask.totalBackground());
     result.stats.backgroundValueSum = mask.backgroundValueSum();

@@ -109,6 +109,7 @@ std::string buildFitMeta(const FitProvenance& r) {
         meta["stats"]["minimax_fits"] = s.minimaxFits;
         meta["stats"]["minimax_scans"] = s.minimaxScans;
         meta["stats"]["minimax_accepted"] = s.minimaxAccepted;
+        meta["stats"]["centred_accepted"] = s.centredAccepted;
     }
     // Only a volume whose file states its orientation gets the key: other files keep their bytes.
     if (vol.orientationKnown) meta["source"]["patient_axes"] = vol.patientAxes;

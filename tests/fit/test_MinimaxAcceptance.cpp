@@ -1,4 +1,5 @@
-// Minimax acceptance (docs/DESIGN.md §3, "Minimax"; white box, fit/src): a box least squares refuses is kept.
+// Minimax acceptance (docs/DESIGN.md §3, "Minimax"; white box, fit/src): a box least squares refuses is kept,
+// by least squares with its residuals centred or else by the exchange.
 #include "BoxFit.h"
 #include "MinimaxChecks.h"
 #include "SyntheticFields.h"
@@ -28,11 +29,38 @@ Volume cornerSpike(double eps, double amplitude, int degree) {
     });
 }
 
+/// A polynomial plus `amplitude` eps at the corner (0, 0, 0), minus it at the opposite one and nothing
+/// elsewhere: least squares misses the two corners by about the same amount, one up and one down, so moving
+/// its constant gains nothing; the polynomial plus the plane that is +amplitude/2 eps at the first corner and
+/// -amplitude/2 eps at the other is within amplitude/2 eps of every sample.
+Volume opposedCornerSpikes(double eps, double amplitude, int degree) {
+    const std::array<int, 3> dims{9, 9, 9};
+    const vots::test::Polynomial p = vots::test::randomPolynomial(degree, dims, 11u, 400.0);
+    return sampleVolume(dims, [&](int x, int y, int z) {
+        const double spike = x + y + z == 0 ? amplitude : x + y + z == 24 ? -amplitude : 0.0;
+        return p(x, y, z) + spike * eps;
+    });
+}
+
+/// The largest |Vot - sample| over the box, recomputed here from the outcome's float coefficients.
+double worstSample(const Volume& volume, const Box& box, const BoxOutcome& outcome) {
+    Vot vot;
+    vot.box = box;
+    vot.p = outcome.p;
+    vot.c = outcome.c;
+    double worst = 0.0;
+    for (int z = box.lo[2]; z <= box.hi[2]; ++z)
+        for (int y = box.lo[1]; y <= box.hi[1]; ++y)
+            for (int x = box.lo[0]; x <= box.hi[0]; ++x)
+                worst = std::max(worst, std::abs(evaluate(vot, x, y, z) - volume.at(x, y, z)));
+    return worst;
+}
+
 } // namespace
 
 TEST(Minimax, KeepsWholeABoxThatACubicFitsWithinEpsButLeastSquaresDoesNot) {
     const float eps = 10.f;
-    const Volume volume = cornerSpike(eps, 0.7, 3);
+    const Volume volume = opposedCornerSpikes(eps, 1.4, 3);
     const Box box{{0, 0, 0}, {8, 8, 8}};
     const EpsField field(eps);
     FitCounters counters;
@@ -45,16 +73,10 @@ TEST(Minimax, KeepsWholeABoxThatACubicFitsWithinEpsButLeastSquaresDoesNot) {
     BoxRecord record;
     const BoxOutcome byMinimax = minimax.decide(box, field, record, counters);
     ASSERT_TRUE(byMinimax.accepted);
+    EXPECT_GT(record.centredHalfRange, eps) << "centring must not be enough for the exchange to be tested";
+    EXPECT_TRUE(record.state == BoxRecord::Minimax::Found || record.state == BoxRecord::Minimax::Converged);
     EXPECT_LE(byMinimax.errSamples, eps);
-    Vot vot;
-    vot.box = box;
-    vot.p = byMinimax.p;
-    vot.c = byMinimax.c;
-    double worst = 0.0;
-    for (int z = 0; z <= 8; ++z)
-        for (int y = 0; y <= 8; ++y)
-            for (int x = 0; x <= 8; ++x)
-                worst = std::max(worst, std::abs(evaluate(vot, x, y, z) - volume.at(x, y, z)));
+    const double worst = worstSample(volume, box, byMinimax);
     EXPECT_LE(worst, eps);
     EXPECT_GE(byMinimax.errSamples, worst * (1.0 - 1e-6)); // the recorded error bounds the samples'
 
@@ -66,6 +88,35 @@ TEST(Minimax, KeepsWholeABoxThatACubicFitsWithinEpsButLeastSquaresDoesNot) {
     EXPECT_EQ(fitMinimax.space.vots[0].box, box);
     EXPECT_TRUE(verifyVotSpace(fitMinimax.space, volume).ok);
     EXPECT_GT(fitMinimax.stats.minimaxAccepted, 0u);
+}
+
+TEST(Minimax, TriesLeastSquaresWithItsResidualsCentredBeforeAnExchange) {
+    // One corner up, the rest down: least squares misses the corner by 1.23 eps and the other samples by
+    // little, all below it; with its constant moved to the middle of that range it is within eps.
+    const float eps = 10.f;
+    const Volume volume = cornerSpike(eps, 0.7, 3);
+    const Box box{{0, 0, 0}, {8, 8, 8}};
+    const EpsField field(eps);
+    FitCounters counters;
+    const BoxFitter minimax(volume, 3, Certify::Samples, FitNorm::Minimax);
+    BoxRecord record;
+    const BoxOutcome centred = minimax.decide(box, field, record, counters);
+    ASSERT_TRUE(centred.accepted);
+    EXPECT_FALSE(record.lsq.accepted);
+    EXPECT_EQ(record.state, BoxRecord::Minimax::Centred);
+    EXPECT_LE(record.centredHalfRange, eps);
+    EXPECT_LE(worstSample(volume, box, centred), eps);
+    EXPECT_GT(worstSample(volume, box, record.lsq), eps);
+    // The least-squares polynomial but for its constant.
+    for (std::size_t i = 1; i < MONOMIAL_COUNT; ++i)
+        EXPECT_EQ(centred.c[i], record.lsq.c[i]) << "monomial " << i;
+    EXPECT_NE(centred.c[0], record.lsq.c[0]);
+
+    const FitResult fit = fitVotSpace(volume, options(eps, 3, FitNorm::Minimax));
+    ASSERT_EQ(fit.space.vots.size(), 1u);
+    EXPECT_TRUE(verifyVotSpace(fit.space, volume).ok);
+    EXPECT_GT(fit.stats.centredAccepted, 0u);
+    EXPECT_EQ(fit.stats.minimaxFits, 0u) << "no exchange was needed";
 }
 
 TEST(Minimax, KeepsSuchABoxWholeWhenCertifiedAtTheCellsToo) {

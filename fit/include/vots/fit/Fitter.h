@@ -95,6 +95,7 @@ struct FitStats {
     std::size_t minimaxFits = 0;     // exchange runs (FitNorm::Minimax)
     std::size_t minimaxScans = 0;    // their scans over a box's points
     std::size_t minimaxAccepted = 0; // of those runs, the ones that ended with a box accepted
+    std::size_t centredAccepted = 0; // boxes accepted by centred least squares, before any exchange
     std::size_t coveredCells = 0;    // non-background cells (all covered)
     std::size_t backgroundCells = 0;
     /// Over the background cells, the sum of each one's mean corner value (its integral of the
