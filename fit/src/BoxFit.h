@@ -154,8 +154,10 @@ private:
                             bool minimax) const;
     bool decideMinimax(const Box& box, const EpsField& eps, BoxRecord& record, FitCounters& counters) const;
     /// The centred least-squares polynomial, tried before any exchange: accepted when half its residuals'
-    /// range is within the target's smallest eps over the box and its certification at `tight` passes.
-    bool decideCentred(const Box& box, const EpsField& tight, BoxRecord& record, FitCounters& counters) const;
+    /// range is within epsMin (the target's smallest eps over the box) and its certification at `tight`
+    /// passes.
+    bool decideCentred(const Box& box, const EpsField& tight, double epsMin, BoxRecord& record,
+                       FitCounters& counters) const;
     /// The smallest and largest residual of the outcome's coefficients over the points certify() checks.
     ResidualRange residualRange(const Box& box, const BoxOutcome& outcome) const;
     /// The fraction of eps a minimax polynomial must keep to (MINIMAX_CELLS_TARGET with Certify::Cells).

@@ -105,7 +105,7 @@ bool BoxFitter::decideLeastSquares(const Box& box, const EpsField& eps, BoxRecor
     return o.accepted;
 }
 
-bool BoxFitter::decideCentred(const Box& box, const EpsField& tight, BoxRecord& record,
+bool BoxFitter::decideCentred(const Box& box, const EpsField& tight, double epsMin, BoxRecord& record,
                               FitCounters& counters) const {
     if (std::isnan(record.centredHalfRange)) {
         const ResidualRange range = residualRange(box, record.lsq);
@@ -113,7 +113,6 @@ bool BoxFitter::decideCentred(const Box& box, const EpsField& tight, BoxRecord& 
         record.centredConstant = static_cast<float>(record.lsq.c[0] - 0.5 * (range.high + range.low));
         record.changed = true;
     }
-    const double epsMin = tight.minOverBox(box);
     if (record.centredHalfRange > epsMin) return false;
     if (record.state == BoxRecord::Minimax::Centred && record.minimax.errCriterionBound <= epsMin) {
         counters.addCacheHit();
@@ -154,16 +153,16 @@ bool BoxFitter::decideMinimax(const Box& box, const EpsField& field, BoxRecord& 
     // A fit certified at the cells holds its minimax polynomials within MINIMAX_CELLS_TARGET eps at every
     // point they are fitted at (the certification itself stays at eps).
     const EpsField tight = minimaxTarget() < 1.0 ? scaledField(field, minimaxTarget()) : field;
+    const double epsMin = tight.minOverBox(box);
+    const double epsMax = tight.maxOverBox(box);
     // Before any exchange: least squares with its residuals centred. The least-squares polynomial's mean
     // residual is zero, not the middle of its range, and a box refused for a few large residuals of one sign
     // (a bone edge, a vessel) is often within eps once its constant moves to that middle, at the price of two
     // scans instead of a search (bench/RESULTS.md, "Centred least squares"). It comes first so that what the
     // exchange learns (its lower bound counts the face centres too) never decides it: a refit from a cache
     // then decides as a fresh fit would.
-    if (decideCentred(box, tight, record, counters)) return true;
+    if (decideCentred(box, tight, epsMin, record, counters)) return true;
 
-    const double epsMin = tight.minOverBox(box);
-    const double epsMax = tight.maxOverBox(box);
     if (record.lowerBound > epsMax) return false;
 
     // A polynomial within eps (less a margin for the rounding of its coefficients to float) ends the

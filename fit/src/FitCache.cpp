@@ -99,8 +99,9 @@ void FitCache::Impl::store(const Box& box, const BoxRecord& record) {
     entry.hasCoefficients = record.fitted;
     entry.lowerBound = record.lowerBound;
     entry.minimaxState = record.state;
+    // A Centred state implies a centred half range, so that condition covers it.
     if (record.state == BoxRecord::Minimax::Converged || record.state == BoxRecord::Minimax::Found ||
-        record.state == BoxRecord::Minimax::Centred || !std::isnan(record.centredHalfRange)) {
+        !std::isnan(record.centredHalfRange)) {
         const CachedMinimax found{record.minimax, record.minEarlier, record.offered, record.centredHalfRange,
                                   record.centredConstant};
         if (entry.minimaxEntry == CachedBox::NO_ENTRY) {
