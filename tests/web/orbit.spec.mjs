@@ -71,3 +71,33 @@ test('shift-drag pans and the wheel zooms', async (t) => {
     await viewer.screenshotView('pan-zoom');
   });
 });
+
+test('a drag writes the status line and the view buttons only when what they say changes', async (t) => {
+  await atStartCam(t, async (viewer, page) => {
+    // Every write to the page re-lays it out, a same-text write as much as any: at 60 pointer moves a
+    // second that is a layout per move for nothing.
+    await page.evaluate(() => {
+      window.__writes = { status: [], buttons: [] };
+      const status = document.querySelector('#status');
+      new MutationObserver((records) => {
+        for (const r of records) {
+          const before = r.type === 'attributes' ? r.oldValue : r.removedNodes[0]?.textContent ?? null;
+          const after = r.type === 'attributes' ? r.target.getAttribute(r.attributeName) : status.textContent;
+          window.__writes.status.push({ before, after });
+        }
+      }).observe(status, { childList: true, characterData: true, subtree: true, attributes: true, attributeOldValue: true });
+      const buttons = new MutationObserver((records) => {
+        for (const r of records) window.__writes.buttons.push({ before: r.oldValue, after: r.target.getAttribute(r.attributeName) });
+      });
+      for (const b of document.querySelectorAll('[data-view]')) buttons.observe(b, { attributes: true, attributeOldValue: true });
+    });
+    await viewer.drag(150, -80, { steps: 40 });
+    await viewer.waitForIdle();
+    const writes = await page.evaluate(() => window.__writes);
+    assert.ok(writes.status.length >= 1, 'the status line never changed over a drag and its still');
+    const idle = writes.status.filter((w) => w.before === w.after);
+    assert.equal(idle.length, 0, `${idle.length} of ${writes.status.length} writes to the status line left it as it was`);
+    const sameButtons = writes.buttons.filter((w) => w.before === w.after);
+    assert.equal(sameButtons.length, 0, `${sameButtons.length} writes to the view buttons left them as they were`);
+  });
+});

@@ -1,6 +1,7 @@
 // The panel's controls from the view: choice lists, dataset picker, window presets, window inputs, eps slider, projection, views.
 import { viewName } from './camera.js';
 import { COLORMAPS, MODES, PROJECTIONS, RENDERERS } from './contract.js';
+import { setAttr } from './dom.js';
 import { epsLabel, epsToSlider } from './eps.js';
 import { fmtExact, fmtValue } from './format.js';
 import { syncKindLimits } from './kind.js';
@@ -81,5 +82,5 @@ export function syncControls(el, ds, view) {
 // Cheap enough for every pointer move: only the six view buttons follow the camera while dragging.
 export function syncViewButtons(buttons, cam) {
   const active = viewName(cam);
-  for (const b of buttons) b.setAttribute('aria-pressed', String(b.dataset.view === active));
+  for (const b of buttons) setAttr(b, 'aria-pressed', String(b.dataset.view === active));
 }

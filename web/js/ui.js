@@ -6,6 +6,7 @@ import { PROJECTIONS } from './contract.js';
 import { createBanner } from './banner.js';
 import { createCine } from './cine.js';
 import { fillChoices, fillDatasetPicker, fillPresets, presetWindow, syncControls, syncViewButtons } from './controls.js';
+import { setData, setText } from './dom.js';
 import { syncDownloads } from './downloads.js';
 import { defaultEpsOf, epsLabel, sliderToEps } from './eps.js';
 import { createFits } from './fits.js';
@@ -132,8 +133,8 @@ function updateStatus() {
     lastFrame: frames.lastFrame(),
     cam: view.cam,
   });
-  el.status.dataset.state = state;
-  el.status.textContent = text;
+  setData(el.status, 'state', state);
+  setText(el.status, text);
 }
 
 const slabControl = attachSlabControl({
