@@ -61,6 +61,14 @@ Summary summarise(const fit::VotSpace& s, const meta::FitMetaView& meta) {
     return sum;
 }
 
+/// The norm a fit by `vots fit` or the server accepted boxes by: its block names only a minimax one (a
+/// least-squares fit's block kept its bytes from before the norm could be chosen); nullopt for a block
+/// that is no such fit's (no fit.method), as from other tools.
+std::optional<std::string> fitNormOf(const meta::FitMetaView& meta) {
+    if (!meta.method) return std::nullopt;
+    return meta.norm.value_or("lsq");
+}
+
 template <class T> json orNull(const std::optional<T>& v) {
     return v ? json(*v) : json(nullptr);
 }
@@ -90,6 +98,8 @@ json toJson(const std::string& path, const fit::VotSpace& s, const meta::FitMeta
         {"box_size_histogram", hist},
         {"max_error", sum.maxError},
         {"fit_seconds", orNull(meta.fitSeconds)},
+        {"fit_norm", orNull(fitNormOf(meta))},
+        {"certify", orNull(meta.certify)},
         {"meta", meta.isJson ? json::parse(s.metaJson) : json(nullptr)},
     };
 }
@@ -122,7 +132,15 @@ void printText(const std::string& path, const fit::VotSpace& s, const meta::FitM
     if (meta.nonFiniteSamples > 0)
         row("no data") << formatCount(meta.nonFiniteSamples)
                        << " samples NaN or Inf (left out as omitted cells are)\n";
-    row("eps") << formatNumber(s.eps) << (s.epsVaries ? " (context; varies in space)" : "") << "\n";
+    row("eps") << formatNumber(s.eps) << (s.epsVaries ? " (context; varies in space)" : "");
+    if (meta.epsText) o << " (given as " << *meta.epsText << ")";
+    o << "\n";
+    if (const auto norm = fitNormOf(meta)) {
+        row("fit") << *meta.method << " method, " << (*norm == "lsq" ? "least-squares" : *norm) << " norm";
+        if (meta.certify)
+            o << ", certified at " << (*meta.certify == "cells" ? "samples and cells" : *meta.certify);
+        o << "\n";
+    }
     row("background") << (std::isfinite(s.background) ? formatNumber(s.background) : std::string("none"));
     if (meta.backgroundFill)
         o << " (omitted cells count as " << formatNumber(*meta.backgroundFill) << " in minip and aip)";

@@ -136,6 +136,9 @@ FitMetaView readFitMeta(const std::string& metaJson) {
     view.coveredCells = field<std::uint64_t>(j, json::json_pointer("/stats/covered_cells"));
     view.sourcePath = field<std::string>(j, json::json_pointer("/source/path"));
     view.method = field<std::string>(j, json::json_pointer("/fit/method"));
+    view.norm = field<std::string>(j, json::json_pointer("/fit/norm"));
+    view.certify = field<std::string>(j, json::json_pointer("/fit/certify"));
+    view.epsText = field<std::string>(j, json::json_pointer("/fit/eps_arg"));
     view.cacheKey = field<std::string>(j, json::json_pointer("/key"));
     view.patientAxes = patientAxesField(j, json::json_pointer("/source/patient_axes"));
     view.frame = field<int>(j, json::json_pointer("/source/frame"));

@@ -93,9 +93,28 @@ TEST_F(CliEndToEnd, InfoTextNamesEachField) {
     ASSERT_EQ(sFit.exitCode, 0);
     const CliResult r = runVots({"info", sVots});
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    for (const char* key : {"grid", "33 x 41 x 25", "degree", "2 requested", "eps", "background", "Vots",
-                            "per sample", "max error", "fit time", "box sizes", "33+"})
+    for (const char* key : {"grid", "33 x 41 x 25", "degree", "2 requested", "eps", "(given as 3%)",
+                            "background", "Vots", "per sample", "max error", "fit time", "box sizes", "33+",
+                            "fast method, minimax norm, certified at samples\n"})
         EXPECT_NE(r.out.find(key), std::string::npos) << key << " missing from:\n" << r.out;
+}
+
+TEST_F(CliEndToEnd, InfoNamesTheNormAndTheCertificationOfALeastSquaresFit) {
+    // A least-squares fit's meta block names no norm (its bytes are those from before the norm could be
+    // chosen): info still says which norm made it.
+    const std::string out = sDir->file("lsq-cells.vots");
+    const CliResult fit = runVots({"fit", MRI_BRAIN, "-o", out, "--eps", "3%", "--fit-norm", "lsq",
+                                   "--certify", "cells", "--threads", "2"});
+    ASSERT_EQ(fit.exitCode, 0) << fit.err;
+    const CliResult r = runVots({"info", out});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("fast method, least-squares norm, certified at samples and cells\n"),
+              std::string::npos)
+        << r.out;
+    const json j = infoJson(out);
+    EXPECT_EQ(j.at("fit_norm"), "lsq");
+    EXPECT_EQ(j.at("certify"), "cells");
+    EXPECT_EQ(infoJson(sVots).at("fit_norm"), "minimax");
 }
 
 TEST_F(CliEndToEnd, TheFileCountsOmittedCellsAsTheirFillAsTheVolumeDoes) {

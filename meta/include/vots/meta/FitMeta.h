@@ -38,6 +38,9 @@ struct FitMetaView {
     std::optional<fit::FocusRegion> focus;
     std::optional<std::string> sourcePath;
     std::optional<std::string> method;
+    std::optional<std::string> norm;    // fit.norm: "minimax"; a least-squares fit's block has none
+    std::optional<std::string> certify; // fit.certify: "samples" or "cells"
+    std::optional<std::string> epsText; // fit.eps_arg: eps as it was typed ("2%")
     std::optional<std::string> cacheKey;
     std::optional<fit::PatientAxes> patientAxes; // source.patient_axes: the grid's directions in LPS
     std::optional<float> backgroundFill;         // background_fill: what omitted cells stand for
