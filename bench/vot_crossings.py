@@ -54,16 +54,17 @@ def main():
     views = {}
     for v in args.view or ["anterior", "oblique"]:
         views[v] = VIEWS[v] if v in VIEWS else tuple(float(x) for x in v.split(","))
-    boxes = {path: box_extents(path) for path in args.files}
+    boxes = [box_extents(path) for path in args.files]
     print("| view | file | Vots | crossings (rays 1 mm apart) | against the pair's first: Vots | crossings |")
     print("|---|---|---|---|---|---|")
     for name, (az, el) in views.items():
-        sums = {path: crossings(e, az, el) for path, e in boxes.items()}
+        sums = [crossings(extents, az, el) for extents in boxes]
         for k, path in enumerate(args.files):
-            first = args.files[k - k % 2]
-            ratio = "" if path == first else f"{len(boxes[path]) / len(boxes[first]):.3f} | {sums[path] / sums[first]:.3f}"
-            print(f"| {name} | {path} | {len(boxes[path]):,} | {sums[path]:,.0f} | {ratio or ' | '} |")
-
+            first = k - k % 2
+            ratio = " | "
+            if k != first:
+                ratio = f"{len(boxes[k]) / len(boxes[first]):.3f} | {sums[k] / sums[first]:.3f}"
+            print(f"| {name} | {path} | {len(boxes[k]):,} | {sums[k]:,.0f} | {ratio} |")
 
 if __name__ == "__main__":
     main()
