@@ -2,6 +2,7 @@
 // time; drafts while moving, the exact frame once still, the shown image.
 import { ApiError, fetchFrame, renderUrl, viewParamsRecord } from './api.js';
 import { formatCamera } from './camera.js';
+import { setData } from './dom.js';
 import { DEFAULT_RENDERER, GRID_MODES, MAX_SERVED_SIDE } from './contract.js';
 import { formatSlab } from './slab.js';
 import { fmtExact } from './format.js';
@@ -295,7 +296,7 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
         draftCanvas.getContext('2d').drawImage(bitmap, 0, 0);
         bitmap.close();
         draftCanvas.hidden = false;
-        image.dataset.quality = 'draft';
+        setData(image, 'quality', 'draft');
         draftDrawMs = header.drawMs || 0;
         shownUrl = `draft ${url}`;
       }
@@ -304,7 +305,7 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
       return;
     }
     shownSeq = header.seq;
-    image.dataset.transport = 'socket';
+    setData(image, 'transport', 'socket');
     const { waitMs, frameMs, uploadMs, encodeMs, drawMs, votCount } = header;
     announceFrame({ url, sentAt: sent.sentAt, view: sent.view, still: header.still, transport: 'socket', waitMs, frameMs, uploadMs, encodeMs, drawMs, votCount });
     lastFrame = { w: header.width, h: header.height, frameMs: header.frameMs };

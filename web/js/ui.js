@@ -75,8 +75,8 @@ const currentDataset = () => findDataset(view.dataset);
 
 // Vot count and fit time of the latest frame or fit; undefined leaves a fact as it is.
 function showFacts({ votCount, fitSeconds }) {
-  if (votCount !== undefined) el.votCount.textContent = fmtCount(votCount);
-  if (fitSeconds !== undefined) el.fitTime.textContent = fmtSeconds(fitSeconds);
+  if (votCount !== undefined) setText(el.votCount, fmtCount(votCount));
+  if (fitSeconds !== undefined) setText(el.fitTime, fmtSeconds(fitSeconds));
 }
 
 const banner = createBanner({ box: el.error, text: el.errorText, closeButton: el.errorClose, onShow: updateStatus });
