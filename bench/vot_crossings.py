@@ -66,5 +66,6 @@ def main():
                 ratio = f"{len(boxes[k]) / len(boxes[first]):.3f} | {sums[k] / sums[first]:.3f}"
             print(f"| {name} | {path} | {len(boxes[k]):,} | {sums[k]:,.0f} | {ratio} |")
 
+
 if __name__ == "__main__":
     main()
