@@ -232,6 +232,7 @@ bool BoxFitter::decideMinimax(const Box& box, const EpsField& field, BoxRecord& 
         record.state = BoxRecord::Minimax::Above;
         return false;
     case MinimaxSolution::Result::GaveUp:
+    case MinimaxSolution::Result::NotFound:
         counters.addMinimax(solution.scans, false);
         record.state = BoxRecord::Minimax::NotRun; // (another eps may stop it sooner)
         return false;

@@ -38,7 +38,9 @@ struct MinimaxSolution {
         Converged, // `scaled` is the minimax polynomial (to MINIMAX_TOLERANCE), its error `maxResidual`
         Found,     // `scaled` was within the target's acceptBelow, and its `accept` took it
         Above,     // the lower bound passed stopAbove: no polynomial of the basis is within it
-        GaveUp     // no convergence within the scan or pivot limit (or a singular basis)
+        GaveUp,    // no convergence within the scan or pivot limit (or a singular basis)
+        NotFound   // the least-change search of a small box met no polynomial within the target (proves
+                   // nothing)
     };
     Result result = Result::GaveUp;
     /// No polynomial of the basis has a largest |residual| over the points below this (the dual LP's value).

@@ -4,7 +4,9 @@
 #include <absl/container/flat_hash_map.h>
 
 #include <algorithm>
+#include <functional>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace vots::fit::minimax {
@@ -25,6 +27,7 @@ struct ShapePoints {
     std::vector<std::array<int, 3>> offsets;
     int samples = 0;
     bool cellRowsFilled = false;
+    std::optional<Whitening> whitening; // of the samples' rows, once a least-change search needs it
     void row(int point, double* out) const {
         for (Eigen::Index j = 0; j < phi.cols(); ++j)
             out[j] = phi(point, j);
@@ -49,6 +52,7 @@ void buildShape(const Geometry& g, Certify points, ShapePoints& out) {
     out.offsets.resize(static_cast<std::size_t>(count));
     out.samples = static_cast<int>(box.pointCount());
     out.cellRowsFilled = count == out.samples;
+    out.whitening.reset();
     std::size_t row = 0;
     // The grid samples first, then (Certify::Cells) the edge midpoints and cell centres.
     for (int pass = 0; pass < (points == Certify::Cells ? 2 : 1); ++pass)
@@ -86,7 +90,7 @@ ShapePoints& shapeOf(const Geometry& g, Certify points) {
         auto shape = std::make_unique<ShapePoints>();
         buildShape(g, points, *shape);
         const std::size_t bytes = static_cast<std::size_t>(shape->phi.size()) * sizeof(double) +
-                                  shape->offsets.size() * sizeof(shape->offsets[0]);
+                                  shape->offsets.size() * sizeof(shape->offsets[0]) + sizeof(Whitening);
         if (shapeBytes + bytes > MINIMAX_SHAPE_CACHE_BYTES) {
             shapes.clear();
             shapeBytes = 0;
@@ -137,6 +141,65 @@ struct RowList {
     }
 };
 
+/// Up to `most` of the points [0, r.size()) whose |r| passes `level`, worst first (ties: the lower index).
+int worstBeyond(const Eigen::VectorXd& r, double level, int most, int* out) {
+    double magnitude[LEAST_CHANGE_PINS_PER_ROUND];
+    int count = 0;
+    for (Eigen::Index i = 0; i < r.size(); ++i) {
+        const double a = std::abs(r(i));
+        if (!(a > level) || (count == most && a <= magnitude[count - 1])) continue;
+        int at = count < most ? count++ : count - 1;
+        for (; at > 0 && magnitude[at - 1] < a; --at) {
+            magnitude[at] = magnitude[at - 1];
+            out[at] = out[at - 1];
+        }
+        magnitude[at] = a;
+        out[at] = static_cast<int>(i);
+    }
+    return count;
+}
+
+/// A small box's points for the least-change search: every residual in one product, as the exchange prices.
+class DensePricing final : public LeastChangePricing {
+public:
+    DensePricing(const Geometry& g, const ShapePoints& shape, const Eigen::VectorXd& f,
+                 const std::function<void()>& gatherCells, double scale)
+        : mG(g), mShape(shape), mF(f), mGatherCells(gatherCells), mScale(scale) {}
+
+    int beyond(const double* coefficients, double level, Point* out, double& largest) override {
+        const int n = mG.n();
+        const int ms = mShape.samples;
+        const int m = static_cast<int>(mShape.offsets.size());
+        const Eigen::Map<const Eigen::VectorXd> c(coefficients, n);
+        thread_local Eigen::VectorXd r;
+        r.noalias() = mF.head(ms) - mShape.phi.topRows(ms) * c;
+        int rows[LEAST_CHANGE_PINS_PER_ROUND];
+        int count = worstBeyond(r, level, LEAST_CHANGE_PINS_PER_ROUND, rows);
+        largest = r.cwiseAbs().maxCoeff();
+        int first = 0;
+        if (count == 0 && m > ms && largest + cellBound(mG, coefficients, mScale) > level) {
+            mGatherCells();
+            r.noalias() = mF.tail(m - ms) - mShape.phi.bottomRows(m - ms) * c;
+            count = worstBeyond(r, level, LEAST_CHANGE_PINS_PER_ROUND, rows);
+            largest = std::max(largest, r.cwiseAbs().maxCoeff());
+            first = ms;
+        }
+        for (int q = 0; q < count; ++q) {
+            const int row = first + rows[q];
+            mShape.row(row, out[q].phi.data());
+            out[q].f = mF(row);
+        }
+        return count;
+    }
+
+private:
+    const Geometry& mG;
+    const ShapePoints& mShape;
+    const Eigen::VectorXd& mF;
+    const std::function<void()>& mGatherCells;
+    double mScale;
+};
+
 } // namespace
 
 /// Every point of the box in one matrix: pricing is one product with the coefficients, and the worst
@@ -157,6 +220,22 @@ MinimaxSolution fitDense(const Volume& volume, const Geometry& g, Certify points
     r.resize(m);
     gatherValues(volume, box, shape, 0, ms, f);
     solution.scans = 1;
+    bool cellsGathered = m == ms;
+    const auto gatherCells = [&] {
+        if (cellsGathered) return;
+        fillCellRows(g, shape);
+        gatherValues(volume, box, shape, ms, m, f);
+        cellsGathered = true;
+    };
+    // Acceptance asks for any polynomial within the target, which the least-change search finds in a few
+    // rounds from the least-squares one where the exchange climbs from a level near 0 in ~20-30 pivots and
+    // needs as many again to prove a union out of reach (docs/DESIGN.md §3, "Minimax acceptance", step 4).
+    if (target.accept && target.acceptBelow > 0.0) {
+        if (!shape.whitening) shape.whitening = whiteningOf(g);
+        const std::function<void()> gather = gatherCells;
+        DensePricing pricing(g, shape, f, gather, 1.0 + f.head(ms).cwiseAbs().maxCoeff());
+        return findLeastChange(g, pricing, *shape.whitening, start, target);
+    }
     Vector c(n);
     for (int j = 0; j < n; ++j)
         c(j) = start[static_cast<std::size_t>(g.basis(j))];
@@ -198,7 +277,6 @@ MinimaxSolution fitDense(const Volume& volume, const Geometry& g, Certify points
     }
     const RowList rows{shape, box, f, order, m};
     int offers = 0;
-    bool cellsGathered = m == ms;
 
     for (;;) {
         const double t = exchange.t();
@@ -227,11 +305,7 @@ MinimaxSolution fitDense(const Volume& volume, const Geometry& g, Certify points
         const auto priceCells = [&] {
             if (cellsPriced) return;
             cellsPriced = true;
-            if (!cellsGathered) {
-                fillCellRows(g, shape);
-                gatherValues(volume, box, shape, ms, m, f);
-                cellsGathered = true;
-            }
+            gatherCells();
             r.tail(m - ms).noalias() = f.tail(m - ms) - shape.phi.bottomRows(m - ms) * c;
             Eigen::Index worstCell = 0;
             const double largestCell = largestMagnitude(r.tail(m - ms), worstCell);

@@ -78,6 +78,43 @@ inline bool endsSearch(const Geometry& g, const double* y, double largest, bool 
     return false;
 }
 
+/// The least-change search (MinimaxLeastChange.cpp) pins at most this many of the worst points beyond the
+/// target per round, for at most this many rounds: most searches that find a polynomial find it within
+/// three, and more rounds find little more (bench/RESULTS.md, "The least-change search").
+inline constexpr int LEAST_CHANGE_PINS_PER_ROUND = 4;
+inline constexpr int LEAST_CHANGE_ROUNDS = 16;
+/// A pinned point's residual is held at this fraction of the target: inside it, so that the rounding of
+/// the change cannot take the point past the target.
+inline constexpr double LEAST_CHANGE_PIN_LEVEL = 0.999;
+
+/// L^-1 for the Cholesky factor L L^T of the Gram matrix of a box's basis rows at its samples: in the
+/// rows L^-1 phi the least-squares metric is the Euclidean one.
+struct Whitening {
+    std::array<std::array<double, MAX_N>, MAX_N> inverseFactor{}; // lower triangular
+    bool ok = false;                                              // false for a singular Gram matrix
+};
+/// From the box's shape alone (the samples are a grid).
+Whitening whiteningOf(const Geometry& g);
+
+/// How a least-change search reads a box's points (MinimaxDense.cpp, MinimaxScan.cpp).
+class LeastChangePricing {
+public:
+    /// Up to LEAST_CHANGE_PINS_PER_ROUND points whose residual under the coefficients c (of the basis)
+    /// passes `level`, worst first, into `out`; their count. `largest` is the largest |residual| priced.
+    /// The cell points are priced only when no sample passes the level and the curvature bound
+    /// (cellBound) does not answer for them.
+    virtual int beyond(const double* c, double level, Point* out, double& largest) = 0;
+
+protected:
+    ~LeastChangePricing() = default;
+};
+
+/// The polynomial nearest `start` (the least-squares one) in the least-squares metric whose residuals are
+/// within target.acceptBelow at every point, when a search of LEAST_CHANGE_ROUNDS finds one and the
+/// target's accept takes it (Found); else NotFound, which proves nothing (MinimaxLeastChange.cpp).
+MinimaxSolution findLeastChange(const Geometry& g, LeastChangePricing& pricing, const Whitening& whitening,
+                                const std::array<double, MONOMIAL_COUNT>& start, const MinimaxTarget& target);
+
 /// A box of at most MINIMAX_DENSE_POINTS samples (MinimaxDense.cpp).
 MinimaxSolution fitDense(const Volume& volume, const Geometry& g, Certify points,
                          const std::array<double, MONOMIAL_COUNT>& start, const MinimaxTarget& target);

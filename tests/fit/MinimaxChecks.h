@@ -8,6 +8,7 @@
 #include "vots/fit/VolumeLoad.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -43,6 +44,42 @@ inline double evaluate(const Vot& vot, double x, double y, double z) {
         sum += term;
     }
     return sum;
+}
+
+/// The polynomial of scaled coefficients (over u = (x - centre) / half-extent) at index point (x, y, z).
+inline double scaledPolynomial(const std::array<double, MONOMIAL_COUNT>& scaled, const Box& box, double x,
+                               double y, double z) {
+    const double u[3] = {(x - 0.5 * (box.lo[0] + box.hi[0])) / (0.5 * box.cells(0)),
+                         (y - 0.5 * (box.lo[1] + box.hi[1])) / (0.5 * box.cells(1)),
+                         (z - 0.5 * (box.lo[2] + box.hi[2])) / (0.5 * box.cells(2))};
+    double p = 0.0;
+    for (std::size_t i = 0; i < MONOMIAL_COUNT; ++i) {
+        const auto& e = MONOMIAL_EXPONENTS[i];
+        p += scaled[i] * std::pow(u[0], e[0]) * std::pow(u[1], e[1]) * std::pow(u[2], e[2]);
+    }
+    return p;
+}
+
+/// The largest |P - value| of a polynomial of scaled coefficients over the box's samples and, with
+/// `halfSteps`, every point of its half-integer lattice (edge midpoints, face and cell centres) against
+/// the mean of the samples at the corners of its edge, face or cell.
+inline double largestLatticeResidual(const Volume& volume, const Box& box,
+                                     const std::array<double, MONOMIAL_COUNT>& scaled, bool halfSteps) {
+    const int step = halfSteps ? 1 : 2;
+    double worst = 0.0;
+    for (int tz = 2 * box.lo[2]; tz <= 2 * box.hi[2]; tz += step)
+        for (int ty = 2 * box.lo[1]; ty <= 2 * box.hi[1]; ty += step)
+            for (int tx = 2 * box.lo[0]; tx <= 2 * box.hi[0]; tx += step) {
+                double sum = 0.0;
+                int count = 0;
+                for (int k = 0; k <= (tz & 1); ++k)
+                    for (int j = 0; j <= (ty & 1); ++j)
+                        for (int i = 0; i <= (tx & 1); ++i, ++count)
+                            sum += volume.at(tx / 2 + i, ty / 2 + j, tz / 2 + k);
+                const double p = scaledPolynomial(scaled, box, 0.5 * tx, 0.5 * ty, 0.5 * tz);
+                worst = std::max(worst, std::abs(p - sum / count));
+            }
+    return worst;
 }
 
 struct Independent {

@@ -1,6 +1,7 @@
 // Minimax acceptance (docs/DESIGN.md §3, "Minimax"; white box, fit/src): a box least squares refuses is kept,
-// by least squares with its residuals centred or else by the exchange.
+// by least squares with its residuals centred, the least-change search (small boxes) or the exchange.
 #include "BoxFit.h"
+#include "Minimax.h"
 #include "MinimaxChecks.h"
 #include "SyntheticFields.h"
 
@@ -29,15 +30,15 @@ Volume cornerSpike(double eps, double amplitude, int degree) {
     });
 }
 
-/// A polynomial plus `amplitude` eps at the corner (0, 0, 0), minus it at the opposite one and nothing
-/// elsewhere: least squares misses the two corners by about the same amount, one up and one down, so moving
-/// its constant gains nothing; the polynomial plus the plane that is +amplitude/2 eps at the first corner and
-/// -amplitude/2 eps at the other is within amplitude/2 eps of every sample.
-Volume opposedCornerSpikes(double eps, double amplitude, int degree) {
-    const std::array<int, 3> dims{9, 9, 9};
+/// A polynomial plus `amplitude` eps at the corner (0, 0, 0) of a cube of side^3 samples, minus it at the
+/// opposite one and nothing elsewhere: least squares misses the two corners by about the same amount, one up
+/// and one down, so moving its constant gains nothing; the polynomial plus the plane that is +amplitude/2 eps
+/// at the first corner and -amplitude/2 eps at the other is within amplitude/2 eps of every sample.
+Volume opposedCornerSpikes(double eps, double amplitude, int degree, int side = 9) {
+    const std::array<int, 3> dims{side, side, side};
     const vots::test::Polynomial p = vots::test::randomPolynomial(degree, dims, 11u, 400.0);
     return sampleVolume(dims, [&](int x, int y, int z) {
-        const double spike = x + y + z == 0 ? amplitude : x + y + z == 24 ? -amplitude : 0.0;
+        const double spike = x + y + z == 0 ? amplitude : x + y + z == 3 * (side - 1) ? -amplitude : 0.0;
         return p(x, y, z) + spike * eps;
     });
 }
@@ -135,4 +136,30 @@ TEST(Minimax, KeepsSuchABoxWholeWhenCertifiedAtTheCellsToo) {
     const Independent check = recompute(fitMinimax.space, volume, EpsField(eps), -INFINITY, true);
     EXPECT_EQ(check.beyondEps, 0u);
     EXPECT_LE(check.worstCellPoint, 1.0);
+}
+
+TEST(Minimax, KeepsWholeASmallBoxByTheLeastChangeSearch) {
+    // The opposed spikes in a box of 6^3 samples, which the least-change search decides (the exchange
+    // decides larger ones): least squares misses both spikes by 1.1 eps, centring gains nothing, and the
+    // polynomial plus a plane is within 0.9 eps of every sample.
+    const float eps = 10.f;
+    const Volume volume = opposedCornerSpikes(eps, 1.9, 3, 6);
+    const Box box{{0, 0, 0}, {5, 5, 5}};
+    ASSERT_LE(box.pointCount(), MINIMAX_DENSE_POINTS);
+    const EpsField field(eps);
+    FitCounters counters;
+    const BoxFitter minimax(volume, 3, Certify::Samples, FitNorm::Minimax);
+    BoxRecord record;
+    const BoxOutcome kept = minimax.decide(box, field, record, counters);
+    ASSERT_TRUE(kept.accepted);
+    EXPECT_FALSE(record.lsq.accepted);
+    EXPECT_GT(record.centredHalfRange, eps);
+    EXPECT_EQ(record.state, BoxRecord::Minimax::Found);
+    EXPECT_LE(worstSample(volume, box, kept), eps);
+    EXPECT_GT(worstSample(volume, box, record.lsq), eps);
+
+    const FitResult fit = fitVotSpace(volume, options(eps, 3, FitNorm::Minimax));
+    ASSERT_EQ(fit.space.vots.size(), 1u);
+    EXPECT_TRUE(verifyVotSpace(fit.space, volume).ok);
+    EXPECT_GT(fit.stats.minimaxAccepted, 0u);
 }

@@ -13,24 +13,6 @@
 using namespace vots::fit;
 using namespace vots::test;
 
-namespace {
-
-/// The polynomial of scaled coefficients at index point (x, y, z) of the box.
-double scaledPolynomial(const std::array<double, MONOMIAL_COUNT>& scaled, const Box& box, double x, double y,
-                        double z) {
-    const double u[3] = {(x - 0.5 * (box.lo[0] + box.hi[0])) / (0.5 * box.cells(0)),
-                         (y - 0.5 * (box.lo[1] + box.hi[1])) / (0.5 * box.cells(1)),
-                         (z - 0.5 * (box.lo[2] + box.hi[2])) / (0.5 * box.cells(2))};
-    double p = 0.0;
-    for (std::size_t i = 0; i < MONOMIAL_COUNT; ++i) {
-        const auto& e = MONOMIAL_EXPONENTS[i];
-        p += scaled[i] * std::pow(u[0], e[0]) * std::pow(u[1], e[1]) * std::pow(u[2], e[2]);
-    }
-    return p;
-}
-
-} // namespace
-
 TEST(Minimax, TheExchangeReachesTheMinimaxPolynomial) {
     // On boxes of a real volume: where it converges, the polynomial's largest residual is within the
     // tolerance of the lower bound the dual LP proves, never above least squares', and what it reports.
@@ -59,12 +41,7 @@ TEST(Minimax, TheExchangeReachesTheMinimaxPolynomial) {
             EXPECT_LE(s.maxResidual, lsq.errSamples * (1.0 + 1e-6) + 1e-6);
         }
         // The reported residual, recomputed from the coefficients over scaled coordinates.
-        double worst = 0.0;
-        for (int z = box.lo[2]; z <= box.hi[2]; ++z)
-            for (int y = box.lo[1]; y <= box.hi[1]; ++y)
-                for (int x = box.lo[0]; x <= box.hi[0]; ++x)
-                    worst = std::max(worst,
-                                     std::abs(scaledPolynomial(s.scaled, box, x, y, z) - volume.at(x, y, z)));
+        const double worst = largestLatticeResidual(volume, box, s.scaled, false);
         EXPECT_LE(worst, s.maxResidual * (1.0 + 1e-9) + 1e-9);
     }
     EXPECT_GT(converged, 60);
@@ -103,19 +80,7 @@ TEST(Minimax, ACellsSearchHoldsEveryCellPointWhateverTheShapeCacheHeld) {
         EXPECT_EQ(afterShortSearch.scaled, fresh.scaled);
         if (fresh.result != MinimaxSolution::Result::Converged) continue;
         ++converged;
-        double worst = 0.0;
-        for (int tz = 2 * box.lo[2]; tz <= 2 * box.hi[2]; ++tz)
-            for (int ty = 2 * box.lo[1]; ty <= 2 * box.hi[1]; ++ty)
-                for (int tx = 2 * box.lo[0]; tx <= 2 * box.hi[0]; ++tx) {
-                    double sum = 0.0;
-                    int count = 0;
-                    for (int k = 0; k <= (tz & 1); ++k)
-                        for (int j = 0; j <= (ty & 1); ++j)
-                            for (int i = 0; i <= (tx & 1); ++i, ++count)
-                                sum += volume.at(tx / 2 + i, ty / 2 + j, tz / 2 + k);
-                    const double p = scaledPolynomial(fresh.scaled, box, 0.5 * tx, 0.5 * ty, 0.5 * tz);
-                    worst = std::max(worst, std::abs(p - sum / count));
-                }
+        const double worst = largestLatticeResidual(volume, box, fresh.scaled, true);
         EXPECT_LE(worst, fresh.maxResidual * (1.0 + 1e-9) + 1e-9) << "shift " << shift;
     }
     EXPECT_GE(converged, 4);
