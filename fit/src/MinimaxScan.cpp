@@ -172,6 +172,52 @@ void addCandidates(const Volume& volume, const Geometry& g, const Extremes& e, c
     }
 }
 
+/// A large box's points for the least-change search: a scan's worst residual of each sign in each region
+/// are the candidates, as they are the exchange's.
+class ScanPricing final : public LeastChangePricing {
+public:
+    ScanPricing(const Volume& volume, const Geometry& g, Certify points, double scale)
+        : mVolume(volume), mG(g), mPoints(points), mScale(scale) {}
+
+    int beyond(const double* c, double level, Point* out, double& largest) override {
+        const Tensor tensor = mG.tensor(c);
+        scanSamples(mVolume, mG, tensor, false, mScan);
+        largest = mScan.maxAbs;
+        if (largest <= level) {
+            if (mPoints != Certify::Cells || largest + cellBound(mG, c, mScale) <= level) return 0;
+            scanCells(mVolume, mG, tensor, mScan);
+            largest = std::max(largest, mScan.maxAbs);
+        }
+        struct Ranked {
+            double magnitude;
+            std::array<int, 3> twice;
+        };
+        std::array<Ranked, 2 * REGION_COUNT> ranked;
+        std::size_t count = 0;
+        for (std::size_t k = 0; k < REGION_COUNT; ++k) {
+            if (mScan.high[k] > level) ranked[count++] = {mScan.high[k], mScan.highAt[k]};
+            if (-mScan.low[k] > level) ranked[count++] = {-mScan.low[k], mScan.lowAt[k]};
+        }
+        const auto taken = std::min<std::size_t>(count, LEAST_CHANGE_PINS_PER_ROUND);
+        std::partial_sort(ranked.begin(), ranked.begin() + static_cast<std::ptrdiff_t>(taken),
+                          ranked.begin() + static_cast<std::ptrdiff_t>(count),
+                          [](const Ranked& a, const Ranked& b) {
+                              return a.magnitude != b.magnitude ? a.magnitude > b.magnitude
+                                                                : keyOf(a.twice) < keyOf(b.twice);
+                          });
+        for (std::size_t q = 0; q < taken; ++q)
+            out[q] = mG.point(ranked[q].twice, referenceAt(mVolume, ranked[q].twice));
+        return static_cast<int>(taken);
+    }
+
+private:
+    const Volume& mVolume;
+    const Geometry& mG;
+    Certify mPoints;
+    double mScale;
+    Extremes mScan;
+};
+
 } // namespace
 
 MinimaxSolution fitByScans(const Volume& volume, const Geometry& g, Certify points,
@@ -190,6 +236,11 @@ MinimaxSolution fitByScans(const Volume& volume, const Geometry& g, Certify poin
         scanSamples(volume, g, g.tensor(c.data()), true, extremes);
     }
     const double scale = 1.0 + extremes.maxAbsValue;
+    // Acceptance: the least-change search, as for a small box (fitDense).
+    if (target.accept && target.acceptBelow > 0.0) {
+        ScanPricing pricing(volume, g, points, scale);
+        return findLeastChange(g, pricing, whiteningOf(g), start, target);
+    }
     const double pivotSlack = 1e-10 * scale;
     std::vector<Point> candidates;
     {
