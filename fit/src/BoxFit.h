@@ -73,10 +73,9 @@ struct ResidualRange {
     double high = -INFINITY;
 };
 
-/// Minimax acceptance runs the exchange only on a box whose least-squares polynomial is within this many
-/// times the minimax target (eps, or MINIMAX_CELLS_TARGET eps) at every sample: further out the minimax one
-/// is rarely within it, and the exchange would mostly prove that at the price of a search (docs/DESIGN.md
-/// §3, "Minimax").
+/// Minimax acceptance searches only a box whose least-squares polynomial is within this many times the
+/// minimax target (eps, or MINIMAX_CELLS_TARGET eps) at every sample: further out no polynomial is often
+/// within it, and the search would mostly fail at the price of its rounds (docs/DESIGN.md §3, "Minimax").
 inline constexpr double MINIMAX_GATE = 1.5;
 /// With Certify::Cells a box is accepted by its minimax polynomial only when that is within this fraction
 /// of eps at the samples and the cell points, face centres included: least squares rarely comes near eps
@@ -84,31 +83,26 @@ inline constexpr double MINIMAX_GATE = 1.5;
 /// it holds at them. With this margin the Vots' MIP agrees with the exact grid's at least as often as with
 /// least squares (docs/DESIGN.md §3, "Minimax"; tests/render/test_RealVolumeProjections.cpp).
 inline constexpr double MINIMAX_CELLS_TARGET = 0.9;
-/// The exchange offers a polynomial for certification once its largest residual is within eps less this
-/// fraction: the rounding of its coefficients to float must not take it past eps.
+/// The least-change search looks for a polynomial within eps less this fraction: the rounding of its
+/// coefficients to float must not take it past eps.
 inline constexpr double MINIMAX_ROUNDING_MARGIN = 1e-4;
 
-/// Everything minimax acceptance has learned about one box. None of it depends on eps, so a FitCache keeps
-/// it and a later fit at another eps decides from it as a fresh fit would.
+/// What minimax acceptance has learned about one box that holds at any eps, so a FitCache keeps it and a
+/// later fit at another eps decides from it as a fresh fit would. The least-change search's polynomial
+/// depends on the eps it searched for, so a later eps searches again.
 struct BoxRecord {
     enum class Minimax : std::uint8_t {
-        NotRun,    // (or gave up)
-        Above,     // stopped once its lower bound (lowerBound) passed the eps of the time
-        Converged, // `minimax` holds the minimax coefficients and their last certification
-        Found,     // `minimax` holds coefficients found within the eps of the time, and their certification
-        Centred    // `minimax` holds the centred least-squares polynomial (below) and its last certification
+        NotRun, // `minimax` holds nothing
+        Found, // `minimax` holds what the least-change search found at this eps, certified (for no other eps)
+        Centred // `minimax` holds the centred least-squares polynomial (below) and its last certification
     };
     BoxOutcome lsq;      // the least-squares coefficients and what their last certification found
     bool fitted = false; // lsq holds coefficients
     /// No polynomial of the basis is within less than this at every certified point: the least-squares
-    /// root-mean-square residual, or the exchange's lower bound.
+    /// root-mean-square residual.
     float lowerBound = 0.f;
     Minimax state = Minimax::NotRun;
     BoxOutcome minimax;
-    /// Converged, Found: the search's MinimaxSolution::minEarlier (rounded down) and the largest residual
-    /// of the polynomial it ended with (rounded up), which say at which eps it would end there again.
-    float minEarlier = 0.f;
-    float offered = INFINITY;
     /// The least-squares polynomial with its constant moved to the middle of its residuals' range over the
     /// certified points: half that range (rounded up; NaN until computed) and the moved constant.
     float centredHalfRange = NAN;
@@ -153,7 +147,7 @@ private:
     bool decideLeastSquares(const Box& box, const EpsField& eps, BoxRecord& record, FitCounters& counters,
                             bool minimax) const;
     bool decideMinimax(const Box& box, const EpsField& eps, BoxRecord& record, FitCounters& counters) const;
-    /// The centred least-squares polynomial, tried before any exchange: accepted when half its residuals'
+    /// The centred least-squares polynomial, tried before any search: accepted when half its residuals'
     /// range is within epsMin (the target's smallest eps over the box) and its certification at `tight`
     /// passes.
     bool decideCentred(const Box& box, const EpsField& tight, double epsMin, BoxRecord& record,

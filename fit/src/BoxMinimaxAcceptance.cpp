@@ -155,64 +155,25 @@ bool BoxFitter::decideMinimax(const Box& box, const EpsField& field, BoxRecord& 
     const EpsField tight = minimaxTarget() < 1.0 ? scaledField(field, minimaxTarget()) : field;
     const double epsMin = tight.minOverBox(box);
     const double epsMax = tight.maxOverBox(box);
-    // Before any exchange: least squares with its residuals centred. The least-squares polynomial's mean
+    // Before the search: least squares with its residuals centred. The least-squares polynomial's mean
     // residual is zero, not the middle of its range, and a box refused for a few large residuals of one sign
     // (a bone edge, a vessel) is often within eps once its constant moves to that middle, at the price of two
-    // scans instead of a search (bench/RESULTS.md, "Centred least squares"). It comes first so that what the
-    // exchange learns (its lower bound counts the face centres too) never decides it: a refit from a cache
-    // then decides as a fresh fit would.
+    // scans instead of a search (bench/RESULTS.md, "Centred least squares"); what it finds holds at any
+    // larger eps, so a cache keeps it.
     if (decideCentred(box, tight, epsMin, record, counters)) return true;
 
     if (record.lowerBound > epsMax) return false;
 
-    // A polynomial within eps (less a margin for the rounding of its coefficients to float) ends the
-    // search when its certification passes. The search meets the same polynomials at any eps, so what an
-    // earlier one ended with is this eps's answer when this eps would have ended it there too.
-    const double acceptBelow = epsMin * (1.0 - MINIMAX_ROUNDING_MARGIN);
-    const bool noEarlierStop = record.minEarlier > acceptBelow;
-    switch (record.state) {
-    case BoxRecord::Minimax::Found:
-        if (noEarlierStop && record.offered <= acceptBelow && record.minimax.errCriterionBound <= epsMin) {
-            counters.addCacheHit();
-            record.minimax.accepted = true;
-            return true;
-        }
-        break;
-    case BoxRecord::Minimax::Converged: {
-        if (!noEarlierStop) break;
-        BoxOutcome& m = record.minimax;
-        if (m.errCriterionBound <= epsMin) {
-            counters.addCacheHit();
-            m.accepted = true;
-            return true;
-        }
-        if (m.errCriterion > epsMax) {
-            counters.addCacheHit();
-            return false;
-        }
-        const BoxOutcome before = m;
-        certify(box, tight, m, counters);
-        keepWhatWasKnown(m, before);
-        record.changed = true;
-        return m.accepted;
-    }
-    case BoxRecord::Minimax::NotRun:
-    case BoxRecord::Minimax::Above:
-    case BoxRecord::Minimax::Centred: // refused just above: the exchange decides
-        break;
-    }
-
-    // The exchange starts from the stored (float) least-squares coefficients, so a later fit that finds
-    // this record in a cache runs it from the same start, to the same polynomial.
+    // The least-change search from the stored (float) least-squares coefficients, for a polynomial within
+    // eps less a margin for the rounding of its coefficients, which its certification then checks.
     const std::uint32_t mask = basisMask(box, mDegree);
     const auto factors = scaledMonomialFactors(box);
     std::array<double, MONOMIAL_COUNT> start{};
     for (std::size_t i = 0; i < MONOMIAL_COUNT; ++i)
         if (mask & (1u << i)) start[i] = static_cast<double>(lsq.c[i]) * factors[i];
     MinimaxTarget target;
-    target.stopAbove = epsMax;
     BoxOutcome found;
-    target.acceptBelow = acceptBelow;
+    target.acceptBelow = epsMin * (1.0 - MINIMAX_ROUNDING_MARGIN);
     target.accept = [&](const std::array<double, MONOMIAL_COUNT>& scaled) {
         found = BoxOutcome{};
         found.p = lsq.p;
@@ -221,38 +182,13 @@ bool BoxFitter::decideMinimax(const Box& box, const EpsField& field, BoxRecord& 
         certify(box, tight, found, counters);
         return found.accepted;
     };
-    const MinimaxSolution solution = fitMinimax(mVolume, box, mask, mCertify, start, target);
-    record.changed = true;
-    record.lowerBound = std::max(record.lowerBound, roundDownToFloat(solution.lowerBound));
-    record.minEarlier = roundDownToFloat(solution.minEarlier);
-    record.offered = roundUpToFloat(solution.maxResidual);
-    switch (solution.result) {
-    case MinimaxSolution::Result::Above:
-        counters.addMinimax(solution.scans, false);
-        record.state = BoxRecord::Minimax::Above;
-        return false;
-    case MinimaxSolution::Result::GaveUp:
-    case MinimaxSolution::Result::NotFound:
-        counters.addMinimax(solution.scans, false);
-        record.state = BoxRecord::Minimax::NotRun; // (another eps may stop it sooner)
-        return false;
-    case MinimaxSolution::Result::Found:
-        counters.addMinimax(solution.scans, true);
-        record.state = BoxRecord::Minimax::Found;
-        record.minimax = found;
-        return true;
-    case MinimaxSolution::Result::Converged:
-        break;
-    }
-    record.state = BoxRecord::Minimax::Converged;
-    BoxOutcome& m = record.minimax;
-    m = BoxOutcome{};
-    m.p = lsq.p;
-    for (std::size_t i = 0; i < MONOMIAL_COUNT; ++i)
-        if (mask & (1u << i)) m.c[i] = static_cast<float>(solution.scaled[i] / factors[i]);
-    certify(box, tight, m, counters);
-    counters.addMinimax(solution.scans, m.accepted);
-    return m.accepted;
+    const MinimaxSolution solution = findWithinTarget(mVolume, box, mask, mCertify, start, target);
+    const bool accepted = solution.result == MinimaxSolution::Result::Found;
+    counters.addMinimax(solution.scans, accepted);
+    if (!accepted) return false;
+    record.state = BoxRecord::Minimax::Found; // (nothing for a cache: it holds at this eps only)
+    record.minimax = found;
+    return true;
 }
 
 } // namespace vots::fit

@@ -82,8 +82,6 @@ void FitCache::Impl::find(const Box& box, BoxRecord& record) {
     if (entry.minimaxEntry != CachedBox::NO_ENTRY) {
         const CachedMinimax& found = shard.minimaxes[entry.minimaxEntry];
         record.minimax = found.outcome;
-        record.minEarlier = found.minEarlier;
-        record.offered = found.offered;
         record.centredHalfRange = found.centredHalfRange;
         record.centredConstant = found.centredConstant;
     }
@@ -98,11 +96,11 @@ void FitCache::Impl::store(const Box& box, const BoxRecord& record) {
     entry.outcome = record.lsq;
     entry.hasCoefficients = record.fitted;
     entry.lowerBound = record.lowerBound;
-    entry.minimaxState = record.state;
-    // A Centred state implies a centred half range, so that condition covers it.
-    if (record.state == BoxRecord::Minimax::Converged || record.state == BoxRecord::Minimax::Found ||
-        !std::isnan(record.centredHalfRange)) {
-        const CachedMinimax found{record.minimax, record.minEarlier, record.offered, record.centredHalfRange,
+    // What the least-change search found holds at its own eps only (BoxRecord::Minimax::Found): not kept.
+    const bool centred = record.state == BoxRecord::Minimax::Centred;
+    entry.minimaxState = centred ? BoxRecord::Minimax::Centred : BoxRecord::Minimax::NotRun;
+    if (!std::isnan(record.centredHalfRange)) {
+        const CachedMinimax found{centred ? record.minimax : BoxOutcome{}, record.centredHalfRange,
                                   record.centredConstant};
         if (entry.minimaxEntry == CachedBox::NO_ENTRY) {
             entry.minimaxEntry = static_cast<std::uint32_t>(shard.minimaxes.size());

@@ -33,19 +33,17 @@ struct BoxEqual {
 struct CachedBox {
     BoxOutcome outcome; // coefficients valid only when fitted (not for an RSS early reject)
     bool hasCoefficients = false;
-    // Minimax acceptance only (BoxRecord): the lower bound, the exchange's state, and where the shard keeps
-    // the minimax outcome (few boxes have one, so it is not inline).
+    // Minimax acceptance only (BoxRecord): the lower bound, the state (NotRun or Centred), and where the
+    // shard keeps the centred polynomial (few boxes have one, so it is not inline).
     float lowerBound = 0.f;
     BoxRecord::Minimax minimaxState = BoxRecord::Minimax::NotRun;
     std::uint32_t minimaxEntry = NO_ENTRY;
     static constexpr std::uint32_t NO_ENTRY = 0xffffffffu;
 };
 
-/// A minimax polynomial found for a box, and its centred least-squares one (BoxRecord's).
+/// A box's centred least-squares polynomial (BoxRecord's) and, when it was accepted, its certification.
 struct CachedMinimax {
     BoxOutcome outcome;
-    float minEarlier = 0.f;
-    float offered = INFINITY;
     float centredHalfRange = NAN;
     float centredConstant = 0.f;
 };

@@ -200,42 +200,67 @@ private:
     double mScale;
 };
 
+/// A small box's points: its shape's rows (per thread) and the values there, the cell points' gathered
+/// only once something prices them.
+struct DenseBox {
+    ShapePoints& shape;
+    Eigen::VectorXd& f;
+    bool cellsGathered;
+    std::function<void()> gatherCells;
+
+    DenseBox(const Volume& volume, const Geometry& g, Certify points)
+        : shape(shapeOf(g, points)), f(values()), cellsGathered(false) {
+        const Box& box = g.box();
+        const int m = static_cast<int>(shape.offsets.size());
+        const int ms = shape.samples;
+        f.resize(m);
+        gatherValues(volume, box, shape, 0, ms, f);
+        cellsGathered = m == ms;
+        gatherCells = [this, &volume, &g, m, ms] {
+            if (cellsGathered) return;
+            fillCellRows(g, shape);
+            gatherValues(volume, g.box(), shape, ms, m, f);
+            cellsGathered = true;
+        };
+    }
+    double scale() const { return 1.0 + f.head(shape.samples).cwiseAbs().maxCoeff(); }
+
+private:
+    static Eigen::VectorXd& values() {
+        thread_local Eigen::VectorXd f;
+        return f;
+    }
+};
+
 } // namespace
+
+MinimaxSolution findDense(const Volume& volume, const Geometry& g, Certify points,
+                          const std::array<double, MONOMIAL_COUNT>& start, const MinimaxTarget& target) {
+    DenseBox dense(volume, g, points);
+    ShapePoints& shape = dense.shape;
+    if (!shape.whitening) shape.whitening = whiteningOf(g);
+    DensePricing pricing(g, shape, dense.f, dense.gatherCells, dense.scale());
+    return findLeastChange(g, pricing, *shape.whitening, start, target);
+}
 
 /// Every point of the box in one matrix: pricing is one product with the coefficients, and the worst
 /// point enters.
 MinimaxSolution fitDense(const Volume& volume, const Geometry& g, Certify points,
-                         const std::array<double, MONOMIAL_COUNT>& start, const MinimaxTarget& target) {
-    const double stopAbove = target.stopAbove;
+                         const std::array<double, MONOMIAL_COUNT>& start) {
     MinimaxSolution solution;
     const Box& box = g.box();
     const int n = g.n();
-    ShapePoints& shape = shapeOf(g, points);
+    DenseBox dense(volume, g, points);
+    ShapePoints& shape = dense.shape;
+    Eigen::VectorXd& f = dense.f;
     // The cell points (Certify::Cells: seven for each sample) are gathered only once some step prices them:
     // the first basis is chosen among the samples, and most searches end before the cells matter.
     const int m = static_cast<int>(shape.offsets.size());
     const int ms = shape.samples;
-    thread_local Eigen::VectorXd f, r;
-    f.resize(m);
+    thread_local Eigen::VectorXd r;
     r.resize(m);
-    gatherValues(volume, box, shape, 0, ms, f);
     solution.scans = 1;
-    bool cellsGathered = m == ms;
-    const auto gatherCells = [&] {
-        if (cellsGathered) return;
-        fillCellRows(g, shape);
-        gatherValues(volume, box, shape, ms, m, f);
-        cellsGathered = true;
-    };
-    // Acceptance asks for any polynomial within the target, which the least-change search finds in a few
-    // rounds from the least-squares one where the exchange climbs from a level near 0 in ~20-30 pivots and
-    // needs as many again to prove a union out of reach (docs/DESIGN.md §3, "Minimax acceptance", step 4).
-    if (target.accept && target.acceptBelow > 0.0) {
-        if (!shape.whitening) shape.whitening = whiteningOf(g);
-        const std::function<void()> gather = gatherCells;
-        DensePricing pricing(g, shape, f, gather, 1.0 + f.head(ms).cwiseAbs().maxCoeff());
-        return findLeastChange(g, pricing, *shape.whitening, start, target);
-    }
+    const auto& gatherCells = dense.gatherCells;
     Vector c(n);
     for (int j = 0; j < n; ++j)
         c(j) = start[static_cast<std::size_t>(g.basis(j))];
@@ -276,53 +301,38 @@ MinimaxSolution fitDense(const Volume& volume, const Geometry& g, Certify points
         if (!exchange.start(RowList{shape, box, f, order, ms})) return solution;
     }
     const RowList rows{shape, box, f, order, m};
-    int offers = 0;
 
     for (;;) {
         const double t = exchange.t();
         solution.lowerBound = std::max(solution.lowerBound, t);
         solution.pivots = exchange.pivots();
-        if (t > stopAbove) {
-            solution.result = MinimaxSolution::Result::Above;
-            return solution;
-        }
         const double* y = exchange.coefficients();
         for (int j = 0; j < n; ++j)
             c(j) = y[j];
-        // The samples first; the cell points (far more of them) only when no sample is beyond t (or to see
-        // whether a polynomial within the target is within it at the cell points too), and not even then
-        // when the curvature bound answers for them. What enters: the worst sample while one is beyond t,
-        // else the worst point, and the worst point after a failed offer (below).
+        // The samples first; the cell points (far more of them) only when no sample is beyond t, and not
+        // even then when the curvature bound answers for them. What enters: the worst sample while one is
+        // beyond t, else the worst point.
         const double slack = MINIMAX_TOLERANCE * std::max(t, 0.0) + 1e-9 * scale;
         r.head(ms).noalias() = f.head(ms) - shape.phi.topRows(ms) * c;
         Eigen::Index worst = 0;
         const double largestSample = largestMagnitude(r.head(ms), worst);
         const bool samplesDone = largestSample <= t + slack;
-        const bool offer = offers < MINIMAX_MAX_OFFERS && largestSample <= target.acceptBelow;
-        bool cellsPriced = m == ms;
         double largest = largestSample; // over every point once the cells are priced, else an upper bound
-        if (m > ms && (samplesDone || offer)) largest = largestSample + cellBound(g, c.data(), scale);
-        const auto priceCells = [&] {
-            if (cellsPriced) return;
-            cellsPriced = true;
-            gatherCells();
-            r.tail(m - ms).noalias() = f.tail(m - ms) - shape.phi.bottomRows(m - ms) * c;
-            Eigen::Index worstCell = 0;
-            const double largestCell = largestMagnitude(r.tail(m - ms), worstCell);
-            largest = std::max(largestSample, largestCell);
-            if (largestCell > largestSample) worst = ms + worstCell;
-        };
-        if (samplesDone && largest > t + slack) priceCells();
-        if (offer && largest > target.acceptBelow) priceCells();
-        if (endsSearch(g, c.data(), largest, samplesDone && largest <= t + slack,
-                       offer && largest <= target.acceptBelow, target, offers, solution))
+        if (m > ms && samplesDone) {
+            largest = largestSample + cellBound(g, c.data(), scale);
+            if (largest > t + slack) {
+                gatherCells();
+                r.tail(m - ms).noalias() = f.tail(m - ms) - shape.phi.bottomRows(m - ms) * c;
+                Eigen::Index worstCell = 0;
+                const double largestCell = largestMagnitude(r.tail(m - ms), worstCell);
+                largest = std::max(largestSample, largestCell);
+                if (largestCell > largestSample) worst = ms + worstCell;
+            }
+        }
+        if (samplesDone && largest <= t + slack) {
+            converged(g, c.data(), largest, solution);
             return solution;
-        // A failed offer lets the worst cell point enter while samples are still beyond t (fewer pivots than
-        // the worst sample would take), so this search's path depends on the target's eps: what it ends with
-        // must not answer another eps (a minEarlier of -inf tells the box record so).
-        if (!samplesDone && worst >= ms) solution.minEarlier = -INFINITY;
-        if (samplesDone) priceCells(); // (it was: the samples are within t, so some cell point is not)
-        solution.minEarlier = std::min(solution.minEarlier, largestSample);
+        }
         if (exchange.pivots() >= MINIMAX_MAX_PIVOTS) return solution;
         alignas(16) double phi[MONOMIAL_COUNT] = {};
         shape.row(static_cast<int>(worst), phi);

@@ -157,9 +157,7 @@ MinimaxSolution findLeastChange(const Geometry& g, LeastChangePricing& pricing, 
                                 const MinimaxTarget& target) {
     MinimaxSolution solution;
     solution.result = MinimaxSolution::Result::NotFound;
-    // What it finds depends on the target's eps: it answers no other eps (BoxRecord::minEarlier).
-    solution.minEarlier = -INFINITY;
-    if (!white.ok || !target.accept) return solution;
+    if (!white.ok) return solution;
     const int n = g.n();
     const double level = target.acceptBelow;
     const double pinAt = LEAST_CHANGE_PIN_LEVEL * level;

@@ -176,12 +176,14 @@ void addCandidates(const Volume& volume, const Geometry& g, const Extremes& e, c
 /// are the candidates, as they are the exchange's.
 class ScanPricing final : public LeastChangePricing {
 public:
-    ScanPricing(const Volume& volume, const Geometry& g, Certify points, double scale)
-        : mVolume(volume), mG(g), mPoints(points), mScale(scale) {}
+    ScanPricing(const Volume& volume, const Geometry& g, Certify points)
+        : mVolume(volume), mG(g), mPoints(points) {}
 
     int beyond(const double* c, double level, Point* out, double& largest) override {
         const Tensor tensor = mG.tensor(c);
-        scanSamples(mVolume, mG, tensor, false, mScan);
+        const bool first = mScale == 0.0;
+        scanSamples(mVolume, mG, tensor, first, mScan);
+        if (first) mScale = 1.0 + mScan.maxAbsValue; // (the tolerances' scale, for cellBound)
         largest = mScan.maxAbs;
         if (largest <= level) {
             if (mPoints != Certify::Cells || largest + cellBound(mG, c, mScale) <= level) return 0;
@@ -214,15 +216,20 @@ private:
     const Volume& mVolume;
     const Geometry& mG;
     Certify mPoints;
-    double mScale;
+    double mScale = 0.0;
     Extremes mScan;
 };
 
 } // namespace
 
+MinimaxSolution findByScans(const Volume& volume, const Geometry& g, Certify points,
+                            const std::array<double, MONOMIAL_COUNT>& start, const MinimaxTarget& target) {
+    ScanPricing pricing(volume, g, points);
+    return findLeastChange(g, pricing, whiteningOf(g), start, target);
+}
+
 MinimaxSolution fitByScans(const Volume& volume, const Geometry& g, Certify points,
-                           const std::array<double, MONOMIAL_COUNT>& start, const MinimaxTarget& target) {
-    const double stopAbove = target.stopAbove;
+                           const std::array<double, MONOMIAL_COUNT>& start) {
     MinimaxSolution solution;
     const Box& box = g.box();
     const int n = g.n();
@@ -236,11 +243,6 @@ MinimaxSolution fitByScans(const Volume& volume, const Geometry& g, Certify poin
         scanSamples(volume, g, g.tensor(c.data()), true, extremes);
     }
     const double scale = 1.0 + extremes.maxAbsValue;
-    // Acceptance: the least-change search, as for a small box (fitDense).
-    if (target.accept && target.acceptBelow > 0.0) {
-        ScanPricing pricing(volume, g, points, scale);
-        return findLeastChange(g, pricing, whiteningOf(g), start, target);
-    }
     const double pivotSlack = 1e-10 * scale;
     std::vector<Point> candidates;
     {
@@ -288,14 +290,9 @@ MinimaxSolution fitByScans(const Volume& volume, const Geometry& g, Certify poin
     if (!exchange.start(PointList{candidates})) return solution;
 
     std::vector<Point> pool;
-    int offers = 0;
     for (;;) {
         solution.lowerBound = std::max(solution.lowerBound, exchange.t());
         solution.pivots = exchange.pivots();
-        if (exchange.t() > stopAbove) {
-            solution.result = MinimaxSolution::Result::Above;
-            return solution;
-        }
         // Price the pool: the largest reduced cost |r| - t enters.
         double bestGain = pivotSlack;
         std::size_t best = pool.size();
@@ -327,11 +324,8 @@ MinimaxSolution fitByScans(const Volume& volume, const Geometry& g, Certify poin
         const double slack = MINIMAX_TOLERANCE * std::max(t, 0.0) + 1e-9 * scale;
         const Tensor c = g.tensor(exchange.coefficients());
         scanSamples(volume, g, c, false, extremes);
-        // As in fitDense, what joins the pool does not depend on the target.
         const bool samplesDone = extremes.maxAbs <= t + slack;
-        const bool offer = offers < MINIMAX_MAX_OFFERS && extremes.maxAbs <= target.acceptBelow;
-        if (!samplesDone && !offer) {
-            solution.minEarlier = std::min(solution.minEarlier, extremes.maxAbs);
+        if (!samplesDone) {
             addCandidates(volume, g, extremes, exchange, pivotSlack, pool);
             continue;
         }
@@ -340,20 +334,17 @@ MinimaxSolution fitByScans(const Volume& volume, const Geometry& g, Certify poin
         if (points == Certify::Cells) {
             // The curvature bound, or else the scan, for the cell points.
             worst = extremes.maxAbs + cellBound(g, exchange.coefficients(), scale);
-            const bool converges = samplesDone && worst <= t + slack;
-            const bool offered = offer && worst <= target.acceptBelow;
-            // (Once the samples are within t, a failed offer needs the cell points' candidates.)
-            if (!converges && (!offered || samplesDone)) {
+            if (worst > t + slack) {
                 ++solution.scans;
                 scanCells(volume, g, c, cells);
                 worst = std::max(extremes.maxAbs, cells.maxAbs);
             }
         }
-        if (endsSearch(g, exchange.coefficients(), worst, samplesDone && worst <= t + slack,
-                       offer && worst <= target.acceptBelow, target, offers, solution))
+        if (worst <= t + slack) {
+            converged(g, exchange.coefficients(), worst, solution);
             return solution;
-        solution.minEarlier = std::min(solution.minEarlier, extremes.maxAbs);
-        addCandidates(volume, g, samplesDone ? cells : extremes, exchange, pivotSlack, pool);
+        }
+        addCandidates(volume, g, cells, exchange, pivotSlack, pool);
     }
 }
 

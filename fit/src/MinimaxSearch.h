@@ -57,25 +57,13 @@ inline double cellBound(const Geometry& g, const double* c, double scale) {
     return bound * (1.0 + 1e-9) + 1e-12 * scale;
 }
 
-/// The end of one step of a search whose polynomial (coefficients y of the basis) has this largest residual:
-/// converged, it is the answer; within the target, it is offered to the target's accept (counted in
-/// `offers`). True when the search ends with `solution` (Converged or Found).
-inline bool endsSearch(const Geometry& g, const double* y, double largest, bool converged, bool withinTarget,
-                       const MinimaxTarget& target, int& offers, MinimaxSolution& solution) {
-    if (!converged && !withinTarget) return false;
+/// The end of an exchange: its polynomial (coefficients y of the basis) is the minimax one, with this largest
+/// residual.
+inline void converged(const Geometry& g, const double* y, double largest, MinimaxSolution& solution) {
     for (int j = 0; j < g.n(); ++j)
         solution.scaled[static_cast<std::size_t>(g.basis(j))] = y[j];
     solution.maxResidual = largest;
-    if (converged) {
-        solution.result = MinimaxSolution::Result::Converged;
-        return true;
-    }
-    ++offers;
-    if (target.accept && target.accept(solution.scaled)) {
-        solution.result = MinimaxSolution::Result::Found;
-        return true;
-    }
-    return false;
+    solution.result = MinimaxSolution::Result::Converged;
 }
 
 /// The least-change search (MinimaxLeastChange.cpp) pins at most this many of the worst points beyond the
@@ -115,11 +103,16 @@ protected:
 MinimaxSolution findLeastChange(const Geometry& g, LeastChangePricing& pricing, const Whitening& whitening,
                                 const std::array<double, MONOMIAL_COUNT>& start, const MinimaxTarget& target);
 
-/// A box of at most MINIMAX_DENSE_POINTS samples (MinimaxDense.cpp).
+/// The exchange of a box of at most MINIMAX_DENSE_POINTS samples (MinimaxDense.cpp).
 MinimaxSolution fitDense(const Volume& volume, const Geometry& g, Certify points,
-                         const std::array<double, MONOMIAL_COUNT>& start, const MinimaxTarget& target);
-/// A larger box, scanned for its worst residuals (MinimaxScan.cpp).
+                         const std::array<double, MONOMIAL_COUNT>& start);
+/// The exchange of a larger box, scanned for its worst residuals (MinimaxScan.cpp).
 MinimaxSolution fitByScans(const Volume& volume, const Geometry& g, Certify points,
-                           const std::array<double, MONOMIAL_COUNT>& start, const MinimaxTarget& target);
+                           const std::array<double, MONOMIAL_COUNT>& start);
+/// The least-change search of a small box (MinimaxDense.cpp) and of a larger one (MinimaxScan.cpp).
+MinimaxSolution findDense(const Volume& volume, const Geometry& g, Certify points,
+                          const std::array<double, MONOMIAL_COUNT>& start, const MinimaxTarget& target);
+MinimaxSolution findByScans(const Volume& volume, const Geometry& g, Certify points,
+                            const std::array<double, MONOMIAL_COUNT>& start, const MinimaxTarget& target);
 
 } // namespace vots::fit::minimax

@@ -32,7 +32,7 @@ TEST(Minimax, TheExchangeReachesTheMinimaxPolynomial) {
         const BoxOutcome lsq = lsqFitter.fit(box, EpsField(1e9f), counters); // certified: its exact error
         const std::uint32_t mask = basisMask(box, 3);
         std::array<double, MONOMIAL_COUNT> start{};
-        const MinimaxSolution s = fitMinimax(volume, box, mask, certify, start, MinimaxTarget{});
+        const MinimaxSolution s = fitMinimax(volume, box, mask, certify, start);
         if (box.cellCount() == 1 || s.result != MinimaxSolution::Result::Converged) continue;
         ++converged;
         EXPECT_LE(s.lowerBound, s.maxResidual * (1.0 + 1e-12));
@@ -69,13 +69,12 @@ TEST(Minimax, ACellsSearchHoldsEveryCellPointWhateverTheShapeCacheHeld) {
         const std::array<double, MONOMIAL_COUNT> start{};
         MinimaxSolution afterShortSearch, fresh;
         std::thread([&] {
-            const MinimaxSolution quick = fitMinimax(volume, first, mask, Certify::Cells, start, anything);
+            const MinimaxSolution quick =
+                findWithinTarget(volume, first, mask, Certify::Cells, start, anything);
             ASSERT_EQ(quick.result, MinimaxSolution::Result::Found);
-            afterShortSearch = fitMinimax(volume, box, mask, Certify::Cells, start, MinimaxTarget{});
+            afterShortSearch = fitMinimax(volume, box, mask, Certify::Cells, start);
         }).join();
-        std::thread([&] {
-            fresh = fitMinimax(volume, box, mask, Certify::Cells, start, MinimaxTarget{});
-        }).join();
+        std::thread([&] { fresh = fitMinimax(volume, box, mask, Certify::Cells, start); }).join();
         EXPECT_EQ(afterShortSearch.result, fresh.result);
         EXPECT_EQ(afterShortSearch.scaled, fresh.scaled);
         if (fresh.result != MinimaxSolution::Result::Converged) continue;

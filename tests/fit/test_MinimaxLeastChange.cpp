@@ -32,9 +32,9 @@ std::array<double, MONOMIAL_COUNT> scaledStart(const Box& box, const BoxOutcome&
 
 TEST(Minimax, WhatTheLeastChangeSearchFindsIsWithinItsTargetAtEveryPoint) {
     // Boxes of 8 to 729 samples of a real volume (priced whole, or by scans beyond 256 samples); the target
-    // just above or just below the minimax error the exchange converges to. Whatever the search offers is checked
-    // here at every point it fits (samples; with cells every point of the half-integer lattice), and it
-    // must find most of the boxes whose minimax polynomial is within the target by a margin.
+    // just above or just below the minimax error the exchange converges to. Whatever the search offers is
+    // checked here at every point it fits (samples; with cells every point of the half-integer lattice), and
+    // it must find most of the boxes whose minimax polynomial is within the target by a margin.
     const Volume volume = loadShared("cranium-quarter_64x64x108_int16.nrrd");
     std::mt19937 rng(5);
     std::uniform_int_distribution<int> corner(0, 40), side(1, 8);
@@ -52,7 +52,7 @@ TEST(Minimax, WhatTheLeastChangeSearchFindsIsWithinItsTargetAtEveryPoint) {
         const BoxOutcome lsq = lsqFitter.fit(box, EpsField(1e9f), counters);
         const std::uint32_t mask = basisMask(box, 3);
         const auto start = scaledStart(box, lsq);
-        const MinimaxSolution minimax = fitMinimax(volume, box, mask, certify, start, MinimaxTarget{});
+        const MinimaxSolution minimax = fitMinimax(volume, box, mask, certify, start);
         if (minimax.result != MinimaxSolution::Result::Converged || minimax.maxResidual < 1.0) continue;
         // Every third box gets a target the minimax polynomial cannot reach.
         const bool reachableTarget = trial % 3 != 0;
@@ -65,7 +65,7 @@ TEST(Minimax, WhatTheLeastChangeSearchFindsIsWithinItsTargetAtEveryPoint) {
             worstOffered = largestLatticeResidual(volume, box, scaled, certify == Certify::Cells);
             return true;
         };
-        const MinimaxSolution s = fitMinimax(volume, box, mask, certify, start, target);
+        const MinimaxSolution s = findWithinTarget(volume, box, mask, certify, start, target);
         if (s.result == MinimaxSolution::Result::Found) {
             EXPECT_LE(worstOffered, level * (1.0 + 1e-9)) << "trial " << trial;
             EXPECT_LE(worstOffered, s.maxResidual * (1.0 + 1e-9) + 1e-9) << "trial " << trial;

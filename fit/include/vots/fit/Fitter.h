@@ -28,11 +28,11 @@ enum class Certify {
 };
 
 /// Which polynomial a box is tested with (docs/DESIGN.md §3). Either way the stored float coefficients are
-/// certified the same way, so the guarantee is the same; minimax accepts a box whenever some polynomial of
-/// the degree is within eps there, so boxes grow larger and there are fewer of them.
+/// certified the same way, so the guarantee is the same; minimax accepts a box whenever its search finds a
+/// polynomial of the degree within eps there, so boxes grow larger and there are fewer of them.
 enum class FitNorm {
     Lsq,    // the least-squares polynomial only (the paper's method)
-    Minimax // the least-squares one, else the one with the smallest largest error (an exchange LP)
+    Minimax // the least-squares one, else one within eps found by a least-change search from it
 };
 
 inline constexpr auto FIT_METHOD_NAMES =
@@ -92,10 +92,10 @@ struct FitStats {
     std::size_t boxFits = 0;         // least-squares solves
     std::size_t boxScans = 0;        // full residual scans over a box's samples
     std::size_t cacheHits = 0;       // box errors reused from a FitCache
-    std::size_t minimaxFits = 0;     // exchange runs (FitNorm::Minimax)
-    std::size_t minimaxScans = 0;    // their scans over a box's points
-    std::size_t minimaxAccepted = 0; // of those runs, the ones that ended with a box accepted
-    std::size_t centredAccepted = 0; // boxes accepted by centred least squares, before any exchange
+    std::size_t minimaxFits = 0;     // least-change searches (FitNorm::Minimax)
+    std::size_t minimaxScans = 0;    // their rounds, each a pass over a box's points
+    std::size_t minimaxAccepted = 0; // of those searches, the ones that ended with a box accepted
+    std::size_t centredAccepted = 0; // boxes accepted by centred least squares, before any search
     std::size_t coveredCells = 0;    // non-background cells (all covered)
     std::size_t backgroundCells = 0;
     /// Over the background cells, the sum of each one's mean corner value (its integral of the
