@@ -142,6 +142,28 @@ void scanCells(const Volume& volume, const Geometry& g, const Tensor& c, Extreme
     out.finish();
 }
 
+/// A scan's worst residual of one sign in one region: how far it reaches in its own direction (r for the
+/// highest, -r for the lowest) and where.
+struct RankedExtreme {
+    double reach;
+    std::array<int, 3> twice;
+};
+using RankedExtremes = std::array<RankedExtreme, 2 * REGION_COUNT>;
+
+/// The extremes that reach past `level`, farthest first (ties by position); their count.
+std::size_t rankExtremes(const Extremes& e, double level, RankedExtremes& out) {
+    std::size_t count = 0;
+    for (std::size_t k = 0; k < REGION_COUNT; ++k) {
+        if (e.high[k] > level) out[count++] = {e.high[k], e.highAt[k]};
+        if (-e.low[k] > level) out[count++] = {-e.low[k], e.lowAt[k]};
+    }
+    std::sort(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(count),
+              [](const RankedExtreme& a, const RankedExtreme& b) {
+                  return a.reach != b.reach ? a.reach > b.reach : keyOf(a.twice) < keyOf(b.twice);
+              });
+    return count;
+}
+
 /// Points of the scan method's pool, as Exchange::start reads candidates.
 struct PointList {
     const std::vector<Point>& points;
@@ -190,23 +212,9 @@ public:
             scanCells(mVolume, mG, tensor, mScan);
             largest = std::max(largest, mScan.maxAbs);
         }
-        struct Ranked {
-            double magnitude;
-            std::array<int, 3> twice;
-        };
-        std::array<Ranked, 2 * REGION_COUNT> ranked;
-        std::size_t count = 0;
-        for (std::size_t k = 0; k < REGION_COUNT; ++k) {
-            if (mScan.high[k] > level) ranked[count++] = {mScan.high[k], mScan.highAt[k]};
-            if (-mScan.low[k] > level) ranked[count++] = {-mScan.low[k], mScan.lowAt[k]};
-        }
-        const auto taken = std::min<std::size_t>(count, LEAST_CHANGE_PINS_PER_ROUND);
-        std::partial_sort(ranked.begin(), ranked.begin() + static_cast<std::ptrdiff_t>(taken),
-                          ranked.begin() + static_cast<std::ptrdiff_t>(count),
-                          [](const Ranked& a, const Ranked& b) {
-                              return a.magnitude != b.magnitude ? a.magnitude > b.magnitude
-                                                                : keyOf(a.twice) < keyOf(b.twice);
-                          });
+        RankedExtremes ranked;
+        const std::size_t taken =
+            std::min<std::size_t>(rankExtremes(mScan, level, ranked), LEAST_CHANGE_PINS_PER_ROUND);
         for (std::size_t q = 0; q < taken; ++q)
             out[q] = mG.point(ranked[q].twice, referenceAt(mVolume, ranked[q].twice));
         return static_cast<int>(taken);
@@ -246,22 +254,9 @@ MinimaxSolution fitByScans(const Volume& volume, const Geometry& g, Certify poin
     const double pivotSlack = 1e-10 * scale;
     std::vector<Point> candidates;
     {
-        struct Ranked {
-            double r;
-            std::array<int, 3> twice;
-        };
-        std::array<Ranked, 2 * REGION_COUNT> ranked;
-        std::size_t count = 0;
-        for (std::size_t k = 0; k < REGION_COUNT; ++k) {
-            if (extremes.high[k] > -std::numeric_limits<double>::infinity())
-                ranked[count++] = {extremes.high[k], extremes.highAt[k]};
-            if (extremes.low[k] < std::numeric_limits<double>::infinity())
-                ranked[count++] = {-extremes.low[k], extremes.lowAt[k]};
-        }
-        std::sort(ranked.begin(), ranked.begin() + static_cast<std::ptrdiff_t>(count),
-                  [](const Ranked& a, const Ranked& b) {
-                      return a.r != b.r ? a.r > b.r : keyOf(a.twice) < keyOf(b.twice);
-                  });
+        // (Every extreme: a region's highest and lowest residual are finite once it holds a sample.)
+        RankedExtremes ranked;
+        const std::size_t count = rankExtremes(extremes, -std::numeric_limits<double>::infinity(), ranked);
         auto add = [&](const std::array<int, 3>& twice) {
             const std::uint64_t key = keyOf(twice);
             for (const Point& p : candidates)

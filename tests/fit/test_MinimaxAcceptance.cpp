@@ -57,6 +57,19 @@ double worstSample(const Volume& volume, const Box& box, const BoxOutcome& outco
     return worst;
 }
 
+/// One minimax decision of a box at a uniform eps, as the merge asks for it: the outcome and the record.
+struct Decided {
+    BoxOutcome outcome;
+    BoxRecord record;
+};
+Decided decideByMinimax(const Volume& volume, const Box& box, float eps) {
+    FitCounters counters;
+    const BoxFitter minimax(volume, 3, Certify::Samples, FitNorm::Minimax);
+    Decided d;
+    d.outcome = minimax.decide(box, EpsField(eps), d.record, counters);
+    return d;
+}
+
 } // namespace
 
 TEST(Minimax, KeepsWholeABoxThatACubicFitsWithinEpsButLeastSquaresDoesNot) {
@@ -70,11 +83,9 @@ TEST(Minimax, KeepsWholeABoxThatACubicFitsWithinEpsButLeastSquaresDoesNot) {
     const BoxOutcome byLsq = lsq.fit(box, field, counters);
     EXPECT_FALSE(byLsq.accepted) << "least squares must refuse the box for the test to mean anything";
 
-    const BoxFitter minimax(volume, 3, Certify::Samples, FitNorm::Minimax);
-    BoxRecord record;
-    const BoxOutcome byMinimax = minimax.decide(box, field, record, counters);
+    const auto [byMinimax, record] = decideByMinimax(volume, box, eps);
     ASSERT_TRUE(byMinimax.accepted);
-    EXPECT_GT(record.centredHalfRange, eps) << "centring must not be enough for the exchange to be tested";
+    EXPECT_GT(record.centredHalfRange, eps) << "centring must not be enough for the search to be tested";
     EXPECT_EQ(record.state, BoxRecord::Minimax::Found);
     EXPECT_LE(byMinimax.errSamples, eps);
     const double worst = worstSample(volume, box, byMinimax);
@@ -97,11 +108,7 @@ TEST(Minimax, TriesLeastSquaresWithItsResidualsCentredBeforeAnExchange) {
     const float eps = 10.f;
     const Volume volume = cornerSpike(eps, 0.7, 3);
     const Box box{{0, 0, 0}, {8, 8, 8}};
-    const EpsField field(eps);
-    FitCounters counters;
-    const BoxFitter minimax(volume, 3, Certify::Samples, FitNorm::Minimax);
-    BoxRecord record;
-    const BoxOutcome centred = minimax.decide(box, field, record, counters);
+    const auto [centred, record] = decideByMinimax(volume, box, eps);
     ASSERT_TRUE(centred.accepted);
     EXPECT_FALSE(record.lsq.accepted);
     EXPECT_EQ(record.state, BoxRecord::Minimax::Centred);
@@ -139,18 +146,14 @@ TEST(Minimax, KeepsSuchABoxWholeWhenCertifiedAtTheCellsToo) {
 }
 
 TEST(Minimax, KeepsWholeASmallBoxByTheLeastChangeSearch) {
-    // The opposed spikes in a box of 6^3 samples, which the least-change search decides (the exchange
-    // decides larger ones): least squares misses both spikes by 1.1 eps, centring gains nothing, and the
-    // polynomial plus a plane is within 0.9 eps of every sample.
+    // The opposed spikes in a box of 6^3 samples, small enough for the dense method (the box above is
+    // scanned): least squares misses both spikes by 1.1 eps, centring gains nothing, and the polynomial plus
+    // a plane is within 0.9 eps of every sample.
     const float eps = 10.f;
-    const Volume volume = opposedCornerSpikes(eps, 1.9, 3, 6);
+    const Volume volume = opposedCornerSpikes(eps, 1.8, 3, 6);
     const Box box{{0, 0, 0}, {5, 5, 5}};
     ASSERT_LE(box.pointCount(), MINIMAX_DENSE_POINTS);
-    const EpsField field(eps);
-    FitCounters counters;
-    const BoxFitter minimax(volume, 3, Certify::Samples, FitNorm::Minimax);
-    BoxRecord record;
-    const BoxOutcome kept = minimax.decide(box, field, record, counters);
+    const auto [kept, record] = decideByMinimax(volume, box, eps);
     ASSERT_TRUE(kept.accepted);
     EXPECT_FALSE(record.lsq.accepted);
     EXPECT_GT(record.centredHalfRange, eps);
