@@ -1,5 +1,5 @@
-// The least-change search of a small box: the polynomial nearest least squares' whose residuals are within
-// the target, by an active set of pinned points (docs/DESIGN.md §3, "Minimax acceptance", step 4).
+// The least-change search of a box: the polynomial nearest least squares' whose residuals are within the
+// target, by an active set of pinned points (docs/DESIGN.md §3, "Minimax acceptance", step 4).
 #include "MinimaxSearch.h"
 
 #include <Eigen/Cholesky>
@@ -196,6 +196,8 @@ MinimaxSolution findLeastChange(const Geometry& g, LeastChangePricing& pricing, 
                            p.phi[static_cast<std::size_t>(b)];
                 whitened[a] = sum;
             }
+            // Pinned on the side it is beyond; the least change is measured from c0, so the pin holds the
+            // residual c0 leaves there.
             taken += pins.add(whitened, residual(p, c0), residual(p, c) > 0 ? 1.0 : -1.0);
         }
         double lambda[MAX_N];
