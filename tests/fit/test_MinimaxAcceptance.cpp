@@ -1,5 +1,5 @@
 // Minimax acceptance (docs/DESIGN.md §3, "Minimax"; white box, fit/src): a box least squares refuses is kept,
-// by least squares with its residuals centred, the least-change search (small boxes) or the exchange.
+// by least squares with its residuals centred, or by the least-change search (a small box and a large one).
 #include "BoxFit.h"
 #include "Minimax.h"
 #include "MinimaxChecks.h"
