@@ -223,6 +223,8 @@ struct DenseBox {
             cellsGathered = true;
         };
     }
+    DenseBox(const DenseBox&) = delete; // (gatherCells points at this one)
+    DenseBox& operator=(const DenseBox&) = delete;
     double scale() const { return 1.0 + f.head(shape.samples).cwiseAbs().maxCoeff(); }
 
 private:
