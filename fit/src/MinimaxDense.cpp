@@ -159,12 +159,47 @@ int worstBeyond(const Eigen::VectorXd& r, double level, int most, int* out) {
     return count;
 }
 
+/// A small box's points: its shape's rows (per thread) and the values there, the cell points' gathered
+/// only once something prices them.
+struct DenseBox {
+    ShapePoints& shape;
+    Eigen::VectorXd& f;
+    bool cellsGathered;
+    std::function<void()> gatherCells;
+
+    DenseBox(const Volume& volume, const Geometry& g, Certify points)
+        : shape(shapeOf(g, points)), f(values()), cellsGathered(false) {
+        const Box& box = g.box();
+        const int m = static_cast<int>(shape.offsets.size());
+        const int ms = shape.samples;
+        f.resize(m);
+        gatherValues(volume, box, shape, 0, ms, f);
+        cellsGathered = m == ms;
+        gatherCells = [this, &volume, &g, m, ms] {
+            if (cellsGathered) return;
+            fillCellRows(g, shape);
+            gatherValues(volume, g.box(), shape, ms, m, f);
+            cellsGathered = true;
+        };
+    }
+    DenseBox(const DenseBox&) = delete; // (gatherCells points at this one)
+    DenseBox& operator=(const DenseBox&) = delete;
+    /// The tolerances' scale, 1 + the largest |f| (a trilinear value at a cell point is a mean of samples:
+    /// the samples hold the largest).
+    double scale() const { return 1.0 + f.head(shape.samples).cwiseAbs().maxCoeff(); }
+
+private:
+    static Eigen::VectorXd& values() {
+        thread_local Eigen::VectorXd f;
+        return f;
+    }
+};
+
 /// A small box's points for the least-change search: every residual in one product, as the exchange prices.
 class DensePricing final : public LeastChangePricing {
 public:
-    DensePricing(const Geometry& g, const ShapePoints& shape, const Eigen::VectorXd& f,
-                 const std::function<void()>& gatherCells, double scale)
-        : mG(g), mShape(shape), mF(f), mGatherCells(gatherCells), mScale(scale) {}
+    DensePricing(const Geometry& g, DenseBox& box)
+        : mG(g), mShape(box.shape), mF(box.f), mGatherCells(box.gatherCells), mScale(box.scale()) {}
 
     int beyond(const double* coefficients, double level, Point* out, double& largest) override {
         const int n = mG.n();
@@ -200,40 +235,6 @@ private:
     double mScale;
 };
 
-/// A small box's points: its shape's rows (per thread) and the values there, the cell points' gathered
-/// only once something prices them.
-struct DenseBox {
-    ShapePoints& shape;
-    Eigen::VectorXd& f;
-    bool cellsGathered;
-    std::function<void()> gatherCells;
-
-    DenseBox(const Volume& volume, const Geometry& g, Certify points)
-        : shape(shapeOf(g, points)), f(values()), cellsGathered(false) {
-        const Box& box = g.box();
-        const int m = static_cast<int>(shape.offsets.size());
-        const int ms = shape.samples;
-        f.resize(m);
-        gatherValues(volume, box, shape, 0, ms, f);
-        cellsGathered = m == ms;
-        gatherCells = [this, &volume, &g, m, ms] {
-            if (cellsGathered) return;
-            fillCellRows(g, shape);
-            gatherValues(volume, g.box(), shape, ms, m, f);
-            cellsGathered = true;
-        };
-    }
-    DenseBox(const DenseBox&) = delete; // (gatherCells points at this one)
-    DenseBox& operator=(const DenseBox&) = delete;
-    double scale() const { return 1.0 + f.head(shape.samples).cwiseAbs().maxCoeff(); }
-
-private:
-    static Eigen::VectorXd& values() {
-        thread_local Eigen::VectorXd f;
-        return f;
-    }
-};
-
 } // namespace
 
 MinimaxSolution findDense(const Volume& volume, const Geometry& g, Certify points,
@@ -241,7 +242,7 @@ MinimaxSolution findDense(const Volume& volume, const Geometry& g, Certify point
     DenseBox dense(volume, g, points);
     ShapePoints& shape = dense.shape;
     if (!shape.whitening) shape.whitening = whiteningOf(g);
-    DensePricing pricing(g, shape, dense.f, dense.gatherCells, dense.scale());
+    DensePricing pricing(g, dense);
     return findLeastChange(g, pricing, *shape.whitening, start, target);
 }
 
@@ -267,8 +268,7 @@ MinimaxSolution fitDense(const Volume& volume, const Geometry& g, Certify points
     for (int j = 0; j < n; ++j)
         c(j) = start[static_cast<std::size_t>(g.basis(j))];
     r.head(ms).noalias() = f.head(ms) - shape.phi.topRows(ms) * c;
-    // (A trilinear value at a cell point is a mean of samples: the samples hold the largest |f|.)
-    const double scale = 1.0 + f.head(ms).cwiseAbs().maxCoeff();
+    const double scale = dense.scale();
 
     // The first basis from the start polynomial's worst samples.
     // The points ranked worst first by |residual|, ties by row: a strict order, so selecting the few worst
