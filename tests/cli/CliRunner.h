@@ -70,30 +70,6 @@ inline CliResult collectResult(pid_t pid, const std::string& outPath, const std:
     return r;
 }
 
-/// This process's environment for a child `vots`, with LeakSanitizer's exit-time scan off in it: under
-/// the asan preset its tracer crashed in the `vots render` children of 5 of 10 runs of one CLI test
-/// (google/sanitizers issue 1353; docs/RELIABILITY.md). The test binaries, which run the same fit,
-/// render and server code in process, keep the leak check.
-struct ChildEnvironment {
-    std::vector<std::string> entries;
-    std::vector<char*> pointers;
-
-    ChildEnvironment() {
-        for (char** e = environ; *e; ++e) {
-            std::string entry = *e;
-            if (entry.rfind("ASAN_OPTIONS=", 0) == 0)
-                for (std::size_t at; (at = entry.find("detect_leaks=1")) != std::string::npos;)
-                    entry.replace(at, 14, "detect_leaks=0");
-            entries.push_back(std::move(entry));
-        }
-        for (std::string& e : entries)
-            pointers.push_back(e.data());
-        pointers.push_back(nullptr);
-    }
-    ChildEnvironment(const ChildEnvironment&) = delete; // pointers point into entries
-    ChildEnvironment& operator=(const ChildEnvironment&) = delete;
-};
-
 /// Runs VOTS_CLI_BINARY with `args`; output goes through files so a chatty child can never block.
 inline CliResult runVots(const std::vector<std::string>& args) {
     TempDir capture;
@@ -106,9 +82,7 @@ inline CliResult runVots(const std::vector<std::string>& args) {
 
     CommandLine command(args);
     pid_t pid = 0;
-    ChildEnvironment environment;
-    const int rc = posix_spawn(&pid, VOTS_CLI_BINARY, &actions, nullptr, command.argv.data(),
-                               environment.pointers.data());
+    const int rc = posix_spawn(&pid, VOTS_CLI_BINARY, &actions, nullptr, command.argv.data(), environ);
     posix_spawn_file_actions_destroy(&actions);
     if (rc != 0) throw std::runtime_error(std::string("cannot start ") + VOTS_CLI_BINARY);
     return collectResult(pid, outPath, errPath);
