@@ -17,6 +17,11 @@ const RESIZE_SETTLE_MS = 100; // a frame for the new view size once resizing pau
 // that hitches of the hand do not fill the render thread with full-size frames no one keeps.
 const STILL_AFTER_PAUSE_MS = 250;
 const PAUSE_DRAFTS = 4;
+// A frame the server refused for being busy (429: this page's share of renders is taken; 503: its queue is
+// full, or a fit it waited on is not there yet) is asked for again after RETRY_MS, up to RETRIES times in
+// a row: a busy moment must not leave the view stale until the hand moves again. The banner says why.
+const RETRY_MS = 1000;
+const RETRIES = 3;
 
 // ?transport=render in the page's URL keeps to GET /render (the benchmark's baseline).
 const SOCKET_WANTED = new URLSearchParams(window.location.search).get('transport') !== 'render';
@@ -52,6 +57,8 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
   let draftAtNewEps = false; // the next frame is the first at a new eps: a draft
   let stillAfterDraft = null; // that draft's request ({seq} on the socket, {url} on /render) until it lands
   const sentUrls = new Map(); // seq -> {url: its /render URL, sentAt: performance.now(), view: a copy}
+  let retries = 0; // refusals in a row since the last frame shown
+  let retryTimer = 0;
 
   function frameSize(draft) {
     const r = viewEl.getBoundingClientRect();
@@ -143,6 +150,26 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
     send(url, draft);
   }
 
+  // After a refusal for being busy, the view is asked for again later (see RETRY_MS).
+  function retryLater(status) {
+    if ((status !== 429 && status !== 503) || retries >= RETRIES) return;
+    retries += 1;
+    clearTimeout(retryTimer);
+    retryTimer = setTimeout(() => {
+      retryTimer = 0;
+      streamSentKey = null; // the socket sends the same view again
+      schedule({ draft: isMoving() });
+    }, RETRY_MS);
+  }
+
+  // A frame is on screen: the next refusal starts a new count.
+  function frameShown() {
+    retries = 0;
+    clearTimeout(retryTimer);
+    retryTimer = 0;
+    banner.clear('render');
+  }
+
   // The draft at a new eps has landed (shown or not): its still follows.
   function followWithStill() {
     stillAfterDraft = null;
@@ -171,10 +198,13 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
           fitSeconds: frame.fitSeconds !== null ? frame.fitSeconds : undefined,
         });
       }
-      banner.clear('render');
+      frameShown();
     } catch (e) {
       if (inflight !== mine) return;
-      if (!(e instanceof ApiError && e.isIgnorable)) banner.show(e.message, 'render');
+      if (!(e instanceof ApiError && e.isIgnorable)) {
+        banner.show(e.message, 'render');
+        retryLater(e.status);
+      }
     } finally {
       if (inflight === mine) {
         inflight = null;
@@ -237,9 +267,11 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
     const opening = openViewerSocket({
       onFrame: showStreamFrame,
       onError: (message) => {
+        const latest = !streamPending || message.seq >= streamPending.seq; // not an older view's refusal
         if (streamPending && message.seq >= streamPending.seq) streamPending = null;
         if (stillAfterDraft && message.seq >= stillAfterDraft.seq) followWithStill();
         banner.show(`Rendering: ${message.error} (HTTP ${message.status})`, 'render');
+        if (latest) retryLater(message.status);
         onChange();
       },
       onDown: () => {
@@ -312,7 +344,7 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
     const preview = streamPending ? streamPending.preview : previewing();
     if (streamPending && header.seq >= streamPending.seq) streamPending = null;
     if (!preview && header.still) showFacts({ votCount: header.votCount, fitSeconds: header.fitSeconds });
-    banner.clear('render');
+    frameShown();
     onChange();
   }
 
