@@ -19,7 +19,8 @@ const STILL_AFTER_PAUSE_MS = 250;
 const PAUSE_DRAFTS = 4;
 // A frame the server refused for being busy (429: this page's share of renders is taken; 503: its queue is
 // full, or a fit it waited on is not there yet) is asked for again after RETRY_MS, up to RETRIES times in
-// a row: a busy moment must not leave the view stale until the hand moves again. The banner says why.
+// a row: a busy moment must not leave the view stale until the hand moves again. The banner says why;
+// the status line reads as rendering meanwhile (busy()).
 const RETRY_MS = 1000;
 const RETRIES = 3;
 
@@ -373,7 +374,7 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
     },
     // Whether the frames now come from the grid in place of the Vots that are still being fitted.
     previewing,
-    busy: () => Boolean(inflight || rafId || resizeTimer || draftPending || streamPending || stillAfterDraft),
+    busy: () => Boolean(inflight || rafId || resizeTimer || retryTimer || draftPending || streamPending || stillAfterDraft),
     // The full-quality frame's parameters without the page's id (for download links), null before a fit.
     viewParams: () => (view.dataset && renderEps !== null ? frameParams(false, undefined) : null),
     hasShownFrame: () => shownUrl !== null,
