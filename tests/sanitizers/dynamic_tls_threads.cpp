@@ -11,12 +11,12 @@
 #include <sanitizer/lsan_interface.h>
 
 #include <barrier>
+#include <chrono>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <thread>
-#include <vector>
 
 namespace {
 // The leaked block's address, masked so that no scanned word holds it until the check is over.

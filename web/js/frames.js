@@ -269,7 +269,7 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
       onFrame: showStreamFrame,
       onError: (message) => {
         const latest = !streamPending || message.seq >= streamPending.seq; // not an older view's refusal
-        if (streamPending && message.seq >= streamPending.seq) streamPending = null;
+        if (latest) streamPending = null;
         if (stillAfterDraft && message.seq >= stillAfterDraft.seq) followWithStill();
         banner.show(`Rendering: ${message.error} (HTTP ${message.status})`, 'render');
         if (latest) retryLater(message.status);
