@@ -15,6 +15,7 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <stdexcept>
 #include <string>
 
 namespace vots::fit {
@@ -93,12 +94,39 @@ TEST(VotSpaceFileIo, WriteBelowARegularFileThrows) {
     EXPECT_EQ(entryCount(dir.path()), 1u);
 }
 
+// Root ignores folder permissions, and CI runs as root: there the write runs as the unprivileged user
+// `nobody` (the effective user only, so that the test takes root back afterwards), which they bind.
+class AsUnprivilegedUser {
+public:
+    AsUnprivilegedUser() {
+        if (::geteuid() != 0) return;
+        if (::seteuid(NOBODY) != 0) throw std::runtime_error("seteuid(nobody) failed");
+        mSwitched = true;
+    }
+    ~AsUnprivilegedUser() {
+        if (mSwitched && ::seteuid(0) != 0) std::abort(); // the rest of the run would not be root's
+    }
+    AsUnprivilegedUser(const AsUnprivilegedUser&) = delete;
+    AsUnprivilegedUser& operator=(const AsUnprivilegedUser&) = delete;
+
+private:
+    static constexpr uid_t NOBODY = 65534;
+    bool mSwitched = false;
+};
+
 TEST(VotSpaceFileIo, WriteIntoReadOnlyFolderThrows) {
-    if (::geteuid() == 0) GTEST_SKIP() << "root ignores folder permissions";
     TempDir dir;
+    const auto readAndEnter = fs::perms::owner_read | fs::perms::owner_exec | fs::perms::group_read |
+                              fs::perms::group_exec | fs::perms::others_read | fs::perms::others_exec;
+    // Anyone may reach the folder; nobody but its owner could write into the temporary folder itself.
+    fs::permissions(dir.path(), readAndEnter | fs::perms::owner_write);
     fs::create_directory(dir.path() / "ro");
-    fs::permissions(dir.path() / "ro", fs::perms::owner_read | fs::perms::owner_exec);
-    const std::string msg = errorOf([&] { writeVotSpaceFile(dir.file("ro/a.vots"), makeSampleSpace()); });
+    fs::permissions(dir.path() / "ro", readAndEnter);
+    std::string msg;
+    {
+        const AsUnprivilegedUser unprivileged;
+        msg = errorOf([&] { writeVotSpaceFile(dir.file("ro/a.vots"), makeSampleSpace()); });
+    }
     fs::permissions(dir.path() / "ro", fs::perms::owner_all);
     EXPECT_NE(msg.find("Permission denied"), std::string::npos) << msg;
     EXPECT_EQ(entryCount(dir.path() / "ro"), 0u);
