@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include <csignal>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -95,7 +96,7 @@ TEST(VotSpaceFileIo, WriteBelowARegularFileThrows) {
 }
 
 // Root ignores folder permissions, and CI runs as root: there the write runs as the unprivileged user
-// `nobody` (the effective user only, so that the test takes root back afterwards), which they bind.
+// `nobody`, whom they bind. Only the effective user changes, so the test can take root back afterwards.
 class AsUnprivilegedUser {
 public:
     AsUnprivilegedUser() {
