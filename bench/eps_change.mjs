@@ -8,6 +8,10 @@
 // Per move: "new image after" is the sharp (full-quality) image at the new eps with the new count shown,
 // the column of the earlier figures; "first image" is the first image at the new eps of any quality;
 // "parts" splits the way there (page clock from the slider's change event, and the server's own times).
+// VOTS_EPS_GESTURE says how the slider moves: `set` (default: its value set and `change` fired at once, as
+// a click on the track), `drag` (the thumb dragged by the mouse in 15 ms steps and let go at once) or
+// `rest:MS` (dragged, held still MS ms, then let go). Times are from the `change` event, except for
+// `rest:MS`: from the hand's last move, the moment it chose (the release comes MS later).
 // needs a running `vots serve` and tests/web/node_modules (tests/web/run.sh installs it).
 import { withPage } from '../tests/web/support/browser.mjs';
 import { median, ms } from './stats.mjs';
@@ -17,11 +21,16 @@ const dataset = process.argv[2] || 'cranium';
 const runs = Number(process.argv[3] || 5);
 const pauseMs = Number(process.argv[4] || 0);
 const fakeTest = { name: 'eps-change-bench' };
+const gesture = process.env.VOTS_EPS_GESTURE || 'set';
+const restMs = gesture.startsWith('rest:') ? Number(gesture.slice(5)) : 0;
+if (!['set', 'drag'].includes(gesture) && !(restMs >= 0)) throw new Error(`VOTS_EPS_GESTURE ${gesture}: set, drag or rest:MS`);
 
 // Installed before the page's own scripts: the times of the fit's answer and its end, and of each frame
 // request's answer with the server's times, on the page's clock.
 function recordTimes() {
   window.__epsMarks = { fitAnswered: [], fitDone: [], renders: [], frames: [] };
+  window.__lastPointerMove = NaN; // the hand's last move (the `rest:MS` gesture's clock starts there)
+  window.addEventListener('pointermove', () => { window.__lastPointerMove = performance.now(); }, { capture: true });
   const marks = () => window.__epsMarks;
   const plainFetch = window.fetch.bind(window);
   window.fetch = async (input, init) => {
@@ -113,15 +122,17 @@ await withPage(fakeTest, async (page) => {
     // Node only looks every 200 ms: polling the page every few ms from here would take a share of the
     // cores the fit needs and slow what it measures.
     await page.evaluate((before) => {
-      window.__epsDone = null;
+      window.__epsDoneAt = null;
+      window.__epsT0 = null;
       const ready = () => {
         const s = document.querySelector('[data-testid="status"]');
         const img = document.querySelector('[data-testid="image"]');
         const count = document.querySelector('[data-testid="vot-count"]').textContent;
         return count !== before && s?.dataset.state === 'idle' && img?.dataset.quality === 'full' && img.complete;
       };
+      // An absolute time: a rest's fit can be drawn before the release fires `change`.
       const check = () => {
-        if (window.__epsDone === null && ready()) window.__epsDone = performance.now() - window.__epsT0;
+        if (window.__epsDoneAt === null && ready()) window.__epsDoneAt = performance.now();
       };
       const observer = new MutationObserver(check);
       observer.observe(document.body, { subtree: true, childList: true, attributes: true, characterData: true });
@@ -129,13 +140,23 @@ await withPage(fakeTest, async (page) => {
       // Capture phase on window: before the viewer's own change handler runs.
       window.addEventListener('change', () => { window.__epsT0 = performance.now(); }, { once: true, capture: true });
     }, countBefore);
-    await viewer.setEpsSlider(position);
-    await page.waitForFunction(() => window.__epsDone !== null, null, { timeout: 600000, polling: 200 });
-    const done = await page.evaluate(() => window.__epsDone);
+    if (gesture === 'set') {
+      await viewer.setEpsSlider(position);
+    } else {
+      const from = Number(await viewer.epsSlider.inputValue());
+      await viewer.holdEpsSlider(await viewer.epsSliderPixels(position - from));
+      if (restMs > 0) await page.waitForTimeout(restMs);
+      await page.mouse.up();
+    }
+    await page.waitForFunction(() => window.__epsDoneAt !== null && window.__epsT0 !== null, null,
+      { timeout: 600000, polling: 200 });
+    // From the release, or from the hand's stop when it rested first.
+    const t0 = await page.evaluate((rest) => (rest > 0 ? window.__lastPointerMove : window.__epsT0), restMs);
+    const done = (await page.evaluate(() => window.__epsDoneAt)) - t0;
     const newEps = await page.evaluate(() => Number(new URLSearchParams(location.hash.slice(1)).get('eps')));
     const parts = await page.evaluate(
-      ([fn, eps]) => new Function(`return (${fn})`)()(window.__epsMarks, window.__epsT0, eps),
-      [partsOf.toString(), newEps]);
+      ([fn, eps, from]) => new Function(`return (${fn})`)()(window.__epsMarks, from, eps),
+      [partsOf.toString(), newEps, t0]);
     times.push(done);
     firsts.push(parts.first);
     rows.push(parts);
@@ -154,6 +175,7 @@ await withPage(fakeTest, async (page) => {
     `${ms(col('sharpAnswered'))}, shown ${ms(col('sharp'))}`);
   console.log(`median after the fit's end (ms): first image ${ms(col('firstAfterFit'))}, sharp image ` +
     `${ms(col('sharpAfterFit'))}`);
-  console.log(`median eps change -> first image at the new eps: ${ms(median(firsts))} ms over ${runs} runs`);
-  console.log(`median eps change -> new image: ${median(times).toFixed(0)} ms over ${runs} runs`);
+  const from = restMs > 0 ? `the hand's stop (${gesture})` : `eps change (${gesture})`;
+  console.log(`median ${from} -> first image at the new eps: ${ms(median(firsts))} ms over ${runs} runs`);
+  console.log(`median ${from} -> new image: ${median(times).toFixed(0)} ms over ${runs} runs`);
 });

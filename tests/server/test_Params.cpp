@@ -137,9 +137,13 @@ TEST(Params, FitBodyParsesAndRefusesBadFields) {
     ASSERT_TRUE(p.focus);
     EXPECT_EQ(p.focus->radius, 4.0);
     EXPECT_EQ(p.focus->epsFocus, 0.5f);
+    EXPECT_EQ(p.client, "");
+    EXPECT_EQ(parseFitParams(R"({"dataset":"a","client":"tab-1_x"})").client, "tab-1_x");
     for (const char* body :
          {"", "[]", "{\"eps\":1}", "{\"dataset\":\"a\",\"eps\":-1}", "{\"dataset\":\"a\",\"degree\":1.5}",
-          "{\"dataset\":\"a\",\"focus\":{\"x\":1}}", "{\"dataset\":\"a\",\"extra\":1}"}) {
+          "{\"dataset\":\"a\",\"focus\":{\"x\":1}}", "{\"dataset\":\"a\",\"extra\":1}",
+          "{\"dataset\":\"a\",\"client\":7}", "{\"dataset\":\"a\",\"client\":\"\"}",
+          "{\"dataset\":\"a\",\"client\":\"a/b\"}"}) {
         EXPECT_THROW(parseFitParams(body), HttpError) << body;
     }
 }

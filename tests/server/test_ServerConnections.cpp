@@ -1,6 +1,7 @@
 // Hostile connections on a loopback server: idle sockets and event-stream watchers cost no worker, so a
 // plain request is answered at once; one client flooding renders or fits gets 429, another is served;
 // a stop however early ends listening.
+#include "NoiseVolume.h"
 #include "RawClient.h"
 #include "ServerFixture.h"
 
@@ -21,24 +22,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 using std::chrono::milliseconds;
-
-/// Pseudo-random bytes: no polynomial but a cell's own fits them within a small eps, so a fit at 0.02 runs
-/// for seconds on any machine (cancelled when the server stops) and the watchers and renders waiting on
-/// it stay open for the whole test. The smooth test volumes fit in a fraction of a second.
-constexpr const char* NOISE = "noise_96x96x96_uint8";
-
-/// Writes the noise volume into the world's data folder.
-void addNoiseVolume(const ServerWorld& world) {
-    constexpr int SIDE = 96;
-    std::string samples(static_cast<std::size_t>(SIDE) * SIDE * SIDE, '\0');
-    std::uint32_t state = 12345u;
-    for (char& sample : samples) {
-        state = state * 1664525u + 1013904223u; // a fixed LCG: the same volume every run
-        sample = static_cast<char>(state >> 24);
-    }
-    world.dir().write(std::string("data/") + NOISE + ".nrrd",
-                      "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 96 96 96\nencoding: raw\n\n" + samples);
-}
 
 std::string slowFitBody(double eps) {
     return std::string(R"({"dataset":")") + NOISE + R"(","eps":)" + std::to_string(eps) + "}";

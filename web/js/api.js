@@ -107,10 +107,12 @@ export async function fetchFrame(url, signal) {
   };
 }
 
-export async function startFit({ dataset, frame, eps, degree }) {
+// client: a viewer's id; the server cancels its older fit when it asks for another (unless others want it).
+export async function startFit({ dataset, frame, eps, degree, client }) {
   const body = { dataset, eps };
   if (frame) body.frame = frame;
   if (degree !== undefined) body.degree = degree;
+  if (client) body.client = client;
   const res = await request('api/fit', {
     method: 'POST',
     headers: { 'Content-Type': 'application/json' },

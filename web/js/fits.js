@@ -1,5 +1,6 @@
 // Fits: which eps each dataset has fitted, starting or joining the fit for an eps, and its progress bar.
 import { followJob, startFit } from './api.js';
+import { VIEWER_ID } from './viewer-id.js';
 
 // progress: {box, bar, label} elements. banner: createBanner's object. showFacts({votCount, fitSeconds})
 // shows a finished fit's numbers; onStart(eps) runs when a fit starts being waited for; onReady(eps, {refitted})
@@ -62,7 +63,7 @@ export function createFits({ progress, banner, showFacts, onStart, onReady, onCh
     progress.box.hidden = false;
     setProgress(0, 'queued');
     try {
-      const job = await startFit({ dataset, frame, eps, degree });
+      const job = await startFit({ dataset, frame, eps, degree, client: VIEWER_ID });
       if (mine !== token) return;
       let result = job;
       if (job.state !== 'done') {

@@ -7,6 +7,7 @@ import { DEFAULT_RENDERER, GRID_MODES, MAX_SERVED_SIDE } from './contract.js';
 import { formatSlab } from './slab.js';
 import { fmtExact } from './format.js';
 import { openViewerSocket } from './stream.js';
+import { VIEWER_ID } from './viewer-id.js';
 
 const MAX_FRAME_PX = Math.min(2048, MAX_SERVED_SIDE); // longest side of a requested frame, in device pixels
 const DRAFT_DIVISOR = 3; // frames while dragging are this much smaller, scaled up by CSS
@@ -32,8 +33,6 @@ const SOCKET_WANTED = new URLSearchParams(window.location.search).get('transport
 // wheel is still going (then the next frame is a draft too); onChange() runs whenever the status may differ.
 // draftCanvas: where the socket's JPEG drafts are drawn (over the image, hidden once the still is shown).
 export function createFrames({ viewEl, image, draftCanvas, view, banner, showFacts, isMoving, onChange }) {
-  // One random id per page: the server answers 409 "superseded" to our older requests.
-  const clientId = [...crypto.getRandomValues(new Uint8Array(8))].map((b) => b.toString(16).padStart(2, '0')).join('');
   let renderEps = null; // eps used for frames: the target once its fit is done, else the previous one
   // No eps is ready yet but a fit is on its way: meanwhile frames come from the exact grid renderer,
   // which needs no fit (a study of thousands of slices shows its first image long before its Vots).
@@ -101,7 +100,7 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
   }
 
   function frameUrl(draft) {
-    return renderUrl(frameParams(draft, clientId));
+    return renderUrl(frameParams(draft, VIEWER_ID)); // the server answers our older ones 409 "superseded"
   }
 
   // Asks for a frame on the next animation frame; several changes in one frame cost one request.

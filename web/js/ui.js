@@ -8,7 +8,8 @@ import { createCine } from './cine.js';
 import { fillChoices, fillDatasetPicker, fillPresets, presetWindow, syncControls, syncViewButtons } from './controls.js';
 import { setData, setText } from './dom.js';
 import { syncDownloads } from './downloads.js';
-import { defaultEpsOf, epsLabel, sliderToEps } from './eps.js';
+import { defaultEpsOf } from './eps.js';
+import { attachEpsSlider } from './eps-slider.js';
 import { createFits } from './fits.js';
 import { fmtCount, fmtSeconds } from './format.js';
 import { createFrames } from './frames.js';
@@ -22,8 +23,6 @@ import { attachSlabControl } from './slab-control.js';
 import { statusLine } from './status.js';
 import { attachTimeControl } from './time.js';
 import { homeCamera, initialView, reconcileRenderer } from './view.js';
-
-const EPS_KEY_SETTLE_MS = 300; // keyboard steps of the eps slider fit once it has rested this long
 
 const $ = (id) => document.getElementById(id);
 const el = {
@@ -205,27 +204,17 @@ function applyHash() {
 
 // ---------- user actions ----------
 
-let epsSettleTimer = 0; // a keyboard step of the eps slider waiting to settle
-
-function cancelSliderSettle() {
-  clearTimeout(epsSettleTimer);
-  epsSettleTimer = 0;
-}
-
-// The eps the slider shows becomes the view's; false without a dataset.
-function readSliderEps() {
-  const ds = currentDataset();
-  if (!ds) return false;
-  view.eps = sliderToEps(ds, Number(el.epsSlider.value));
-  return true;
-}
+const epsSlider = attachEpsSlider({
+  slider: el.epsSlider,
+  label: el.epsValue,
+  currentDataset,
+  view,
+  refit: () => commit({ refit: true }),
+});
 
 function commit({ refit = false } = {}) {
   // A keyboard step still settling is part of what the user chose: a commit now takes it along.
-  if (epsSettleTimer) {
-    cancelSliderSettle();
-    refit = readSliderEps() || refit;
-  }
+  refit = epsSlider.takeSettling() || refit;
   syncPanel(); // before the hash: the slab may have been moved back inside the volume
   writeHash();
   if (refit) ensureFitted();
@@ -235,7 +224,7 @@ function commit({ refit = false } = {}) {
 el.dataset.addEventListener('change', () => {
   const ds = findDataset(el.dataset.value);
   if (!ds) return;
-  cancelSliderSettle(); // a step on the old dataset's slider means nothing for the new one
+  epsSlider.cancel(); // a step on the old dataset's slider means nothing for the new one
   view.dataset = ds.name;
   view.frame = 0;
   view.cam = homeCamera(view.cam);
@@ -290,32 +279,6 @@ function onWindowInput() {
 el.level.addEventListener('change', onWindowInput);
 el.width.addEventListener('change', onWindowInput);
 
-el.epsSlider.addEventListener('input', () => {
-  const ds = currentDataset();
-  if (ds) el.epsValue.textContent = epsLabel(ds, sliderToEps(ds, Number(el.epsSlider.value)));
-});
-
-// Chromium fires `change` for every arrow-key step, and each eps is a fit job the server may refuse (429) when
-// they pile up: keyboard steps fit once the slider rests. A pointer release is one deliberate choice: fit at once.
-let epsByKey = false;
-el.epsSlider.addEventListener('keydown', () => {
-  epsByKey = true;
-});
-el.epsSlider.addEventListener('pointerdown', () => {
-  epsByKey = false;
-});
-el.epsSlider.addEventListener('change', () => {
-  cancelSliderSettle();
-  if (!epsByKey) {
-    if (readSliderEps()) commit({ refit: true });
-    return;
-  }
-  epsSettleTimer = setTimeout(() => {
-    epsSettleTimer = 0;
-    if (readSliderEps()) commit({ refit: true });
-  }, EPS_KEY_SETTLE_MS);
-});
-
 for (const b of el.viewButtons) {
   b.addEventListener('click', () => {
     cine.stop();
@@ -334,7 +297,7 @@ el.projection.addEventListener('click', () => {
 window.addEventListener('hashchange', () => {
   if (!datasets.length || location.hash === viewHash()) return;
   adoptToken(location.hash);
-  cancelSliderSettle(); // the link says what the view is now
+  epsSlider.cancel(); // the link says what the view is now
   const before = view.dataset;
   applyHash();
   if (view.dataset !== before) fillPresets(el.preset, currentDataset());

@@ -7,6 +7,7 @@
 
 #include "vots/fit/VotSpace.h"
 
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
@@ -67,6 +68,13 @@ public:
     void finishOnRanks(std::size_t votCount, double seconds);
     void fail(const std::string& error);
 
+    /// Asks the running fit to stop at its next check (fit::FitCancelled); a fit not yet started never
+    /// starts. Thread-safe.
+    void cancel() { mCancel.store(true, std::memory_order_relaxed); }
+    bool cancelled() const { return mCancel.load(std::memory_order_relaxed); }
+    /// What fit::FitOptions::cancel points at for this job's fit.
+    const std::atomic<bool>* cancelFlag() const { return &mCancel; }
+
 private:
     const std::uint64_t mId;
     const FitKey mKey;
@@ -76,6 +84,7 @@ private:
     std::chrono::steady_clock::time_point mLastNotified{}; // last progress wake-up (setProgress)
     std::shared_ptr<const fit::VotSpace> mSpace;
     std::weak_ptr<const fit::VotSpace> mReleasedSpace; // after releaseResult()
+    std::atomic<bool> mCancel{false};
 };
 
 } // namespace vots::server

@@ -52,26 +52,38 @@ void FitJobs::shutdown() {
         for (const Pending& pending : mQueue)
             pending.job->fail("server is stopping");
         mQueue.clear();
+        for (const auto& [text, active] : mActiveByKey)
+            active.job->cancel(); // running fits throw FitCancelled at their next check
     }
-    mCancel = true; // running fits throw FitCancelled at their next check
     mWarmUps.stop();
     mWake.notify_all();
 }
 
 std::shared_ptr<FitJob> FitJobs::submit(std::shared_ptr<const Dataset> dataset, const FitKey& key,
-                                        const std::string& client) {
+                                        const std::string& client, const std::string& viewer) {
     const std::string text = key.text();
+    // Joins the active job for the key (the caller now wants it too), if there is one.
+    const auto join = [&](Active& active) {
+        if (viewer.empty()) {
+            ++active.others;
+        } else {
+            active.viewers.insert(viewer);
+            mViewerWants[viewer] = text;
+        }
+        return active.job;
+    };
     {
         std::lock_guard lock(mMutex);
         if (mStopping) throw HttpError(503, "server is stopping");
-        if (const auto it = mActiveByKey.find(text); it != mActiveByKey.end()) return it->second;
+        if (!viewer.empty()) withdrawLocked(viewer, text);
+        if (const auto it = mActiveByKey.find(text); it != mActiveByKey.end()) return join(it->second);
     }
     // Checked here so a bad focus is a 400 for the POST rather than a failed job later; samples held by the
     // ranks are checked there, each rank's error failing the job.
     if (!dataset->samplesOnRanks) fit::validateFitOptions(*dataset->volume, fitOptionsFor(key));
 
     std::lock_guard lock(mMutex);
-    if (const auto it = mActiveByKey.find(text); it != mActiveByKey.end()) return it->second; // raced
+    if (const auto it = mActiveByKey.find(text); it != mActiveByKey.end()) return join(it->second); // raced
     if (auto space = mCache.findInMemory(key)) {
         auto job = std::make_shared<FitJob>(mNextId++, key);
         const double seconds = fitSecondsOf(*space);
@@ -87,10 +99,44 @@ std::shared_ptr<FitJob> FitJobs::submit(std::shared_ptr<const Dataset> dataset, 
     auto job = std::make_shared<FitJob>(mNextId++, key);
     mWarmUps.giveWay(); // somebody waits for this one
     mQueue.push_back(Pending{job, std::move(dataset), std::move(memory), std::move(clientPlace)});
-    mActiveByKey[text] = job;
+    join(mActiveByKey[text] = Active{job, 0, {}});
     mById[job->id()] = job;
     mWake.notify_one();
     return job;
+}
+
+void FitJobs::withdrawLocked(const std::string& viewer, const std::string& wantedNow) {
+    const auto wanted = mViewerWants.find(viewer);
+    if (wanted == mViewerWants.end() || wanted->second == wantedNow) return;
+    const auto active = mActiveByKey.find(wanted->second);
+    mViewerWants.erase(wanted);
+    if (active == mActiveByKey.end()) return;
+    active->second.viewers.erase(viewer);
+    if (active->second.others == 0 && active->second.viewers.empty()) cancelLocked(active);
+}
+
+void FitJobs::cancelLocked(std::map<std::string, Active>::iterator active) {
+    const std::shared_ptr<FitJob> job = active->second.job;
+    // Off the active jobs at once: a new request for the same key starts a new job instead of joining one
+    // that is stopping.
+    mActiveByKey.erase(active);
+    const auto queued =
+        std::find_if(mQueue.begin(), mQueue.end(), [&](const Pending& p) { return p.job == job; });
+    if (queued == mQueue.end()) {
+        job->cancel(); // its worker fails it when the fit stops
+        return;
+    }
+    mQueue.erase(queued); // gives back its memory reservation and its client's place
+    job->fail(SUPERSEDED_FIT);
+    rememberLocked(job);
+}
+
+void FitJobs::endLocked(const std::shared_ptr<FitJob>& job) {
+    const auto active = mActiveByKey.find(job->key().text());
+    if (active == mActiveByKey.end() || active->second.job != job) return;
+    for (const std::string& viewer : active->second.viewers)
+        mViewerWants.erase(viewer); // each still wanted this job (a newer wish would have withdrawn it)
+    mActiveByKey.erase(active);
 }
 
 std::shared_ptr<FitJob> FitJobs::find(std::uint64_t id) const {
@@ -129,7 +175,7 @@ void FitJobs::workerLoop() {
         returnFreedMemory();
         std::lock_guard lock(mMutex);
         --mRunning;
-        mActiveByKey.erase(pending.job->key().text());
+        endLocked(pending.job);
         rememberLocked(pending.job);
         // A warm-up holds no reservation (a requested fit makes it give way), so it starts only with room.
         if (pending.job->snapshot().state == JobState::Done && !mStopping && mRunning == 0 &&
@@ -162,7 +208,7 @@ void FitJobs::run(const Pending& pending) {
         // Every core per fit: the interactive case is one refit at a time, and a user waits for it.
         fit::FitOptions options = fitOptionsFor(key);
         options.progress = [&job](double fraction, const char* stage) { job.setProgress(fraction, stage); };
-        options.cancel = &mCancel;
+        options.cancel = job.cancelFlag();
         // The box cache answers only uniform eps exactly; focus fits run without it.
         const auto boxCache = key.focus ? nullptr : mBoxCaches.forFits(key.dataset, key.frame, key.degree);
         fit::FitResult result = fit::fitVotSpace(*pending.dataset->volume, options, boxCache.get());
@@ -174,7 +220,8 @@ void FitJobs::run(const Pending& pending) {
         mStats.addFit(recordFor(job.snapshot(), "fit"));
         mCache.storeOnDiskLater(key, space); // after the announcement: a waiting viewer needs only memory
     } catch (const fit::FitCancelled&) {
-        job.fail("fit cancelled: the server is stopping");
+        std::lock_guard lock(mMutex);
+        job.fail(mStopping ? "fit cancelled: the server is stopping" : SUPERSEDED_FIT);
     } catch (const std::bad_alloc&) {
         job.fail("out of memory while fitting");
     } catch (const std::exception& e) {

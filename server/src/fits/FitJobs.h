@@ -9,7 +9,6 @@
 #include "fits/FitKey.h"
 #include "fits/WarmUpFits.h"
 
-#include <atomic>
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
@@ -17,6 +16,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <set>
 #include <string>
 #include <thread>
 #include <vector>
@@ -26,6 +26,10 @@ namespace vots::server {
 class ForegroundActivity;
 class ServerStats;
 class VotSpaceCache;
+
+/// The error of a fit cancelled because the viewer that asked for it asked for another (FitJobs::submit).
+inline constexpr const char* SUPERSEDED_FIT =
+    "superseded: the viewer that asked for this fit asked for another";
 
 struct FitJobLimits {
     int maxRunning = 2;    // fits at once
@@ -56,8 +60,12 @@ public:
     /// room for the fit (Dataset::fitBytes; reserved until the job ends). Warm-ups start only with room.
     /// A new job counts against its client's FitJobLimits::perClient until it ends (429 beyond); joining
     /// a job already active costs nothing. An empty client is not limited (the server's own fits).
+    /// `viewer` names an interactive viewer (the caller scopes it, e.g. by address), which wants one fit
+    /// at a time: asking for another withdraws it from the one it asked for before, and a job that no
+    /// one wants any more is cancelled (failed with SUPERSEDED_FIT). A request without a viewer (a
+    /// script, a /render waiting for its fit) always wants its job to the end.
     std::shared_ptr<FitJob> submit(std::shared_ptr<const Dataset> dataset, const FitKey& key,
-                                   const std::string& client = {});
+                                   const std::string& client = {}, const std::string& viewer = {});
     /// Throws HttpError 404 for an unknown or forgotten id.
     std::shared_ptr<FitJob> find(std::uint64_t id) const;
     /// Queued plus running.
@@ -85,9 +93,22 @@ private:
         MemoryReservation memory; // the fit's working memory, given back when the job ends
         ClientQuota::Ticket clientPlace;
     };
+    /// A queued or running job and who wants it.
+    struct Active {
+        std::shared_ptr<FitJob> job;
+        int others = 0;                // requests without a viewer: they never withdraw
+        std::set<std::string> viewers; // viewers whose latest request it is
+    };
     void workerLoop();
     void run(const Pending& pending);
     void rememberLocked(const std::shared_ptr<FitJob>& job);
+    /// The viewer no longer wants the job it asked for last; that job is cancelled when nobody does.
+    /// (Unless that job is `wantedNow`, the key text it asks for now.)
+    void withdrawLocked(const std::string& viewer, const std::string& wantedNow);
+    /// Takes a job nobody wants off the active ones: out of the queue and failed, or told to stop.
+    void cancelLocked(std::map<std::string, Active>::iterator active);
+    /// The job's entry, when it is the active one for its key; else it is already off (cancelled).
+    void endLocked(const std::shared_ptr<FitJob>& job);
 
     VotSpaceCache& mCache;
     ServerStats& mStats;
@@ -95,7 +116,6 @@ private:
     MemoryAdmission& mMemory;
     const FitJobLimits mLimits;
     ClientQuota mPerClient;
-    std::atomic<bool> mCancel{false};
     BoxCaches mBoxCaches;
     WarmUpFits mWarmUps; // after mBoxCaches, which its thread uses until it is joined
 
@@ -105,8 +125,9 @@ private:
     std::deque<Pending> mQueue;
     int mRunning = 0;
     std::uint64_t mNextId = 1;
-    std::map<std::string, std::shared_ptr<FitJob>> mActiveByKey; // queued or running
-    std::map<std::uint64_t, std::shared_ptr<FitJob>> mById;      // active + recent finished
+    std::map<std::string, Active> mActiveByKey;             // queued or running, by key text
+    std::map<std::string, std::string> mViewerWants;        // viewer -> key text of its latest active job
+    std::map<std::uint64_t, std::shared_ptr<FitJob>> mById; // active + recent finished
     std::deque<std::uint64_t> mFinishedOrder;
     std::vector<std::thread> mWorkers;
     std::function<FitOnRanks(const Dataset&, const FitKey&, const fit::FitProgress&)> mFitOnRanks;

@@ -54,7 +54,9 @@ void installJobRoutes(Server::Impl& s) {
         refuseFitOfVots(*dataset);
         FitKey key = fitKeyFor(*dataset, p.eps, p.degree, s.options.fitNorm);
         key.focus = p.focus;
-        const auto job = s.fitJobs.submit(dataset, key, req.remote_addr);
+        // A viewer's id counts per address, so that no other client can withdraw it from its fit.
+        const std::string viewer = p.client.empty() ? std::string() : req.remote_addr + " " + p.client;
+        const auto job = s.fitJobs.submit(dataset, key, req.remote_addr, viewer);
         nlohmann::json body = jobJson(job->snapshot());
         body["job"] = job->id();
         sendJson(res, 202, body);

@@ -184,7 +184,7 @@ RenderParams parseRenderParams(const QueryParams& query) {
 FitParams parseFitParams(const std::string& body) {
     const nlohmann::json json = nlohmann::json::parse(body, nullptr, /*allow_exceptions=*/false);
     if (json.is_discarded() || !json.is_object()) bad("body must be a JSON object");
-    static const std::set<std::string> KNOWN{"dataset", "frame", "eps", "degree", "focus"};
+    static const std::set<std::string> KNOWN{"dataset", "frame", "eps", "degree", "focus", "client"};
     for (const auto& item : json.items())
         if (!KNOWN.count(item.key())) bad("unknown field '" + item.key().substr(0, 32) + "'");
 
@@ -235,6 +235,11 @@ FitParams parseFitParams(const std::string& body) {
         if (epsFocus < 0.0) bad("focus.eps must be >= 0");
         region.epsFocus = static_cast<float>(epsFocus);
         p.focus = region;
+    }
+    if (const auto client = json.find("client"); client != json.end()) {
+        if (!client->is_string() || !isClientId(client->get<std::string>()))
+            bad("client must be 1..64 letters, digits, '_' or '-'");
+        p.client = client->get<std::string>();
     }
     return p;
 }

@@ -38,6 +38,7 @@ struct FitParams {
     EpsSpec eps;
     int degree = DEFAULT_DEGREE;
     std::optional<fit::FocusRegion> focus; // {x,y,z,r} grid index units, eps in data units
+    std::string client; // optional viewer id: a newer fit from the same client supersedes this one
 };
 
 /// Splits a raw query string ("a=1&cam=az=30,el=20") at '&' and each pair at its FIRST '=', then

@@ -161,18 +161,35 @@ export class ViewerPage {
 
   // Drags the eps slider's thumb with the mouse by dx CSS pixels, in small steps like a hand, then releases.
   async dragEpsSlider(dx, { steps = 10 } = {}) {
+    await this.holdEpsSlider(dx, { steps });
+    await this.page.mouse.up();
+  }
+
+  // Presses the eps slider's thumb and moves it by dx CSS pixels in steps 15 ms apart, like a hand; the
+  // button stays down (moveHeldEpsSlider moves on, page.mouse.up() lets go).
+  async holdEpsSlider(dx, { steps = 10 } = {}) {
     const box = await this.epsSlider.boundingBox();
     const value = Number(await this.epsSlider.inputValue());
     const max = Number(await this.epsSlider.getAttribute('max'));
-    const x = box.x + (box.width * value) / max;
-    const y = box.y + box.height / 2;
-    await this.page.mouse.move(x, y);
+    this.heldAt = { x: box.x + (box.width * value) / max, y: box.y + box.height / 2 };
+    await this.page.mouse.move(this.heldAt.x, this.heldAt.y);
     await this.page.mouse.down();
+    await this.moveHeldEpsSlider(dx, { steps });
+  }
+
+  async moveHeldEpsSlider(dx, { steps = 10 } = {}) {
+    const { x, y } = this.heldAt;
     for (let i = 1; i <= steps; i++) {
       await this.page.mouse.move(x + (dx * i) / steps, y);
       await this.page.waitForTimeout(15);
     }
-    await this.page.mouse.up();
+    this.heldAt = { x: x + dx, y };
+  }
+
+  // The CSS pixels the thumb moves for `positions` steps of the slider.
+  async epsSliderPixels(positions) {
+    const box = await this.epsSlider.boundingBox();
+    return (box.width * positions) / Number(await this.epsSlider.getAttribute('max'));
   }
 
   // Collects the bodies of the page's POST /api/fit requests from now on, into the returned array.
