@@ -134,9 +134,15 @@ await withPage(fakeTest, async (page) => {
       const check = () => {
         if (window.__epsDoneAt === null && ready()) window.__epsDoneAt = performance.now();
       };
+      // The last move's watchers go: their `before` is an older count, which the slider's label changes of
+      // a drag (many tasks, each its own mutations) would find "changed" at once.
+      const img = document.querySelector('[data-testid="image"]');
+      window.__epsWatch?.observer.disconnect();
+      if (window.__epsWatch) img.removeEventListener('load', window.__epsWatch.check);
       const observer = new MutationObserver(check);
       observer.observe(document.body, { subtree: true, childList: true, attributes: true, characterData: true });
-      document.querySelector('[data-testid="image"]').addEventListener('load', check);
+      img.addEventListener('load', check);
+      window.__epsWatch = { observer, check };
       // Capture phase on window: before the viewer's own change handler runs.
       window.addEventListener('change', () => { window.__epsT0 = performance.now(); }, { once: true, capture: true });
     }, countBefore);

@@ -7,12 +7,6 @@ import { ViewerPage } from './pages/ViewerPage.mjs';
 
 const QUIET_MS = 1500; // after the fit: long enough for a late second fit request to show up
 
-async function waitForFits(page, fits, count, what) {
-  for (const start = Date.now(); fits.length < count; await page.waitForTimeout(50)) {
-    assert.ok(Date.now() - start < 10000, `${what}: ${fits.length} fit requests after 10 s, expected ${count}`);
-  }
-}
-
 test('a pointer resting on the eps slider fits and draws that eps before the release', async (t) => {
   const ds = await pickDataset();
   await withPage(t, async (page, { log }) => {
@@ -23,7 +17,7 @@ test('a pointer resting on the eps slider fits and draws that eps before the rel
     const fits = viewer.recordFitRequests();
 
     await viewer.holdEpsSlider(60);
-    await waitForFits(page, fits, 1, 'the button still down');
+    await viewer.waitForFitRequests(fits, 1, 'the button still down');
     // Still held: the fit ends and the image at the new eps is shown.
     await viewer.waitForIdle();
     assert.equal(Number((await viewer.hashParams()).eps), fits[0].eps, 'the view took the rested eps');
@@ -47,10 +41,10 @@ test('resting, then moving on: the release asks for its own eps, as the same vie
     const fits = viewer.recordFitRequests();
 
     await viewer.holdEpsSlider(40);
-    await waitForFits(page, fits, 1, 'the first rest');
+    await viewer.waitForFitRequests(fits, 1, 'the first rest');
     await viewer.moveHeldEpsSlider(40); // 15 ms apart: no rest on the way
     await page.mouse.up();
-    await waitForFits(page, fits, 2, 'the release');
+    await viewer.waitForFitRequests(fits, 2, 'the release');
     await viewer.waitForIdle();
     await page.waitForTimeout(QUIET_MS);
 

@@ -1,14 +1,12 @@
 // The eps slider's wiring: its label while it moves, and when a move becomes a refit.
 import { epsLabel, sliderToEps } from './eps.js';
 
-// Keyboard steps fit once the slider has rested this long: Chromium fires `change` for every arrow-key
-// step, and a held key steps ~30 times a second.
-const EPS_KEY_SETTLE_MS = 300;
-// A pointer that holds the thumb still this long fits the value under it, before the release: a hand that
-// stops to read the label rests for hundreds of ms, between the input events of a moving one lie a few.
-// The server cancels the fit when this page asks for another (a viewer wants one fit at a time), so a
-// hand that rests and moves on costs the cores only its rest.
-const EPS_REST_MS = 150;
+// A slider at rest this long fits its value: a pointer holding the thumb still (before the release; a hand
+// that stops to read the label rests for hundreds of ms, between the input events of a moving one lie a
+// few), or keyboard steps (Chromium fires `change` for every arrow-key step, and a held key steps ~30 times
+// a second). The server cancels the fit when this page asks for another (a viewer wants one fit at a
+// time), so a rest that the hand ends costs the cores only the rest.
+const EPS_SETTLE_MS = 150;
 
 // slider, label: the elements. currentDataset(): the dataset shown, or null. view: the view, whose eps
 // this sets. refit(): commits the view with its new eps.
@@ -47,7 +45,7 @@ export function attachEpsSlider({ slider, label, currentDataset, view, refit }) 
     restTimer = setTimeout(() => {
       restTimer = 0;
       if (pointerHeld && adoptNew()) refit();
-    }, EPS_REST_MS);
+    }, EPS_SETTLE_MS);
   });
   slider.addEventListener('keydown', () => {
     byKey = true;
@@ -73,7 +71,7 @@ export function attachEpsSlider({ slider, label, currentDataset, view, refit }) 
     settleTimer = setTimeout(() => {
       settleTimer = 0;
       if (adopt()) refit();
-    }, EPS_KEY_SETTLE_MS);
+    }, EPS_SETTLE_MS);
   });
 
   return {

@@ -117,18 +117,22 @@ void FitJobs::withdrawLocked(const std::string& viewer, const std::string& wante
 
 void FitJobs::cancelLocked(std::map<std::string, Active>::iterator active) {
     const std::shared_ptr<FitJob> job = active->second.job;
+    const auto queued =
+        std::find_if(mQueue.begin(), mQueue.end(), [&](const Pending& p) { return p.job == job; });
+    if (queued != mQueue.end()) {
+        mQueue.erase(queued); // gives back its memory reservation and its client's place
+        mActiveByKey.erase(active);
+        job->fail(SUPERSEDED_FIT);
+        rememberLocked(job);
+        return;
+    }
+    // The ranks' fit cannot be stopped (each rank fits its cells to the end): it stays the active job for
+    // its key, for whoever asks for it next, instead of a second fit of the same key beside it.
+    if (mFitOnRanks) return;
     // Off the active jobs at once: a new request for the same key starts a new job instead of joining one
     // that is stopping.
     mActiveByKey.erase(active);
-    const auto queued =
-        std::find_if(mQueue.begin(), mQueue.end(), [&](const Pending& p) { return p.job == job; });
-    if (queued == mQueue.end()) {
-        job->cancel(); // its worker fails it when the fit stops
-        return;
-    }
-    mQueue.erase(queued); // gives back its memory reservation and its client's place
-    job->fail(SUPERSEDED_FIT);
-    rememberLocked(job);
+    job->cancel(); // its worker fails it when the fit stops
 }
 
 void FitJobs::endLocked(const std::shared_ptr<FitJob>& job) {

@@ -192,6 +192,14 @@ export class ViewerPage {
     return (box.width * positions) / Number(await this.epsSlider.getAttribute('max'));
   }
 
+  // Waits (10 s at most) until recordFitRequests' array holds `count` requests; `what` names the wait in
+  // the failure.
+  async waitForFitRequests(fits, count, what) {
+    for (const start = Date.now(); fits.length < count; await this.page.waitForTimeout(50)) {
+      if (Date.now() - start > 10000) throw new Error(`${what}: ${fits.length} fit requests after 10 s, expected ${count}`);
+    }
+  }
+
   // Collects the bodies of the page's POST /api/fit requests from now on, into the returned array.
   recordFitRequests() {
     const fits = [];
