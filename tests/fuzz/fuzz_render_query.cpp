@@ -21,7 +21,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         if (e.status() != 400) std::abort();
     }
     try {
-        (void)vots::server::parseFitParams(text);
+        // An accepted viewer id is a short plain name: the fit jobs keep it as a key.
+        const vots::server::FitParams fit = vots::server::parseFitParams(text);
+        if (!fit.client.empty() && !vots::server::isClientId(fit.client)) std::abort();
     } catch (const vots::server::HttpError& e) {
         if (e.status() != 400) std::abort();
     }

@@ -118,7 +118,8 @@ for i, query in enumerate([
         "dataset=x&eps=20&degree=0&mode=density&colormap=viridis",
         "dataset=x&mode=reference&size=1x4096&window=-1e3,2.5e3&colormap=bone",
         '{"dataset":"blobs_64x64x64_uint8","eps":"3%","degree":3,"focus":{"x":32,"y":32,"z":32,"r":8,"eps":1}}',
-        '{"dataset":"x","eps":7.5}']):
+        '{"dataset":"x","eps":7.5}',
+        '{"dataset":"x","eps":"2%","client":"0123456789abcdef"}']):
     put("fuzz_render_query", "query%d.txt" % i, query)
 
 # The viewer socket's messages (docs/API.md, "Viewer socket").

@@ -34,10 +34,6 @@ int parseVolumeFrame(std::string_view text) {
     return *frame;
 }
 
-bool isClientId(std::string_view id) {
-    return id.size() <= MAX_CLIENT_CHARS && isDatasetName(id);
-}
-
 /// Runs a render-module parser and turns its InputError into a 400 naming the parameter.
 template <class F> auto parseWith(const char* name, F&& parse) {
     try {
@@ -107,6 +103,10 @@ bool isDatasetName(std::string_view name) {
         if (!ok) return false;
     }
     return true;
+}
+
+bool isClientId(std::string_view id) {
+    return id.size() <= MAX_CLIENT_CHARS && isDatasetName(id);
 }
 
 EpsSpec parseEpsSpec(std::string_view text) {

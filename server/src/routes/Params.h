@@ -51,6 +51,8 @@ QueryParams targetQueryParams(std::string_view target);
 
 /// True for names made of [A-Za-z0-9_-] only, 1..128 characters (never a path).
 bool isDatasetName(std::string_view name);
+/// True for a client's id (/render's `client`, the fit body's): [A-Za-z0-9_-] only, 1..64 characters.
+bool isClientId(std::string_view id);
 
 /// Parses "20" (data units) or "2%" (of the value range, at most 100 %); > 0 and finite. Throws
 /// HttpError 400.
