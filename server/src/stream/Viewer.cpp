@@ -104,6 +104,10 @@ void Viewer::draw(const PendingView& view) {
         if (view.still) {
             // Through the frame cache: the same bytes as GET /render for these parameters.
             const auto frame = cachedFrame(s, prepared, full, nullptr);
+            {
+                std::lock_guard lock(mMutex);
+                mDrawnFrom = prepared.drawnFrom; // its upload is behind the drafts that follow
+            }
             bytes = frame->png;
             header.update({{"format", "image/png"},
                            {"width", full.width},
@@ -116,11 +120,14 @@ void Viewer::draw(const PendingView& view) {
         } else {
             std::pair<int, int> size;
             bool behindStill = false; // then its time says more of the still than of drafts of its size
+            bool newSpace = false;    // the first frame of this socket from a new Vot-Space (a refit's)
             {
                 std::lock_guard lock(mMutex);
                 size = mSizers.try_emplace(sizerKey(full), DRAFT_BUDGET_MS)
                            .first->second.draftSize(full.width, full.height);
                 behindStill = mPacing.drawingStill();
+                newSpace = prepared.drawnFrom != mDrawnFrom;
+                mDrawnFrom = prepared.drawnFrom;
             }
             RenderJob job = prepared.job;
             job.params.width = size.first;
@@ -146,9 +153,10 @@ void Viewer::draw(const PendingView& view) {
                            {"uploadMs", result.uploadMs},
                            {"votCount", result.votCount}});
             std::lock_guard lock(mMutex);
-            // A draft that began with the upload of a new Vot-Space (the first frame after a refit) says
-            // nothing of the time a draft of its size takes.
-            if (!behindStill && !mPacing.drawingStill() && result.uploadMs == 0.0)
+            // A draft that waited for the upload of a new Vot-Space, in its own job or in the one a refit
+            // queues ahead of it (uploadAhead), says nothing of the time a draft of its size takes: timed,
+            // it shrank the drafts after every eps move to the smallest size.
+            if (!behindStill && !newSpace && !mPacing.drawingStill() && result.uploadMs == 0.0)
                 mSizers.at(sizerKey(full))
                     .observe(size.first, size.second, Ms(std::chrono::steady_clock::now() - start).count());
         }

@@ -56,6 +56,7 @@ private:
     std::mutex mMutex;
     ViewerPacing mPacing{MAX_IN_FLIGHT};
     std::map<std::string, DraftSizer> mSizers; // by dataset, mode and renderer: their frames cost differently
+    std::string mDrawnFrom; // what this socket's last frame was drawn from (PreparedRender::drawnFrom)
     bool mClosed = false;
 };
 
