@@ -68,10 +68,9 @@ public:
     void finishOnRanks(std::size_t votCount, double seconds);
     void fail(const std::string& error);
 
-    /// Asks the running fit to stop at its next check (fit::FitCancelled); a fit not yet started never
-    /// starts. Thread-safe.
+    /// Asks the job's fit to stop at its next check (fit::FitCancelled); one that starts later stops at its
+    /// first. Thread-safe.
     void cancel() { mCancel.store(true, std::memory_order_relaxed); }
-    bool cancelled() const { return mCancel.load(std::memory_order_relaxed); }
     /// What fit::FitOptions::cancel points at for this job's fit.
     const std::atomic<bool>* cancelFlag() const { return &mCancel; }
 
