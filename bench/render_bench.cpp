@@ -4,7 +4,7 @@
 //   render_bench VOLUME [--vots FILE | --eps-percent P[,P...] | --eps E] [--degree N] [--fit-norm N] [--size
 //   N]
 //                [--frames N] [--warmup N] [--strategy both|walk|raster]
-//                [--walk-shader auto|fragment|compute] [--no-cull] [--png-dir DIR]
+//                [--walk-shader auto|fragment|compute] [--no-cull] [--bands] [--png-dir DIR]
 // Each round renders one frame with every renderer being compared (reference, raster, walk), so load
 // from other processes hits all of them alike; the table gives per-renderer medians over --frames
 // rounds after --warmup rounds, each frame glFinish-synchronised, and the ratios of those medians.
@@ -85,6 +85,10 @@ int main(int argc, char** argv) {
            "--walk-shader", walkShaderName,
            "stage that runs the walk: auto (compute on a GPU, fragment on llvmpipe), fragment or compute")
         ->check(CLI::IsMember({"auto", "fragment", "compute"}));
+    bool bands = false;
+    app.add_flag("--bands", bands,
+                 "also time the walk drawn in bands that ask to go on, as the viewer's stills are (never "
+                 "abandoned), in the same rounds");
     app.add_flag("--no-cull", noCull, "no bound culling (raster draws every Vot, walk evaluates every Vot)");
     app.add_option("--view", onlyViews, "time only these views (anterior, oblique, persp; comma list)")
         ->delimiter(',');
@@ -165,10 +169,16 @@ int main(int argc, char** argv) {
                 }};
                 if (timeRaster) fns.emplace_back([&] { raster.render(camera, size, size); });
                 if (timeWalk) fns.emplace_back([&] { walk.render(camera, size, size); });
+                vots::render::RenderOptions banded;
+                banded.abandoned = [] { return false; };
+                if (timeWalk && bands) fns.emplace_back([&] { walk.render(camera, size, size, banded); });
                 const std::vector<double> ms = interleavedMedians(warmup, frames, fns);
                 const double refMs = noReference ? NAN : ms[0];
                 const double rasterMs = timeRaster ? ms[1] : NAN;
-                const double walkMs = timeWalk ? ms.back() : NAN;
+                const double walkMs = timeWalk ? ms[fns.size() - (bands ? 2 : 1)] : NAN;
+                if (timeWalk && bands)
+                    std::printf("walk in bands, %s: %.1f ms against %.1f ms whole (%.3f)\n", name, ms.back(),
+                                walkMs, ms.back() / walkMs);
 
                 VotRenderer& main = timeWalk ? walk : raster;
                 std::vector<double> readback, ahead;

@@ -73,13 +73,15 @@ DisplaySettings displayFor(const FrameRequest& frame, std::array<float, 2> fullR
 }
 
 RgbaImage renderFrame(const FrameRequest& frame, VotRenderer* vots, GridRenderer* grid,
-                      std::optional<std::array<float, 2>> volumeRange) {
+                      std::optional<std::array<float, 2>> volumeRange,
+                      const std::function<bool()>& abandoned) {
     Renderer* const renderer = frame.renderer == RendererKind::Grid ? static_cast<Renderer*>(grid) : vots;
     if (!renderer) throw std::logic_error("renderFrame: no renderer for this frame");
     std::array<float, 2> range = volumeRange ? *volumeRange : renderer->valueRange();
     if (frame.mode == RenderMode::Density) range = vots->densityRange();
-    return renderer->renderRgba(frame.camera, frame.width, frame.height, displayFor(frame, range),
-                                RenderOptions{frame.mode, frame.slab});
+    RenderOptions options{frame.mode, frame.slab};
+    options.abandoned = abandoned;
+    return renderer->renderRgba(frame.camera, frame.width, frame.height, displayFor(frame, range), options);
 }
 
 } // namespace vots::render

@@ -25,6 +25,15 @@ namespace {
 
 constexpr int WALK_BRICK_SHIFT = 4; // bricks of 16^3 cells (bench/RESULTS.md compares 8, 16, 32)
 
+// An abandonable frame's bands: about eight, each of whole rows of llvmpipe's 64-pixel tiles, so that its
+// rasterizer threads still share full rows of tiles and a band costs about an eighth of the frame.
+constexpr int WALK_BANDS = 8;
+constexpr int TILE_SIDE = 64;
+int walkBandRows(int height) {
+    const int rows = (height + WALK_BANDS - 1) / WALK_BANDS;
+    return (rows + TILE_SIDE - 1) / TILE_SIDE * TILE_SIDE;
+}
+
 // One RGBA32UI walk texel: box corners in 16 bits each, and the bound's bits.
 void packBox(std::uint32_t* texel, const std::array<int, 3>& lo, const std::array<int, 3>& hi, float bound) {
     packBoxCorners(texel, lo, hi);
@@ -271,23 +280,23 @@ void WalkPass::uploadMinAndMeanTables(const std::vector<GpuVot>& vots, const Vot
 
 void WalkPass::draw(RenderMode mode, const CameraMatrices& m, const std::optional<SlabPlanes>& slab,
                     const std::optional<CellDomain>& domain, int width, int height, FloatTarget& target,
-                    bool culling, FrameStats& stats) {
+                    bool culling, FrameStats& stats, const std::function<bool()>& abandoned) {
     const int walkMode = mode == RenderMode::MinIp ? WALK_MODE_MIN
                          : mode == RenderMode::Aip ? WALK_MODE_MEAN
                                                    : WALK_MODE_MAX;
-    drawWalk(walkMode, m, slab, domain, width, height, target, culling, stats);
+    drawWalk(walkMode, m, slab, domain, width, height, target, culling, stats, abandoned);
 }
 
 void WalkPass::drawRayLengths(const CameraMatrices& m, const std::optional<SlabPlanes>& slab,
                               const std::optional<CellDomain>& domain, int width, int height,
                               FloatTarget& target) {
     FrameStats unused;
-    drawWalk(WALK_MODE_LENGTH, m, slab, domain, width, height, target, false, unused);
+    drawWalk(WALK_MODE_LENGTH, m, slab, domain, width, height, target, false, unused, {});
 }
 
 void WalkPass::drawWalk(int walkMode, const CameraMatrices& m, const std::optional<SlabPlanes>& slab,
                         const std::optional<CellDomain>& domain, int width, int height, FloatTarget& target,
-                        bool culling, FrameStats& stats) {
+                        bool culling, FrameStats& stats, const std::function<bool()>& abandoned) {
     applySkipBoxes(false);
     // What no ray takes anything from: -inf, or for the length 0.
     const float nothing = walkMode == WALK_MODE_LENGTH ? 0.f : -INFINITY;
@@ -361,7 +370,24 @@ void WalkPass::drawWalk(int walkMode, const CameraMatrices& m, const std::option
     glFrontFace(m.mirrored ? GL_CW : GL_CCW);
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_BLEND);
-    glDrawArrays(GL_TRIANGLES, 0, 36);
+    if (!abandoned) {
+        glDrawArrays(GL_TRIANGLES, 0, 36);
+        return;
+    }
+    // Band after band, each finished before the question: the whole frame is one draw otherwise, which
+    // nothing can stop. (A GPU's compute walk above draws a frame in a few ms and is not banded.)
+    const int rows = walkBandRows(height);
+    glEnable(GL_SCISSOR_TEST);
+    for (int y = 0; y < height; y += rows) {
+        if (y > 0) glFinish();
+        if (abandoned()) {
+            glDisable(GL_SCISSOR_TEST);
+            throw FrameAbandoned();
+        }
+        glScissor(0, y, width, std::min(rows, height - y));
+        glDrawArrays(GL_TRIANGLES, 0, 36);
+    }
+    glDisable(GL_SCISSOR_TEST);
 }
 
 } // namespace vots::render

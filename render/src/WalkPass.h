@@ -66,9 +66,10 @@ public:
     /// Draws the max, min or mean along each ray (Mip, MinIp, Aip), within the slab if there is one and
     /// the cell domain (nullopt: the whole grid), into the bound target (every pixel is written); culling
     /// off evaluates every Vot on the ray (the mean always does). Counts into `stats`.
+    /// `abandoned` (may be empty): RenderOptions::abandoned; throws FrameAbandoned when it says so.
     void draw(RenderMode mode, const CameraMatrices& m, const std::optional<SlabPlanes>& slab,
               const std::optional<CellDomain>& domain, int width, int height, FloatTarget& target,
-              bool culling, FrameStats& stats);
+              bool culling, FrameStats& stats, const std::function<bool()>& abandoned = {});
     /// Draws, per pixel, the length (index units) of the ray's part the mean divides its integral by:
     /// inside the grid, the domain and the slab, from the mean's own arithmetic; 0 where the ray misses.
     void drawRayLengths(const CameraMatrices& m, const std::optional<SlabPlanes>& slab,
@@ -89,7 +90,7 @@ private:
     /// draw() and drawRayLengths(): one walk-shader pass taking `walkMode` (WALK_MODE_*).
     void drawWalk(int walkMode, const CameraMatrices& m, const std::optional<SlabPlanes>& slab,
                   const std::optional<CellDomain>& domain, int width, int height, FloatTarget& target,
-                  bool culling, FrameStats& stats);
+                  bool culling, FrameStats& stats, const std::function<bool()>& abandoned);
     void uploadMinAndMeanTables(const std::vector<GpuVot>& vots, const VotWalkGrid& grid,
                                 const std::vector<CellBlock>& votBoxes);
 

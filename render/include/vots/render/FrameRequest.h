@@ -10,6 +10,7 @@
 #include "vots/render/Slab.h"
 
 #include <array>
+#include <functional>
 #include <optional>
 #include <string_view>
 
@@ -77,8 +78,9 @@ DisplaySettings displayFor(const FrameRequest& frame, std::array<float, 2> fullR
 /// Draws the frame as RGBA with the renderer it names, which holds the data already: `grid` for
 /// RendererKind::Grid, else `vots`. Without a window the frame shows the full range: of the
 /// volume's samples (`volumeRange`, where the caller has the volume; else the Vot-Space's values), for
-/// density the Vot renderer's density range.
+/// density the Vot renderer's density range. `abandoned`: RenderOptions::abandoned.
 RgbaImage renderFrame(const FrameRequest& frame, VotRenderer* vots, GridRenderer* grid,
-                      std::optional<std::array<float, 2>> volumeRange);
+                      std::optional<std::array<float, 2>> volumeRange,
+                      const std::function<bool()>& abandoned = {});
 
 } // namespace vots::render

@@ -9,8 +9,15 @@
 #include "vots/render/Slab.h"
 
 #include <array>
+#include <exception>
 
 namespace vots::render {
+
+/// Thrown by a frame whose RenderOptions::abandoned answered true between two of its bands.
+class FrameAbandoned : public std::exception {
+public:
+    const char* what() const noexcept override { return "frame abandoned: its client asked for another"; }
+};
 
 /// What a frame needs from a renderer once its data is uploaded. Every implementation needs a current
 /// EglContext for its whole life, and throws fit::InputError for a mode it cannot draw.

@@ -6,6 +6,7 @@
 #include "vots/render/RenderMode.h"
 
 #include <array>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -39,6 +40,11 @@ SlabPlanes slabPlanesInIndexSpace(const Slab& slab, const Camera& camera, const 
 struct RenderOptions {
     RenderMode mode = RenderMode::Mip;
     std::optional<Slab> slab; // nullopt: the whole ray through the volume
+    /// Empty: the frame is drawn in one pass. Else the Vot walk in the fragment stage (llvmpipe's) draws
+    /// the frame in bands of rows and asks this between them; true gives the frame up (FrameAbandoned),
+    /// so that a large frame its client no longer wants holds the render thread for one band, not the
+    /// whole frame. The bands give the same pixels as one pass.
+    std::function<bool()> abandoned;
 
     RenderOptions(RenderMode m = RenderMode::Mip, std::optional<Slab> s = std::nullopt) // NOLINT: implicit
         : mode(m), slab(s) {}
