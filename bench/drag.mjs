@@ -1,5 +1,6 @@
 // The benchmarks' drag: from the image's centre, `reach` pixels to the right with a sine wave up and down,
-// as a 60 Hz mouse moves, then released.
+// as a 60 Hz mouse moves, then released; VOTS_DRAG_HOLD_MS after the last move (default 0: at once, a
+// flick), as a hand that stops on what it wants to see and then lets go.
 
 const MOVE_EVERY_MS = 16; // a 60 Hz mouse
 
@@ -16,5 +17,7 @@ export async function dragAcrossImage(page, viewer, dragMs, reach) {
     const wait = start + i * MOVE_EVERY_MS - Date.now();
     if (wait > 0) await page.waitForTimeout(wait);
   }
+  const holdMs = Number(process.env.VOTS_DRAG_HOLD_MS || 0);
+  if (holdMs > 0) await page.waitForTimeout(holdMs);
   await page.mouse.up();
 }

@@ -14,10 +14,11 @@ const DRAFT_DIVISOR = 3; // frames while dragging are this much smaller, scaled 
 const RESIZE_SETTLE_MS = 100; // a frame for the new view size once resizing pauses this long
 // A drag that pauses this long, and for the time of PAUSE_DRAFTS drafts as the server last drew them, asks
 // the socket for its exact frame at once, so that on release it is drawn already or drawing; moving on
-// drops it on the server. A loaded server draws slowly: the pause it takes for one grows with it, so
-// that hitches of the hand do not fill the render thread with full-size frames no one keeps.
-const STILL_AFTER_PAUSE_MS = 250;
-const PAUSE_DRAFTS = 4;
+// drops it on the server, between two bands of its render if that has begun, so a pause that was only a
+// hitch of the hand costs the drag at most a band (an eighth of the still). A loaded server draws slowly:
+// the pause it takes for one grows with it.
+const STILL_AFTER_PAUSE_MS = 100;
+const PAUSE_DRAFTS = 2;
 // A frame the server refused for being busy (429: this page's share of renders is taken; 503: its queue is
 // full, or a fit it waited on is not there yet) is asked for again after RETRY_MS, up to RETRIES times in
 // a row: a busy moment must not leave the view stale until the hand moves again. The banner says why;

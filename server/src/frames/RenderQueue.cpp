@@ -50,6 +50,7 @@ RenderQueue::~RenderQueue() {
         std::lock_guard lock(mMutex);
         mStopping = true;
     }
+    mAbandonDrawing.store(true, std::memory_order_relaxed); // a long still need not hold the stop
     mWake.notify_all();
     mThread.join();
     for (Item& item : mQueue) // left by a thread that had no context, or by the stop
@@ -85,6 +86,9 @@ std::future<RenderQueue::Outcome> RenderQueue::submit(RenderJob job) {
         }
     }
     if (mQueue.size() >= mMaxWaiting) throw HttpError(503, "render queue is full; try again");
+    // The client has moved on from the frame being drawn too, when it may be given up.
+    if (!client.empty() && client == mAbandonableClient)
+        mAbandonDrawing.store(true, std::memory_order_relaxed);
     mQueue.push_back(std::move(item));
     mWake.notify_one();
     return future;
@@ -125,13 +129,22 @@ void RenderQueue::threadMain() {
             mWake.wait(lock, [this] { return mStopping || !mQueue.empty(); });
             if (mStopping) return;
             item = takeNextLocked();
+            mAbandonableClient = item.job.abandonable ? item.job.params.client : "";
+            mAbandonDrawing.store(false, std::memory_order_relaxed);
         }
         Outcome outcome;
         try {
             outcome = draw(renderers, item.job);
+        } catch (const render::FrameAbandoned&) {
+            outcome = Refusal{409, "superseded"};
+            mStats.addSuperseded();
         } catch (...) {
             HttpFailure failure = httpFailureOf(std::current_exception(), "render failed");
             outcome = Refusal{failure.status, std::move(failure.message)};
+        }
+        {
+            std::lock_guard lock(mMutex);
+            mAbandonableClient.clear();
         }
         item.promise.set_value(std::move(outcome));
     }
@@ -199,7 +212,9 @@ RenderResult RenderQueue::draw(Renderers& r, const RenderJob& job) {
         result.values = renderer.render(p.camera, p.width, p.height, render::RenderOptions{p.mode, p.slab});
         result.drawable = renderer.valueRange();
     } else {
-        result.image = render::renderFrame(p, r.vots.get(), r.grid.get(), job.valueRange);
+        const auto abandoned = [this] { return mAbandonDrawing.load(std::memory_order_relaxed); };
+        result.image = render::renderFrame(p, r.vots.get(), r.grid.get(), job.valueRange,
+                                           job.abandonable ? std::function<bool()>(abandoned) : nullptr);
     }
     result.frameMs = msSince(start);
     mStats.addFrame(result.frameMs);

@@ -9,6 +9,7 @@
 #include "vots/render/Image.h"
 
 #include <array>
+#include <atomic>
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
@@ -44,6 +45,10 @@ struct RenderJob {
     // Who asked (a remote address): the render thread takes turns between owners, so that one address's
     // many requests or viewers do not hold back another's one. Empty: the server's own (warm-ups).
     std::string owner;
+    // A newer job of the same client (params.client, not empty) gives this one up between the bands of its
+    // walk once it has begun, not only while it waits: a viewer's full-size still that the camera has
+    // left holds the render thread for a band, not the whole frame (render::RenderOptions::abandoned).
+    bool abandonable = false;
 };
 
 struct RenderResult {
@@ -75,8 +80,8 @@ public:
     const std::string& walkShaderName() const { return mWalkShaderName; }
 
     /// Queues a job and waits for it. Throws HttpError 409 ("superseded") when a newer job with the
-    /// same non-empty client id arrived while this one waited, 503 without a context or when the queue
-    /// is full, 400 for input the renderer refuses.
+    /// same non-empty client id arrived while this one waited (or, for an abandonable job, while it was
+    /// drawn), 503 without a context or when the queue is full, 400 for input the renderer refuses.
     RenderResult render(RenderJob job);
     /// Queues a job whose result nobody waits for (it uploads what it draws). Throws as render() does
     /// before the job is queued.
@@ -111,7 +116,9 @@ private:
     mutable std::mutex mMutex;
     std::condition_variable mWake;
     std::deque<Item> mQueue;
-    OwnerTurns mTurns; // which waiting job is next
+    OwnerTurns mTurns;                        // which waiting job is next
+    std::string mAbandonableClient;           // the client of the job being drawn, when it is abandonable
+    std::atomic<bool> mAbandonDrawing{false}; // that client has asked for another frame (or the queue stops)
     bool mStopping = false;
     bool mReady = false;
     bool mHasContext = false;

@@ -102,8 +102,11 @@ void Viewer::draw(const PendingView& view) {
         const PreparedRender prepared = prepareRender(s, view.params, mAddress, mMayStartFits);
         const RenderParams& full = view.params;
         if (view.still) {
-            // Through the frame cache: the same bytes as GET /render for these parameters.
-            const auto frame = cachedFrame(s, prepared, full, nullptr);
+            // Through the frame cache: the same bytes as GET /render for these parameters. Given up between
+            // bands when this socket's next view reaches the render queue: the camera has moved on.
+            PreparedRender still = prepared;
+            still.job.abandonable = true;
+            const auto frame = cachedFrame(s, still, full, nullptr);
             {
                 std::lock_guard lock(mMutex);
                 mDrawnFrom = prepared.drawnFrom; // its upload is behind the drafts that follow
