@@ -63,10 +63,16 @@ async function dragOnce(page, viewer, run) {
   const still = frames.find((f) => f.still && f.sentAt >= moves.at(-1));
   // A move is shown by the first frame whose view was asked for after it.
   const latencies = [];
-  for (const m of moves) {
+  let afterPause = NaN; // the first move after the longest gap between moves (VOTS_DRAG_PAUSE_MS)
+  let longestGap = 0;
+  moves.forEach((m, i) => {
     const f = frames.find((fr) => fr.sentAt >= m);
     if (f) latencies.push(f.shownAt - m);
-  }
+    if (i > 0 && m - moves[i - 1] > longestGap) {
+      longestGap = m - moves[i - 1];
+      afterPause = f ? f.shownAt - m : NaN;
+    }
+  });
   return {
     fps: (duringDrag.length * 1000) / (up - moves[0]),
     width: median(duringDrag.map((f) => f.width)),
@@ -74,6 +80,7 @@ async function dragOnce(page, viewer, run) {
     releaseMs: still ? Math.max(0, still.shownAt - up) : NaN,
     fullSize: still ? `${still.width}x${still.height}` : '?',
     p50: quantile(latencies, 0.5),
+    afterPause,
     p90: quantile(latencies, 0.9),
     transport: still?.transport || frames.at(-1)?.transport,
     stillsWhileDragging: frames.filter((f) => f.still && f.shownAt >= moves[0] && f.shownAt <= up).length,
@@ -172,7 +179,9 @@ for (const transport of ['socket', 'render']) {
   console.log(`median ${transport}: ${median(rs.map((r) => r.fps)).toFixed(1)} frames/s at ` +
     `${median(rs.map((r) => r.width))}x${median(rs.map((r) => r.height))}, release -> lossless ` +
     `${median(rs.map((r) => r.releaseMs)).toFixed(0)} ms, move -> frame p50 ${median(rs.map((r) => r.p50)).toFixed(0)} ms ` +
-    `over ${rs.length} drags`);
+    `over ${rs.length} drags` +
+    (process.env.VOTS_DRAG_PAUSE_MS ? `, the first move after the pause -> frame ${median(rs.map((r) => r.afterPause)).toFixed(0)} ms, ` +
+      `stills shown while dragging ${rs.map((r) => r.stillsWhileDragging).join(' ')}` : ''));
   const parts = rs.map((r) => r.stillParts).filter(Boolean);
   if (parts.length) {
     console.log(`  ${transport} still, medians: ` +
