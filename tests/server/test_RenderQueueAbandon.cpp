@@ -96,8 +96,9 @@ TEST_F(RenderQueueAbandon, TheClientsNextFrameGivesUpItsStillBeingDrawn) {
 }
 
 TEST_F(RenderQueueAbandon, AFrameNotAbandonableOrAnotherClientsNextFrameDoesNot) {
-    for (const auto& [first, second] : {std::pair{frameOf("viewer", 2048, false), frameOf("viewer", 64, false)},
-                                        std::pair{frameOf("viewer", 2048, true), frameOf("other", 64, false)}}) {
+    for (const auto& [first, second] :
+         {std::pair{frameOf("viewer", 2048, false), frameOf("viewer", 64, false)},
+          std::pair{frameOf("viewer", 2048, true), frameOf("other", 64, false)}}) {
         std::optional<int> status;
         for (int attempt = 0; attempt < 5 && !status; ++attempt)
             status = whileDrawing(first, second);
