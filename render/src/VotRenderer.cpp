@@ -68,14 +68,9 @@ struct VotRenderer::Impl {
                                   " is drawn from boxes here, not cells: it takes no cell domain");
         std::optional<SlabPlanes> slab;
         if (options.slab) slab = slabPlanesInIndexSpace(*options.slab, camera, bounds);
-        if (walked) {
-            try {
-                walk.draw(mode, m, slab, domain, width, height, target, culling, stats, options.abandoned);
-            } catch (const FrameAbandoned&) {
-                glDisable(GL_CULL_FACE); // as a finished frame leaves it
-                throw;
-            }
-        } else
+        if (walked)
+            walk.draw(mode, m, slab, domain, width, height, target, culling, stats, options.abandoned);
+        else
             raster.draw(mode, m, slab, width, height, target, vots, culling, stats);
         glDisable(GL_CULL_FACE);
         glFinish();

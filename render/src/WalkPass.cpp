@@ -382,6 +382,7 @@ void WalkPass::drawWalk(int walkMode, const CameraMatrices& m, const std::option
         if (y > 0) glFinish();
         if (abandoned()) {
             glDisable(GL_SCISSOR_TEST);
+            glDisable(GL_CULL_FACE); // as VotRenderer leaves it after a finished frame
             throw FrameAbandoned();
         }
         glScissor(0, y, width, std::min(rows, height - y));

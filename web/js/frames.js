@@ -15,8 +15,9 @@ const RESIZE_SETTLE_MS = 100; // a frame for the new view size once resizing pau
 // A drag that pauses this long, and for the time of PAUSE_DRAFTS drafts as the server last drew them, asks
 // the socket for its exact frame at once, so that on release it is drawn already or drawing; moving on
 // drops it on the server, between two bands of its render if that has begun, so a pause that was only a
-// hitch of the hand costs the drag at most a band (an eighth of the still). A loaded server draws slowly:
-// the pause it takes for one grows with it.
+// hitch of the hand holds the drag's next draft back for the band being drawn (an eighth of the still), not
+// the whole still (bench/RESULTS.md measures what it costs). A loaded server draws slowly: the pause it
+// takes for one grows with it.
 const STILL_AFTER_PAUSE_MS = 100;
 const PAUSE_DRAFTS = 2;
 // A frame the server refused for being busy (429: this page's share of renders is taken; 503: its queue is

@@ -79,9 +79,8 @@ std::future<RenderQueue::Outcome> RenderQueue::submit(RenderJob job) {
         for (auto it = mQueue.begin(); it != mQueue.end(); ++it) {
             if (it->job.params.client != client) continue;
             // The client has moved on: it wants this newer frame, not the one still waiting.
-            it->promise.set_value(Refusal{409, "superseded"});
+            it->promise.set_value(superseded());
             mQueue.erase(it);
-            mStats.addSuperseded();
             break; // at most one can wait per client, since each arrival replaces the previous
         }
     }
@@ -92,6 +91,11 @@ std::future<RenderQueue::Outcome> RenderQueue::submit(RenderJob job) {
     mQueue.push_back(std::move(item));
     mWake.notify_one();
     return future;
+}
+
+RenderQueue::Refusal RenderQueue::superseded() {
+    mStats.addSuperseded();
+    return Refusal{409, "superseded"};
 }
 
 void RenderQueue::threadMain() {
@@ -136,8 +140,7 @@ void RenderQueue::threadMain() {
         try {
             outcome = draw(renderers, item.job);
         } catch (const render::FrameAbandoned&) {
-            outcome = Refusal{409, "superseded"};
-            mStats.addSuperseded();
+            outcome = superseded();
         } catch (...) {
             HttpFailure failure = httpFailureOf(std::current_exception(), "render failed");
             outcome = Refusal{failure.status, std::move(failure.message)};

@@ -103,6 +103,8 @@ private:
         std::promise<Outcome> promise;
     };
     std::future<Outcome> submit(RenderJob job);
+    /// The answer to a job its client replaced by a newer one, counted in the stats.
+    Refusal superseded();
     /// The next item to draw: the oldest of the owner served longest ago (round-robin between owners).
     Item takeNextLocked();
     struct Renderers; // VotRenderer + GridRenderer + what they hold, render thread only
