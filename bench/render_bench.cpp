@@ -89,6 +89,11 @@ int main(int argc, char** argv) {
     app.add_flag("--bands", bands,
                  "also time the walk drawn in bands that ask to go on, as the viewer's stills are (never "
                  "abandoned), in the same rounds");
+    bool splat = false;
+    app.add_flag(
+        "--splat", splat,
+        "also time the MIP splat on the CPU's cores (VotRenderer::Strategy::Splat) in the same rounds, "
+        "against the walk");
     app.add_flag("--no-cull", noCull, "no bound culling (raster draws every Vot, walk evaluates every Vot)");
     app.add_option("--view", onlyViews, "time only these views (anterior, oblique, persp; comma list)")
         ->delimiter(',');
@@ -139,7 +144,9 @@ int main(int argc, char** argv) {
                 space = vots::fit::fitVotSpace(volume, options).space;
                 fitSeconds = std::chrono::duration<double>(Clock::now() - t0).count();
             }
-            VotRenderer walk, raster;
+            VotRenderer walk, raster, splatter;
+            if (splat) splatter.upload(space);
+            splatter.setStrategy(VotRenderer::Strategy::Splat);
             const double walkUploadMs = msOf([&] { walk.upload(space); });
             const double rasterUploadMs = msOf([&] { raster.upload(space); });
             walk.setStrategy(VotRenderer::Strategy::Walk);
@@ -172,13 +179,22 @@ int main(int argc, char** argv) {
                 vots::render::RenderOptions banded;
                 banded.abandoned = [] { return false; };
                 if (timeWalk && bands) fns.emplace_back([&] { walk.render(camera, size, size, banded); });
+                if (timeWalk && splat) fns.emplace_back([&] { splatter.render(camera, size, size); });
                 const std::vector<double> ms = interleavedMedians(warmup, frames, fns);
                 const double refMs = noReference ? NAN : ms[0];
                 const double rasterMs = timeRaster ? ms[1] : NAN;
-                const double walkMs = timeWalk ? ms[fns.size() - (bands ? 2 : 1)] : NAN;
+                const std::size_t extra = (bands ? 1 : 0) + (splat ? 1 : 0);
+                const double walkMs = timeWalk ? ms[fns.size() - 1 - extra] : NAN;
                 if (timeWalk && bands)
-                    std::printf("walk in bands, %s: %.1f ms against %.1f ms whole (%.3f)\n", name, ms.back(),
-                                walkMs, ms.back() / walkMs);
+                    std::printf("walk in bands, %s: %.1f ms against %.1f ms whole (%.3f)\n", name,
+                                ms[fns.size() - extra], walkMs, ms[fns.size() - extra] / walkMs);
+                if (timeWalk && splat) {
+                    const auto a = walk.render(camera, size, size), b = splatter.render(camera, size, size);
+                    std::printf("splat, %s: %.1f ms against the walk's %.1f ms (walk / splat %.2f), pixels "
+                                "splat != walk (1e-3 of the range): %zu\n",
+                                name, ms.back(), walkMs, walkMs / ms.back(),
+                                countDifferent(a, b, 1e-3f * float(range[1] - range[0])));
+                }
 
                 VotRenderer& main = timeWalk ? walk : raster;
                 std::vector<double> readback, ahead;

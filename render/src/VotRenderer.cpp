@@ -1,6 +1,7 @@
 // Vot MIP and density: the upload (bounds, records, order) and the dispatch to the walk or raster pass.
 #include "vots/render/VotRenderer.h"
 
+#include "CpuSplat.h"
 #include "FloatTarget.h"
 #include "FrameReadout.h"
 #include "GlDisplayPass.h"
@@ -13,6 +14,7 @@
 
 #include "vots/fit/Error.h"
 #include "vots/fit/VotSpace.h"
+#include "vots/render/EglContext.h"
 #include "vots/render/GpuLayout.h"
 
 #include <algorithm>
@@ -27,6 +29,8 @@ namespace vots::render {
 struct VotRenderer::Impl {
     WalkPass walk;
     RasterPass raster;
+    CpuSplat splat;
+    bool splatStale = true; // the splat's copy of the Vots predates the last upload
     FloatTarget target;
     GlDisplayPass display;
 
@@ -36,15 +40,24 @@ struct VotRenderer::Impl {
     std::array<float, 2> valueRange{0.f, 0.f};
     std::array<float, 2> densityRange{0.f, 1.f};
     bool culling = true;
-    Strategy strategy = Strategy::Walk;
+    Strategy strategy = defaultStrategy();
     std::optional<CellDomain> domain;
+    std::array<int, 3> cells{0, 0, 0};
     FrameStats stats;
 
+    static Strategy defaultStrategy() {
+        const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+        return renderer && EglContext::isSoftwareRenderer(renderer) ? Strategy::Splat : Strategy::Walk;
+    }
+
     Strategy mipStrategy() const {
+        if (strategy == Strategy::Splat) return Strategy::Splat;
         return strategy == Strategy::Walk && walk.walkable() ? Strategy::Walk : Strategy::Raster;
     }
 
-    void draw(const Camera& camera, int width, int height, const RenderOptions& options) {
+    /// A MIP the splat draws on the CPU; nullopt for every other frame (drawn into `target`).
+    std::optional<FloatImage> draw(const Camera& camera, int width, int height,
+                                   const RenderOptions& options) {
         const RenderMode mode = options.mode;
         if (mode == RenderMode::Density && options.slab)
             throw fit::InputError("density shows the smallest Vot along each whole ray; it takes no slab");
@@ -63,11 +76,19 @@ struct VotRenderer::Impl {
                 " needs a Vot-Space with disjoint boxes (fit --method fast) within the walk's "
                 "GL limits; this one can only be drawn as mip or density");
         const bool walked = alongRays || (mode == RenderMode::Mip && mipStrategy() == Strategy::Walk);
-        if (domain && !walked)
+        if (domain && !walked && !(mode == RenderMode::Mip && mipStrategy() == Strategy::Splat))
             throw fit::InputError(std::string(renderModeName(mode)) +
                                   " is drawn from boxes here, not cells: it takes no cell domain");
         std::optional<SlabPlanes> slab;
         if (options.slab) slab = slabPlanesInIndexSpace(*options.slab, camera, bounds);
+        if (mode == RenderMode::Mip && mipStrategy() == Strategy::Splat) {
+            if (splatStale) splat.upload(vots);
+            splatStale = false;
+            FloatImage image =
+                splat.draw(m, slab, domain, cells, width, height, culling, options.abandoned, stats);
+            stats.gpuMs = msSince(t0);
+            return image;
+        }
         if (walked)
             walk.draw(mode, m, slab, domain, width, height, target, culling, stats, options.abandoned);
         else
@@ -77,6 +98,7 @@ struct VotRenderer::Impl {
         stats.gpuMs = msSince(t0);
         checkGl(walked ? "VotRenderer walk" : "VotRenderer draw");
         if (walked) walk.startSkipGrowth();
+        return std::nullopt;
     }
 };
 
@@ -159,6 +181,9 @@ void VotRenderer::upload(const fit::VotSpace& space) {
 
     d.walk.upload(std::move(grid), d.vots, walkRecords.get(), space.omittedCellValue());
     d.bounds = sceneBounds(space);
+    for (std::size_t a = 0; a < 3; ++a)
+        d.cells[a] = space.dims[a] - 1;
+    d.splatStale = true;
     d.hasData = true;
 }
 
@@ -186,6 +211,18 @@ VotRenderer::Strategy VotRenderer::strategy() const {
 VotRenderer::Strategy VotRenderer::mipStrategy() const {
     return mImpl->mipStrategy();
 }
+std::string_view strategyName(VotRenderer::Strategy strategy) {
+    switch (strategy) {
+    case VotRenderer::Strategy::Walk:
+        return "walk";
+    case VotRenderer::Strategy::Raster:
+        return "raster";
+    case VotRenderer::Strategy::Splat:
+        return "splat";
+    }
+    return "walk";
+}
+
 std::string_view walkShaderName(VotRenderer::WalkShader shader) {
     return shader == VotRenderer::WalkShader::Compute ? "compute" : "fragment";
 }
@@ -215,7 +252,8 @@ const FrameStats& VotRenderer::lastFrameStats() const {
 }
 
 FloatImage VotRenderer::render(const Camera& camera, int width, int height, const RenderOptions& options) {
-    mImpl->draw(camera, width, height, options);
+    if (std::optional<FloatImage> drawn = mImpl->draw(camera, width, height, options))
+        return std::move(*drawn);
     return readFloatFrame(mImpl->target, mImpl->stats);
 }
 
@@ -228,7 +266,10 @@ RgbaImage VotRenderer::display(const FloatImage& image, const DisplaySettings& d
 
 RgbaImage VotRenderer::renderRgba(const Camera& camera, int width, int height, const DisplaySettings& display,
                                   const RenderOptions& options) {
-    mImpl->draw(camera, width, height, options);
+    if (std::optional<FloatImage> drawn = mImpl->draw(camera, width, height, options)) {
+        mImpl->target.bind(width, height);
+        writeFloatImage(mImpl->target.texture(), *drawn);
+    }
     return readDisplayedFrame(mImpl->display, mImpl->target, display, mImpl->stats);
 }
 

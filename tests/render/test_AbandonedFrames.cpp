@@ -20,6 +20,7 @@ const fit::VotSpace& cubicSpace() {
 
 // The fragment walk, the one that draws in bands (a GPU's compute walk draws a frame whole).
 void useFragmentWalk(VotRenderer& walk) {
+    walk.setStrategy(VotRenderer::Strategy::Walk);
     walk.setWalkShader(VotRenderer::WalkShader::Fragment);
     walk.upload(cubicSpace());
 }

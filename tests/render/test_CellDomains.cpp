@@ -102,63 +102,74 @@ TEST_P(CellDomains, SlabsOfCellsCompositeToTheUndividedFrame) {
     test::glContext();
     const fit::VotSpace whole = spaceWithHole();
     const Camera cam = test::obliqueCamera(GetParam());
-    for (const std::optional<Slab>& slab : {std::optional<Slab>{}, std::optional<Slab>{Slab{1.5, 9.0}}}) {
-        VotRenderer renderer;
-        renderer.upload(whole);
-        const Frames undivided = framesOf(renderer, cam, slab);
-        std::vector<Frames> parts, leaky;
-        for (const ZSplit& s : SLABS) {
-            VotRenderer rank;
-            rank.upload(votsMeeting(whole, s));
-            leaky.push_back(framesOf(rank, cam, slab)); // whole rays: the other slabs' cells are background
-            rank.setRayDomain(CellDomain{{0, 0, s.first}, {N, N, s.end}});
-            parts.push_back(framesOf(rank, cam, slab));
+    // The max by the walk and by the splat (both cut rays to a domain); the min and mean always walk.
+    for (const auto mipBy : {VotRenderer::Strategy::Walk, VotRenderer::Strategy::Splat})
+        for (const std::optional<Slab>& slab : {std::optional<Slab>{}, std::optional<Slab>{Slab{1.5, 9.0}}}) {
+            VotRenderer renderer;
+            renderer.setStrategy(mipBy);
+            renderer.upload(whole);
+            const Frames undivided = framesOf(renderer, cam, slab);
+            std::vector<Frames> parts, leaky;
+            for (const ZSplit& s : SLABS) {
+                VotRenderer rank;
+                rank.setStrategy(mipBy);
+                rank.upload(votsMeeting(whole, s));
+                leaky.push_back(
+                    framesOf(rank, cam, slab)); // whole rays: the other slabs' cells are background
+                rank.setRayDomain(CellDomain{{0, 0, s.first}, {N, N, s.end}});
+                parts.push_back(framesOf(rank, cam, slab));
+            }
+            const Frames joined = composite(parts);
+            // The min takes each piece's min, and the pieces partition the ray at the same plane crossings;
+            // a Vot cut by a face is expanded from the face, not its box entry, which may move a value by a
+            // few ulps (values reach 10 amplitudes here).
+            expectClose(joined.min, undivided.min, 1e-5 * AMPLITUDE, slab ? "min, slab" : "min");
+            expectClose(joined.max, undivided.max, 1e-5 * AMPLITUDE, slab ? "max, slab" : "max");
+            // Background x length and the Vots' integrals, split at the faces and summed in another order.
+            expectClose(joined.mean, undivided.mean, 1e-5 * AMPLITUDE, slab ? "mean, slab" : "mean");
+            expectClose(joined.length, undivided.length, 1e-4, slab ? "length, slab" : "length");
+            std::size_t seen = 0;
+            for (std::size_t i = 0; i < undivided.mean.pixels.size(); ++i) {
+                const bool hit = std::isfinite(undivided.mean.pixels[i]);
+                EXPECT_EQ(hit, undivided.length.pixels[i] > 0.f) << i;
+                seen += hit ? 1 : 0;
+            }
+            EXPECT_GT(seen, std::size_t(W * H / 4));
+            // Without the cut, each slab's rays count the cells the others hold as background: the test above
+            // would fail.
+            const Frames leaked = composite(leaky);
+            EXPECT_GT(test::compareImages(leaked.min, undivided.min, 1e-5 * AMPLITUDE).beyondTolerance,
+                      std::size_t(W * H / 4));
+            EXPECT_GT(test::compareImages(leaked.mean, undivided.mean, 1e-4 * AMPLITUDE).beyondTolerance,
+                      std::size_t(W * H / 4));
         }
-        const Frames joined = composite(parts);
-        // The min takes each piece's min, and the pieces partition the ray at the same plane crossings;
-        // a Vot cut by a face is expanded from the face, not its box entry, which may move a value by a
-        // few ulps (values reach 10 amplitudes here).
-        expectClose(joined.min, undivided.min, 1e-5 * AMPLITUDE, slab ? "min, slab" : "min");
-        expectClose(joined.max, undivided.max, 1e-5 * AMPLITUDE, slab ? "max, slab" : "max");
-        // Background x length and the Vots' integrals, split at the faces and summed in another order.
-        expectClose(joined.mean, undivided.mean, 1e-5 * AMPLITUDE, slab ? "mean, slab" : "mean");
-        expectClose(joined.length, undivided.length, 1e-4, slab ? "length, slab" : "length");
-        std::size_t seen = 0;
-        for (std::size_t i = 0; i < undivided.mean.pixels.size(); ++i) {
-            const bool hit = std::isfinite(undivided.mean.pixels[i]);
-            EXPECT_EQ(hit, undivided.length.pixels[i] > 0.f) << i;
-            seen += hit ? 1 : 0;
-        }
-        EXPECT_GT(seen, std::size_t(W * H / 4));
-        // Without the cut, each slab's rays count the cells the others hold as background: the test above
-        // would fail.
-        const Frames leaked = composite(leaky);
-        EXPECT_GT(test::compareImages(leaked.min, undivided.min, 1e-5 * AMPLITUDE).beyondTolerance,
-                  std::size_t(W * H / 4));
-        EXPECT_GT(test::compareImages(leaked.mean, undivided.mean, 1e-4 * AMPLITUDE).beyondTolerance,
-                  std::size_t(W * H / 4));
-    }
 }
 
 TEST_P(CellDomains, SlabsOnBoxFacesGiveTheMinBitForBit) {
     test::glContext();
     const fit::VotSpace whole = spaceWithHole();
     const Camera cam = test::obliqueCamera(GetParam());
-    VotRenderer renderer;
-    renderer.upload(whole);
-    const Frames undivided = framesOf(renderer, cam, std::nullopt);
-    // No box crosses z = 8 or 16 (a fit per slab stops its boxes at the slab faces): each Vot is drawn on
-    // one slab only, over all of its part of the ray, with the arithmetic of the undivided frame.
-    std::vector<Frames> parts;
-    for (const ZSplit& s : std::vector<ZSplit>{{0, 8}, {8, 16}, {16, N}}) {
-        VotRenderer rank;
-        rank.upload(votsMeeting(whole, s));
-        rank.setRayDomain(CellDomain{{0, 0, s.first}, {N, N, s.end}});
-        parts.push_back(framesOf(rank, cam, std::nullopt));
+    for (const auto mipBy : {VotRenderer::Strategy::Walk, VotRenderer::Strategy::Splat}) {
+        VotRenderer renderer;
+        renderer.setStrategy(mipBy);
+        renderer.upload(whole);
+        const Frames undivided = framesOf(renderer, cam, std::nullopt);
+        // No box crosses z = 8 or 16 (a fit per slab stops its boxes at the slab faces): each Vot is drawn
+        // on one slab only, over all of its part of the ray, with the arithmetic of the undivided frame.
+        std::vector<Frames> parts;
+        for (const ZSplit& s : std::vector<ZSplit>{{0, 8}, {8, 16}, {16, N}}) {
+            VotRenderer rank;
+            rank.setStrategy(mipBy);
+            rank.upload(votsMeeting(whole, s));
+            rank.setRayDomain(CellDomain{{0, 0, s.first}, {N, N, s.end}});
+            parts.push_back(framesOf(rank, cam, std::nullopt));
+        }
+        const Frames joined = composite(parts);
+        EXPECT_EQ(test::compareImages(joined.min, undivided.min, 0.0).bitIdentical,
+                  undivided.min.pixels.size());
+        EXPECT_EQ(test::compareImages(joined.max, undivided.max, 0.0).bitIdentical,
+                  undivided.max.pixels.size());
     }
-    const Frames joined = composite(parts);
-    EXPECT_EQ(test::compareImages(joined.min, undivided.min, 0.0).bitIdentical, undivided.min.pixels.size());
-    EXPECT_EQ(test::compareImages(joined.max, undivided.max, 0.0).bitIdentical, undivided.max.pixels.size());
 }
 
 INSTANTIATE_TEST_SUITE_P(Projections, CellDomains,

@@ -103,7 +103,8 @@ TEST(RealVolume, CullingDoesNotChangeTheImage) {
     const test::FittedVolume& f = headCt();
     VotRenderer vots;
     vots.upload(f.space);
-    for (const auto strategy : {VotRenderer::Strategy::Walk, VotRenderer::Strategy::Raster}) {
+    for (const auto strategy :
+         {VotRenderer::Strategy::Walk, VotRenderer::Strategy::Raster, VotRenderer::Strategy::Splat}) {
         vots.setStrategy(strategy);
         for (const char* text :
              {"anterior", "az=30,el=20,zoom=2,pan=0.3:-0.2", "az=10,el=5,zoom=3,proj=persp"}) {

@@ -23,6 +23,7 @@ struct Case {
     int degree;
     Projection projection;
     int side; // Vot box side in cells
+    VotRenderer::Strategy strategy;
 };
 
 class PolynomialMip : public ::testing::TestWithParam<Case> {};
@@ -36,7 +37,9 @@ TEST_P(PolynomialMip, AnalyticMaxMatchesDenseCpuSampling) {
         test::randomPolynomial(k.degree, N, AMPLITUDE, 1234u + static_cast<unsigned>(k.degree));
     const fit::VotSpace space = test::polynomialVotSpace(p, {N, N, N}, k.side);
     VotRenderer renderer;
+    renderer.setStrategy(k.strategy);
     renderer.upload(space);
+    ASSERT_EQ(renderer.mipStrategy(), k.strategy);
     const Camera cam = test::obliqueCamera(k.projection);
     const FloatImage img = renderer.render(cam, W, H);
     const CameraMatrices m = computeCameraMatrices(cam, renderer.bounds(), W, H);
@@ -64,6 +67,7 @@ TEST_P(PolynomialMip, MatchesReferenceRayCaster) {
     const fit::VotSpace space = test::polynomialVotSpace(p, {N, N, N}, k.side);
     const fit::Volume volume = test::sampleVolume({N, N, N}, p);
     VotRenderer vots;
+    vots.setStrategy(k.strategy);
     vots.upload(space);
     GridRenderer grid;
     grid.upload(volume);
@@ -81,12 +85,15 @@ TEST_P(PolynomialMip, MatchesReferenceRayCaster) {
     std::cout << "degree " << k.degree << " max |vot - reference| = " << worst << "\n";
 }
 
-INSTANTIATE_TEST_SUITE_P(DegreesAndProjections, PolynomialMip,
-                         ::testing::Values(Case{2, Projection::Orthographic, 23},
-                                           Case{3, Projection::Orthographic, 23},
-                                           Case{3, Projection::Orthographic, 5},
-                                           Case{2, Projection::Perspective, 7},
-                                           Case{3, Projection::Perspective, 4}));
+constexpr auto WALK = VotRenderer::Strategy::Walk, SPLAT = VotRenderer::Strategy::Splat;
+INSTANTIATE_TEST_SUITE_P(
+    DegreesAndProjections, PolynomialMip,
+    ::testing::Values(Case{2, Projection::Orthographic, 23, WALK},
+                      Case{3, Projection::Orthographic, 23, WALK}, Case{3, Projection::Orthographic, 5, WALK},
+                      Case{2, Projection::Perspective, 7, WALK}, Case{3, Projection::Perspective, 4, WALK},
+                      Case{2, Projection::Orthographic, 23, SPLAT},
+                      Case{3, Projection::Orthographic, 5, SPLAT}, Case{2, Projection::Perspective, 7, SPLAT},
+                      Case{3, Projection::Perspective, 4, SPLAT}));
 
 TEST(PolynomialMipFitted, FitterOutputMatchesDenseCpuSampling) {
     test::glContext();
@@ -98,16 +105,19 @@ TEST(PolynomialMipFitted, FitterOutputMatchesDenseCpuSampling) {
     options.eps = static_cast<float>(1e-3 * AMPLITUDE);
     options.degree = 3;
     const fit::VotSpace space = fit::fitVotSpace(volume, options).space;
-    VotRenderer renderer;
-    renderer.upload(space);
-    const Camera cam = test::obliqueCamera(Projection::Perspective);
-    const FloatImage img = renderer.render(cam, W, H);
-    const CameraMatrices m = computeCameraMatrices(cam, renderer.bounds(), W, H);
-    double worst = 0;
-    for (int y = 0; y < H; ++y)
-        for (int x = 0; x < W; ++x) {
-            const double expect = test::cpuRayMax(m, {N, N, N}, W, H, x, y, p, 4000);
-            if (std::isfinite(expect)) worst = std::max(worst, std::abs(img.at(x, y) - expect));
-        }
-    EXPECT_LT(worst, options.eps + 1e-4 * AMPLITUDE) << space.vots.size() << " Vots";
+    for (const auto strategy : {VotRenderer::Strategy::Walk, VotRenderer::Strategy::Splat}) {
+        VotRenderer renderer;
+        renderer.setStrategy(strategy);
+        renderer.upload(space);
+        const Camera cam = test::obliqueCamera(Projection::Perspective);
+        const FloatImage img = renderer.render(cam, W, H);
+        const CameraMatrices m = computeCameraMatrices(cam, renderer.bounds(), W, H);
+        double worst = 0;
+        for (int y = 0; y < H; ++y)
+            for (int x = 0; x < W; ++x) {
+                const double expect = test::cpuRayMax(m, {N, N, N}, W, H, x, y, p, 4000);
+                if (std::isfinite(expect)) worst = std::max(worst, std::abs(img.at(x, y) - expect));
+            }
+        EXPECT_LT(worst, options.eps + 1e-4 * AMPLITUDE) << space.vots.size() << " Vots";
+    }
 }

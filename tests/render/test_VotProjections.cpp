@@ -208,6 +208,7 @@ TEST(VotProjections, RefusesWhatItCannotDrawExactly) {
     const test::Polynomial p = test::randomPolynomial(1, 8, AMPLITUDE, 3u);
     fit::VotSpace space = test::polynomialVotSpace(p, {8, 8, 8}, 4);
     VotRenderer renderer;
+    renderer.setStrategy(VotRenderer::Strategy::Walk); // what the walk cannot draw
     renderer.upload(space);
     EXPECT_THROW(renderer.render(Camera{}, 16, 16, RenderOptions{RenderMode::Density, Slab{0, 4}}),
                  fit::InputError);

@@ -37,6 +37,7 @@ TEST(WalkIndexScale, MoreCellsThanATextureBufferHoldsStayOnTheWalk) {
     space.vots = std::move(kept);
 
     VotRenderer walk, raster;
+    walk.setStrategy(Strategy::Walk);
     walk.upload(space);
     raster.upload(space);
     raster.setStrategy(Strategy::Raster);

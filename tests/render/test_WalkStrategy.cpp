@@ -19,6 +19,8 @@ using namespace vots::render;
 
 namespace {
 
+// Every renderer here is set to the walk: where the context is a CPU rasteriser the MIP's default is the
+// splat (test_CpuSplat.cpp).
 using Strategy = VotRenderer::Strategy;
 
 // The most any walk record of the space strays from its Vot (WalkRecord.h).
@@ -59,10 +61,10 @@ TEST(WalkStrategy, MatchesRasterOnFittedCt) {
     float eps = 0;
     const fit::VotSpace& space = headFast(&eps);
     VotRenderer walk, raster;
+    walk.setStrategy(Strategy::Walk);
     walk.upload(space);
     raster.upload(space);
     raster.setStrategy(Strategy::Raster);
-    ASSERT_EQ(walk.strategy(), Strategy::Walk); // the default
     ASSERT_EQ(walk.mipStrategy(), Strategy::Walk);
     ASSERT_EQ(raster.mipStrategy(), Strategy::Raster);
     const auto range = walk.valueRange();
@@ -94,6 +96,7 @@ TEST(WalkStrategy, RepeatRendersAreBitIdentical) {
     float eps = 0;
     const fit::VotSpace& space = headFast(&eps);
     VotRenderer walk;
+    walk.setStrategy(Strategy::Walk);
     walk.upload(space);
     const Camera cam = parseCamera("az=-12.5,el=33,zoom=1.2,pan=0.1:0,proj=persp,fov=35");
     const FloatImage first = walk.render(cam, 128, 96);
@@ -113,6 +116,8 @@ TEST(WalkStrategy, ComputeAndFragmentShadersGiveTheSameImage) {
         test::polynomialVotSpace(test::randomPolynomial(3, N, 100.0, 13u), {N, N, N}, 4, 0.37f);
     for (const fit::VotSpace* space : {&head, &offCentre}) {
         VotRenderer fragment, compute;
+        fragment.setStrategy(Strategy::Walk);
+        compute.setStrategy(Strategy::Walk);
         fragment.setWalkShader(VotRenderer::WalkShader::Fragment);
         compute.setWalkShader(VotRenderer::WalkShader::Compute);
         fragment.upload(*space);
@@ -135,12 +140,14 @@ TEST(WalkStrategy, SkipBoxesChangeNoPixel) {
     float eps = 0;
     const fit::VotSpace& space = headFast(&eps);
     VotRenderer settled;
+    settled.setStrategy(Strategy::Walk);
     settled.upload(space);
     settled.finishPendingWork(); // skip boxes grown and in use from the first frame on
     std::size_t differing = 0, pixels = 0;
     for (const char* text : VIEWS) {
         const Camera cam = parseCamera(text);
         VotRenderer fresh; // the first frame after an upload always steps Vot by Vot
+        fresh.setStrategy(Strategy::Walk);
         fresh.upload(space);
         const FloatImage before = fresh.render(cam, 200, 160);
         const FloatImage after = settled.render(cam, 200, 160);
@@ -164,10 +171,12 @@ TEST(WalkStrategy, AnUploadWhileSkipBoxesGrowGetsOnlyItsOwn) {
         test::polynomialVotSpace(test::randomPolynomial(3, N, 100.0, 12u), {N, N, N}, 4);
     const Camera cam = parseCamera("az=30,el=20,zoom=1.2");
     VotRenderer reference;
+    reference.setStrategy(Strategy::Walk);
     reference.upload(poly);
     reference.finishPendingWork();
     const FloatImage expected = reference.render(cam, 96, 80);
     VotRenderer r;
+    r.setStrategy(Strategy::Walk);
     for (int round = 0; round < 3; ++round) {
         r.upload(head);
         (void)r.render(cam, 96, 80); // starts the head's growth
@@ -187,6 +196,8 @@ TEST(WalkStrategy, OffCentreExpansionPointsRenderTheSamePolynomial) {
     const fit::VotSpace centredSpace = test::polynomialVotSpace(p, {N, N, N}, 4);
     const fit::VotSpace offCentreSpace = test::polynomialVotSpace(p, {N, N, N}, 4, 0.37f);
     VotRenderer centred, offCentre;
+    centred.setStrategy(Strategy::Walk);
+    offCentre.setStrategy(Strategy::Walk);
     centred.upload(centredSpace);
     offCentre.upload(offCentreSpace);
     ASSERT_EQ(offCentre.mipStrategy(), Strategy::Walk);
@@ -207,10 +218,12 @@ TEST(WalkStrategy, OverlappingBoxesFallBackToRaster) {
     const test::Polynomial p = test::randomPolynomial(3, N, 100.0, 3u);
     fit::VotSpace space = test::polynomialVotSpace(p, {N, N, N}, 4);
     VotRenderer disjoint;
+    disjoint.setStrategy(Strategy::Walk);
     disjoint.upload(space);
     EXPECT_EQ(disjoint.mipStrategy(), Strategy::Walk);
     space.vots.push_back(space.vots.front()); // the same box twice: overlap
     VotRenderer overlapping;
+    overlapping.setStrategy(Strategy::Walk);
     overlapping.upload(space);
     EXPECT_EQ(overlapping.strategy(), Strategy::Walk);
     EXPECT_EQ(overlapping.mipStrategy(), Strategy::Raster);
@@ -225,6 +238,7 @@ TEST(WalkStrategy, EmptySpaceRendersBackground) {
     fit::VotSpace space;
     space.dims = {10, 12, 14};
     VotRenderer renderer;
+    renderer.setStrategy(Strategy::Walk);
     renderer.upload(space);
     EXPECT_EQ(renderer.mipStrategy(), Strategy::Walk);
     const FloatImage img = renderer.render(parseCamera("az=30,el=20"), 32, 32);

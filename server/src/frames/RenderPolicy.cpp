@@ -1,4 +1,5 @@
-// applyRenderPolicy: reads VOTS_WALK_SHADER and lowers the renderer's background threads to idle priority.
+// applyRenderPolicy: reads VOTS_WALK_SHADER (the walk, in that stage) and lowers the renderer's background
+// threads to idle priority.
 #include "vots/server/RenderPolicy.h"
 
 #include "vots/render/VotRenderer.h"
@@ -10,11 +11,13 @@
 namespace vots::server {
 
 void applyRenderPolicy(render::VotRenderer& renderer) {
-    // The compute walk is the default on GPUs; the override lets a person compare the two stages.
+    // The compute walk is the default on GPUs, the CPU splat on a CPU rasteriser; the override lets a
+    // person compare them: naming a walk stage has the walk draw the MIP too.
     if (const char* forced = std::getenv("VOTS_WALK_SHADER")) {
-        if (const auto shader = render::parseWalkShader(forced))
+        if (const auto shader = render::parseWalkShader(forced)) {
             renderer.setWalkShader(*shader);
-        else
+            renderer.setStrategy(render::VotRenderer::Strategy::Walk);
+        } else
             std::cerr << "vots: warning: VOTS_WALK_SHADER=" << forced
                       << " is neither fragment nor compute; choosing by renderer\n";
     }

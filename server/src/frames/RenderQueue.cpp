@@ -117,7 +117,10 @@ void RenderQueue::threadMain() {
         mHasContext = renderers.context != nullptr;
         mContextError = mHasContext ? "" : (error.empty() ? "no EGL context" : error);
         mRendererName = mHasContext ? renderers.context->renderer() : "";
-        if (mHasContext) mWalkShaderName = render::walkShaderName(renderers.vots->walkShader());
+        if (mHasContext) {
+            mWalkShaderName = render::walkShaderName(renderers.vots->walkShader());
+            mMipStrategyName = render::strategyName(renderers.vots->strategy());
+        }
         mReady = true;
     }
     mWake.notify_all();

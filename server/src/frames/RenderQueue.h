@@ -78,6 +78,8 @@ public:
     const std::string& rendererName() const { return mRendererName; }
     /// "compute" or "fragment": the shader stage the Vot walk runs in (VotRenderer::WalkShader).
     const std::string& walkShaderName() const { return mWalkShaderName; }
+    /// What draws the MIP asked for ("splat" on a CPU rasteriser, "walk" on a GPU; VotRenderer::Strategy).
+    const std::string& mipStrategyName() const { return mMipStrategyName; }
 
     /// Queues a job and waits for it. Throws HttpError 409 ("superseded") when a newer job with the
     /// same non-empty client id arrived while this one waited (or, for an abandonable job, while it was
@@ -127,6 +129,7 @@ private:
     std::string mContextError;
     std::string mRendererName;
     std::string mWalkShaderName;
+    std::string mMipStrategyName;
     std::thread mThread;
 };
 

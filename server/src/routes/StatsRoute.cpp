@@ -38,6 +38,7 @@ void installStatsRoute(Server::Impl& s) {
         nlohmann::json renderer = {{"available", queue && queue->hasContext()},
                                    {"name", queue ? queue->rendererName() : ""},
                                    {"walkShader", queue ? queue->walkShaderName() : ""},
+                                   {"mipStrategy", queue ? queue->mipStrategyName() : ""},
                                    {"error", queue ? queue->contextError() : "renderer disabled"},
                                    {"waiting", queue ? queue->waiting() : 0}};
         // Under mpirun: the ranks and their parts of the last composited frame.

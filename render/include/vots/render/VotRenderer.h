@@ -47,13 +47,20 @@ namespace vots::render {
 /// batches the current max image is read back; a Vot whose bound cannot exceed the smallest max over the
 /// pixels its box covers is not drawn, and fragments whose Vot bound is below the pixel's max stop early.
 ///
+/// Splat: the MIP on the CPU's cores without GL (render/src/CpuSplat.h), where the GL context is a CPU
+/// rasteriser: 2.4-3x faster than llvmpipe's walk for a still (bench/RESULTS.md). It evaluates the Vots'
+/// own polynomials, as Raster does, and takes any Vot-Space. MinIP, average and density keep the walk
+/// or Raster on any machine.
+///
 /// Culling never changes the image (dropped work could only produce values <= the pixel's max); a
 /// test checks it for both strategies.
 class VotRenderer final : public Renderer {
 public:
     enum class Strategy {
-        Walk,  // per-pixel ray walk through the cell -> Vot grid (default)
-        Raster // instanced boxes, MAX blending
+        Walk,   // per-pixel ray walk through the cell -> Vot grid (default on a GPU)
+        Raster, // instanced boxes, MAX blending
+        Splat   // MIP on the CPU's cores, Vots in order of falling bound over their footprints (default
+                // on a CPU rasteriser such as llvmpipe; render/src/CpuSplat.h)
     };
     /// The shader stage that runs the Walk. Both give the same image.
     enum class WalkShader {
@@ -101,11 +108,12 @@ public:
     /// Culling on (default) or off; off draws every Vot in one instanced draw (Raster) or evaluates
     /// every Vot along the ray (Walk); for tests and bench.
     void setCulling(bool enabled);
-    /// The MIP strategy asked for (default Walk); takes effect with the next frame.
+    /// The MIP strategy asked for (default Splat where the context is a CPU rasteriser, else Walk); takes
+    /// effect with the next frame.
     void setStrategy(Strategy strategy);
     Strategy strategy() const;
     /// The strategy MIP frames of the uploaded Vot-Space use: Raster when Walk was asked for but the
-    /// space cannot be walked (overlapping boxes, or too large for the GL limits).
+    /// space cannot be walked (overlapping boxes, or too large for the GL limits); Splat when asked.
     Strategy mipStrategy() const;
     /// Compute unless the context's renderer is a CPU rasteriser (llvmpipe), which runs Fragment faster
     /// (bench/RESULTS.md). Takes effect with the next frame; Compute where it does not build here falls
@@ -127,6 +135,8 @@ private:
     std::unique_ptr<Impl> mImpl;
 };
 
+/// "walk", "raster" or "splat", for /api/stats.
+std::string_view strategyName(VotRenderer::Strategy strategy);
 /// "fragment" or "compute", for VOTS_WALK_SHADER, render_bench and /api/stats.
 std::string_view walkShaderName(VotRenderer::WalkShader shader);
 /// The shader named so, or nullopt for any other text.

@@ -8,7 +8,8 @@ class VotRenderer;
 namespace vots::server {
 
 /// For `vots render` and the server's render thread alike: VOTS_WALK_SHADER=fragment|compute overrides
-/// the renderer's choice by GL renderer (another value is ignored with a warning on stderr), and the
+/// the renderer's choice by GL renderer and has the walk draw the MIP, where a CPU rasteriser's default
+/// is the splat (another value is ignored with a warning on stderr), and the
 /// threads the renderer starts for work no frame waits for (skip-box growth) run at SCHED_IDLE, so they
 /// never slow a fit or a frame someone is waiting for.
 void applyRenderPolicy(render::VotRenderer& renderer);

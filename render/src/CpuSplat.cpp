@@ -1,0 +1,192 @@
+// CpuSplat: the frame around the splat kernel: Vot order, footprints on screen, tiles and threads.
+#include "CpuSplat.h"
+
+#include "ParallelChunks.h"
+#include "ShaderContract.h"
+
+#include "vots/render/Renderer.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <thread>
+
+namespace vots::render {
+namespace {
+
+// Pixels per side of the tiles whose running minimum of the max so far lets a Vot skip them whole, and
+// of the rows of tiles handed to the threads in turn (every thread draws every Vot over its own rows,
+// so no pixel has two writers and the threads never wait on each other).
+constexpr int TILE = 16;
+// How many Vots a thread draws between two looks at whether the frame is still wanted.
+constexpr std::size_t VOTS_PER_LOOK = 2048;
+
+// Pixel centres X + 0.5 counted in a footprint lie within this margin of its edge: rounding in the
+// projection must never leave out a pixel whose ray meets the box (one too many only costs a clip test).
+constexpr double FOOTPRINT_MARGIN = 0.05;
+
+struct Footprint {
+    int x0 = 0, x1 = -1, y0 = 0, y1 = -1; // inclusive pixel ranges, window rows (row 0 at the bottom)
+};
+
+SplatFrame frameOf(const CameraMatrices& m, const std::optional<SlabPlanes>& slab,
+                   const std::optional<CellDomain>& domain, const std::array<int, 3>& cells, int width,
+                   int height) {
+    SplatFrame f;
+    f.width = width;
+    f.height = height;
+    for (std::size_t k = 0; k < 16; ++k)
+        f.clipToIndex[k] = static_cast<float>(m.clipToIndex[k]);
+    if (slab) {
+        f.slabOn = true;
+        for (int a = 0; a < 3; ++a)
+            f.slabNormal[a] = static_cast<float>(slab->normal[static_cast<std::size_t>(a)]);
+        f.slabOffset = static_cast<float>(slab->offset);
+        f.slabLo = static_cast<float>(slab->lo);
+        f.slabHi = static_cast<float>(slab->hi);
+    }
+    const CellDomain inGrid = domainInGrid(domain, cells);
+    if (inGrid.lo != std::array<int, 3>{0, 0, 0} || inGrid.hi != cells) {
+        f.domainOn = true;
+        for (std::size_t a = 0; a < 3; ++a) {
+            f.domainLo[a] = static_cast<float>(inGrid.lo[a]) - CLIP_SLACK;
+            f.domainHi[a] = static_cast<float>(inGrid.hi[a]) + CLIP_SLACK;
+        }
+    }
+    return f;
+}
+
+// The pixels whose centres the box can cover: an affine map (orthographic) takes the box's centre and
+// half sides; a perspective one its eight corners, or the whole image when a corner is behind the eye.
+class FootprintMap {
+public:
+    FootprintMap(const CameraMatrices& m, int width, int height) : mWidth(width), mHeight(height) {
+        const auto& t = m.indexToClip;
+        mAffine = t[3] == 0.0 && t[7] == 0.0 && t[11] == 0.0 && t[15] == 1.0;
+        for (int k = 0; k < 16; ++k)
+            mToClip[k] = t[static_cast<std::size_t>(k)];
+    }
+
+    Footprint of(const SplatVot& v) const {
+        double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+        if (mAffine) {
+            double cx = mToClip[12], cy = mToClip[13], ex = 0.0, ey = 0.0;
+            for (int a = 0; a < 3; ++a) {
+                const double mid = 0.5 * (double(v.lo[a]) + v.hi[a]),
+                             half = 0.5 * (double(v.hi[a]) - v.lo[a]);
+                cx += mToClip[4 * a] * mid, cy += mToClip[4 * a + 1] * mid;
+                ex += std::fabs(mToClip[4 * a]) * half, ey += std::fabs(mToClip[4 * a + 1]) * half;
+            }
+            x0 = toPixels(cx - ex, mWidth), x1 = toPixels(cx + ex, mWidth);
+            y0 = toPixels(cy - ey, mHeight), y1 = toPixels(cy + ey, mHeight);
+        } else {
+            for (int k = 0; k < 8; ++k) {
+                const double p[3] = {(k & 1) ? v.hi[0] : v.lo[0], (k & 2) ? v.hi[1] : v.lo[1],
+                                     (k & 4) ? v.hi[2] : v.lo[2]};
+                double clip[4];
+                for (int r = 0; r < 4; ++r)
+                    clip[r] =
+                        mToClip[r] * p[0] + mToClip[4 + r] * p[1] + mToClip[8 + r] * p[2] + mToClip[12 + r];
+                if (clip[3] <= 1e-9) return {0, mWidth - 1, 0, mHeight - 1};
+                const double sx = toPixels(clip[0] / clip[3], mWidth),
+                             sy = toPixels(clip[1] / clip[3], mHeight);
+                x0 = std::min(x0, sx), x1 = std::max(x1, sx), y0 = std::min(y0, sy), y1 = std::max(y1, sy);
+            }
+        }
+        return {firstCentre(x0), std::min(mWidth - 1, lastCentre(x1)), firstCentre(y0),
+                std::min(mHeight - 1, lastCentre(y1))};
+    }
+
+private:
+    static double toPixels(double ndc, int size) { return (ndc * 0.5 + 0.5) * size; }
+    // The first and last pixel whose centre (index + 0.5) lies in [lo, hi], widened by the margin.
+    static int firstCentre(double lo) {
+        return static_cast<int>(std::max(0.0, std::ceil(lo - 0.5 - FOOTPRINT_MARGIN)));
+    }
+    static int lastCentre(double hi) {
+        return static_cast<int>(std::clamp(std::floor(hi - 0.5 + FOOTPRINT_MARGIN), -1.0, 1e9));
+    }
+
+    double mToClip[16];
+    int mWidth, mHeight;
+    bool mAffine = true;
+};
+
+} // namespace
+
+void CpuSplat::upload(const std::vector<GpuVot>& vots) {
+    mVots.resize(vots.size());
+    for (std::size_t i = 0; i < vots.size(); ++i) {
+        const GpuVot& g = vots[i];
+        SplatVot& s = mVots[i];
+        for (int a = 0; a < 3; ++a) {
+            s.lo[a] = g.lo[a] - CLIP_SLACK;
+            s.hi[a] = g.hi[a] + CLIP_SLACK;
+            s.p[a] = g.p[a];
+        }
+        std::copy(std::begin(g.c), std::end(g.c), s.c);
+        s.upper = g.upperBound;
+    }
+    std::sort(mVots.begin(), mVots.end(),
+              [](const SplatVot& a, const SplatVot& b) { return a.upper > b.upper; });
+}
+
+FloatImage CpuSplat::draw(const CameraMatrices& matrices, const std::optional<SlabPlanes>& slab,
+                          const std::optional<CellDomain>& domain, const std::array<int, 3>& cells, int width,
+                          int height, bool culling, const std::function<bool()>& abandoned,
+                          FrameStats& stats) const {
+    // Window rows, row 0 at the bottom; flipped into the image at the end.
+    std::vector<float> best(static_cast<std::size_t>(width) * height, -INFINITY);
+    const CellDomain inGrid = domainInGrid(domain, cells);
+    const int tilesX = (width + TILE - 1) / TILE, tileRows = (height + TILE - 1) / TILE;
+    const std::size_t threads = std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, tileRows);
+    std::atomic<bool> stop{false};
+    std::vector<std::size_t> drawn(threads, 0);
+    if (!inGrid.empty()) {
+        const SplatFrame frame = frameOf(matrices, slab, domain, cells, width, height);
+        const FootprintMap footprints(matrices, width, height);
+        parallelTasks(threads, [&](std::size_t part) {
+            // Per tile: the least max so far of its pixels (only this thread's rows are kept up to date).
+            std::vector<float> tileLeast(static_cast<std::size_t>(tilesX) * tileRows, -INFINITY);
+            for (std::size_t n = 0; n < mVots.size(); ++n) {
+                if (n % VOTS_PER_LOOK == 0) {
+                    // Only the caller's thread asks: the question need not be thread-safe.
+                    if (part == 0 && abandoned && abandoned()) stop = true;
+                    if (stop.load(std::memory_order_relaxed)) return;
+                }
+                SplatVot v = mVots[n];
+                if (!culling) v.upper = INFINITY; // no pixel or tile holds that much
+                const Footprint fp = footprints.of(v);
+                if (fp.x0 > fp.x1 || fp.y0 > fp.y1) continue;
+                bool touched = false;
+                for (int ty = fp.y0 / TILE; ty <= fp.y1 / TILE; ++ty) {
+                    if (static_cast<std::size_t>(ty) % threads != part) continue;
+                    const int ya = std::max(fp.y0, ty * TILE), yb = std::min(fp.y1, ty * TILE + TILE - 1);
+                    for (int tx = fp.x0 / TILE; tx <= fp.x1 / TILE; ++tx) {
+                        float& least = tileLeast[static_cast<std::size_t>(ty) * tilesX + tx];
+                        if (least >= v.upper) continue;
+                        touched = true;
+                        const int xa = std::max(fp.x0, tx * TILE), xb = std::min(fp.x1, tx * TILE + TILE - 1);
+                        if (!splatVot(frame, v, best.data(), xa, xb, ya, yb)) continue;
+                        float m = INFINITY;
+                        for (int y = ty * TILE; y < std::min(height, ty * TILE + TILE); ++y)
+                            for (int x = tx * TILE; x < std::min(width, tx * TILE + TILE); ++x)
+                                m = std::min(m, best[static_cast<std::size_t>(y) * width + x]);
+                        least = m;
+                    }
+                }
+                if (touched) ++drawn[part];
+            }
+        });
+    }
+    if (stop) throw FrameAbandoned();
+    stats.votsDrawn = *std::max_element(drawn.begin(), drawn.end());
+    stats.batches = 0;
+    FloatImage image{width, height, std::vector<float>(best.size())};
+    for (int y = 0; y < height; ++y)
+        std::copy_n(&best[static_cast<std::size_t>(height - 1 - y) * width], width,
+                    &image.pixels[static_cast<std::size_t>(y) * width]);
+    return image;
+}
+
+} // namespace vots::render
