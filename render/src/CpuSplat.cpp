@@ -63,42 +63,44 @@ public:
     FootprintMap(const CameraMatrices& m, int width, int height) : mWidth(width), mHeight(height) {
         const auto& t = m.indexToClip;
         mAffine = t[3] == 0.0 && t[7] == 0.0 && t[11] == 0.0 && t[15] == 1.0;
-        for (int k = 0; k < 16; ++k)
+        for (int k = 0; k < 16; ++k) {
             mToClip[k] = t[static_cast<std::size_t>(k)];
+            mToClipF[k] = static_cast<float>(mToClip[k]);
+        }
     }
 
-    Footprint of(const SplatVot& v) const {
-        double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+    Footprint of(const CpuSplat::Placement& v) const {
         if (mAffine) {
-            double cx = mToClip[12], cy = mToClip[13], ex = 0.0, ey = 0.0;
+            float cx = mToClipF[12], cy = mToClipF[13], ex = 0.f, ey = 0.f;
             for (int a = 0; a < 3; ++a) {
-                const double mid = 0.5 * (double(v.lo[a]) + v.hi[a]),
-                             half = 0.5 * (double(v.hi[a]) - v.lo[a]);
-                cx += mToClip[4 * a] * mid, cy += mToClip[4 * a + 1] * mid;
-                ex += std::fabs(mToClip[4 * a]) * half, ey += std::fabs(mToClip[4 * a + 1]) * half;
+                cx += mToClipF[4 * a] * v.centre[a], cy += mToClipF[4 * a + 1] * v.centre[a];
+                ex += std::fabs(mToClipF[4 * a]) * v.half[a],
+                    ey += std::fabs(mToClipF[4 * a + 1]) * v.half[a];
             }
-            x0 = toPixels(cx - ex, mWidth), x1 = toPixels(cx + ex, mWidth);
-            y0 = toPixels(cy - ey, mHeight), y1 = toPixels(cy + ey, mHeight);
-        } else {
-            for (int k = 0; k < 8; ++k) {
-                const double p[3] = {(k & 1) ? v.hi[0] : v.lo[0], (k & 2) ? v.hi[1] : v.lo[1],
-                                     (k & 4) ? v.hi[2] : v.lo[2]};
-                double clip[4];
-                for (int r = 0; r < 4; ++r)
-                    clip[r] =
-                        mToClip[r] * p[0] + mToClip[4 + r] * p[1] + mToClip[8 + r] * p[2] + mToClip[12 + r];
-                if (clip[3] <= 1e-9) return {0, mWidth - 1, 0, mHeight - 1};
-                const double sx = toPixels(clip[0] / clip[3], mWidth),
-                             sy = toPixels(clip[1] / clip[3], mHeight);
-                x0 = std::min(x0, sx), x1 = std::max(x1, sx), y0 = std::min(y0, sy), y1 = std::max(y1, sy);
-            }
+            return clamped(toPixels(cx - ex, mWidth), toPixels(cx + ex, mWidth), toPixels(cy - ey, mHeight),
+                           toPixels(cy + ey, mHeight));
         }
-        return {firstCentre(x0), std::min(mWidth - 1, lastCentre(x1)), firstCentre(y0),
-                std::min(mHeight - 1, lastCentre(y1))};
+        double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+        for (int k = 0; k < 8; ++k) {
+            double p[3];
+            for (int a = 0; a < 3; ++a)
+                p[a] = double(v.centre[a]) + ((k >> a) & 1 ? v.half[a] : -v.half[a]);
+            double clip[4];
+            for (int r = 0; r < 4; ++r)
+                clip[r] = mToClip[r] * p[0] + mToClip[4 + r] * p[1] + mToClip[8 + r] * p[2] + mToClip[12 + r];
+            if (clip[3] <= 1e-9) return {0, mWidth - 1, 0, mHeight - 1};
+            const double sx = toPixels(clip[0] / clip[3], mWidth), sy = toPixels(clip[1] / clip[3], mHeight);
+            x0 = std::min(x0, sx), x1 = std::max(x1, sx), y0 = std::min(y0, sy), y1 = std::max(y1, sy);
+        }
+        return clamped(x0, x1, y0, y1);
     }
 
 private:
     static double toPixels(double ndc, int size) { return (ndc * 0.5 + 0.5) * size; }
+    Footprint clamped(double x0, double x1, double y0, double y1) const {
+        return {firstCentre(x0), std::min(mWidth - 1, lastCentre(x1)), firstCentre(y0),
+                std::min(mHeight - 1, lastCentre(y1))};
+    }
     // The first and last pixel whose centre (index + 0.5) lies in [lo, hi], widened by the margin.
     static int firstCentre(double lo) {
         return static_cast<int>(std::max(0.0, std::ceil(lo - 0.5 - FOOTPRINT_MARGIN)));
@@ -108,6 +110,7 @@ private:
     }
 
     double mToClip[16];
+    float mToClipF[16]; // the affine map in float: its rounding is far inside FOOTPRINT_MARGIN
     int mWidth, mHeight;
     bool mAffine = true;
 };
@@ -115,20 +118,28 @@ private:
 } // namespace
 
 void CpuSplat::upload(const std::vector<GpuVot>& vots) {
+    std::vector<std::size_t> order(vots.size());
+    for (std::size_t i = 0; i < order.size(); ++i)
+        order[i] = i;
+    std::sort(order.begin(), order.end(),
+              [&vots](std::size_t a, std::size_t b) { return vots[a].upperBound > vots[b].upperBound; });
     mVots.resize(vots.size());
-    for (std::size_t i = 0; i < vots.size(); ++i) {
-        const GpuVot& g = vots[i];
+    mPlacements.resize(vots.size());
+    for (std::size_t i = 0; i < order.size(); ++i) {
+        const GpuVot& g = vots[order[i]];
         SplatVot& s = mVots[i];
+        Placement& place = mPlacements[i];
         for (int a = 0; a < 3; ++a) {
             s.lo[a] = g.lo[a] - CLIP_SLACK;
             s.hi[a] = g.hi[a] + CLIP_SLACK;
             s.p[a] = g.p[a];
+            place.centre[a] = 0.5f * (s.lo[a] + s.hi[a]);
+            place.half[a] = 0.5f * (s.hi[a] - s.lo[a]);
         }
         std::copy(std::begin(g.c), std::end(g.c), s.c);
-        s.upper = g.upperBound;
+        s.upper = place.upper = g.upperBound;
+        place.unused = 0.f;
     }
-    std::sort(mVots.begin(), mVots.end(),
-              [](const SplatVot& a, const SplatVot& b) { return a.upper > b.upper; });
 }
 
 FloatImage CpuSplat::draw(const CameraMatrices& matrices, const std::optional<SlabPlanes>& slab,
@@ -154,9 +165,9 @@ FloatImage CpuSplat::draw(const CameraMatrices& matrices, const std::optional<Sl
                     if (part == 0 && abandoned && abandoned()) stop = true;
                     if (stop.load(std::memory_order_relaxed)) return;
                 }
-                SplatVot v = mVots[n];
-                if (!culling) v.upper = INFINITY; // no pixel or tile holds that much
-                const Footprint fp = footprints.of(v);
+                const Placement& place = mPlacements[n];
+                const float upper = culling ? place.upper : INFINITY; // no pixel or tile holds +inf
+                const Footprint fp = footprints.of(place);
                 if (fp.x0 > fp.x1 || fp.y0 > fp.y1) continue;
                 bool touched = false;
                 for (int ty = fp.y0 / TILE; ty <= fp.y1 / TILE; ++ty) {
@@ -164,10 +175,10 @@ FloatImage CpuSplat::draw(const CameraMatrices& matrices, const std::optional<Sl
                     const int ya = std::max(fp.y0, ty * TILE), yb = std::min(fp.y1, ty * TILE + TILE - 1);
                     for (int tx = fp.x0 / TILE; tx <= fp.x1 / TILE; ++tx) {
                         float& least = tileLeast[static_cast<std::size_t>(ty) * tilesX + tx];
-                        if (least >= v.upper) continue;
+                        if (least >= upper) continue;
                         touched = true;
                         const int xa = std::max(fp.x0, tx * TILE), xb = std::min(fp.x1, tx * TILE + TILE - 1);
-                        if (!splatVot(frame, v, best.data(), xa, xb, ya, yb)) continue;
+                        if (!splatVot(frame, mVots[n], upper, best.data(), xa, xb, ya, yb)) continue;
                         float m = INFINITY;
                         for (int y = ty * TILE; y < std::min(height, ty * TILE + TILE); ++y)
                             for (int x = tx * TILE; x < std::min(width, tx * TILE + TILE); ++x)

@@ -38,8 +38,18 @@ public:
                     int height, bool culling, const std::function<bool()>& abandoned,
                     FrameStats& stats) const;
 
+    /// What the frame reads of every Vot to place and cull it: 32 bytes, where the whole record (128) is
+    /// read only for the Vots that reach a pixel.
+    struct Placement {
+        float centre[3];
+        float half[3]; // half sides, CLIP_SLACK included
+        float upper;
+        float unused;
+    };
+
 private:
-    std::vector<SplatVot> mVots; // by falling upper bound
+    std::vector<SplatVot> mVots;        // by falling upper bound
+    std::vector<Placement> mPlacements; // the same order
 };
 
 } // namespace vots::render

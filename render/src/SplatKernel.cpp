@@ -118,9 +118,10 @@ SPLAT_INLINE void clipToBox(const Lanes o[3], const Lanes inv[3], const float lo
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 __attribute__((target_clones("arch=x86-64-v3", "default")))
 #endif
-bool splatVot(const SplatFrame& f, const SplatVot& vot, float* best, int x0, int x1, int y0, int y1) {
+bool splatVot(const SplatFrame& f, const SplatVot& vot, float upperBound, float* best, int x0, int x1, int y0,
+              int y1) {
     const Lanes lane = {0.5f, 1.5f, 2.5f, 3.5f, 4.5f, 5.5f, 6.5f, 7.5f};
-    const Lanes upper = all(vot.upper);
+    const Lanes upper = all(upperBound);
     bool rose = false;
     for (int y = y0; y <= y1; ++y) {
         const float Y = static_cast<float>(y) + 0.5f;

@@ -33,8 +33,10 @@ struct SplatFrame {
 };
 
 /// Raises best[y * width + x], for x in [x0, x1] and y in [y0, y1], to the max of `vot` along that
-/// pixel's ray where the ray meets the Vot's box and best is below vot.upper. Returns whether any pixel
-/// rose. Uses AVX2 and FMA where the CPU has them (picked at load time), SSE2 otherwise.
-bool splatVot(const SplatFrame& frame, const SplatVot& vot, float* best, int x0, int x1, int y0, int y1);
+/// pixel's ray where the ray meets the Vot's box and best is below `upper` (vot.upper, or +inf to
+/// evaluate every pixel). Returns whether any pixel rose. Uses AVX2 and FMA where the CPU has them
+/// (picked at load time), SSE2 otherwise.
+bool splatVot(const SplatFrame& frame, const SplatVot& vot, float upper, float* best, int x0, int x1, int y0,
+              int y1);
 
 } // namespace vots::render

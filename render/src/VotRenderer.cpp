@@ -31,6 +31,16 @@ struct VotRenderer::Impl {
     RasterPass raster;
     CpuSplat splat;
     bool splatStale = true; // the splat's copy of the Vots predates the last upload
+    // The walk's grid and tables are built at the first frame that walks, not at the upload, where the
+    // splat draws the MIP: an eps move's first image waits for the upload, and a MinIP may never come.
+    // Until then the upload keeps what the build needs.
+    struct PendingWalk {
+        std::unique_ptr<std::uint32_t[]> records; // WALK_RECORD_WORDS per Vot, in d.vots' order
+        std::vector<VotBounds> bounds;            // in d.vots' order
+        std::array<int, 3> dims{0, 0, 0};
+        float omittedCellValue = 0.f;
+    };
+    std::optional<PendingWalk> pendingWalk;
     FloatTarget target;
     GlDisplayPass display;
 
@@ -50,9 +60,26 @@ struct VotRenderer::Impl {
         return renderer && EglContext::isSoftwareRenderer(renderer) ? Strategy::Splat : Strategy::Walk;
     }
 
-    Strategy mipStrategy() const {
+    Strategy mipStrategy() {
         if (strategy == Strategy::Splat) return Strategy::Splat;
+        buildWalk();
         return strategy == Strategy::Walk && walk.walkable() ? Strategy::Walk : Strategy::Raster;
+    }
+
+    void buildWalk() {
+        if (!pendingWalk) return;
+        PendingWalk pending = std::move(*pendingWalk);
+        pendingWalk.reset();
+        std::optional<WalkPass::Grid> grid = WalkPass::gridFor(vots, pending.dims);
+        if (!grid) {
+            // Bound order when Raster draws the MIP instead; the walk is never drawn, its records unused.
+            const std::vector<std::size_t> byBound = boundOrder(pending.bounds);
+            std::vector<GpuVot> inSpaceOrder = std::move(vots);
+            vots.resize(byBound.size());
+            for (std::size_t i = 0; i < byBound.size(); ++i)
+                vots[i] = inSpaceOrder[byBound[i]];
+        }
+        walk.upload(std::move(grid), vots, pending.records.get(), pending.omittedCellValue);
     }
 
     /// A MIP the splat draws on the CPU; nullopt for every other frame (drawn into `target`).
@@ -68,6 +95,7 @@ struct VotRenderer::Impl {
         stats.votsTotal = vots.size();
         target.bind(width, height);
         const bool alongRays = mode == RenderMode::MinIp || mode == RenderMode::Aip;
+        if (alongRays) buildWalk();
         // The walk's per-cell view is what gives the min and the mean their background cells and the
         // mean its non-overlapping segments; the raster strategy sees only boxes.
         if (alongRays && !walk.walkable())
@@ -113,6 +141,7 @@ FloatImage VotRenderer::rayLengths(const Camera& camera, int width, int height,
                                    const std::optional<Slab>& slab) {
     Impl& d = *mImpl;
     if (!d.hasData) throw fit::GraphicsError("VotRenderer: rayLengths() before upload()");
+    d.buildWalk();
     if (!d.walk.walkable())
         throw fit::InputError(
             "ray lengths are the walk's: this Vot-Space can only be drawn as mip or density");
@@ -142,32 +171,27 @@ void VotRenderer::upload(const fit::VotSpace& space) {
     for (std::size_t i = 0; i < order.size(); ++i)
         place[order[i]] = i;
     d.vots.resize(space.vots.size());
+    Impl::PendingWalk pending;
     // Left uninitialised: every word is written below.
-    const std::unique_ptr<std::uint32_t[]> walkRecords(
-        new std::uint32_t[space.vots.size() * WALK_RECORD_WORDS]);
+    pending.records.reset(new std::uint32_t[space.vots.size() * WALK_RECORD_WORDS]);
+    pending.bounds.resize(space.vots.size());
     // Bounds and records dominate an upload; each Vot is independent, so split evenly.
     parallelChunks(space.vots.size(), [&](std::size_t first, std::size_t last) {
         for (std::size_t i = first; i < last; ++i) {
             bounds[i] = computeVotBounds(space.vots[i]);
             const WalkRecord walk = makeWalkRecord(space.vots[i]);
-            std::copy(walk.words.begin(), walk.words.end(), &walkRecords[place[i] * WALK_RECORD_WORDS]);
+            std::copy(walk.words.begin(), walk.words.end(), &pending.records[place[i] * WALK_RECORD_WORDS]);
             // The walk evaluates its record's polynomial, which strays from the Vot's by up to
             // maxError: every bound covers both, so culling by it never changes either image.
             bounds[i].floatSlack += walk.maxError;
             d.vots[place[i]] = makeGpuVot(space.vots[i], bounds[i]);
+            pending.bounds[place[i]] = bounds[i];
         }
     });
     d.raster.upload(d.vots.size());
-
-    std::optional<WalkPass::Grid> grid = WalkPass::gridFor(d.vots, space.dims);
-    if (!grid) {
-        // Bound order when Raster draws the MIP instead.
-        const std::vector<std::size_t> byBound = boundOrder(bounds);
-        std::vector<GpuVot> inSpaceOrder = std::move(d.vots);
-        d.vots.resize(byBound.size());
-        for (std::size_t i = 0; i < byBound.size(); ++i)
-            d.vots[i] = inSpaceOrder[place[byBound[i]]];
-    }
+    pending.dims = space.dims;
+    pending.omittedCellValue = space.omittedCellValue();
+    d.pendingWalk = std::move(pending);
 
     float lo = INFINITY, hi = -INFINITY, maxLogSize = 0.f;
     for (std::size_t i = 0; i < bounds.size(); ++i) {
@@ -179,12 +203,12 @@ void VotRenderer::upload(const fit::VotSpace& space) {
     d.valueRange = {lo, hi};
     d.densityRange = {0.f, std::max(maxLogSize, 1.f)};
 
-    d.walk.upload(std::move(grid), d.vots, walkRecords.get(), space.omittedCellValue());
     d.bounds = sceneBounds(space);
     for (std::size_t a = 0; a < 3; ++a)
         d.cells[a] = space.dims[a] - 1;
     d.splatStale = true;
     d.hasData = true;
+    if (d.strategy != Strategy::Splat) d.buildWalk();
 }
 
 bool VotRenderer::hasData() const {
@@ -244,6 +268,7 @@ void VotRenderer::setBackgroundThreadStart(std::function<void()> onStart) {
 }
 
 void VotRenderer::finishPendingWork() {
+    if (mImpl->pendingWalk) return; // nothing walked yet: no skip boxes to grow
     mImpl->walk.startSkipGrowth();
     mImpl->walk.applySkipBoxes(true);
 }
