@@ -25,22 +25,22 @@ namespace vots::render {
 /// Keeps the Vots in GPU buffers, so frames after upload() are cheap. Needs a current EglContext
 /// for its whole life (construct, use and destroy it on the context's thread).
 ///
-/// Two MIP strategies give the same image (up to rays grazing a face within 5e-5 voxel, and the walk's
-/// 16-bit higher-order terms: WalkRecord.h, at most 2.5e-4 of a Vot's largest such term); both use a
+/// The MIP strategies give the same image (up to rays grazing a face within 5e-5 voxel, and the walk's
+/// 16-bit higher-order terms: WalkRecord.h, at most 2.5e-4 of a Vot's largest such term); all use a
 /// certified upper bound of each Vot over its box (Bernstein form, widened to cover both), computed at
 /// upload.
 ///
-/// Walk (default): one compute invocation per pixel (on llvmpipe: one pass over the back faces of the
-/// grid box, see WalkShader); each pixel walks its ray front to back through a grid holding, per cell, the
-/// Vot covering it (background cells: near-cubic empty blocks), and per brick of 16^3 cells the largest bound
-/// of the Vots touching it. Bricks and Vot boxes whose bound cannot beat the pixel's current max, and empty
-/// blocks, are stepped over whole (a culled Vot together with the neighbours its bound also culls, once their
-/// skip boxes are grown after the first frame); a ray stops once no brick its view can still reach may beat
-/// its max; the other Vots are evaluated with the same analytic maximum as Raster, from a 64-byte copy of
-/// their record (one cache line instead of two: the walk waits on memory). Needs disjoint boxes (the
-/// fast fit method); a Vot-Space with overlapping boxes (paper method) or beyond the GL limits is
-/// drawn with Raster instead, see mipStrategy(). Density images always use Raster. The walk is
-/// render/src/WalkPass.*, the raster strategy render/src/RasterPass.*; docs/DESIGN.md §6 and §7.
+/// Walk (default on a GPU): one compute invocation per pixel (on llvmpipe: one pass over the back faces of
+/// the grid box, see WalkShader); each pixel walks its ray front to back through a grid holding, per cell,
+/// the Vot covering it (background cells: near-cubic empty blocks), and per brick of 16^3 cells the largest
+/// bound of the Vots touching it. Bricks and Vot boxes whose bound cannot beat the pixel's current max, and
+/// empty blocks, are stepped over whole (a culled Vot together with the neighbours its bound also culls, once
+/// their skip boxes are grown after the first frame); a ray stops once no brick its view can still reach may
+/// beat its max; the other Vots are evaluated with the same analytic maximum as Raster, from a 64-byte copy
+/// of their record (one cache line instead of two: the walk waits on memory). Needs disjoint boxes (the fast
+/// fit method); a Vot-Space with overlapping boxes (paper method) or beyond the GL limits is drawn with
+/// Raster instead, see mipStrategy(). Density images always use Raster. The walk is render/src/WalkPass.*,
+/// the raster strategy render/src/RasterPass.*; docs/DESIGN.md §6 and §7.
 ///
 /// Raster: one instanced unit cube per Vot. With culling, Vots are drawn in batches, in descending
 /// order of their bound when Raster is the MIP strategy (records are in space order for the walk); between
