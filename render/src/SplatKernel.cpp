@@ -115,7 +115,10 @@ SPLAT_INLINE void clipToBox(const Lanes o[3], const Lanes inv[3], const float lo
 
 } // namespace
 
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+// The loader's resolver that picks a clone runs before a sanitizer's runtime is up, and crashes the
+// sanitized test binaries at start: they take the baseline only (they check correctness, not speed).
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_THREAD__) &&      \
+    !defined(__SANITIZE_ADDRESS__)
 __attribute__((target_clones("arch=x86-64-v3", "default")))
 #endif
 bool splatVot(const SplatFrame& f, const SplatVot& vot, float upperBound, float* best, int x0, int x1, int y0,
