@@ -27,7 +27,7 @@ namespace vots::render {
 /// MIP only: the min and the mean need the background cells the walk sees.
 class CpuSplat {
 public:
-    /// Copies the Vots (any order) and sorts them by falling bound.
+    /// Copies the Vots (any order) and sorts them by falling bound, in levels put in space order.
     void upload(const std::vector<GpuVot>& vots);
 
     /// The MIP image (row 0 at the top, as readFloatFrame gives it), drawn by every core. Without
@@ -48,8 +48,10 @@ public:
     };
 
 private:
-    std::vector<SplatVot> mVots;        // by falling upper bound
+    // By falling upper bound in levels of LEVEL_VOTS, each level in space order (CpuSplat.cpp).
+    std::vector<SplatVot> mVots;
     std::vector<Placement> mPlacements; // the same order
+    std::vector<Placement> mRuns;       // per run of RUN_VOTS: the joint box and the largest bound
 };
 
 } // namespace vots::render
