@@ -93,9 +93,12 @@ SPLAT_INLINE Lanes cubicMaxOver(const LaneCubic& g, Lanes len) {
     const Lanes a = all(3.f) * g.g3, b = all(2.f) * g.g2, c = g.g1;
     const Lanes disc = b * b - all(4.f) * a * c;
     const LaneMask real = disc >= zero;
+    // Lane by lane over a vector already made non-negative: with -fno-math-errno (render/CMakeLists.txt)
+    // GCC makes the loop one vector square root.
+    const Lanes discOrZero = maxOf(disc, zero);
     Lanes root = all(0.f);
     for (int i = 0; i < 8; ++i)
-        root[i] = std::sqrt(disc[i] > 0.f ? disc[i] : 0.f);
+        root[i] = std::sqrt(discOrZero[i]);
     const Lanes q = all(-0.5f) * (b + (b >= zero ? root : -root));
     const Lanes r1 = q / a, r2 = c / q; // a == 0: r1 is inf or NaN and fails the range test
     best = (real & (r1 > zero) & (r1 < len)) ? maxOf(best, cubicAt(g, r1)) : best;
@@ -151,9 +154,10 @@ bool splatVot(const SplatFrame& f, const SplatVot& vot, float upperBound, float*
                 o[i] = nearH[i] / nearH[3];
                 d[i] = farH[i] / farH[3] - o[i];
             }
+            const Lanes length2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
             Lanes farT = all(0.f);
             for (int k = 0; k < 8; ++k)
-                farT[k] = std::sqrt(d[0][k] * d[0][k] + d[1][k] * d[1][k] + d[2][k] * d[2][k]);
+                farT[k] = std::sqrt(length2[k]);
             const Lanes tiny = all(1e-30f);
             for (int i = 0; i < 3; ++i) {
                 d[i] /= farT;
