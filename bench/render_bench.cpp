@@ -59,7 +59,7 @@ std::size_t countDifferent(const vots::render::FloatImage& a, const vots::render
 } // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"Vot MIP (walk, raster) vs reference ray caster frame times"};
+    CLI::App app{"Vot MIP (walk, raster; with --splat the CPU splat) vs reference ray caster frame times"};
     std::string volumePath, votsPath, strategyName = "both", pngDir, walkShaderName = "auto";
     std::vector<double> epsPercents;
     double epsAbs = 0.0;
