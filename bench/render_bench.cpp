@@ -1,5 +1,5 @@
-// render_bench: steady-state frame times of Vot MIP (walk and raster strategies) vs the reference ray
-// caster, measured interleaved in one run, as markdown rows.
+// render_bench: steady-state frame times of Vot MIP (walk, raster and splat strategies) vs the reference
+// ray caster, measured interleaved in one run, as markdown rows.
 //
 //   render_bench VOLUME [--vots FILE | --eps-percent P[,P...] | --eps E] [--degree N] [--fit-norm N] [--size
 //   N]
