@@ -3,13 +3,13 @@
 
 #include "ParallelChunks.h"
 #include "ShaderContract.h"
+#include "VotOrder.h"
 
 #include "vots/render/Renderer.h"
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <cstdint>
 #include <thread>
 
 namespace vots::render {
@@ -20,7 +20,7 @@ namespace {
 // so no pixel has two writers and the threads never wait on each other).
 constexpr int TILE = 16;
 // Runs of Vots a frame can skip with one test: the Vots by falling bound are cut into levels of
-// LEVEL_VOTS, each level put in space order (Morton code of the box centre) and cut into runs of
+// LEVEL_VOTS, each level put in space order (the records' own order, CpuSplat::upload) and cut into runs of
 // RUN_VOTS, whose joint box and largest bound a tile refuses at once. Most Vots of a CT lie inside the
 // bright skull's outline, where whole runs are refused; one by one they cost 25-40 ns each a frame
 // (bench/RESULTS.md, "The MIP splat").
@@ -126,38 +126,15 @@ private:
     bool mAffine = true;
 };
 
-// Interleaves the low 10 bits of x, y, z (a Vot centre in cells, grids up to 1024 a side kept apart).
-std::uint32_t mortonOf(const float centre[3]) {
-    std::uint32_t code = 0;
-    for (int a = 0; a < 3; ++a) {
-        std::uint32_t v = static_cast<std::uint32_t>(std::clamp(centre[a], 0.f, 1023.f));
-        for (int bit = 0; bit < 10; ++bit)
-            code |= ((v >> bit) & 1u) << (3 * bit + a);
-    }
-    return code;
-}
-
 } // namespace
 
 void CpuSplat::upload(const std::vector<GpuVot>& vots) {
-    std::vector<std::size_t> order(vots.size());
-    for (std::size_t i = 0; i < order.size(); ++i)
-        order[i] = i;
-    std::sort(order.begin(), order.end(),
-              [&vots](std::size_t a, std::size_t b) { return vots[a].upperBound > vots[b].upperBound; });
-    std::vector<std::uint32_t> morton(vots.size());
-    for (std::size_t i = 0; i < vots.size(); ++i) {
-        float centre[3];
-        for (int a = 0; a < 3; ++a)
-            centre[a] = 0.5f * (vots[i].lo[a] + vots[i].hi[a]);
-        morton[i] = mortonOf(centre);
-    }
-    for (std::size_t level = 0; level < order.size(); level += LEVEL_VOTS) {
-        const auto first = order.begin() + static_cast<std::ptrdiff_t>(level);
-        const auto last =
-            order.begin() + static_cast<std::ptrdiff_t>(std::min(order.size(), level + LEVEL_VOTS));
-        std::sort(first, last, [&morton](std::size_t a, std::size_t b) { return morton[a] < morton[b]; });
-    }
+    std::vector<std::size_t> order = boundOrder(vots);
+    // The records come in space order (VotRenderer's upload, spatialOrder), so a level's indices in
+    // ascending order put its Vots in space order.
+    for (std::size_t level = 0; level < order.size(); level += LEVEL_VOTS)
+        std::sort(order.begin() + static_cast<std::ptrdiff_t>(level),
+                  order.begin() + static_cast<std::ptrdiff_t>(std::min(order.size(), level + LEVEL_VOTS)));
     mVots.resize(vots.size());
     mPlacements.resize(vots.size());
     for (std::size_t i = 0; i < order.size(); ++i) {
@@ -172,7 +149,7 @@ void CpuSplat::upload(const std::vector<GpuVot>& vots) {
             place.half[a] = 0.5f * (s.hi[a] - s.lo[a]);
         }
         std::copy(std::begin(g.c), std::end(g.c), s.c);
-        s.upper = place.upper = g.upperBound;
+        place.upper = g.upperBound;
         place.unused = 0.f;
     }
     mRuns.resize((vots.size() + RUN_VOTS - 1) / RUN_VOTS);
@@ -184,7 +161,7 @@ void CpuSplat::upload(const std::vector<GpuVot>& vots) {
                 lo[a] = std::min(lo[a], mVots[n].lo[a]);
                 hi[a] = std::max(hi[a], mVots[n].hi[a]);
             }
-            upper = std::max(upper, mVots[n].upper);
+            upper = std::max(upper, mPlacements[n].upper);
         }
         Placement& run = mRuns[r];
         for (int a = 0; a < 3; ++a) {

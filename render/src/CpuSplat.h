@@ -27,7 +27,8 @@ namespace vots::render {
 /// MIP only: the min and the mean need the background cells the walk sees.
 class CpuSplat {
 public:
-    /// Copies the Vots (any order) and sorts them by falling bound, in levels put in space order.
+    /// Copies the Vots and sorts them by falling bound, in levels kept in the order given: space order as
+    /// VotRenderer keeps them (another order gives the same image, with runs a tile refuses less often).
     void upload(const std::vector<GpuVot>& vots);
 
     /// The MIP image (row 0 at the top, as readFloatFrame gives it), drawn by every core. Without

@@ -5,15 +5,13 @@
 
 namespace vots::render {
 
-/// A Vot as the splat reads it: its box grown by CLIP_SLACK (as the GL shaders clip), its expansion point
-/// and coefficients (the fit's float32, as the raster strategy evaluates them) and its upper bound (which
-/// covers a float evaluation, so culling by it never changes the image).
+/// A Vot as the splat's kernel reads it: its box grown by CLIP_SLACK (as the GL shaders clip), its
+/// expansion point and coefficients (the fit's float32, as the raster strategy evaluates them).
 struct SplatVot {
     float lo[3];
     float hi[3];
     float p[3];
     float c[fit::MONOMIAL_COUNT];
-    float upper;
 };
 
 /// One frame's rays, rebuilt per pixel as ray_common.glsl's pixelRay does (the same float arithmetic, so
@@ -33,8 +31,9 @@ struct SplatFrame {
 };
 
 /// Raises best[y * width + x], for x in [x0, x1] and y in [y0, y1], to the max of `vot` along that
-/// pixel's ray where the ray meets the Vot's box and best is below `upper` (vot.upper, or +inf to
-/// evaluate every pixel). Returns whether any pixel rose. Uses AVX2 and FMA where the CPU has them
+/// pixel's ray where the ray meets the Vot's box and best is below `upper` (the Vot's upper bound, which
+/// covers a float evaluation so that culling by it never changes the image, or +inf to evaluate every
+/// pixel). Returns whether any pixel rose. Uses AVX2 and FMA where the CPU has them
 /// (picked at load time), SSE2 otherwise.
 bool splatVot(const SplatFrame& frame, const SplatVot& vot, float upper, float* best, int x0, int x1, int y0,
               int y1);

@@ -62,10 +62,10 @@ std::vector<std::size_t> spatialOrder(const std::vector<fit::Vot>& vots) {
     return order;
 }
 
-std::vector<std::size_t> boundOrder(const std::vector<VotBounds>& bounds) {
-    std::vector<std::pair<double, std::size_t>> keys(bounds.size());
-    for (std::size_t i = 0; i < bounds.size(); ++i)
-        keys[i] = {-bounds[i].upper, i};
+std::vector<std::size_t> boundOrder(const std::vector<GpuVot>& vots) {
+    std::vector<std::pair<float, std::size_t>> keys(vots.size());
+    for (std::size_t i = 0; i < vots.size(); ++i)
+        keys[i] = {-vots[i].upperBound, i};
     return orderByKey(std::move(keys));
 }
 

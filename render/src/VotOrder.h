@@ -1,9 +1,8 @@
 // The order in which Vot records are stored on the GPU: it decides which records share cache lines.
 #pragma once
 
-#include "VotBounds.h"
-
 #include "vots/fit/Vot.h"
+#include "vots/render/GpuLayout.h"
 
 #include <cstddef>
 #include <vector>
@@ -15,8 +14,9 @@ namespace vots::render {
 /// (bench/RESULTS.md compares it with bound order). Ties keep file order.
 std::vector<std::size_t> spatialOrder(const std::vector<fit::Vot>& vots);
 
-/// Descending upper bound, ties in file order: what Raster's batch culling wants, since the brightest
-/// Vots drawn first let later batches be culled.
-std::vector<std::size_t> boundOrder(const std::vector<VotBounds>& bounds);
+/// Descending upper bound (GpuVot::upperBound, the one culling compares), ties in the records' order: what
+/// Raster's batch culling and the splat want, since the brightest Vots drawn first let later ones be
+/// culled.
+std::vector<std::size_t> boundOrder(const std::vector<GpuVot>& vots);
 
 } // namespace vots::render

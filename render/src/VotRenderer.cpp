@@ -36,7 +36,6 @@ struct VotRenderer::Impl {
     // Until then the upload keeps what the build needs.
     struct PendingWalk {
         std::unique_ptr<std::uint32_t[]> records; // WALK_RECORD_WORDS per Vot, in d.vots' order
-        std::vector<VotBounds> bounds;            // in d.vots' order
         std::array<int, 3> dims{0, 0, 0};
         float omittedCellValue = 0.f;
     };
@@ -73,7 +72,7 @@ struct VotRenderer::Impl {
         std::optional<WalkPass::Grid> grid = WalkPass::gridFor(vots, pending.dims);
         if (!grid) {
             // Bound order when Raster draws the MIP instead; the walk is never drawn, its records unused.
-            const std::vector<std::size_t> byBound = boundOrder(pending.bounds);
+            const std::vector<std::size_t> byBound = boundOrder(vots);
             std::vector<GpuVot> inSpaceOrder = std::move(vots);
             vots.resize(byBound.size());
             for (std::size_t i = 0; i < byBound.size(); ++i)
@@ -93,7 +92,6 @@ struct VotRenderer::Impl {
         const auto t0 = FrameClock::now();
         stats = FrameStats{};
         stats.votsTotal = vots.size();
-        target.bind(width, height);
         const bool alongRays = mode == RenderMode::MinIp || mode == RenderMode::Aip;
         if (alongRays) buildWalk();
         // The walk's per-cell view is what gives the min and the mean their background cells and the
@@ -103,13 +101,15 @@ struct VotRenderer::Impl {
                 std::string(renderModeName(mode)) +
                 " needs a Vot-Space with disjoint boxes (fit --method fast) within the walk's "
                 "GL limits; this one can only be drawn as mip or density");
-        const bool walked = alongRays || (mode == RenderMode::Mip && mipStrategy() == Strategy::Walk);
-        if (domain && !walked && !(mode == RenderMode::Mip && mipStrategy() == Strategy::Splat))
+        const Strategy mipBy = mipStrategy();
+        const bool splatted = mode == RenderMode::Mip && mipBy == Strategy::Splat;
+        const bool walked = alongRays || (mode == RenderMode::Mip && mipBy == Strategy::Walk);
+        if (domain && !walked && !splatted)
             throw fit::InputError(std::string(renderModeName(mode)) +
                                   " is drawn from boxes here, not cells: it takes no cell domain");
         std::optional<SlabPlanes> slab;
         if (options.slab) slab = slabPlanesInIndexSpace(*options.slab, camera, bounds);
-        if (mode == RenderMode::Mip && mipStrategy() == Strategy::Splat) {
+        if (splatted) {
             if (splatStale) splat.upload(vots);
             splatStale = false;
             FloatImage image =
@@ -117,6 +117,7 @@ struct VotRenderer::Impl {
             stats.gpuMs = msSince(t0);
             return image;
         }
+        target.bind(width, height);
         if (walked)
             walk.draw(mode, m, slab, domain, width, height, target, culling, stats, options.abandoned);
         else
@@ -174,7 +175,6 @@ void VotRenderer::upload(const fit::VotSpace& space) {
     Impl::PendingWalk pending;
     // Left uninitialised: every word is written below.
     pending.records.reset(new std::uint32_t[space.vots.size() * WALK_RECORD_WORDS]);
-    pending.bounds.resize(space.vots.size());
     // Bounds and records dominate an upload; each Vot is independent, so split evenly.
     parallelChunks(space.vots.size(), [&](std::size_t first, std::size_t last) {
         for (std::size_t i = first; i < last; ++i) {
@@ -185,7 +185,6 @@ void VotRenderer::upload(const fit::VotSpace& space) {
             // maxError: every bound covers both, so culling by it never changes either image.
             bounds[i].floatSlack += walk.maxError;
             d.vots[place[i]] = makeGpuVot(space.vots[i], bounds[i]);
-            pending.bounds[place[i]] = bounds[i];
         }
     });
     d.raster.upload(d.vots.size());
