@@ -12,8 +12,10 @@
 // a click on the track), `drag` (the thumb dragged by the mouse in 15 ms steps and let go at once) or
 // `rest:MS` (dragged, held still MS ms, then let go). Times are from the `change` event, except for
 // `rest:MS`: from the hand's last move, the moment it chose (the release comes MS later).
+// VOTS_EPS_IDLE=1 also waits, before each move, until the server's warm-up fits have ended (/api/stats,
+// 60 s at most): a user who looked at the image long enough for them, where the pause is a fixed time.
 // needs a running `vots serve` and tests/web/node_modules (tests/web/run.sh installs it).
-import { withPage } from '../tests/web/support/browser.mjs';
+import { BASE_URL, withPage } from '../tests/web/support/browser.mjs';
 import { median, ms } from './stats.mjs';
 import { ViewerPage } from '../tests/web/pages/ViewerPage.mjs';
 
@@ -23,6 +25,17 @@ const pauseMs = Number(process.argv[4] || 0);
 const fakeTest = { name: 'eps-change-bench' };
 const gesture = process.env.VOTS_EPS_GESTURE || 'set';
 const restMs = gesture.startsWith('rest:') ? Number(gesture.slice(5)) : 0;
+const waitForIdleServer = process.env.VOTS_EPS_IDLE === '1';
+
+// Until the server runs no warm-up fit (and has had a moment to start the next one), 60 s at most.
+async function serverIdle() {
+  const until = Date.now() + 60000;
+  for (let quietPolls = 0; quietPolls < 3 && Date.now() < until;) {
+    const stats = await (await fetch(`${BASE_URL}/api/stats`)).json();
+    quietPolls = stats.warmUps?.running ? 0 : quietPolls + 1;
+    await new Promise((r) => setTimeout(r, 200));
+  }
+}
 if (!['set', 'drag'].includes(gesture) && !(restMs >= 0)) throw new Error(`VOTS_EPS_GESTURE ${gesture}: set, drag or rest:MS`);
 
 // Installed before the page's own scripts: the times of the fit's answer and its end, and of each frame
@@ -113,9 +126,12 @@ await withPage(fakeTest, async (page) => {
   const firsts = [];
   const rows = [];
   for (let i = 1; i <= runs; i++) {
-    // A new eps each time (no cache hit on the whole Vot-Space), alternating around the start.
-    const position = start + (i % 2 ? 1 : -1) * (10 + 7 * i);
+    // A new eps each time, alternating around the start one step further each other move: +1, -1, +2, -2
+    // ... steps of the server's ladder (about 10 % apart). The server's warm-ups fit the ten nearest the
+    // last fit ahead when it is idle; `--no-warm-up` on the server times every move as a refit.
+    const position = start + (i % 2 ? 1 : -1) * Math.ceil(i / 2);
     if (pauseMs > 0) await page.waitForTimeout(pauseMs);
+    if (waitForIdleServer) await serverIdle();
     const countBefore = await viewer.votCount.textContent();
     // Timed inside the page, from the slider's change event to the first moment the new count, the idle
     // state and the loaded full-quality image are all there (DOM mutations and the image's load event).

@@ -307,7 +307,7 @@ void addServeCommand(CLI::App& app) {
     addFitNormOption(*cmd, args->norm);
     cmd->add_flag(
         "--no-warm-up", args->noWarmUp,
-        "Do not fit near the last eps in idle time (0.8, 1.25 and 0.5 times it), which speeds later refits");
+        "Do not fit the eps slider's steps near the last eps in idle time, which makes its moves cache hits");
     cmd->callback([args, cmd] {
         if (!args->config.empty()) applyConfigFile(*cmd, args->config);
         dist::MpiWorld& world = dist::MpiWorld::get();

@@ -34,7 +34,7 @@ async function shownImageBytes(page) {
   return Buffer.from(bytes);
 }
 
-for (const [transport, step] of [['socket', 170], ['render', 190]]) {
+for (const [transport, step] of [['socket', 11], ['render', 12]]) {
   test(`over ${transport}: a refit shows a draft of the new Vot-Space first, then /render's PNG`, async (t) => {
     const ds = await pickDataset();
     await withPage(t, async (page) => {
@@ -47,7 +47,7 @@ for (const [transport, step] of [['socket', 170], ['render', 190]]) {
       await recordShownFrames(page);
 
       // An eps no other spec fits: the server has to fit it and upload a new Vot-Space.
-      await viewer.setEpsSlider(Math.min(1000, Number(await viewer.epsSlider.inputValue()) + step));
+      await viewer.setEpsSlider(await viewer.epsSliderPositionAfter(step));
       await viewer.waitForIdle();
 
       const newEps = Number((await viewer.hashParams()).eps);

@@ -12,7 +12,6 @@ test('eps slider refits with progress, then shows a different Vot count and imag
     await viewer.waitForIdle();
     const countBefore = (await viewer.votCount.textContent()).trim();
     const before = await viewer.framePixels();
-    const position = Number(await viewer.epsSlider.inputValue());
     await viewer.screenshotPage('eps-before');
 
     // A much larger eps: far fewer Vots, a visibly coarser image, and a fit no earlier test ran.
@@ -21,7 +20,7 @@ test('eps slider refits with progress, then shows a different Vot count and imag
     page.on('request', (r) => {
       if (r.url().endsWith('/api/fit') && r.method() === 'POST') fits.push(r.postDataJSON());
     });
-    const target = Math.min(1000, position + 250);
+    const target = await viewer.epsSliderPositionAfter(16);
     await viewer.setEpsSlider(target);
     await page.waitForFunction(() => document.querySelector('[data-testid="status"]').dataset.state === 'fitting'
       || window.__votsProgressSeen.visible, null, { timeout: 10000 }).catch(() => {});

@@ -5,14 +5,14 @@ import { loadWebModules } from './support/web-modules.mjs';
 
 const m = await loadWebModules(['hash.js', 'eps.js', 'view.js', 'access.js', 'orientation.js', 'kind.js']);
 const { formatHash, parseHash } = m['hash.js'];
-const { epsBounds, epsLabel, epsToSlider, sliderToEps, SLIDER_STEPS } = m['eps.js'];
+const { epsLabel, epsSteps, epsToSlider, sliderMax, sliderToEps } = m['eps.js'];
 const { initialView } = m['view.js'];
 const access = m['access.js'];
 const { edgeLabels } = m['orientation.js'];
 const kind = m['kind.js'];
 
 const CT = {
-  name: 'cranium', modality: 'CT', range: [-1000, 3000], defaultEps: 80,
+  name: 'cranium', modality: 'CT', range: [-1000, 3000], defaultEps: 80, epsSteps: [4, 40, 72, 80, 88, 2000],
   window: { level: 40, width: 400 }, presets: {},
 };
 const MR = { name: 'head', modality: 'MR', range: [0, 255], defaultEps: 5.1, window: { level: 100, width: 200 } };
@@ -108,15 +108,18 @@ test('with no server default there is no client-made eps: the view has none and 
   assert.equal(epsLabel(NO_DEFAULT, null), '– (no default from the server)');
 });
 
-test('the eps slider is log-scaled over 0.1 % .. 50 % of the range, widened to hold the default', () => {
-  assert.deepEqual(epsBounds(CT), { min: 4, max: 2000 });
-  assert.deepEqual(epsBounds(NO_DEFAULT), epsBounds(MR));
-  assert.deepEqual(epsBounds({ ...CT, defaultEps: 3000 }), { min: 4, max: 3000 });
-  assert.equal(sliderToEps(CT, 0), 4);
-  assert.equal(sliderToEps(CT, SLIDER_STEPS), 2000);
-  assert.equal(epsToSlider(CT, 1e9), SLIDER_STEPS, 'beyond the ends clamps');
-  for (const pos of [0, 1, 250, 500, 999, 1000]) assert.equal(epsToSlider(CT, sliderToEps(CT, pos)), pos);
-  assert.ok(sliderToEps(CT, 600) > sliderToEps(CT, 599), 'the scale rises');
+test("the eps slider's positions are the server's steps, an eps between them shown at the nearest", () => {
+  assert.equal(sliderMax(CT), 5);
+  assert.deepEqual([0, 1, 2, 3, 4, 5].map((pos) => sliderToEps(CT, pos)), CT.epsSteps);
+  for (let pos = 0; pos <= 5; pos++) assert.equal(epsToSlider(CT, sliderToEps(CT, pos)), pos);
+  assert.equal(sliderToEps(CT, -3), 4, 'below the ends clamps');
+  assert.equal(sliderToEps(CT, 99), 2000, 'beyond the ends clamps');
+  assert.equal(epsToSlider(CT, 1e9), 5);
+  assert.equal(epsToSlider(CT, 76), 3, 'nearest on a log scale: 76 is nearer 80 than 72');
+  assert.equal(epsToSlider(CT, 75.8), 2, '75.8 is nearer 72 (x1.053) than 80 (x1.055)');
+  assert.deepEqual(epsSteps(MR), [5.1], 'a server that sends no steps offers the default alone');
+  assert.deepEqual(epsSteps(NO_DEFAULT), []);
+  assert.equal(sliderToEps(NO_DEFAULT, 0), null);
   assert.equal(epsLabel(CT, 80), '80 (2.0 % of range)');
 });
 

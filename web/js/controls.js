@@ -2,7 +2,7 @@
 import { viewName } from './camera.js';
 import { COLORMAPS, MODES, PROJECTIONS, RENDERERS } from './contract.js';
 import { setAttr } from './dom.js';
-import { epsLabel, epsToSlider } from './eps.js';
+import { epsLabel, epsToSlider, sliderMax } from './eps.js';
 import { fmtExact, fmtValue } from './format.js';
 import { syncKindLimits } from './kind.js';
 
@@ -69,6 +69,7 @@ export function syncControls(el, ds, view) {
   el.preset.value = matchingPreset(el.preset, ds, view.window);
   el.level.value = fmtExact(view.window.level);
   el.width.value = fmtExact(view.window.width);
+  el.epsSlider.max = String(sliderMax(ds));
   el.epsSlider.value = String(epsToSlider(ds, view.eps));
   el.epsValue.textContent = epsLabel(ds, view.eps);
   syncKindLimits(el, ds);

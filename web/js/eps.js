@@ -1,7 +1,5 @@
-// The error bound eps on the client: the server's default per dataset, the log-scale slider, its label; no DOM.
+// The error bound eps on the client: the server's default per dataset, the slider's steps, its label; no DOM.
 import { fmtValue } from './format.js';
-
-export const SLIDER_STEPS = 1000; // eps-slider integer range, mapped log-linearly onto [min, max] of epsBounds
 
 // The span of a dataset's value range; eps percentages are of this span.
 export function rangeSpan(ds) {
@@ -15,24 +13,34 @@ export function defaultEpsOf(ds) {
   return eps > 0 ? eps : null;
 }
 
-// The slider spans 0.1 % .. 50 % of the range, widened to include the server's default.
-export function epsBounds(ds) {
-  const span = rangeSpan(ds);
+// The eps the slider offers, ascending: the server's ladder for the dataset (`epsSteps`: it owns the rule
+// and fits the steps near the shown eps ahead, so a move to one is a cache hit), else the default alone.
+export function epsSteps(ds) {
+  const steps = Array.isArray(ds?.epsSteps) ? ds.epsSteps.map(Number).filter((e) => e > 0) : [];
+  if (steps.length) return steps;
   const def = defaultEpsOf(ds);
-  if (def === null) return { min: span * 1e-3, max: span * 0.5 };
-  return { min: Math.min(span * 1e-3, def), max: Math.max(span * 0.5, def) };
+  return def === null ? [] : [def];
 }
 
+// The slider's highest position (its positions are the steps' indices).
+export function sliderMax(ds) {
+  return Math.max(0, epsSteps(ds).length - 1);
+}
+
+// The position of the step nearest eps on a log scale (an eps from a link may lie between steps).
 export function epsToSlider(ds, eps) {
-  const { min, max } = epsBounds(ds);
-  const t = Math.log(Math.min(max, Math.max(min, eps)) / min) / Math.log(max / min);
-  return Math.round(t * SLIDER_STEPS);
+  const steps = epsSteps(ds);
+  const far = (i) => Math.abs(Math.log(steps[i] / eps));
+  let best = 0;
+  for (let i = 1; i < steps.length; i++) if (far(i) < far(best)) best = i;
+  return best;
 }
 
-// Three significant digits keep URLs short and make equal slider positions hit the server's fit cache.
+// The step at a slider position (clamped to the ends), or null when the dataset offers none.
 export function sliderToEps(ds, pos) {
-  const { min, max } = epsBounds(ds);
-  return Number((min * Math.pow(max / min, pos / SLIDER_STEPS)).toPrecision(3));
+  const steps = epsSteps(ds);
+  if (!steps.length) return null;
+  return steps[Math.min(steps.length - 1, Math.max(0, Math.round(pos)))];
 }
 
 export function epsLabel(ds, eps) {

@@ -34,7 +34,7 @@ FitRecord recordFor(const JobSnapshot& job, const char* source) {
 FitJobs::FitJobs(VotSpaceCache& cache, ServerStats& stats, ForegroundActivity& foreground,
                  MemoryAdmission& memory, FitJobLimits limits)
     : mCache(cache), mStats(stats), mForeground(foreground), mMemory(memory), mLimits(limits),
-      mPerClient(limits.perClient, "fits"), mWarmUps(mBoxCaches, foreground, limits.warmUp) {
+      mPerClient(limits.perClient, "fits"), mWarmUps(mBoxCaches, cache, foreground, limits.warmUp) {
     for (int i = 0; i < std::max(1, mLimits.maxRunning); ++i)
         mWorkers.emplace_back([this] { workerLoop(); });
 }
@@ -90,6 +90,9 @@ std::shared_ptr<FitJob> FitJobs::submit(std::shared_ptr<const Dataset> dataset, 
         job->finish(std::move(space), seconds);
         mById[job->id()] = job;
         rememberLocked(job);
+        // A move to a warmed eps: the warm-ups follow it, so the hand's next move is warmed too.
+        if (mRunning == 0 && mQueue.empty() && mMemory.available() >= dataset->fitBytes)
+            mWarmUps.afterIdleFit(dataset, key);
         return job;
     }
     if (static_cast<int>(mQueue.size()) + mRunning >= mLimits.maxRunning + mLimits.maxQueued)

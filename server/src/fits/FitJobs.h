@@ -36,7 +36,7 @@ struct FitJobLimits {
     int maxQueued = 8;     // waiting fits beyond those; more is refused with 429
     int perClient = 3;     // queued or running fits one client (remote address) started; 0: no limit
     int keepFinished = 32; // finished jobs remembered for /api/jobs/{id} (their results only weakly)
-    bool warmUp = true;    // fit eps / 2 into the box cache while idle (WarmUpFits)
+    bool warmUp = true;    // fit the slider's rungs around the last eps while idle (WarmUpFits)
 };
 
 /// What a fit made by other processes gave (`vots serve` under mpirun): the Vots of all the ranks' cells

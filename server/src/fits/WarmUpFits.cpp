@@ -1,8 +1,11 @@
-// WarmUpFits: one low-priority thread that fits eps around the last one into the box cache, giving way to
+// WarmUpFits: one low-priority thread that fits the slider's rungs around the last eps ahead, giving way to
 // frames.
 #include "fits/WarmUpFits.h"
 
 #include "fits/BoxCaches.h"
+#include "fits/CacheMeta.h"
+#include "fits/EpsLadder.h"
+#include "fits/VotSpaceCache.h"
 #include "frames/ForegroundActivity.h"
 
 #include "vots/fit/Error.h"
@@ -21,8 +24,9 @@ constexpr auto QUIET = std::chrono::milliseconds(250);
 
 } // namespace
 
-WarmUpFits::WarmUpFits(BoxCaches& boxCaches, const ForegroundActivity& foreground, bool enabled)
-    : mBoxCaches(boxCaches), mForeground(foreground), mEnabled(enabled) {}
+WarmUpFits::WarmUpFits(BoxCaches& boxCaches, VotSpaceCache& spaces, const ForegroundActivity& foreground,
+                       bool enabled)
+    : mBoxCaches(boxCaches), mSpaces(spaces), mForeground(foreground), mEnabled(enabled) {}
 
 WarmUpFits::~WarmUpFits() {
     stop();
@@ -30,10 +34,8 @@ WarmUpFits::~WarmUpFits() {
 }
 
 void WarmUpFits::stop() {
-    {
-        std::lock_guard lock(mMutex);
-        mStopping = true;
-    }
+    std::lock_guard lock(mMutex);
+    mStopping = true;
     mCancel = true;
 }
 
@@ -48,36 +50,58 @@ WarmUpSummary WarmUpFits::summary() const {
 
 void WarmUpFits::afterIdleFit(std::shared_ptr<const Dataset> dataset, const FitKey& done) {
     std::lock_guard lock(mMutex);
-    if (!mEnabled || mStopping || mSummary.running || done.focus) return;
+    if (!mEnabled || mStopping || done.focus) return;
+    dropPendingLocked();
     std::vector<FitKey> keys;
-    for (const float factor : FACTORS) {
+    for (const double rung : rungsAround(epsLadder(*dataset), done.eps, RUNGS)) {
         FitKey key = done;
-        key.eps = done.eps * factor;
+        key.eps = static_cast<float>(rung);
         if (!(key.eps >= FLOOR * (dataset->range[1] - dataset->range[0]))) continue;
         if (mWarmed.size() >= MAX_WARMED_KEYS || !mWarmed.insert(key.text()).second) continue;
         keys.push_back(key);
     }
     if (keys.empty()) return;
+    mDataset = std::move(dataset);
+    mPending = std::move(keys);
+    mCancel = false; // a warm-up cancelled for the fit that ended here: its thread goes on with these
+    if (mSummary.running) return;
     if (mThread.joinable()) mThread.join(); // the last one has ended: it cleared mSummary.running
     mSummary.running = true;
-    mCancel = false;
-    mThread = std::thread([this, dataset = std::move(dataset), keys] { run(dataset, keys); });
+    mThread = std::thread([this] { run(); });
 }
 
-void WarmUpFits::run(std::shared_ptr<const Dataset> dataset, const std::vector<FitKey>& keys) {
+void WarmUpFits::dropPendingLocked() {
+    for (const FitKey& key : mPending)
+        mWarmed.erase(key.text());
+    mPending.clear();
+}
+
+void WarmUpFits::run() {
     // Lowest priority, inherited by the fit's worker threads: it must not slow a frame or a fit. Nice 19
     // rather than SCHED_IDLE, which a busy machine can starve for minutes.
     lowerThisThreadToNice19();
-    std::size_t done = 0; // keys finished, or failed
-    for (; done < keys.size(); ++done) {
-        const FitKey& key = keys[done];
+    for (;;) {
         // Not while the fit that asked for these is still being shown: its upload and first frames follow
         // it at once, and a warm-up beside them, even at nice 19, delays the image the user waits for.
         while (!mCancel && mForeground.busyWithin(QUIET))
             std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        FitKey key;
+        std::shared_ptr<const Dataset> dataset;
         {
             std::lock_guard lock(mMutex);
-            if (mCancel) break; // given way before this one started
+            if (mCancel) dropPendingLocked(); // given way before this one started
+            if (mPending.empty()) {
+                mSummary.running = false; // under the lock: afterIdleFit then starts a new thread
+                return;
+            }
+            key = mPending.front();
+            mPending.erase(mPending.begin());
+            dataset = mDataset;
+        }
+        // A requested fit, or a cache file of an earlier run (read into memory here), needs no warm-up.
+        if (inFitCache(key)) continue;
+        {
+            std::lock_guard lock(mMutex);
             ++mSummary.started;
             mSummary.lastKey = key.text();
             mSummary.lastEps = key.eps;
@@ -89,13 +113,16 @@ void WarmUpFits::run(std::shared_ptr<const Dataset> dataset, const std::vector<F
         ++(end == End::Finished    ? mSummary.finished
            : end == End::Cancelled ? mSummary.cancelled
                                    : mSummary.failed);
-        if (end == End::Failed) ++done;
-        if (end != End::Finished) break;
+        if (end == End::Cancelled) mWarmed.erase(key.text());
     }
-    std::lock_guard lock(mMutex);
-    for (std::size_t rest = done; rest < keys.size(); ++rest)
-        mWarmed.erase(keys[rest].text());
-    mSummary.running = false;
+}
+
+bool WarmUpFits::inFitCache(const FitKey& key) {
+    try {
+        return mSpaces.find(key) != nullptr;
+    } catch (const std::exception&) { // an unreadable cache file: the warm-up writes a new one
+        return false;
+    }
 }
 
 WarmUpFits::End WarmUpFits::fitOne(const Dataset& dataset, const FitKey& key) {
@@ -109,7 +136,12 @@ WarmUpFits::End WarmUpFits::fitOne(const Dataset& dataset, const FitKey& key) {
                 std::this_thread::sleep_for(std::chrono::milliseconds(10));
         };
         const auto boxCache = mBoxCaches.forFits(key.dataset, key.frame, key.degree);
-        fit::fitVotSpace(*dataset.volume, options, boxCache.get());
+        fit::FitResult result = fit::fitVotSpace(*dataset.volume, options, boxCache.get());
+        result.space.metaJson = cacheMetaFor(key, dataset, result.stats, result.space);
+        auto space = std::make_shared<const fit::VotSpace>(std::move(result.space));
+        // Memory only: ten warm-ups at a time would fill the disk writer's queue, and a cache file is for a
+        // fit somebody asked for.
+        mSpaces.storeInMemory(key, std::move(space));
         return End::Finished;
     } catch (const fit::FitCancelled&) {
         return End::Cancelled;

@@ -1,11 +1,11 @@
-// Warm-up fits: while the server is idle, eps near the last one are fitted into the box cache, on one thread.
+// Warm-up fits: while the server is idle, the slider's eps near the last one are fitted ahead, on one thread.
 #pragma once
 
 #include "datasets/DatasetRegistry.h"
 #include "fits/FitKey.h"
 
-#include <array>
 #include <atomic>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <mutex>
@@ -17,9 +17,10 @@
 namespace vots::server {
 
 class BoxCaches;
+class VotSpaceCache;
 class ForegroundActivity;
 
-/// Background fits around a finished fit's eps (WarmUpFits::FACTORS), for /api/stats; each eps counts once.
+/// Background fits around a finished fit's eps (WarmUpFits::RUNGS), for /api/stats; each eps counts once.
 struct WarmUpSummary {
     std::uint64_t started = 0, finished = 0, cancelled = 0, failed = 0;
     bool running = false;
@@ -28,29 +29,34 @@ struct WarmUpSummary {
     double lastSeconds = 0.0;
 };
 
-/// A move of the eps slider spends most of its refit fitting boxes no earlier fit tried: deeper boxes
-/// going down, the unions its merges meet going up. So when a requested fit has finished and nothing
-/// waits, one thread at nice 19 fits the dataset at the eps of FACTORS in turn (not below FLOOR of its
-/// range) into the shared box cache; a later refit near them answers most boxes from the cache. Their
-/// Vot-Spaces are dropped: only the cache is wanted. Thread-safe.
+/// A refit at a new eps is bound by the CPU: mostly the first fits of the merge's new unions, which no
+/// earlier fit can answer (bench/RESULTS.md, "A slower host"), so a move of the eps slider cannot be
+/// made cheap, only made ahead. When a requested fit has finished and nothing waits, one thread at nice
+/// 19 fits the dataset at the RUNGS rungs of the slider's ladder (epsLadder) nearest its eps, nearest
+/// first, not below FLOOR of its range, and keeps their Vot-Spaces in the fit cache: a move to one of
+/// them is a cache hit. Each fit also fills the shared box cache, so the next one and a refit off the
+/// ladder cost less. Thread-safe.
 class WarmUpFits {
 public:
     /// Of the value range: a warm-up below it costs more (time, cache memory) than the rare move it helps.
     static constexpr float FLOOR = 0.01f;
-    /// The warm-ups' eps as multiples of the finished fit's, in the order they run: a step down (the
-    /// costliest kind of move), a step up, then a far move down (bench/RESULTS.md, "Warm-ups around the
-    /// slider's eps").
-    static constexpr std::array<float, 3> FACTORS{0.8f, 1.25f, 0.5f};
+    /// Rungs fitted around a finished fit: five either way, 0.62-1.6x its eps (bench/RESULTS.md, "The
+    /// eps slider's ladder").
+    static constexpr std::size_t RUNGS = 10;
 
-    WarmUpFits(BoxCaches& boxCaches, const ForegroundActivity& foreground, bool enabled);
+    WarmUpFits(BoxCaches& boxCaches, VotSpaceCache& spaces, const ForegroundActivity& foreground,
+               bool enabled);
     ~WarmUpFits(); // stop(), then joins
     WarmUpFits(const WarmUpFits&) = delete;
     WarmUpFits& operator=(const WarmUpFits&) = delete;
 
-    /// The requested fit `done` has finished and no other fit waits or runs: starts its warm-ups unless
-    /// one runs or it is a focus fit; of FACTORS, those run already or below FLOOR are left out.
+    /// The requested fit `done` has finished, or was found in the cache, and no other fit waits or runs:
+    /// its rungs become the warm-ups still to run (replacing those of an earlier fit: the hand is here
+    /// now), started at once or after the running one. Not for a focus fit; of the rungs, those run
+    /// already or below FLOOR are left out.
     void afterIdleFit(std::shared_ptr<const Dataset> dataset, const FitKey& done);
-    /// A requested fit arrived: the running warm-up is cancelled (it may run again later).
+    /// A requested fit arrived: the running warm-up is cancelled and the rest dropped (they may run again
+    /// after the next idle fit).
     void giveWay();
     /// Starts no more and cancels the running one; idempotent.
     void stop();
@@ -58,13 +64,19 @@ public:
 
 private:
     enum class End { Finished, Cancelled, Failed };
-    /// Runs the keys in turn until one does not finish; those not finished may run again later (a
-    /// cancelled one from where it got to in the box cache), a failed one is not tried again.
-    void run(std::shared_ptr<const Dataset> dataset, const std::vector<FitKey>& keys);
-    /// One warm-up fit, giving way to frames between bricks.
+    /// Runs the pending keys in turn until none is left or they are cancelled; those not finished may run
+    /// again later (a cancelled one from where it got to in the box cache), a failed one is not tried
+    /// again.
+    void run();
+    /// Forgets the pending keys, so that a later fit may warm them up again.
+    void dropPendingLocked();
+    /// Whether the fit cache (memory, then disk) holds the key's Vot-Space.
+    bool inFitCache(const FitKey& key);
+    /// One warm-up fit, giving way to frames between bricks; its Vot-Space goes to the fit cache.
     End fitOne(const Dataset& dataset, const FitKey& key);
 
     BoxCaches& mBoxCaches;
+    VotSpaceCache& mSpaces;
     const ForegroundActivity& mForeground;
     const bool mEnabled;
     std::atomic<bool> mCancel{false};
@@ -72,7 +84,9 @@ private:
     mutable std::mutex mMutex;
     bool mStopping = false;
     WarmUpSummary mSummary;
-    std::set<std::string> mWarmed; // keys already run (or running)
+    std::shared_ptr<const Dataset> mDataset; // of the pending keys
+    std::vector<FitKey> mPending;            // nearest first
+    std::set<std::string> mWarmed;           // keys already run (or running)
     std::thread mThread;
 };
 

@@ -2,6 +2,7 @@
 // windows and defaults; what a .vots dataset cannot do.
 #include "HttpError.h"
 #include "ServerImpl.h"
+#include "fits/EpsLadder.h"
 #include "routes/HttpJson.h"
 
 #include "vots/fit/MemoryBudget.h"
@@ -42,6 +43,7 @@ nlohmann::json datasetJson(const Dataset& d) {
                           {"window", windowJson(window)},
                           {"presets", presets},
                           {"defaultEps", d.defaultEps},
+                          {"epsSteps", epsLadder(d)},
                           {"background", d.background},
                           {"modality", d.isCt ? "CT" : "other"},
                           {"frames", d.frames},

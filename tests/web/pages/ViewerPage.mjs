@@ -149,6 +149,12 @@ export class ViewerPage {
     }, position);
   }
 
+  // The eps slider's position `steps` steps from where it is now, clamped to its ends.
+  async epsSliderPositionAfter(steps) {
+    const max = Number(await this.epsSlider.getAttribute('max'));
+    return Math.max(0, Math.min(max, Number(await this.epsSlider.inputValue()) + steps));
+  }
+
   // Steps the eps slider with the keyboard as a user holding or tapping a key would: focus, then `presses`
   // key presses `gapMs` apart (the browser itself fires `input` and `change` for each step).
   async stepEpsSlider(presses, { key = 'ArrowRight', gapMs = 20 } = {}) {
