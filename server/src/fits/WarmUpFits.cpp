@@ -91,6 +91,7 @@ void WarmUpFits::run() {
             std::lock_guard lock(mMutex);
             if (mCancel) dropPendingLocked(); // given way before this one started
             if (mPending.empty()) {
+                mDataset.reset();         // a dataset the registry drops (a 4D frame) is not kept alive here
                 mSummary.running = false; // under the lock: afterIdleFit then starts a new thread
                 return;
             }
