@@ -90,9 +90,7 @@ std::shared_ptr<FitJob> FitJobs::submit(std::shared_ptr<const Dataset> dataset, 
         job->finish(std::move(space), seconds);
         mById[job->id()] = job;
         rememberLocked(job);
-        // A move to a warmed eps: the warm-ups follow it, so the hand's next move is warmed too.
-        if (mRunning == 0 && mQueue.empty() && mMemory.available() >= dataset->fitBytes)
-            mWarmUps.afterIdleFit(dataset, key);
+        warmUpAroundLocked(dataset, key); // the hand moved to a warmed eps: warm its next moves too
         return job;
     }
     if (static_cast<int>(mQueue.size()) + mRunning >= mLimits.maxRunning + mLimits.maxQueued)
@@ -184,11 +182,15 @@ void FitJobs::workerLoop() {
         --mRunning;
         endLocked(pending.job);
         rememberLocked(pending.job);
-        // A warm-up holds no reservation (a requested fit makes it give way), so it starts only with room.
-        if (pending.job->snapshot().state == JobState::Done && !mStopping && mRunning == 0 &&
-            mQueue.empty() && mMemory.available() >= pending.dataset->fitBytes)
-            mWarmUps.afterIdleFit(pending.dataset, pending.job->key());
+        if (pending.job->snapshot().state == JobState::Done && !mStopping)
+            warmUpAroundLocked(pending.dataset, pending.job->key());
     }
+}
+
+void FitJobs::warmUpAroundLocked(const std::shared_ptr<const Dataset>& dataset, const FitKey& key) {
+    // A requested fit makes a warm-up give way, so it holds no memory reservation and starts only with room.
+    if (mRunning == 0 && mQueue.empty() && mMemory.available() >= dataset->fitBytes)
+        mWarmUps.afterIdleFit(dataset, key);
 }
 
 void FitJobs::run(const Pending& pending) {

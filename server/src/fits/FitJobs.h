@@ -109,6 +109,9 @@ private:
     void cancelLocked(std::map<std::string, Active>::iterator active);
     /// The job's entry, when it is the active one for its key; else it is already off (cancelled).
     void endLocked(const std::shared_ptr<FitJob>& job);
+    /// The Vot-Space of `key` is ready (fitted, or found in the cache): its warm-ups start when no fit waits
+    /// or runs and the memory budget has room for a fit (a warm-up holds no reservation).
+    void warmUpAroundLocked(const std::shared_ptr<const Dataset>& dataset, const FitKey& key);
 
     VotSpaceCache& mCache;
     ServerStats& mStats;
