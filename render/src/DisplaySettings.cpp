@@ -45,10 +45,4 @@ DisplaySettings parseWindow(std::string_view text, Colormap map) {
     return s;
 }
 
-int displayIndex(float value, const DisplaySettings& settings) {
-    if (!std::isfinite(value)) return 0;
-    const float t = std::clamp((value - settings.low()) / settings.width, 0.f, 1.f);
-    return static_cast<int>(std::floor(255.f * t + 0.5f));
-}
-
 } // namespace vots::render

@@ -10,12 +10,4 @@ FloatImage readFloatFrame(const FloatTarget& target, FrameStats& stats) {
     return image;
 }
 
-RgbaImage readDisplayedFrame(GlDisplayPass& display, const FloatTarget& target,
-                             const DisplaySettings& settings, FrameStats& stats) {
-    const auto t0 = FrameClock::now();
-    RgbaImage image = display.apply(target.texture(), target.width(), target.height(), settings);
-    stats.readbackMs = msSince(t0);
-    return image;
-}
-
 } // namespace vots::render

@@ -1,11 +1,8 @@
-// Reading a drawn frame out of its float target (as floats, or through the display pass), timed into its
-// stats.
+// Reading a drawn frame out of its float target, timed into its stats.
 #pragma once
 
 #include "FloatTarget.h"
-#include "GlDisplayPass.h"
 
-#include "vots/render/DisplaySettings.h"
 #include "vots/render/FrameStats.h"
 #include "vots/render/Image.h"
 
@@ -22,8 +19,5 @@ inline double msSince(FrameClock::time_point t0) {
 
 /// The frame's values, top row first; the time the readback took goes to stats.readbackMs.
 FloatImage readFloatFrame(const FloatTarget& target, FrameStats& stats);
-/// The frame through the display pass (window, colour map), only RGBA8 read back; timed the same way.
-RgbaImage readDisplayedFrame(GlDisplayPass& display, const FloatTarget& target,
-                             const DisplaySettings& settings, FrameStats& stats);
 
 } // namespace vots::render

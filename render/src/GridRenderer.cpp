@@ -3,7 +3,6 @@
 
 #include "FloatTarget.h"
 #include "FrameReadout.h"
-#include "GlDisplayPass.h"
 #include "GlObjects.h"
 #include "Shaders.h"
 #include "SlabClip.h"
@@ -110,7 +109,6 @@ struct GridRenderer::Impl {
     std::vector<Chunk> chunks;
     int chunkPlaneLimit = 0; // 0: from the GL limit and MAX_CHUNK_BYTES
     FloatTarget target;
-    GlDisplayPass display;
     bool hasData = false;
     SceneBounds bounds;
     std::array<float, 2> valueRange{0.f, 0.f};
@@ -280,13 +278,6 @@ FloatImage GridRenderer::render(const Camera& camera, int width, int height, con
     checkGridMode(options);
     mImpl->draw(camera, width, height, options);
     return readFloatFrame(mImpl->target, mImpl->stats);
-}
-
-RgbaImage GridRenderer::renderRgba(const Camera& camera, int width, int height,
-                                   const DisplaySettings& display, const RenderOptions& options) {
-    checkGridMode(options);
-    mImpl->draw(camera, width, height, options);
-    return readDisplayedFrame(mImpl->display, mImpl->target, display, mImpl->stats);
 }
 
 } // namespace vots::render

@@ -11,6 +11,5 @@ extern const char* const VOT_WALK_FRAG;
 extern const char* const VOT_WALK_COMP;
 extern const char* const FULLSCREEN_VERT;
 extern const char* const GRID_EXACT_FRAG;
-extern const char* const DISPLAY_FRAG;
 
 } // namespace vots::render::shaders

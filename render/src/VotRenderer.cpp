@@ -4,7 +4,6 @@
 #include "CpuSplat.h"
 #include "FloatTarget.h"
 #include "FrameReadout.h"
-#include "GlDisplayPass.h"
 #include "ParallelChunks.h"
 #include "RasterPass.h"
 #include "VotBounds.h"
@@ -41,7 +40,6 @@ struct VotRenderer::Impl {
     };
     std::optional<PendingWalk> pendingWalk;
     FloatTarget target;
-    GlDisplayPass display;
 
     bool hasData = false;
     SceneBounds bounds;
@@ -279,22 +277,6 @@ FloatImage VotRenderer::render(const Camera& camera, int width, int height, cons
     if (std::optional<FloatImage> drawn = mImpl->draw(camera, width, height, options))
         return std::move(*drawn);
     return readFloatFrame(mImpl->target, mImpl->stats);
-}
-
-RgbaImage VotRenderer::display(const FloatImage& image, const DisplaySettings& display) {
-    checkFloatImage(image);
-    mImpl->target.bind(image.width, image.height);
-    writeFloatImage(mImpl->target.texture(), image);
-    return readDisplayedFrame(mImpl->display, mImpl->target, display, mImpl->stats);
-}
-
-RgbaImage VotRenderer::renderRgba(const Camera& camera, int width, int height, const DisplaySettings& display,
-                                  const RenderOptions& options) {
-    if (std::optional<FloatImage> drawn = mImpl->draw(camera, width, height, options)) {
-        mImpl->target.bind(width, height);
-        writeFloatImage(mImpl->target.texture(), *drawn);
-    }
-    return readDisplayedFrame(mImpl->display, mImpl->target, display, mImpl->stats);
 }
 
 } // namespace vots::render

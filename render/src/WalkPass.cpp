@@ -26,10 +26,13 @@ namespace {
 constexpr int WALK_BRICK_SHIFT = 4; // bricks of 16^3 cells (bench/RESULTS.md compares 8, 16, 32)
 
 // An abandonable frame's bands: about eight, each of whole rows of llvmpipe's 64-pixel tiles, so that its
-// rasterizer threads still share full rows of tiles and a band costs about an eighth of the frame.
+// rasterizer threads still share full rows of tiles and a band costs about an eighth of the frame. A frame
+// of fewer tile rows than that (a drag's draft) is one band: bands of a row or two leave the threads short
+// of tiles (6-19 % slower at 256-320 rows, bench/RESULTS.md), and such a frame lasts about a still's band.
 constexpr int WALK_BANDS = 8;
 constexpr int TILE_SIDE = 64;
 int walkBandRows(int height) {
+    if (height < WALK_BANDS * TILE_SIDE) return height;
     const int rows = (height + WALK_BANDS - 1) / WALK_BANDS;
     return (rows + TILE_SIDE - 1) / TILE_SIDE * TILE_SIDE;
 }

@@ -41,15 +41,16 @@ TEST(AbandonedFrames, BandsGiveTheSamePixelsAsOnePass) {
     // Heights that are and are not whole bands, in every mode the walk draws, in both projections.
     for (const char* text : {"az=31,el=23,zoom=1.3", "az=-50,el=-30,zoom=1.4,proj=persp,fov=40"})
         for (RenderMode mode : {RenderMode::Mip, RenderMode::MinIp, RenderMode::Aip})
-            for (auto [width, height] : {std::pair{300, 900}, std::pair{257, 333}, std::pair{64, 40}}) {
+            for (auto [width, height] : {std::pair{300, 900}, std::pair{257, 600}, std::pair{64, 333}}) {
                 const Camera camera = parseCamera(text);
                 int questions = 0;
                 const FloatImage banded =
                     walk.render(camera, width, height, asking(mode, [&] { return ++questions < 0; }));
                 const FloatImage whole = walk.render(camera, width, height, RenderOptions{mode});
                 EXPECT_EQ(banded.pixels, whole.pixels) << text << " " << width << "x" << height;
-                // Asked once per band: eight bands of 128 rows for 900, six of 64 for 333, one for 40.
-                EXPECT_EQ(questions, height == 900 ? 8 : height == 333 ? 6 : 1) << height;
+                // Asked once per band: eight bands of 128 rows for 900, five for 600, and one for 333
+                // (fewer rows of 64-pixel tiles than bands: a draft's size, drawn whole).
+                EXPECT_EQ(questions, height == 900 ? 8 : height == 600 ? 5 : 1) << height;
             }
 }
 

@@ -12,9 +12,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <set>
+#include <vector>
 
 using namespace vots;
 using namespace vots::render;
@@ -137,34 +139,44 @@ TEST(Images, SameCameraGivesByteIdenticalPng) {
     EXPECT_EQ(first, third);
 }
 
-TEST(Images, DisplayPassMatchesCpuMapping) {
-    test::glContext();
+TEST(Images, DisplayPassMapsTheWindowOntoTheColourTable) {
+    // No GL context: the display pass is the CPU's. Row y holds the 256 window steps k (value low +
+    // width * k / 255, which must show entry k) shifted by a third of a step, which rounds to the same
+    // entry; the last row is below, above and off the window (entries 0, 255, and 0 for non-finite).
+    const DisplaySettings window = parseWindow("300,1000"); // low -200, high 800
     FloatImage img;
-    img.width = 300;
+    img.width = 256;
     img.height = 3;
-    for (int y = 0; y < 3; ++y)
-        for (int x = 0; x < 300; ++x)
-            img.pixels.push_back(-200.f + 3.7f * x + 0.01f * y);
-    img.pixels[5] = -INFINITY;
-    img.pixels[6] = INFINITY;
-    img.pixels[7] = NAN;
+    for (int y = 0; y < 2; ++y)
+        for (int k = 0; k < 256; ++k)
+            img.pixels.push_back(window.low() + window.width * (k + (y == 1 ? 1.f / 3 : 0.f)) / 255.f);
+    const std::vector<float> outside{-1e6f, -200.5f, 800.5f, 1e6f, -INFINITY, INFINITY, NAN};
+    const std::vector<int> expected{0, 0, 255, 255, 0, 0, 0};
+    img.pixels.insert(img.pixels.end(), outside.begin(), outside.end());
+    img.pixels.resize(256 * 3, NAN);
     for (Colormap map : ALL_COLORMAPS) {
-        const DisplaySettings s = parseWindow("300,1000", map);
+        DisplaySettings s = window;
+        s.colormap = map;
         const RgbaImage out = applyDisplay(img, s);
+        ASSERT_EQ(out.width, 256);
+        ASSERT_EQ(out.height, 3);
         const ColormapTable& table = colormapTable(map);
+        const auto shows = [&](int x, int y, int entry) {
+            const std::uint8_t* got = out.at(x, y);
+            return std::equal(got, got + 4, table[static_cast<std::size_t>(entry)].begin());
+        };
         int mismatches = 0;
-        for (int y = 0; y < 3; ++y)
-            for (int x = 0; x < 300; ++x) {
-                const auto& want = table[static_cast<std::size_t>(displayIndex(img.at(x, y), s))];
-                const std::uint8_t* got = out.at(x, y);
-                if (got[0] != want[0] || got[1] != want[1] || got[2] != want[2] || got[3] != 255)
-                    ++mismatches;
-            }
+        for (int y = 0; y < 2; ++y)
+            for (int k = 0; k < 256; ++k)
+                mismatches += shows(k, y, k) ? 0 : 1;
+        for (std::size_t i = 0; i < outside.size(); ++i)
+            mismatches += shows(static_cast<int>(i), 2, expected[i]) ? 0 : 1;
         EXPECT_EQ(mismatches, 0) << colormapName(map);
-        // Background shows as the window's low end.
-        EXPECT_EQ(out.at(5, 0)[0], table[0][0]);
-        EXPECT_EQ(out.at(6, 0)[1], table[0][1]);
+        EXPECT_EQ(out.at(0, 0)[3], 255) << "opaque";
     }
+    FloatImage wrong = img;
+    wrong.pixels.pop_back();
+    EXPECT_THROW(applyDisplay(wrong, window), fit::GraphicsError);
 }
 
 TEST(Images, RejectsBadSizes) {

@@ -184,8 +184,8 @@ RenderResult RenderQueue::draw(Renderers& r, const RenderJob& job) {
         r.uploadedSpace = nullptr; // the ranks' port uploads this rank's own Vots and samples
         r.uploadedVolume = nullptr;
         const dist::ComposedFrame composed = mRanks->draw(request, *r.vots, *r.grid);
-        // Shown as one process shows its frame: the renderer's own display pass over the same range.
-        result.image = r.vots->display(composed.image, render::displayFor(p, composed.displayRange));
+        // Shown as one process shows its frame: the same display pass over the same range.
+        result.image = render::applyDisplay(composed.image, render::displayFor(p, composed.displayRange));
         // Read here, on the render thread, before another frame replaces them.
         for (const dist::RankTimes& t : mRanks->lastTimes()) {
             result.votCount += static_cast<std::size_t>(t.votCount);

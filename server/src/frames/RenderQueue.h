@@ -46,8 +46,9 @@ struct RenderJob {
     // many requests or viewers do not hold back another's one. Empty: the server's own (warm-ups).
     std::string owner;
     // A newer job of the same client (params.client, not empty) gives this one up between the bands of its
-    // walk once it has begun, not only while it waits: a viewer's full-size still that the camera has
-    // left holds the render thread for a band, not the whole frame (render::RenderOptions::abandoned).
+    // walk (or runs of its splat) once it has begun, not only while it waits: a viewer's full-size still
+    // that the camera has left holds the render thread for a band, not the whole frame, and the still
+    // that ends a drag does not wait for the draft it replaces (render::RenderOptions::abandoned).
     bool abandonable = false;
 };
 
@@ -55,7 +56,7 @@ struct RenderResult {
     render::RgbaImage image;   // encoded to PNG by the waiting handler, so the render thread only renders
     render::FloatImage values; // RenderJob::values: the frame in data units instead of `image`
     std::array<float, 2> drawable{0, 0}; // RenderJob::values: every value the renderer can draw
-    double frameMs = 0.0;                // render + display pass on the GPU, without PNG encoding
+    double frameMs = 0.0;                // render + display pass, without PNG encoding
     double uploadMs = 0.0; // of frameMs: the upload of a Vot-Space or volume not drawn just before (else 0)
     std::size_t votCount = 0; // Vots in the Vot-Space drawn (0 for reference); under mpirun, all ranks'
     double fitMs = 0.0; // under mpirun: the slowest rank's fit the frame was drawn from (made now or before)

@@ -133,6 +133,10 @@ void Viewer::draw(const PendingView& view) {
                 mDrawnFrom = prepared.drawnFrom;
             }
             RenderJob job = prepared.job;
+            // Given up once the still that ends the gesture reaches the render queue: the pacing takes this
+            // socket's next draft only after this one's render, so the still is the only newer job of the
+            // socket that can come meanwhile, and it need not wait for the rest of a frame it replaces.
+            job.abandonable = true;
             job.params.width = size.first;
             job.params.height = size.second;
             const RenderResult result = s.renderQueue->render(std::move(job)); // throws HttpError

@@ -1,4 +1,4 @@
-// The display pass on its own: window/level + colour map of any float image on the GPU.
+// The display pass: window/level + colour map of any float image, on the CPU (no GL context needed).
 #pragma once
 
 #include "vots/render/DisplaySettings.h"
@@ -6,8 +6,8 @@
 
 namespace vots::render {
 
-/// Uploads the image and runs the same shader the renderers' renderRgba() use (e.g. to re-window
-/// without re-rendering). Needs a current EglContext.
+/// RGBA8 of `image` (top row first), each pixel colormapTable(display.colormap)[displayIndex(v, display)].
+/// Throws fit::GraphicsError for an image whose size and pixels disagree or a window width not > 0.
 RgbaImage applyDisplay(const FloatImage& image, const DisplaySettings& display);
 
 } // namespace vots::render

@@ -3,7 +3,9 @@
 
 #include "vots/render/Colormap.h"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <string_view>
 
@@ -27,7 +29,11 @@ DisplaySettings windowForRange(float lo, float hi, Colormap map = Colormap::Grey
 /// Parses "level,width" (finite numbers, width > 0); throws vots::fit::InputError.
 DisplaySettings parseWindow(std::string_view text, Colormap map = Colormap::Grey);
 
-/// The colormap index of one value: the CPU statement of what the display shader does.
-int displayIndex(float value, const DisplaySettings& settings);
+/// The colormap index of one value: the display pass's rule (applyDisplay), inline for its per-pixel loop.
+inline int displayIndex(float value, const DisplaySettings& settings) {
+    if (!std::isfinite(value)) return 0;
+    const float t = std::clamp((value - settings.low()) / settings.width, 0.f, 1.f);
+    return static_cast<int>(std::floor(255.f * t + 0.5f));
+}
 
 } // namespace vots::render

@@ -51,8 +51,6 @@ public:
     /// Mip, MinIp or Aip, with or without a slab; Density needs Vots and throws fit::InputError.
     FloatImage render(const Camera& camera, int width, int height,
                       const RenderOptions& options = RenderMode::Mip) override;
-    RgbaImage renderRgba(const Camera& camera, int width, int height, const DisplaySettings& display,
-                         const RenderOptions& options = RenderMode::Mip) override;
     const FrameStats& lastFrameStats() const override;
 
     struct Impl;

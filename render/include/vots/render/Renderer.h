@@ -2,6 +2,7 @@
 #pragma once
 
 #include "vots/render/Camera.h"
+#include "vots/render/DisplayPass.h"
 #include "vots/render/DisplaySettings.h"
 #include "vots/render/FrameStats.h"
 #include "vots/render/Image.h"
@@ -31,9 +32,11 @@ public:
     virtual std::array<float, 2> valueRange() const = 0;
 
     virtual FloatImage render(const Camera& camera, int width, int height, const RenderOptions& options) = 0;
-    /// render() followed by the display pass on the GPU; only RGBA8 is read back.
-    virtual RgbaImage renderRgba(const Camera& camera, int width, int height, const DisplaySettings& display,
-                                 const RenderOptions& options) = 0;
+    /// render() followed by the display pass (applyDisplay).
+    RgbaImage renderRgba(const Camera& camera, int width, int height, const DisplaySettings& display,
+                         const RenderOptions& options = RenderMode::Mip) {
+        return applyDisplay(render(camera, width, height, options), display);
+    }
     /// Times and counts of the last frame.
     virtual const FrameStats& lastFrameStats() const = 0;
 

@@ -84,12 +84,6 @@ public:
     /// RenderMode::Mip or RenderMode::Density.
     FloatImage render(const Camera& camera, int width, int height,
                       const RenderOptions& options = RenderMode::Mip) override;
-    /// render() followed by the display pass on the GPU; only RGBA8 is read back.
-    RgbaImage renderRgba(const Camera& camera, int width, int height, const DisplaySettings& display,
-                         const RenderOptions& options = RenderMode::Mip) override;
-    /// The display pass of renderRgba over a float image drawn elsewhere (under mpirun, the ranks'
-    /// composite): the same shader and program, so the same bytes as a frame drawn here.
-    RgbaImage display(const FloatImage& image, const DisplaySettings& display);
 
     /// Cuts every ray of the walk's frames (minip, aip, and mip when the walk draws it) to the cells of
     /// `domain`, exactly: outside it nothing counts, not even background, and the mean divides by the
