@@ -35,6 +35,10 @@ public:
     std::optional<Box> tightBox(const Box& box) const;
 
     static constexpr int WORD_CELLS = 4; // per axis: 4^3 = 64 cells, one word
+    std::size_t memoryBytes() const {
+        return sizeof(*this) + mWords.capacity() * sizeof(std::uint64_t) +
+               mWordPrefix.capacity() * sizeof(std::uint32_t);
+    }
 
 private:
     std::size_t wordIndex(int bx, int by, int bz) const {

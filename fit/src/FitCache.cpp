@@ -12,6 +12,9 @@ FitCache::~FitCache() = default;
 std::size_t FitCache::size() const {
     return mImpl->size();
 }
+std::size_t FitCache::memoryBytes() const {
+    return mImpl->memoryBytes();
+}
 
 void FitCache::Impl::bind(const Volume& volume, int degreeIn, Certify certifyIn, FitNorm normIn) {
     if (volumeData == sampleData(volume) && dims == volume.dims && degree == degreeIn &&
@@ -118,6 +121,20 @@ std::size_t FitCache::Impl::size() {
         n += shard.index.size();
     }
     return n;
+}
+
+std::size_t FitCache::Impl::memoryBytes() {
+    // The index's slots (a control byte and a box -> entry pair each, at its capacity) and the entries.
+    constexpr std::size_t SLOT = 1 + sizeof(std::pair<Box, std::uint32_t>);
+    std::size_t bytes = sizeof(Impl);
+    for (auto& shard : shards) {
+        std::lock_guard lock(shard.mutex);
+        bytes += shard.index.capacity() * SLOT + shard.entries.size() * sizeof(CachedBox) +
+                 shard.minimaxes.size() * sizeof(CachedMinimax);
+    }
+    std::lock_guard lock(maskMutex);
+    if (mask) bytes += mask->memoryBytes();
+    return bytes;
 }
 
 } // namespace vots::fit

@@ -93,6 +93,7 @@ struct FitCache::Impl {
     void find(const Box& box, BoxRecord& record);
     void store(const Box& box, const BoxRecord& record);
     std::size_t size();
+    std::size_t memoryBytes();
 };
 
 } // namespace vots::fit

@@ -28,8 +28,9 @@ constexpr int LISTEN_BACKLOG = 1024;
 // slider again at once would otherwise share the cores with the last fit's file.
 constexpr auto DISK_WRITE_QUIET = std::chrono::milliseconds(500);
 
-FitJobLimits limitsFrom(const ServerOptions& o) {
+FitJobLimits limitsFrom(const ServerOptions& o, std::uint64_t memoryBudget) {
     FitJobLimits limits;
+    limits.boxCacheBytes = std::min(o.boxCacheBytes, memoryBudget / 4);
     limits.maxRunning = o.maxRunningFits;
     limits.maxQueued = o.maxQueuedFits;
     limits.warmUp = o.warmUpFits;
@@ -73,7 +74,7 @@ Server::Impl::Impl(ServerOptions opts)
       memory(options.memoryBudgetBytes ? options.memoryBudgetBytes : fit::defaultMemoryBudget()),
       registry(options.dataDirs, memory, options.heldFrameBytes),
       cache(options.cacheDir, options.memoryCacheBytes, options.diskCacheBytes),
-      fitJobs(cache, stats, foreground, memory, limitsFrom(options)),
+      fitJobs(cache, stats, foreground, memory, limitsFrom(options, memory.budget())),
       seriesOpens(options.dicomWebServices,
                   options.cacheDir.empty() ? fs::path() : options.cacheDir / "dicomweb",
                   options.retrievedSeriesBytes, registry, memory),

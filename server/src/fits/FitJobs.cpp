@@ -34,7 +34,8 @@ FitRecord recordFor(const JobSnapshot& job, const char* source) {
 FitJobs::FitJobs(VotSpaceCache& cache, ServerStats& stats, ForegroundActivity& foreground,
                  MemoryAdmission& memory, FitJobLimits limits)
     : mCache(cache), mStats(stats), mForeground(foreground), mMemory(memory), mLimits(limits),
-      mPerClient(limits.perClient, "fits"), mWarmUps(mBoxCaches, cache, foreground, limits.warmUp) {
+      mPerClient(limits.perClient, "fits"), mBoxCaches(limits.boxCacheBytes),
+      mWarmUps(mBoxCaches, cache, foreground, limits.warmUp) {
     for (int i = 0; i < std::max(1, mLimits.maxRunning); ++i)
         mWorkers.emplace_back([this] { workerLoop(); });
 }

@@ -37,6 +37,7 @@ struct FitJobLimits {
     int perClient = 3;     // queued or running fits one client (remote address) started; 0: no limit
     int keepFinished = 32; // finished jobs remembered for /api/jobs/{id} (their results only weakly)
     bool warmUp = true;    // fit the slider's rungs around the last eps while idle (WarmUpFits)
+    std::uint64_t boxCacheBytes = std::uint64_t{1} << 30; // the fitter's box caches (BoxCaches)
 };
 
 /// What a fit made by other processes gave (`vots serve` under mpirun): the Vots of all the ranks' cells
@@ -71,6 +72,7 @@ public:
     /// Queued plus running.
     int activeCount() const;
     WarmUpSummary warmUps() const { return mWarmUps.summary(); }
+    BoxCacheStats boxCaches() const { return mBoxCaches.stats(); }
     /// Refuses new jobs (503), fails queued ones and cancels running fits; idempotent.
     void shutdown();
     /// Under mpirun: every fit is made by the ranks, each of its z cells, through `fit` (which waits for

@@ -34,6 +34,7 @@ void installStatsRoute(Server::Impl& s) {
         const HeldFramesSummary held = s.registry.heldFrames();
 
         const WarmUpSummary warm = s.fitJobs.warmUps();
+        const BoxCacheStats boxes = s.fitJobs.boxCaches();
         const RenderQueue* queue = s.renderQueue.get();
         nlohmann::json renderer = {{"available", queue && queue->hasContext()},
                                    {"name", queue ? queue->rendererName() : ""},
@@ -84,6 +85,11 @@ void installStatsRoute(Server::Impl& s) {
                     {"lastKey", warm.lastKey},
                     {"lastEps", warm.lastEps},
                     {"lastSeconds", warm.lastSeconds}}},
+                  {"boxCaches",
+                   {{"caches", boxes.caches},
+                    {"bytes", boxes.bytes},
+                    {"budgetBytes", boxes.budgetBytes},
+                    {"dropped", boxes.dropped}}},
                   {"cache",
                    {{"memory", memory},
                     {"memoryBytes", memoryBytes},

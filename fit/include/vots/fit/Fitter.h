@@ -122,7 +122,10 @@ public:
     ~FitCache();
     FitCache(const FitCache&) = delete;
     FitCache& operator=(const FitCache&) = delete;
-    std::size_t size() const;
+    std::size_t size() const; // boxes remembered
+    /// About the bytes it holds (its index, entries and background mask): it grows with every fit at a new
+    /// eps, so a long-lived owner bounds it (the server's BoxCaches).
+    std::size_t memoryBytes() const;
     struct Impl;
     Impl& impl() { return *mImpl; }
 

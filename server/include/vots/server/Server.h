@@ -27,10 +27,13 @@ struct DicomWebService {
 };
 
 struct ServerOptions {
-    std::vector<std::filesystem::path> dataDirs;            // searched in order for volumes
-    std::filesystem::path webDir;                           // static files; empty: none served
-    std::filesystem::path cacheDir;                         // .vots cache; empty: memory only
-    std::size_t memoryCacheBytes = std::size_t{1} << 30;    // fitted Vot-Spaces kept in memory
+    std::vector<std::filesystem::path> dataDirs;         // searched in order for volumes
+    std::filesystem::path webDir;                        // static files; empty: none served
+    std::filesystem::path cacheDir;                      // .vots cache; empty: memory only
+    std::size_t memoryCacheBytes = std::size_t{1} << 30; // fitted Vot-Spaces kept in memory
+    // The fitter's box caches (what makes a refit at a new eps quick), at most a quarter of the memory
+    // budget; beyond, the least recently used dataset's go first (BoxCaches).
+    std::uint64_t boxCacheBytes = std::uint64_t{1} << 30;
     std::uint64_t diskCacheBytes = std::uint64_t{16} << 30; // .vots files kept in cacheDir (LRU beyond)
     std::size_t frameCacheBytes = std::size_t{64} << 20;    // encoded /render answers kept in memory
     int maxRunningFits = 2;
