@@ -36,10 +36,13 @@ WarmUpFits::~WarmUpFits() {
 void WarmUpFits::stop() {
     std::lock_guard lock(mMutex);
     mStopping = true;
+    mDropPending = true;
     mCancel = true;
 }
 
 void WarmUpFits::giveWay() {
+    std::lock_guard lock(mMutex);
+    mDropPending = true;
     mCancel = true;
 }
 
@@ -63,7 +66,9 @@ void WarmUpFits::afterIdleFit(std::shared_ptr<const Dataset> dataset, const FitK
     if (keys.empty()) return;
     mDataset = std::move(dataset);
     mPending = std::move(keys);
-    mCancel = false; // a warm-up cancelled for the fit that ended here: its thread goes on with these
+    // These replace what giveWay dropped. A warm-up it cancelled stays cancelled: the requested fit may end
+    // before that one's fitter has looked at the flag (a fit at a large eps takes milliseconds).
+    mDropPending = false;
     if (mSummary.running) return;
     if (mThread.joinable()) mThread.join(); // the last one has ended: it cleared mSummary.running
     mSummary.running = true;
@@ -80,7 +85,21 @@ void WarmUpFits::run() {
     // Lowest priority, inherited by the fit's worker threads: it must not slow a frame or a fit. Nice 19
     // rather than SCHED_IDLE, which a busy machine can starve for minutes.
     lowerThisThreadToNice19();
+    // Whether pending keys are left; drops them first when a requested fit came (giveWay) since.
+    const auto anyLeftLocked = [this] {
+        if (mDropPending) dropPendingLocked();
+        mDropPending = false;
+        if (!mPending.empty()) return true;
+        mDataset.reset();         // a dataset the registry drops (a 4D frame) is not kept alive here
+        mSummary.running = false; // under the lock: afterIdleFit then starts a new thread
+        return false;
+    };
     for (;;) {
+        {
+            std::lock_guard lock(mMutex);
+            if (!anyLeftLocked()) return;
+            mCancel = false; // what stopped the last warm-up is dealt with; giveWay sets it again
+        }
         // Not while the fit that asked for these is still being shown: its upload and first frames follow
         // it at once, and a warm-up beside them, even at nice 19, delays the image the user waits for.
         while (!mCancel && mForeground.busyWithin(QUIET))
@@ -89,12 +108,7 @@ void WarmUpFits::run() {
         std::shared_ptr<const Dataset> dataset;
         {
             std::lock_guard lock(mMutex);
-            if (mCancel) dropPendingLocked(); // given way before this one started
-            if (mPending.empty()) {
-                mDataset.reset();         // a dataset the registry drops (a 4D frame) is not kept alive here
-                mSummary.running = false; // under the lock: afterIdleFit then starts a new thread
-                return;
-            }
+            if (!anyLeftLocked()) return;
             key = mPending.front();
             mPending.erase(mPending.begin());
             dataset = mDataset;

@@ -83,6 +83,9 @@ private:
 
     mutable std::mutex mMutex;
     bool mStopping = false;
+    // A requested fit came (giveWay): the pending keys are dropped before the next warm-up starts, unless
+    // an idle fit's rungs have replaced them since. mCancel, set with it, stops the running warm-up only.
+    bool mDropPending = false;
     WarmUpSummary mSummary;
     std::shared_ptr<const Dataset> mDataset; // of the pending keys
     std::vector<FitKey> mPending;            // nearest first
