@@ -10,29 +10,27 @@ std::shared_ptr<fit::FitCache> BoxCaches::forFits(const std::string& dataset, in
     std::lock_guard lock(mMutex);
     auto it = std::find_if(mKept.begin(), mKept.end(), [&](const Kept& k) { return k.name == name; });
     if (it == mKept.end())
-        mKept.push_front({name, std::make_shared<fit::FitCache>()});
+        mKept.push_front({name, std::make_shared<fit::FitCache>(), 0});
     else
         mKept.splice(mKept.begin(), mKept, it);
-    // Counted here, at a fit's start: between fits a cache does not grow, and a fit running now (a
-    // warm-up beside a requested fit) is counted at the next one.
-    const auto total = [&] {
-        std::uint64_t bytes = 0;
-        for (const Kept& k : mKept)
-            bytes += k.cache->memoryBytes();
-        return bytes;
-    };
-    mBytes = total();
+    // Counted here, once per cache, at a fit's start: between fits a cache does not grow, and a fit running
+    // now (a warm-up beside a requested fit) is counted at the next one.
+    mBytes = 0;
+    for (Kept& k : mKept)
+        mBytes += k.bytes = k.cache->memoryBytes();
     while (mKept.size() > MAX_KEPT || (mKept.size() > 1 && mBytes > mBudget)) {
+        mBytes -= mKept.back().bytes;
         mKept.pop_back();
         ++mDropped;
-        mBytes = total();
     }
+    Kept& asked = mKept.front();
     if (mBytes > mBudget) {
-        mKept.front().cache = std::make_shared<fit::FitCache>();
+        mBytes -= asked.bytes;
+        asked.cache = std::make_shared<fit::FitCache>();
+        mBytes += asked.bytes = asked.cache->memoryBytes();
         ++mDropped;
-        mBytes = total();
     }
-    return mKept.front().cache;
+    return asked.cache;
 }
 
 BoxCacheStats BoxCaches::stats() const {

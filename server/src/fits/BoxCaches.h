@@ -39,6 +39,7 @@ private:
     struct Kept {
         std::string name; // "dataset/frame/degree"
         std::shared_ptr<fit::FitCache> cache;
+        std::uint64_t bytes = 0; // its memoryBytes() at the last fit's start
     };
     const std::uint64_t mBudget;
     mutable std::mutex mMutex;
