@@ -56,6 +56,15 @@ public:
         return o;
     }
 
+    /// options() without a renderer or warm-up fits: a server whose every fit job was asked for by the
+    /// test, and whose cache folder holds only those fits' files.
+    server::ServerOptions quietOptions() const {
+        server::ServerOptions o = options();
+        o.withRenderer = false;
+        o.warmUpFits = false;
+        return o;
+    }
+
 private:
     TempDir mDir;
 };

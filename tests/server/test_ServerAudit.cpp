@@ -14,9 +14,7 @@ namespace {
 constexpr const char* TOKEN = "audit-viewer-token-0123456789";
 
 server::ServerOptions auditedOptions(const ServerWorld& world, const std::string& log) {
-    server::ServerOptions o = world.options();
-    o.withRenderer = false;
-    o.warmUpFits = false;
+    server::ServerOptions o = world.quietOptions();
     o.accessTokens = {{"alice", server::Role::Operator, TOKEN}};
     o.auditLog = log;
     return o;

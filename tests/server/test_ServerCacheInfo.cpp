@@ -23,9 +23,7 @@ std::string cliOutput(const std::string& args) {
 
 TEST(ServerCacheInfo, InfoOfACacheFileShowsItsFitTimeAndKey) {
     ServerWorld world;
-    server::ServerOptions options = world.options();
-    options.withRenderer = false;
-    options.warmUpFits = false; // only the requested fit's file in the folder
+    const server::ServerOptions options = world.quietOptions(); // only the requested fit's file in the folder
     LoopbackServer server(options);
     auto c = server.client();
     const auto posted = bodyJson(

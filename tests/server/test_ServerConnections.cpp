@@ -42,10 +42,8 @@ double secondsSince(Clock::time_point start) {
 TEST(ServerConnections, IdleConnectionsAndWatchersDoNotDelayAPlainRequest) {
     ServerWorld world;
     addNoiseVolume(world);
-    auto options = world.options();
+    auto options = world.quietOptions();
     options.maxRunningFits = 1;
-    options.warmUpFits = false;
-    options.withRenderer = false;
     LoopbackServer server(options);
     const int port = server.port();
     auto c = server.client();
@@ -92,8 +90,6 @@ TEST(ServerConnections, AClientFloodingFitsGets429AndAnotherIsServed) {
     options.maxRunningFits = 1;
     options.maxQueuedFits = 8;
     options.maxFitsPerClient = 3;
-    options.warmUpFits = false;
-    options.withRenderer = false;
     LoopbackServer server(options);
     const int port = server.port();
 

@@ -26,10 +26,8 @@ class FitSupersede : public ::testing::Test {
 protected:
     FitSupersede() {
         addNoiseVolume(mWorld);
-        auto options = mWorld.options();
+        auto options = mWorld.quietOptions();
         options.maxRunningFits = 1; // the second fit queues behind the first
-        options.warmUpFits = false;
-        options.withRenderer = false;
         mServer = std::make_unique<LoopbackServer>(options);
     }
 

@@ -91,9 +91,7 @@ TEST(ServerMemoryBudget, ASmallBudgetThatIsBigEnoughServesAndOneTooSmallRefuses)
     const std::uint64_t needed = fit::estimateLoadAndFitBytes(fit::volumeHeaderInfo(mriBrain), HELD);
     const std::uint64_t blobs = fit::estimateLoadAndFitBytes(
         fit::volumeHeaderInfo((world.data() / (std::string(BLOBS_FILE))).string()), HELD);
-    auto options = world.options();
-    options.withRenderer = false;
-    options.warmUpFits = false;
+    auto options = world.quietOptions();
     {
         // Room for either dataset and its fit, with some slack for the server's own threads: far less than
         // the default budget of most of the machine.
@@ -124,9 +122,7 @@ TEST(ServerMemoryBudget, AFitJobReservesItsMemoryUntilItEnds) {
     ServerWorld world;
     const std::string path = (world.data() / (std::string(BLOBS_FILE))).string();
     const std::uint64_t needed = fit::estimateLoadAndFitBytes(fit::volumeHeaderInfo(path), HELD);
-    auto options = world.options();
-    options.withRenderer = false;
-    options.warmUpFits = false;
+    auto options = world.quietOptions();
     // Room for loading and one fit, not for a second fit beside it.
     options.memoryBudgetBytes = fit::residentBytes() + needed + (std::uint64_t{64} << 20);
     LoopbackServer server(options);

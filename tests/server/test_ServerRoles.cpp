@@ -137,10 +137,7 @@ TEST_F(ServerViewerFits, AViewerDrawsAnOperatorsFitButStartsNoneAtANewEps) {
 
 TEST(ServerRolesOpen, WithoutTokensEveryoneIsAnOperator) {
     ServerWorld world;
-    server::ServerOptions o = world.options();
-    o.withRenderer = false;
-    o.warmUpFits = false;
-    LoopbackServer server(o);
+    LoopbackServer server(world.quietOptions());
     const auto res = server.client()->Get("/api/access");
     ASSERT_TRUE(res);
     EXPECT_EQ(bodyJson(res)["role"], "operator");

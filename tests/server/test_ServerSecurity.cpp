@@ -9,14 +9,6 @@ namespace {
 
 constexpr const char* TOKEN = "a1b2c3d4e5f6a7b8c9d0e1f2";
 
-/// A server without renderer, warm-up or prepared dataset: every fit job it has was asked for here.
-server::ServerOptions quietOptions(const ServerWorld& world) {
-    server::ServerOptions o = world.options();
-    o.withRenderer = false;
-    o.warmUpFits = false;
-    return o;
-}
-
 std::string fitBody() {
     return nlohmann::json{{"dataset", BLOBS}, {"eps", 9}}.dump();
 }
@@ -32,7 +24,7 @@ void expectJsonError(const httplib::Result& res, int status, const std::string& 
 
 TEST(ServerSecurity, ForeignHostNamesAreRefusedBeforeAnyRoute) {
     ServerWorld world;
-    server::ServerOptions options = quietOptions(world);
+    server::ServerOptions options = world.quietOptions();
     options.allowedHosts = {"vots.lan", "proxy.lan:8443"};
     LoopbackServer server(options);
     auto c = server.client();
@@ -60,7 +52,7 @@ TEST(ServerSecurity, ForeignHostNamesAreRefusedBeforeAnyRoute) {
 
 TEST(ServerSecurity, CrossSiteRequestsStartNoFitWhileSameOriginOnesDo) {
     ServerWorld world;
-    LoopbackServer server(quietOptions(world));
+    LoopbackServer server(world.quietOptions());
     auto c = server.client();
     const std::string own = "http://127.0.0.1:" + std::to_string(server.port());
     // What a foreign page can send without asking first, or with a foreign Origin.
@@ -104,7 +96,7 @@ TEST(ServerSecurity, CrossSiteRequestsStartNoFitWhileSameOriginOnesDo) {
 
 TEST(ServerSecurity, TokenIsRequiredOnTheApiButNotForTheViewerFiles) {
     ServerWorld world;
-    server::ServerOptions options = quietOptions(world);
+    server::ServerOptions options = world.quietOptions();
     options.accessTokens = {{"operator", server::Role::Operator, TOKEN}};
     LoopbackServer server(options);
     auto c = server.client();
@@ -158,7 +150,7 @@ TEST(ServerSecurity, TokenIsRequiredOnTheApiButNotForTheViewerFiles) {
 
 TEST(ServerSecurity, BoundToEveryInterfaceItAnswersAddressesButNoForeignName) {
     ServerWorld world;
-    server::ServerOptions options = quietOptions(world);
+    server::ServerOptions options = world.quietOptions();
     options.accessTokens = {{"operator", server::Role::Operator, TOKEN}};
     LoopbackServer server(options, "0.0.0.0");
     auto c = server.client();

@@ -303,9 +303,7 @@ TEST_F(ServerViewerStream, OneAddressOpensAtMost32Sockets) {
 
 TEST(ServerViewerStreamGuard, TheUpgradePassesHostOriginAndToken) {
     ServerWorld world;
-    server::ServerOptions options = world.options();
-    options.withRenderer = false;
-    options.warmUpFits = false;
+    server::ServerOptions options = world.quietOptions();
     options.accessTokens = {{"operator", server::Role::Operator, TOKEN}};
     LoopbackServer server(options);
     const int port = server.port();

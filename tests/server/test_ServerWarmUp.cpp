@@ -151,7 +151,7 @@ TEST(ServerWarmUp, NoneWhenTurnedOff) {
     ServerWorld world;
     auto options = world.options();
     options.withRenderer = false;
-    options.warmUpFits = false;
+    options.warmUpFits = false; // what this test is about, so not left to quietOptions()
     LoopbackServer server(options);
     auto c = server.client();
     ASSERT_EQ(waitForJob(*c, postFit(*c, MRI_BRAIN, "\"8%\""))["state"], "done");

@@ -27,9 +27,12 @@ class Viewer final : public WebSocketHandler, public std::enable_shared_from_thi
 public:
     // Two: one frame drawn while the page decodes the last, and no queue of old frames anywhere.
     static constexpr std::size_t MAX_IN_FLIGHT = 2;
-    // From the queue to the JPEG: 24 frames/s when the render thread is this viewer's alone (with two in
-    // flight the page decodes one frame while the next is drawn, so the draw sets the pace).
-    static constexpr double DRAFT_BUDGET_MS = 1000.0 / 24;
+    // From the queue to the JPEG, set by the latency of a move rather than by a frame rate: drafts are
+    // drawn back to back (two in flight, so the draw sets the pace), so a pointer move waits on average
+    // half a draft for the next one to start, then the draft itself, then ~10 ms of send and decode: about
+    // 1.5 budgets + 10 ms to the screen. 32 frames/s keeps that under 60 ms; 24 frames/s gave larger
+    // drafts but 73 ms (bench/RESULTS.md, "The draft budget").
+    static constexpr double DRAFT_BUDGET_MS = 1000.0 / 32;
     // trame sends 50-60 while interacting; 70 keeps thin bone edges and text in the frame readable.
     static constexpr int DRAFT_QUALITY = 70;
 
