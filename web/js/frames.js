@@ -20,6 +20,11 @@ const RESIZE_SETTLE_MS = 100; // a frame for the new view size once resizing pau
 // takes for one grows with it.
 const STILL_AFTER_PAUSE_MS = 100;
 const PAUSE_DRAFTS = 2;
+// A drag's views go out on the socket at most this often. A view per animation frame on a 240 Hz display,
+// with the acknowledgements, passes the server's 240 messages a second, and the server closes a socket
+// that does (1008; the page then falls back to /render). The server draws about 32 drafts a second and
+// keeps only the newest view waiting, so a view sent more often only replaces one still waiting there.
+const MIN_DRAFT_VIEW_GAP_MS = 8;
 // A frame the server refused for being busy (429: this page's share of renders is taken; 503: its queue is
 // full, or a fit it waited on is not there yet) is asked for again after RETRY_MS, up to RETRIES times in
 // a row: a busy moment must not leave the view stale until the hand moves again. The banner says why;
@@ -49,6 +54,7 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
   let resizeTimer = 0;
   let pauseTimer = 0; // armed by each draft on the socket: the still of a paused drag
   let draftDrawMs = 0; // the server's time for the last draft shown
+  let draftViewSentAt = -Infinity; // performance.now() of the last draft view sent on the socket
   let socket = null; // the viewer socket once open; null: frames come from GET /render
   let socketTried = false;
   let streamPending = null; // {seq, preview}: the newest view sent on the socket and not shown yet
@@ -130,6 +136,10 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
   function flush() {
     rafId = 0;
     if (!view.dataset || (renderEps === null && !previewing())) return onChange();
+    if (socket && wantDraft && performance.now() - draftViewSentAt < MIN_DRAFT_VIEW_GAP_MS) {
+      rafId = requestAnimationFrame(flush); // the newest camera goes with a later frame
+      return;
+    }
     const newEpsDraft = draftAtNewEps && !wantDraft; // not a drag's: the still follows when it lands
     const draft = wantDraft || newEpsDraft;
     draftAtNewEps = false;
@@ -305,6 +315,7 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
     if (key === streamSentKey || (!draft && url === shownUrl)) return onChange();
     streamSentKey = key;
     const seq = socket.sendView(viewParamsRecord(params), !draft);
+    if (draft) draftViewSentAt = performance.now();
     stillAfterDraft = newEpsDraft ? { seq } : null;
     sentUrls.set(seq, { url, sentAt: performance.now(), view: structuredClone(view) });
     streamPending = { seq, preview: previewing() };
