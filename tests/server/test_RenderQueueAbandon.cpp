@@ -1,51 +1,23 @@
 // The render thread gives up a viewer's still between the bands of its walk when that viewer asks for
 // another frame, and only then: not a frame that may not be given up, not for another client's frame.
 #include "HttpError.h"
-#include "SampleVolume.h"
+#include "RenderQueueJobs.h"
 #include "ServerStats.h"
 #include "frames/ForegroundActivity.h"
 #include "frames/RenderQueue.h"
 
-#include "vots/fit/Fitter.h"
-
 #include <gtest/gtest.h>
 
 #include <chrono>
-#include <cmath>
 #include <cstdlib>
 #include <future>
-#include <memory>
+#include <optional>
 #include <thread>
 
 namespace vots::server {
 namespace {
 
-// Two smooth blobs, fitted: disjoint boxes, so the frames are walked.
-std::shared_ptr<const fit::VotSpace> blobSpace() {
-    static const auto space = [] {
-        const fit::Volume volume = test::sampleVolume({48, 48, 48}, [](int x, int y, int z) {
-            const auto blob = [&](double cx, double cy, double cz) {
-                const double d2 = (x - cx) * (x - cx) + (y - cy) * (y - cy) + (z - cz) * (z - cz);
-                return 1000.0 * std::exp(-d2 / 60.0);
-            };
-            return blob(16, 20, 24) + blob(32, 28, 22);
-        });
-        fit::FitOptions options;
-        options.eps = 10.f;
-        options.background = 1.f;
-        return std::make_shared<const fit::VotSpace>(fit::fitVotSpace(volume, options).space);
-    }();
-    return space;
-}
-
-RenderJob frameOf(const std::string& client, int side, bool abandonable) {
-    RenderJob job;
-    job.params.client = client;
-    job.params.width = job.params.height = side;
-    job.space = blobSpace();
-    job.abandonable = abandonable;
-    return job;
-}
+using test::frameOf;
 
 int statusOf(RenderQueue& queue, RenderJob job) {
     try {

@@ -1,48 +1,24 @@
 // A client's newer frame takes its waiting frame's place in the render queue instead of going to the back,
 // so a viewer that replaces its frame often (a paused drag's still, then a draft) is still drawn in turn.
 #include "HttpError.h"
-#include "SampleVolume.h"
+#include "RenderQueueJobs.h"
 #include "ServerStats.h"
 #include "frames/ForegroundActivity.h"
 #include "frames/RenderQueue.h"
 
-#include "vots/fit/Fitter.h"
-
 #include <gtest/gtest.h>
 
 #include <chrono>
-#include <cmath>
 #include <cstdlib>
 #include <future>
-#include <memory>
+#include <optional>
 #include <thread>
 
 namespace vots::server {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-std::shared_ptr<const fit::VotSpace> blobSpace() {
-    static const auto space = [] {
-        const fit::Volume volume = test::sampleVolume({40, 40, 40}, [](int x, int y, int z) {
-            const double d2 = (x - 20.0) * (x - 20.0) + (y - 18.0) * (y - 18.0) + (z - 21.0) * (z - 21.0);
-            return 1000.0 * std::exp(-d2 / 80.0);
-        });
-        fit::FitOptions options;
-        options.eps = 10.f;
-        options.background = 1.f;
-        return std::make_shared<const fit::VotSpace>(fit::fitVotSpace(volume, options).space);
-    }();
-    return space;
-}
-
-RenderJob frameOf(const std::string& client, int side) {
-    RenderJob job;
-    job.params.client = client;
-    job.params.width = job.params.height = side;
-    job.space = blobSpace();
-    return job;
-}
+using test::frameOf;
 
 // When the render queue answered the job: the time, or nullopt for a refusal (its status in `status`).
 struct Answer {
