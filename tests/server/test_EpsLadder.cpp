@@ -61,5 +61,20 @@ TEST(EpsLadder, RungsAroundAnEpsAlternateNearestFirstWithoutTheEpsItself) {
     EXPECT_TRUE(rungsAround({}, 5, 4).empty());
 }
 
+TEST(EpsLadder, DraftsComeFromTheRungNearFourTimesTheEpsUpToATenthOfTheRange) {
+    // The CT's ladder: 2 % (81.9 HU) drafts from 8.2 % (336), the rung nearest 4 x 81.9 = 327.6.
+    const auto ladder = epsLadder(volumeOverRange(-1024.f, 3071.f, 81.9f));
+    const double span = 4095;
+    EXPECT_EQ(draftRung(ladder, 81.9, span), 336.0);
+    // 0.5 % (20.5 HU): 2 %, the default itself, which the server fits anyway.
+    EXPECT_EQ(draftRung(ladder, 20.5, span), double{81.9f});
+    // 4.3 % would draft from 17.2 %: capped at 10 % (410 HU), still 2.3 x coarser.
+    EXPECT_EQ(draftRung(ladder, 176.0, span), 410.0);
+    // From 7.5 % the cap leaves less than 1.5 x: no draft fit, the drafts are drawn at eps.
+    EXPECT_EQ(draftRung(ladder, 307.0, span), std::nullopt);
+    EXPECT_EQ(draftRung(ladder, 0.0, span), std::nullopt);
+    EXPECT_EQ(draftRung({}, 81.9, span), std::nullopt);
+}
+
 } // namespace
 } // namespace vots::server

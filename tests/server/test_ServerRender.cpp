@@ -125,10 +125,11 @@ TEST_F(ServerRender, AFrameThatBeginsWithAnUploadSaysSoTheNextNone) {
         return std::pair{std::stod(res->get_header_value("X-Vots-Upload-Ms")),
                          std::stod(res->get_header_value("X-Vots-Frame-Ms"))};
     };
-    // Each fit is uploaded as it is made (its frames then find it there); going back to the first one,
-    // still in memory, is a frame that uploads it again.
+    // Each fit is uploaded as it is made (its frames then find it there). The render thread holds two:
+    // going back to the first one after two more, still in memory, is a frame that uploads it again.
     EXPECT_EQ(uploadAndFrameMs("eps=5%25&cam=az=10").first, 0.0);
     EXPECT_EQ(uploadAndFrameMs("eps=3%25&cam=az=10").first, 0.0);
+    EXPECT_EQ(uploadAndFrameMs("eps=4%25&cam=az=10").first, 0.0);
     const auto [upload, frame] = uploadAndFrameMs("eps=5%25&cam=az=20");
     EXPECT_GT(upload, 0.0);
     EXPECT_LE(upload, frame); // a part of the frame's time

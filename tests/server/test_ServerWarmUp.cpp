@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <random>
 #include <string>
@@ -122,6 +123,29 @@ TEST(ServerWarmUp, AnIdleServerFitsTheStepsAroundTheLastEpsAheadEachOnce) {
         const auto answer = postFit(*c, MRI_BRAIN, epsText(*step));
         EXPECT_EQ(answer["state"], "done") << epsText(*step) << " " << answer.dump();
     }
+}
+
+TEST(ServerWarmUp, AFitAtTwoPercentAlsoWarmsItsDraftRung) {
+    ServerWorld world;
+    auto options = world.options();
+    options.withRenderer = false;
+    options.warmUpFits = true;
+    LoopbackServer server(options);
+    auto c = server.client();
+    const auto steps = datasetEntry(*c, MRI_BRAIN)["epsSteps"].get<std::vector<double>>();
+    const auto job = waitForJob(*c, postFit(*c, MRI_BRAIN, "\"2%\""));
+    ASSERT_EQ(job["state"], "done") << job.dump();
+    // The drafts' rung: 8.2 %, the step nearest 4 x 2 %, besides the ten steps around 2 %.
+    const double eps = job["eps"].get<double>();
+    const auto draft = std::min_element(steps.begin(), steps.end(), [&](double a, double b) {
+        return std::abs(std::log(a / (4 * eps))) < std::abs(std::log(b / (4 * eps)));
+    });
+    const auto warm = waitForWarmUps(
+        *c, [](const nlohmann::json& w) { return w["finished"] == 11 && !w["running"].get<bool>(); });
+    EXPECT_EQ(warm["started"], 11) << warm.dump();
+    const std::size_t fitsBefore = bodyJson(c->Get("/api/stats"))["fits"].size();
+    EXPECT_EQ(postFit(*c, MRI_BRAIN, epsText(*draft))["state"], "done") << "not a cache hit";
+    EXPECT_EQ(bodyJson(c->Get("/api/stats"))["fits"].size(), fitsBefore);
 }
 
 TEST(ServerWarmUp, ANewJobCancelsARunningWarmUp) {

@@ -61,4 +61,18 @@ std::vector<double> rungsAround(const std::vector<double>& ladder, double eps, s
     return rungs;
 }
 
+std::optional<double> draftRung(const std::vector<double>& ladder, double eps, double span) {
+    if (!(eps > 0) || !(span > 0)) return std::nullopt;
+    // A rung's three digits put it up to 0.5 % off its percentage (10 % of 4095 is the rung 410).
+    const double cap = DRAFT_EPS_CAP * span * 1.005;
+    const double want = std::min(DRAFT_EPS_FACTOR * eps, cap);
+    // Nearest on a log scale among the rungs not over the cap.
+    std::optional<double> best;
+    for (const double rung : ladder)
+        if (rung <= cap && (!best || std::abs(std::log(rung / want)) < std::abs(std::log(*best / want))))
+            best = rung;
+    if (!best || *best < DRAFT_EPS_LEAST * eps) return std::nullopt;
+    return best;
+}
+
 } // namespace vots::server

@@ -4,6 +4,7 @@
 #include "datasets/DatasetRegistry.h"
 
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 namespace vots::server {
@@ -21,5 +22,18 @@ std::vector<double> epsLadder(const Dataset& dataset);
 /// Up to `count` rungs nearest `eps`, nearest first on a log scale (above first on a tie): the moves of a
 /// hand on the slider, either way. `eps` itself (a rung within 0.1 % of it) is left out.
 std::vector<double> rungsAround(const std::vector<double>& ladder, double eps, std::size_t count);
+
+/// The rung a viewer's drafts at `eps` are drawn from while the camera moves: the one nearest
+/// DRAFT_EPS_FACTOR x eps, at most DRAFT_EPS_CAP of the range (`span`). A splat frame's cost falls with
+/// the Vots a ray meets, so a draft from a coarser fit is about twice as cheap per pixel and is drawn
+/// larger in the same time (bench/RESULTS.md, "Drafts from a coarser fit"); the still after the drag is
+/// drawn at eps itself. nullopt when no rung is at least DRAFT_EPS_LEAST x eps: not worth a second fit.
+std::optional<double> draftRung(const std::vector<double>& ladder, double eps, double span);
+
+/// A draft's fit has at most this error bound over the still's.
+inline constexpr double DRAFT_EPS_FACTOR = 4.0;
+/// Of the value range: past it the Vots grow blocky enough to show in a moving frame.
+inline constexpr double DRAFT_EPS_CAP = 0.1;
+inline constexpr double DRAFT_EPS_LEAST = 1.5;
 
 } // namespace vots::server

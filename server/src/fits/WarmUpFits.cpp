@@ -56,7 +56,12 @@ void WarmUpFits::afterIdleFit(std::shared_ptr<const Dataset> dataset, const FitK
     if (!mEnabled || mStopping || done.focus) return;
     dropPendingLocked();
     std::vector<FitKey> keys;
-    for (const double rung : rungsAround(epsLadder(*dataset), done.eps, RUNGS)) {
+    const std::vector<double> ladder = epsLadder(*dataset);
+    // The drafts' rung first: every drag after this fit draws from it, a slider move only now and then.
+    std::vector<double> rungs = rungsAround(ladder, done.eps, RUNGS);
+    if (const auto draft = draftRung(ladder, done.eps, dataset->range[1] - dataset->range[0]))
+        rungs.insert(rungs.begin(), *draft);
+    for (const double rung : rungs) {
         FitKey key = done;
         key.eps = static_cast<float>(rung);
         if (!(key.eps >= FLOOR * (dataset->range[1] - dataset->range[0]))) continue;

@@ -32,10 +32,10 @@ struct WarmUpSummary {
 /// A refit at a new eps is bound by the CPU: mostly the first fits of the merge's new unions, which no
 /// earlier fit can answer (bench/RESULTS.md, "A slower host"), so a move of the eps slider cannot be
 /// made cheap, only made ahead. When a requested fit has finished and nothing waits, one thread at nice
-/// 19 fits the dataset at the RUNGS rungs of the slider's ladder (epsLadder) nearest its eps, nearest
-/// first, not below FLOOR of its range, and keeps their Vot-Spaces in the fit cache: a move to one of
-/// them is a cache hit. Each fit also fills the shared box cache, so the next one and a refit off the
-/// ladder cost less. Thread-safe.
+/// 19 fits the dataset at the rung its viewers' drafts are drawn from (draftRung), then at the RUNGS
+/// rungs of the slider's ladder (epsLadder) nearest its eps, nearest first, not below FLOOR of its range,
+/// and keeps their Vot-Spaces in the fit cache: a move to one of them is a cache hit. Each fit also fills the
+/// shared box cache, so the next one and a refit off the ladder cost less. Thread-safe.
 class WarmUpFits {
 public:
     /// Of the value range: a warm-up below it costs more (time, cache memory) than the rare move it helps.

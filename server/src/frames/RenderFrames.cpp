@@ -4,6 +4,7 @@
 
 #include "HttpError.h"
 #include "fits/CacheMeta.h"
+#include "fits/EpsLadder.h"
 #include "vots/render/CameraText.h"
 #include "vots/render/Colormap.h"
 #include "vots/render/Png.h"
@@ -154,8 +155,27 @@ PreparedRender prepareRender(Server::Impl& s, const RenderParams& params, const 
         const FitKey key = fitKeyFor(*dataset, job.params.eps, job.params.degree, s.options.fitNorm);
         job.space = spaceFor(s, dataset, key, client, mayStartFit);
         prepared.drawnFrom = key.text();
+        prepared.fitKey = key;
+        prepared.dataset = dataset;
     }
     return prepared;
+}
+
+PreparedRender preparedDraft(Server::Impl& s, const PreparedRender& prepared) {
+    if (!prepared.fitKey || prepared.fitKey->focus || !prepared.dataset) return prepared;
+    const Dataset& dataset = *prepared.dataset;
+    const auto rung =
+        draftRung(epsLadder(dataset), prepared.fitKey->eps, dataset.range[1] - dataset.range[0]);
+    if (!rung) return prepared;
+    FitKey key = *prepared.fitKey;
+    key.eps = static_cast<float>(*rung);
+    auto space = s.cache.findInMemory(key);
+    if (!space) return prepared;
+    PreparedRender draft = prepared;
+    draft.job.space = std::move(space);
+    draft.drawnFrom = key.text();
+    draft.fitKey = key;
+    return draft;
 }
 
 void uploadAhead(Server::Impl& s, const Dataset& dataset, std::shared_ptr<const fit::VotSpace> space,

@@ -7,6 +7,7 @@
 #include "frames/RenderQueue.h"
 
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace vots::server {
@@ -16,6 +17,9 @@ namespace vots::server {
 struct PreparedRender {
     RenderJob job;
     std::string drawnFrom;
+    // Set when the frame is drawn from a fit made here: its key, and the dataset it fits.
+    std::optional<FitKey> fitKey;
+    std::shared_ptr<const Dataset> dataset;
 };
 
 /// Throws HttpError: 404 for an unknown dataset, 409 for what Vots cannot draw, 503 without a renderer
@@ -24,6 +28,12 @@ struct PreparedRender {
 /// owner.
 PreparedRender prepareRender(Server::Impl& s, const RenderParams& params, const std::string& client,
                              bool mayStartFit = true);
+
+/// A viewer's draft of `prepared`: drawn from the fit at its eps's draft rung (draftRung) when the fit
+/// cache holds that in memory, with `drawnFrom` and `fitKey` its; else `prepared` itself. Never waits for
+/// a fit: the warm-ups make the draft rung's first (WarmUpFits). Not for a focus fit, a .vots dataset,
+/// the grid renderer or the ranks, which have no such rung.
+PreparedRender preparedDraft(Server::Impl& s, const PreparedRender& prepared);
 
 /// Under mpirun: the ranks fit their cells at the key's eps (dist::FrameRanks::fit), which the next
 /// frames at that eps find held; this process's fit reports through `progress`. Throws what the port

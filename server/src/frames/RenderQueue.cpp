@@ -14,9 +14,12 @@
 #include "vots/server/RenderPolicy.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
+#include <cstdint>
 #include <iostream>
 #include <stdexcept>
+#include <tuple>
 
 namespace vots::server {
 namespace {
@@ -30,11 +33,42 @@ double msSince(std::chrono::steady_clock::time_point start) {
 /// Everything GL lives here and is created, used and destroyed on the render thread only.
 /// Members are destroyed bottom-up, so the context outlives the renderers.
 struct RenderQueue::Renderers {
+    /// A Vot renderer and the Vot-Space uploaded to it.
+    struct VotSlot {
+        std::unique_ptr<render::VotRenderer> renderer; // made on first use, but slot 0's at start
+        std::shared_ptr<const fit::VotSpace> space;    // kept alive so the pointer compare is sound
+        std::uint64_t lastUse = 0;
+    };
     std::unique_ptr<render::EglContext> context;
-    std::unique_ptr<render::VotRenderer> vots;
+    // Two, since a viewer's drafts are drawn from a coarser fit than its still (draftRung): with one the
+    // still after every drag, and the drag's first draft, would wait for an upload (74 ms for the
+    // splat's copy of 170 k Vots). The least recently used slot takes a Vot-Space that neither holds.
+    std::array<VotSlot, 2> votSlots;
+    std::uint64_t votUses = 0;
     std::unique_ptr<render::GridRenderer> grid;
-    std::shared_ptr<const fit::VotSpace> uploadedSpace; // kept alive so the pointer compare is sound
     std::shared_ptr<const fit::Volume> uploadedVolume;
+
+    render::VotRenderer& vots() { return *votSlots[0].renderer; }
+    /// The renderer holding `space`, uploading it (to the least recently used slot) when none does.
+    /// Returns whether it uploaded.
+    std::pair<render::VotRenderer*, bool> votsFor(const std::shared_ptr<const fit::VotSpace>& space) {
+        auto slot = std::find_if(votSlots.begin(), votSlots.end(),
+                                 [&](const VotSlot& held) { return held.space == space; });
+        if (slot == votSlots.end())
+            slot = std::min_element(votSlots.begin(), votSlots.end(),
+                                    [](const VotSlot& a, const VotSlot& b) { return a.lastUse < b.lastUse; });
+        slot->lastUse = ++votUses;
+        const bool upload = slot->space != space;
+        if (upload) {
+            if (!slot->renderer) {
+                slot->renderer = std::make_unique<render::VotRenderer>();
+                applyRenderPolicy(*slot->renderer);
+            }
+            slot->renderer->upload(*space);
+            slot->space = space;
+        }
+        return {slot->renderer.get(), upload};
+    }
 };
 
 RenderQueue::RenderQueue(ServerStats& stats, ForegroundActivity& foreground, dist::FrameRanks* ranks,
@@ -111,8 +145,8 @@ void RenderQueue::threadMain() {
     try {
         renderers.context = render::EglContext::create(&error);
         if (renderers.context) {
-            renderers.vots = std::make_unique<render::VotRenderer>();
-            applyRenderPolicy(*renderers.vots);
+            renderers.votSlots[0].renderer = std::make_unique<render::VotRenderer>();
+            applyRenderPolicy(renderers.vots());
             renderers.grid = std::make_unique<render::GridRenderer>();
         }
     } catch (const std::exception& e) { // a shader that does not compile on this driver, say
@@ -125,8 +159,8 @@ void RenderQueue::threadMain() {
         mContextError = mHasContext ? "" : (error.empty() ? "no EGL context" : error);
         mRendererName = mHasContext ? renderers.context->renderer() : "";
         if (mHasContext) {
-            mWalkShaderName = render::walkShaderName(renderers.vots->walkShader());
-            mMipStrategyName = render::strategyName(renderers.vots->strategy());
+            mWalkShaderName = render::walkShaderName(renderers.vots().walkShader());
+            mMipStrategyName = render::strategyName(renderers.vots().strategy());
         }
         mReady = true;
     }
@@ -188,9 +222,9 @@ RenderResult RenderQueue::draw(Renderers& r, const RenderJob& job) {
         if (!mRanks) throw std::logic_error("a frame on the ranks on a queue without them");
         dist::DrawRequest request = *job.onRanks;
         request.frame = p;
-        r.uploadedSpace = nullptr; // the ranks' port uploads this rank's own Vots and samples
+        r.votSlots[0].space = nullptr; // the ranks' port uploads this rank's own Vots and samples
         r.uploadedVolume = nullptr;
-        const dist::ComposedFrame composed = mRanks->draw(request, *r.vots, *r.grid);
+        const dist::ComposedFrame composed = mRanks->draw(request, r.vots(), *r.grid);
         // Shown as one process shows its frame: the same display pass over the same range.
         result.image = render::applyDisplay(composed.image, render::displayFor(p, composed.displayRange));
         // Read here, on the render thread, before another frame replaces them.
@@ -205,6 +239,7 @@ RenderResult RenderQueue::draw(Renderers& r, const RenderJob& job) {
         mStats.addFrame(result.frameMs);
         return result;
     }
+    render::VotRenderer* vots = nullptr;
     if (p.renderer == render::RendererKind::Grid) {
         if (r.uploadedVolume != job.volume) {
             r.grid->upload(*job.volume);
@@ -212,21 +247,19 @@ RenderResult RenderQueue::draw(Renderers& r, const RenderJob& job) {
             result.uploadMs = msSince(start);
         }
     } else {
-        if (r.uploadedSpace != job.space) {
-            r.vots->upload(*job.space);
-            r.uploadedSpace = job.space;
-            result.uploadMs = msSince(start);
-        }
+        bool uploaded = false;
+        std::tie(vots, uploaded) = r.votsFor(job.space);
+        if (uploaded) result.uploadMs = msSince(start);
         result.votCount = job.space->vots.size();
     }
     if (job.values) {
         render::Renderer& renderer =
-            p.renderer == render::RendererKind::Grid ? static_cast<render::Renderer&>(*r.grid) : *r.vots;
+            p.renderer == render::RendererKind::Grid ? static_cast<render::Renderer&>(*r.grid) : *vots;
         result.values = renderer.render(p.camera, p.width, p.height, render::RenderOptions{p.mode, p.slab});
         result.drawable = renderer.valueRange();
     } else {
         const auto abandoned = [this] { return mAbandonDrawing.load(std::memory_order_relaxed); };
-        result.image = render::renderFrame(p, r.vots.get(), r.grid.get(), job.valueRange,
+        result.image = render::renderFrame(p, vots, r.grid.get(), job.valueRange,
                                            job.abandonable ? std::function<bool()>(abandoned) : nullptr);
     }
     result.frameMs = msSince(start);

@@ -18,9 +18,11 @@
 namespace vots::server {
 namespace {
 
-std::string sizerKey(const RenderParams& p) {
+/// A draft from the draft rung's fit costs about half as much per pixel as one at the still's eps: their
+/// sizes are learnt apart.
+std::string sizerKey(const RenderParams& p, bool fromDraftRung) {
     return p.dataset + '|' + std::string(render::renderModeName(p.mode)) + '|' +
-           std::string(render::rendererName(p.renderer));
+           std::string(render::rendererName(p.renderer)) + (fromDraftRung ? "|draft-rung" : "");
 }
 
 std::uint64_t nextSocketNumber() {
@@ -110,6 +112,7 @@ void Viewer::draw(const PendingView& view) {
             {
                 std::lock_guard lock(mMutex);
                 mDrawnFrom = prepared.drawnFrom; // its upload is behind the drafts that follow
+                mLastFit = prepared.drawnFrom;
             }
             bytes = frame->png;
             header.update({{"format", "image/png"},
@@ -121,18 +124,30 @@ void Viewer::draw(const PendingView& view) {
                            {"votCount", frame->votCount},
                            {"fitSeconds", frame->fitSeconds}});
         } else {
+            bool sameFit = false;
+            {
+                std::lock_guard lock(mMutex);
+                sameFit = prepared.drawnFrom == mLastFit;
+                mLastFit = prepared.drawnFrom;
+            }
+            // The first frame at a new eps shows that eps: after a slider move the viewer asks for a draft
+            // first, and a draft from the rung would be an image of another fit. The drafts of a camera
+            // moving over a fit already shown come from its draft rung.
+            const PreparedRender draft = sameFit ? preparedDraft(s, prepared) : prepared;
+            const bool fromDraftRung = draft.drawnFrom != prepared.drawnFrom;
+            const std::string sizer = sizerKey(full, fromDraftRung);
             std::pair<int, int> size;
             bool behindStill = false; // then its time says more of the still than of drafts of its size
             bool newSpace = false;    // the first frame of this socket from a new Vot-Space (a refit's)
             {
                 std::lock_guard lock(mMutex);
-                size = mSizers.try_emplace(sizerKey(full), DRAFT_BUDGET_MS)
+                size = mSizers.try_emplace(sizer, DRAFT_BUDGET_MS)
                            .first->second.draftSize(full.width, full.height);
                 behindStill = mPacing.drawingStill();
-                newSpace = prepared.drawnFrom != mDrawnFrom;
-                mDrawnFrom = prepared.drawnFrom;
+                newSpace = draft.drawnFrom != mDrawnFrom;
+                mDrawnFrom = draft.drawnFrom;
             }
-            RenderJob job = prepared.job;
+            RenderJob job = draft.job;
             // Given up once the still that ends the gesture reaches the render queue: the pacing takes this
             // socket's next draft only after this one's render, so the still is the only newer job of the
             // socket that can come meanwhile, and it need not wait for the rest of a frame it replaces.
@@ -159,13 +174,14 @@ void Viewer::draw(const PendingView& view) {
                            {"frameMs", result.frameMs},
                            {"uploadMs", result.uploadMs},
                            {"votCount", result.votCount}});
+            if (fromDraftRung) header["draftEps"] = draft.fitKey->eps;
             std::lock_guard lock(mMutex);
             // A draft that waited for the upload of a new Vot-Space, in its own job or in the one a refit
             // queues ahead of it (uploadAhead), says nothing of the time a draft of its size takes: timed,
             // it shrank the drafts after every eps move to the smallest size.
             if (!behindStill && !newSpace && !mPacing.drawingStill() && result.uploadMs == 0.0)
-                mSizers.at(sizerKey(full))
-                    .observe(size.first, size.second, Ms(std::chrono::steady_clock::now() - start).count());
+                mSizers.at(sizer).observe(size.first, size.second,
+                                          Ms(std::chrono::steady_clock::now() - start).count());
         }
     } catch (...) {
         const HttpFailure failure = httpFailureOf(std::current_exception(), "viewer socket frame failed");

@@ -60,6 +60,8 @@ private:
     ViewerPacing mPacing{MAX_IN_FLIGHT};
     std::map<std::string, DraftSizer> mSizers; // by dataset, mode and renderer: their frames cost differently
     std::string mDrawnFrom; // what this socket's last frame was drawn from (PreparedRender::drawnFrom)
+    std::string mLastFit;   // the fit at the eps of this socket's last frame (its drafts may come from
+                            // the draft rung's)
     bool mClosed = false;
 };
 
