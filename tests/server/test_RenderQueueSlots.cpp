@@ -47,5 +47,21 @@ TEST(RenderQueueSlots, TwoVotSpacesStayUploadedAndAThirdReplacesTheOneDrawnLeast
     EXPECT_TRUE(uploads(queue, a));
 }
 
+TEST(RenderQueueSlots, TwoVotSpacesTooLargeTogetherAreNotHeldAtOnce) {
+    ServerStats stats;
+    ForegroundActivity foreground;
+    const auto a = test::blobSpace();
+    const auto b = std::make_shared<const fit::VotSpace>(*a);
+    // Room for one and a half of them: the second lets the first go, and they upload in turn.
+    RenderQueue queue(stats, foreground, nullptr, 64, a->vots.size() * 3 / 2);
+    ASSERT_TRUE(queue.hasContext()) << queue.contextError();
+    EXPECT_FALSE(queue.holdsBoth(a->vots.size(), b->vots.size()));
+    for (int turn = 0; turn < 3; ++turn) {
+        EXPECT_TRUE(uploads(queue, a)) << turn;
+        EXPECT_FALSE(uploads(queue, a)) << turn;
+        EXPECT_TRUE(uploads(queue, b)) << turn;
+    }
+}
+
 } // namespace
 } // namespace vots::server

@@ -170,7 +170,10 @@ PreparedRender preparedDraft(Server::Impl& s, const PreparedRender& prepared) {
     FitKey key = *prepared.fitKey;
     key.eps = static_cast<float>(*rung);
     auto space = s.cache.findInMemory(key);
-    if (!space) return prepared;
+    // Only where the render thread keeps both uploaded: else the still after each drag would upload its
+    // Vot-Space again, a wait that the drafts' gain does not pay for.
+    if (!space || !s.renderQueue->holdsBoth(space->vots.size(), prepared.job.space->vots.size()))
+        return prepared;
     PreparedRender draft = prepared;
     draft.job.space = std::move(space);
     draft.drawnFrom = key.text();

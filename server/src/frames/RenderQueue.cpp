@@ -35,7 +35,7 @@ double msSince(std::chrono::steady_clock::time_point start) {
 struct RenderQueue::Renderers {
     /// A Vot renderer and the Vot-Space uploaded to it.
     struct VotSlot {
-        std::unique_ptr<render::VotRenderer> renderer; // made on first use, but slot 0's at start
+        std::unique_ptr<render::VotRenderer> renderer; // made on first use (slot 0's at start)
         std::shared_ptr<const fit::VotSpace> space;    // kept alive so the pointer compare is sound
         std::uint64_t lastUse = 0;
     };
@@ -48,10 +48,19 @@ struct RenderQueue::Renderers {
     std::unique_ptr<render::GridRenderer> grid;
     std::shared_ptr<const fit::Volume> uploadedVolume;
 
-    render::VotRenderer& vots() { return *votSlots[0].renderer; }
+    /// Slot 0's renderer: the one the ranks draw with, and whose strategy /api/stats names.
+    render::VotRenderer& vots() { return rendererOf(votSlots[0]); }
+    static render::VotRenderer& rendererOf(VotSlot& slot) {
+        if (!slot.renderer) {
+            slot.renderer = std::make_unique<render::VotRenderer>();
+            applyRenderPolicy(*slot.renderer);
+        }
+        return *slot.renderer;
+    }
     /// The renderer holding `space`, uploading it (to the least recently used slot) when none does.
     /// Returns whether it uploaded.
-    std::pair<render::VotRenderer*, bool> votsFor(const std::shared_ptr<const fit::VotSpace>& space) {
+    std::pair<render::VotRenderer*, bool> votsFor(const std::shared_ptr<const fit::VotSpace>& space,
+                                                  const RenderQueue& queue) {
         auto slot = std::find_if(votSlots.begin(), votSlots.end(),
                                  [&](const VotSlot& held) { return held.space == space; });
         if (slot == votSlots.end())
@@ -60,11 +69,14 @@ struct RenderQueue::Renderers {
         slot->lastUse = ++votUses;
         const bool upload = slot->space != space;
         if (upload) {
-            if (!slot->renderer) {
-                slot->renderer = std::make_unique<render::VotRenderer>();
-                applyRenderPolicy(*slot->renderer);
-            }
-            slot->renderer->upload(*space);
+            // Two large Vot-Spaces are not held at once: the other is let go first (renderer and all).
+            for (VotSlot& other : votSlots)
+                if (&other != &*slot && other.space &&
+                    !queue.holdsBoth(other.space->vots.size(), space->vots.size())) {
+                    other.renderer.reset();
+                    other.space.reset();
+                }
+            rendererOf(*slot).upload(*space);
             slot->space = space;
         }
         return {slot->renderer.get(), upload};
@@ -72,8 +84,9 @@ struct RenderQueue::Renderers {
 };
 
 RenderQueue::RenderQueue(ServerStats& stats, ForegroundActivity& foreground, dist::FrameRanks* ranks,
-                         std::size_t maxWaiting)
-    : mStats(stats), mForeground(foreground), mRanks(ranks), mMaxWaiting(maxWaiting) {
+                         std::size_t maxWaiting, std::size_t twoUploadedMaxVots)
+    : mStats(stats), mForeground(foreground), mRanks(ranks), mMaxWaiting(maxWaiting),
+      mTwoUploadedMaxVots(twoUploadedMaxVots) {
     mThread = std::thread([this] { threadMain(); });
     std::unique_lock lock(mMutex);
     mWake.wait(lock, [this] { return mReady; });
@@ -145,8 +158,7 @@ void RenderQueue::threadMain() {
     try {
         renderers.context = render::EglContext::create(&error);
         if (renderers.context) {
-            renderers.votSlots[0].renderer = std::make_unique<render::VotRenderer>();
-            applyRenderPolicy(renderers.vots());
+            (void)renderers.vots(); // made now: a renderer that fails here leaves the server without one
             renderers.grid = std::make_unique<render::GridRenderer>();
         }
     } catch (const std::exception& e) { // a shader that does not compile on this driver, say
@@ -248,7 +260,7 @@ RenderResult RenderQueue::draw(Renderers& r, const RenderJob& job) {
         }
     } else {
         bool uploaded = false;
-        std::tie(vots, uploaded) = r.votsFor(job.space);
+        std::tie(vots, uploaded) = r.votsFor(job.space, *this);
         if (uploaded) result.uploadMs = msSince(start);
         result.votCount = job.space->vots.size();
     }

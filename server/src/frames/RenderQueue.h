@@ -67,8 +67,9 @@ class RenderQueue {
 public:
     /// Starts the thread and waits until it has (or has failed to get) a context. Jobs drawn on the ranks
     /// go through `ranks`, which must then outlive the queue.
+    /// twoUploadedMaxVots: see holdsBoth.
     RenderQueue(ServerStats& stats, ForegroundActivity& foreground, dist::FrameRanks* ranks = nullptr,
-                std::size_t maxWaiting = 64);
+                std::size_t maxWaiting = 64, std::size_t twoUploadedMaxVots = TWO_UPLOADED_MAX_VOTS);
     ~RenderQueue(); // answers waiting jobs with 503 and joins
 
     RenderQueue(const RenderQueue&) = delete;
@@ -90,6 +91,15 @@ public:
     /// before the job is queued.
     void post(RenderJob job) { (void)submit(std::move(job)); }
     std::size_t waiting() const;
+
+    /// The render thread keeps two Vot-Spaces uploaded (a viewer's still at eps and its drafts from the
+    /// draft rung), but only while they have at most TWO_UPLOADED_MAX_VOTS together: each uploaded one
+    /// costs its renderer's copies (the splat's, the GL buffers) on top of the Vot-Space it keeps alive,
+    /// about 0.5 KB a Vot in all, so two of a large study would double what the server holds.
+    bool holdsBoth(std::size_t votsA, std::size_t votsB) const {
+        return votsA + votsB <= mTwoUploadedMaxVots;
+    }
+    static constexpr std::size_t TWO_UPLOADED_MAX_VOTS = 4'000'000;
 
 private:
     // A refused job travels back as a value, and render() throws a fresh HttpError on the waiting
@@ -118,6 +128,7 @@ private:
     ForegroundActivity& mForeground;
     dist::FrameRanks* const mRanks;
     const std::size_t mMaxWaiting;
+    const std::size_t mTwoUploadedMaxVots;
     mutable std::mutex mMutex;
     std::condition_variable mWake;
     std::deque<Item> mQueue;
