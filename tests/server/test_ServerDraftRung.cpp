@@ -27,7 +27,7 @@ protected:
     }
 
     /// Sends a view at a camera not drawn before, reads its frame and acknowledges it; its header and image.
-    std::pair<nlohmann::json, std::string> frame(bool still) {
+    std::pair<nlohmann::json, std::string> frame(bool still, const std::string& mode = "mip") {
         ++mSeq;
         nlohmann::json view{
             {"type", "view"},
@@ -35,6 +35,7 @@ protected:
             {"still", still},
             {"params", {{"dataset", BLOBS}, {"cam", "az=" + std::to_string(10 * mSeq)}, {"size", "96x64"}}}};
         if (mEps) view["params"]["eps"] = nlohmann::json(*mEps).dump();
+        view["params"]["mode"] = mode;
         EXPECT_TRUE(mSocket->sendText(view.dump()));
         const auto header = mSocket->read();
         const auto image = mSocket->read();
@@ -103,6 +104,11 @@ TEST_F(ServerDraftRung, DraftsComeFromTheDraftRungOnceItIsFittedAndTheStillFromT
     EXPECT_EQ(draft.first["votCount"], coarse);
     const render::RgbaImage decoded = render::decodeJpeg({draft.second.begin(), draft.second.end()});
     EXPECT_EQ(decoded.width, draft.first["width"].get<int>());
+    // Density draws the Vots' own sizes: the rung's would be another picture, so its drafts stay at eps.
+    frame(false, "density");
+    const auto density = frame(false, "density");
+    EXPECT_FALSE(density.first.contains("draftEps")) << density.first.dump();
+    EXPECT_EQ(density.first["votCount"], fine);
 
     // The still is the eps's own: /render's PNG byte for byte.
     const auto still = frame(true);

@@ -1,6 +1,6 @@
 // The viewer socket (GET /api/stream): a drag shows JPEG drafts over the socket, the still after release is
 // /render's PNG byte for byte, a paused drag gets its still before the release, and a page whose socket is
-// refused falls back to /render.
+// refused falls back to /render; the drafts come from the draft rung's coarser fit.
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import { withPage, pickDataset, BASE_URL } from './support/browser.mjs';
@@ -80,6 +80,52 @@ test('a drag shows drafts over the socket and the still after release is /render
     assert.ok(png.equals(still.bytes), `the still (${still.bytes.length} bytes) differs from /render's PNG (${png.length})`);
     const size = new URL(shown.url, BASE_URL).searchParams.get('size');
     assert.equal(`${still.header.width}x${still.header.height}`, size);
+  });
+});
+
+// Resolves once the server's warm-up fits have all run (the draft rung's is the first of them).
+async function warmUpsDone() {
+  for (let i = 0; i < 600; i++) {
+    const warm = (await (await fetch(`${BASE_URL}/api/stats`)).json()).warmUps;
+    if (warm.finished > 0 && !warm.running) return;
+    await new Promise((r) => setTimeout(r, 100));
+  }
+  throw new Error('the warm-up fits did not finish within 60 s');
+}
+
+test('a drag\'s drafts come from the draft rung\'s coarser fit, and the still is at the view\'s eps', async (t) => {
+  const ds = await pickDataset();
+  await withPage(t, async (page) => {
+    const frames = recordSocketFrames(page);
+    const viewer = await openIdle(page, ds.name);
+    await warmUpsDone();
+    await page.evaluate(() => {
+      window.__shown = [];
+      document.querySelector('[data-testid="image"]').addEventListener('vots:frame', (e) => {
+        window.__shown.push({ eps: e.detail.eps, still: e.detail.still, votCount: e.detail.votCount });
+      });
+    });
+    const before = frames.length;
+    await viewer.drag(160, 60);
+    await viewer.waitForIdle();
+
+    const viewEps = Number((await viewer.hashParams()).eps);
+    const during = frames.slice(before);
+    const drafts = during.filter((f) => !f.header.still);
+    assert.ok(drafts.length >= 2, `expected several drafts, got ${drafts.length}`);
+    // The rung is about 4 x eps (at most a tenth of the range): coarser, with fewer Vots than the still.
+    const still = during.at(-1);
+    assert.ok(still.header.still && still.header.draftEps === undefined, JSON.stringify(still.header));
+    for (const d of drafts) {
+      assert.ok(d.header.draftEps > 1.5 * viewEps, `a draft at the view's eps ${viewEps}: ${JSON.stringify(d.header)}`);
+      assert.ok(d.header.votCount < still.header.votCount, `a draft of no fewer Vots: ${JSON.stringify(d.header)}`);
+    }
+    // The page says what each frame shown was drawn at.
+    const shown = await page.evaluate(() => window.__shown);
+    assert.ok(shown.length >= 2, `frames shown: ${JSON.stringify(shown)}`);
+    for (const f of shown.slice(0, -1)) assert.ok(f.eps > 1.5 * viewEps, `a draft shown at eps ${f.eps}`);
+    assert.equal(shown.at(-1).eps, viewEps);
+    assert.equal(shown.at(-1).still, true);
   });
 });
 

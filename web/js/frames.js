@@ -50,7 +50,7 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
   let draftPending = false; // a drag moved while a draft was in flight: send another when it lands
   let shownUrl = null;
   let shownObjectUrl = null;
-  let lastFrame = null; // {w, h, frameMs}
+  let lastFrame = null; // {w, h, frameMs, draftEps (a socket draft's, else undefined)}
   let resizeTimer = 0;
   let pauseTimer = 0; // armed by each draft on the socket: the still of a paused drag
   let draftDrawMs = 0; // the server's time for the last draft shown
@@ -231,16 +231,17 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
 
   // A "vots:frame" event on the image once a frame is on screen: {sentAt (when its view was asked for,
   // performance.now()), view (a copy of the view it shows), width, height, still, transport, eps (the
-  // eps it was drawn at, null for the exact grid), votCount, and socket frames only the server's times
-  // (docs/API.md): waitMs, frameMs, uploadMs, encodeMs, drawMs}. The overlays follow it (ui.js);
+  // eps it was drawn at: the view's, or a socket draft's draftEps; null for the exact grid), votCount, and
+  // socket frames only the server's times (docs/API.md): waitMs, frameMs, uploadMs, encodeMs, drawMs}. The overlays follow it (ui.js);
   // bench/stream_drag.mjs times drags, bench/eps_change.mjs refits. url: the frame's /render URL.
   function announceFrame({ url, ...detail }) {
     const shownSize = draftCanvas.hidden
       ? { width: Number(image.dataset.width), height: Number(image.dataset.height) }
       : { width: draftCanvas.width, height: draftCanvas.height };
     const params = new URLSearchParams(url.split('?')[1]);
-    const eps = params.get('renderer') === 'grid' ? null : Number(params.get('eps'));
-    image.dispatchEvent(new CustomEvent('vots:frame', { detail: { ...detail, ...shownSize, eps } }));
+    const { draftEps, ...rest } = detail;
+    const eps = params.get('renderer') === 'grid' ? null : (draftEps ?? Number(params.get('eps')));
+    image.dispatchEvent(new CustomEvent('vots:frame', { detail: { ...rest, ...shownSize, eps } }));
   }
 
   // Shows a PNG (or any image) blob as the frame of `url`; false when current() says it is stale by then.
@@ -351,9 +352,9 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
     }
     shownSeq = header.seq;
     setData(image, 'transport', 'socket');
-    const { waitMs, frameMs, uploadMs, encodeMs, drawMs, votCount } = header;
-    announceFrame({ url, sentAt: sent.sentAt, view: sent.view, still: header.still, transport: 'socket', waitMs, frameMs, uploadMs, encodeMs, drawMs, votCount });
-    lastFrame = { w: header.width, h: header.height, frameMs: header.frameMs };
+    const { waitMs, frameMs, uploadMs, encodeMs, drawMs, votCount, draftEps } = header;
+    announceFrame({ url, sentAt: sent.sentAt, view: sent.view, still: header.still, transport: 'socket', waitMs, frameMs, uploadMs, encodeMs, drawMs, votCount, draftEps });
+    lastFrame = { w: header.width, h: header.height, frameMs: header.frameMs, draftEps };
     const preview = streamPending ? streamPending.preview : previewing();
     if (streamPending && header.seq >= streamPending.seq) streamPending = null;
     if (!preview && header.still) showFacts({ votCount: header.votCount, fitSeconds: header.fitSeconds });

@@ -2,7 +2,7 @@
 import { fmtValue } from './format.js';
 
 // fitting: {eps, progress, stage} or null; previewing: the frames come from the grid while the fit runs;
-// lastFrame: {w, h, frameMs} or null.
+// lastFrame: {w, h, frameMs, draftEps} or null; draftEps: the eps of the coarser fit a draft came from.
 export function statusLine({ hasDatasets, errorShown, fitting, previewing, rendering, frameShown, lastFrame, cam }) {
   if (!hasDatasets) {
     return errorShown ? { state: 'error', text: 'No datasets.' } : { state: 'loading', text: 'Loading datasets…' };
@@ -18,8 +18,9 @@ export function statusLine({ hasDatasets, errorShown, fitting, previewing, rende
   if (errorShown && !frameShown) return { state: 'error', text: 'Error (see banner).' };
   const size = lastFrame ? `${lastFrame.w}×${lastFrame.h} px` : '';
   const ms = lastFrame && Number.isFinite(lastFrame.frameMs) ? ` · ${Math.round(lastFrame.frameMs)} ms/frame` : '';
+  const draft = lastFrame && Number.isFinite(lastFrame.draftEps) ? ` · draft ε ${fmtValue(lastFrame.draftEps)}` : '';
   return {
     state: 'idle',
-    text: `${size}${ms} · az ${fmtValue(cam.az)}° el ${fmtValue(cam.el)}° zoom ${fmtValue(cam.zoom)} · ${cam.proj}`,
+    text: `${size}${ms}${draft} · az ${fmtValue(cam.az)}° el ${fmtValue(cam.el)}° zoom ${fmtValue(cam.zoom)} · ${cam.proj}`,
   };
 }

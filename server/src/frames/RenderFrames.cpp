@@ -8,6 +8,7 @@
 #include "vots/render/CameraText.h"
 #include "vots/render/Colormap.h"
 #include "vots/render/Png.h"
+#include "vots/render/RenderMode.h"
 
 #include <algorithm>
 #include <chrono>
@@ -162,7 +163,10 @@ PreparedRender prepareRender(Server::Impl& s, const RenderParams& params, const 
 }
 
 PreparedRender preparedDraft(Server::Impl& s, const PreparedRender& prepared) {
-    if (!prepared.fitKey || prepared.fitKey->focus || !prepared.dataset) return prepared;
+    // Density shows the Vots themselves: the rung's would be another picture, not a coarser one.
+    if (!prepared.fitKey || prepared.fitKey->focus || !prepared.dataset ||
+        prepared.job.params.mode == render::RenderMode::Density)
+        return prepared;
     const Dataset& dataset = *prepared.dataset;
     const auto rung =
         draftRung(epsLadder(dataset), prepared.fitKey->eps, dataset.range[1] - dataset.range[0]);

@@ -32,7 +32,7 @@ PreparedRender prepareRender(Server::Impl& s, const RenderParams& params, const 
 /// A viewer's draft of `prepared`: drawn from the fit at its eps's draft rung (draftRung) when the fit
 /// cache holds that in memory, with `drawnFrom` and `fitKey` its; else `prepared` itself. Never waits for
 /// a fit: the warm-ups make the draft rung's first (WarmUpFits). Not for a focus fit, a .vots dataset,
-/// the grid renderer or the ranks, which have no such rung.
+/// the grid renderer or the ranks, which have no such rung, nor for density (the Vots' own sizes).
 PreparedRender preparedDraft(Server::Impl& s, const PreparedRender& prepared);
 
 /// Under mpirun: the ranks fit their cells at the key's eps (dist::FrameRanks::fit), which the next
