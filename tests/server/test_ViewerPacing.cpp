@@ -236,5 +236,28 @@ TEST(StreamMessages, BadRenderParametersAreTheRouteS400) {
     }
 }
 
+TEST(DraftSizer, DraftsComeFromTheRungWhereDraftsAtEpsWouldBeSmallerThanTheFrame) {
+    constexpr double BUDGET = 30;
+    constexpr int W = 1000, H = 800;
+    DraftSizer atEps(BUDGET), atRung(BUDGET);
+    // Nothing measured: from the rung, whose drafts are then measured.
+    EXPECT_TRUE(draftFromRung(atEps, atRung, W, H));
+    // A CPU: the rung's full-size draft would take 60 ms, at eps more: from the rung.
+    atRung.observe(W / 2, H / 2, 15);
+    EXPECT_TRUE(draftFromRung(atEps, atRung, W, H));
+    // A GPU: the rung's full-size draft takes 4 ms, under a RUNG_GAIN-th of the budget: a try at eps.
+    DraftSizer fastRung(BUDGET);
+    fastRung.observe(W, H, 4);
+    EXPECT_FALSE(draftFromRung(atEps, fastRung, W, H));
+    // At eps full size within the budget: at eps; over it (a heavier view): back to the rung.
+    atEps.observe(W, H, 12);
+    EXPECT_FALSE(draftFromRung(atEps, fastRung, W, H));
+    EXPECT_TRUE(atEps.fullSizeWithin(W, H));
+    for (int i = 0; i < 10; ++i)
+        atEps.observe(W, H, 45);
+    EXPECT_FALSE(atEps.fullSizeWithin(W, H));
+    EXPECT_TRUE(draftFromRung(atEps, fastRung, W, H));
+}
+
 } // namespace
 } // namespace vots::server

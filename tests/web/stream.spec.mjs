@@ -114,16 +114,21 @@ test('a drag\'s drafts come from the draft rung\'s coarser fit, and the still is
     const drafts = during.filter((f) => !f.header.still);
     assert.ok(drafts.length >= 2, `expected several drafts, got ${drafts.length}`);
     // The rung is about 4 x eps (at most a tenth of the range): coarser, with fewer Vots than the still.
+    // The drag's first draft comes from it (nothing is measured yet); later ones may be drawn at eps where
+    // drafts at eps would be full size within the budget (a fast host, a small volume).
     const still = during.at(-1);
     assert.ok(still.header.still && still.header.draftEps === undefined, JSON.stringify(still.header));
-    for (const d of drafts) {
-      assert.ok(d.header.draftEps > 1.5 * viewEps, `a draft at the view's eps ${viewEps}: ${JSON.stringify(d.header)}`);
+    const rungEps = drafts[0].header.draftEps;
+    assert.ok(rungEps > 1.5 * viewEps, `the first draft is at the view's eps ${viewEps}: ${JSON.stringify(drafts[0].header)}`);
+    for (const d of drafts.filter((f) => f.header.draftEps !== undefined)) {
+      assert.equal(d.header.draftEps, rungEps);
       assert.ok(d.header.votCount < still.header.votCount, `a draft of no fewer Vots: ${JSON.stringify(d.header)}`);
     }
     // The page says what each frame shown was drawn at.
     const shown = await page.evaluate(() => window.__shown);
     assert.ok(shown.length >= 2, `frames shown: ${JSON.stringify(shown)}`);
-    for (const f of shown.slice(0, -1)) assert.ok(f.eps > 1.5 * viewEps, `a draft shown at eps ${f.eps}`);
+    assert.ok(shown.some((f) => f.eps === rungEps), `no frame shown at the rung: ${JSON.stringify(shown)}`);
+    for (const f of shown) assert.ok(f.eps === rungEps || f.eps === viewEps, `a frame shown at eps ${f.eps}`);
     assert.equal(shown.at(-1).eps, viewEps);
     assert.equal(shown.at(-1).still, true);
   });

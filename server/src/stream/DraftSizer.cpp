@@ -20,6 +20,15 @@ std::pair<int, int> DraftSizer::draftSize(int fullWidth, int fullHeight) const {
     return {side(fullWidth), side(fullHeight)};
 }
 
+bool DraftSizer::fullSizeWithin(int fullWidth, int fullHeight, double margin) const {
+    return mMsPerPixel && *mMsPerPixel * fullWidth * fullHeight * margin <= mBudgetMs;
+}
+
+bool draftFromRung(const DraftSizer& atEps, const DraftSizer& atRung, int fullWidth, int fullHeight) {
+    if (atEps.measured()) return !atEps.fullSizeWithin(fullWidth, fullHeight);
+    return !atRung.fullSizeWithin(fullWidth, fullHeight, RUNG_GAIN);
+}
+
 void DraftSizer::observe(int width, int height, double ms) {
     const double pixels = static_cast<double>(width) * height;
     if (pixels <= 0 || !std::isfinite(ms) || ms < 0) return;

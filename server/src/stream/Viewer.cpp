@@ -132,8 +132,18 @@ void Viewer::draw(const PendingView& view) {
             }
             // The first frame at a new eps shows that eps: after a slider move the viewer asks for a draft
             // first, and a draft from the rung would be an image of another fit. The drafts of a camera
-            // moving over a fit already shown come from its draft rung.
-            const PreparedRender draft = sameFit ? preparedDraft(s, prepared) : prepared;
+            // moving over a fit already shown come from its draft rung where drafts at eps would be
+            // smaller than the frame.
+            PreparedRender draft = prepared;
+            if (sameFit) {
+                PreparedRender fromRung = preparedDraft(s, prepared);
+                std::lock_guard lock(mMutex);
+                if (fromRung.drawnFrom != prepared.drawnFrom &&
+                    draftFromRung(mSizers.try_emplace(sizerKey(full, false), DRAFT_BUDGET_MS).first->second,
+                                  mSizers.try_emplace(sizerKey(full, true), DRAFT_BUDGET_MS).first->second,
+                                  full.width, full.height))
+                    draft = std::move(fromRung);
+            }
             const bool fromDraftRung = draft.drawnFrom != prepared.drawnFrom;
             const std::string sizer = sizerKey(full, fromDraftRung);
             std::pair<int, int> size;
