@@ -43,6 +43,14 @@ nlohmann::json datasetEntry(httplib::Client& c, const std::string& dataset) {
     return {{"epsSteps", nlohmann::json::array()}, {"defaultEps", 0}};
 }
 
+/// A server that fits ahead when idle (warm-ups on) and draws nothing.
+server::ServerOptions warmingOptions(const ServerWorld& world) {
+    auto options = world.options();
+    options.withRenderer = false;
+    options.warmUpFits = true;
+    return options;
+}
+
 /// The decimal text a viewer sends for a number it was given as JSON ("88.2").
 std::string epsText(double eps) {
     return nlohmann::json(eps).dump();
@@ -71,10 +79,7 @@ TEST(ServerWarmUp, TheLadderIsRoundPercentagesOfTheRangeWithTheDefaultOnIt) {
 
 TEST(ServerWarmUp, AnIdleServerFitsTheStepsAroundTheLastEpsAheadEachOnce) {
     ServerWorld world;
-    auto options = world.options();
-    options.withRenderer = false;
-    options.warmUpFits = true;
-    LoopbackServer server(options);
+    LoopbackServer server(warmingOptions(world));
     auto c = server.client();
     const nlohmann::json mri = datasetEntry(*c, MRI_BRAIN);
     const auto steps = mri["epsSteps"].get<std::vector<double>>();
@@ -127,10 +132,7 @@ TEST(ServerWarmUp, AnIdleServerFitsTheStepsAroundTheLastEpsAheadEachOnce) {
 
 TEST(ServerWarmUp, AFitAtTwoPercentAlsoWarmsItsDraftRung) {
     ServerWorld world;
-    auto options = world.options();
-    options.withRenderer = false;
-    options.warmUpFits = true;
-    LoopbackServer server(options);
+    LoopbackServer server(warmingOptions(world));
     auto c = server.client();
     const auto steps = datasetEntry(*c, MRI_BRAIN)["epsSteps"].get<std::vector<double>>();
     const auto job = waitForJob(*c, postFit(*c, MRI_BRAIN, "\"2%\""));
@@ -157,10 +159,7 @@ TEST(ServerWarmUp, ANewJobCancelsARunningWarmUp) {
     for (int i = 0; i < 64 * 64 * 64; ++i)
         noise.push_back(static_cast<char>(random() & 0xff));
     world.dir().write("data/noise.nrrd", noise);
-    auto options = world.options();
-    options.withRenderer = false;
-    options.warmUpFits = true;
-    LoopbackServer server(options);
+    LoopbackServer server(warmingOptions(world));
     auto c = server.client();
     ASSERT_EQ(waitForJob(*c, postFit(*c, "noise", "128"))["state"], "done");
     const auto running = waitForWarmUps(*c, [](const nlohmann::json& w) { return w["started"] == 1; });
