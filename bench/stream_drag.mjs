@@ -3,8 +3,8 @@
 //   VOTS_URL=http://127.0.0.1:8080 [VOTS_BENCH_BROWSERS=separate] [VOTS_DRAG_HOLD_MS=MS] [VOTS_DRAG_PAUSE_MS=MS]
 //       node bench/stream_drag.mjs [dataset] [runs] [drag ms] [pages]
 // For each transport (alternating, so both see the same machine load) and run: frames/s shown while the
-// mouse moves and their median size, release to the full-resolution lossless frame, and pointer move to
-// the first frame that shows it (p50, p90). Medians over the runs. VOTS_DRAG_HOLD_MS: the hand holds the
+// mouse moves, their median size and how many came from a coarser fit (the socket's draft rung), release
+// to the full-resolution lossless frame, and pointer move to the first frame that shows it (p50, p90). Medians over the runs. VOTS_DRAG_HOLD_MS: the hand holds the
 // button still that long after its last move before the release (default 0: a release at the next move);
 // VOTS_DRAG_PAUSE_MS: it stops that long halfway, and the first move after the pause is timed too
 // (bench/drag.mjs). Needs a running `vots serve` and tests/web/node_modules (tests/web/run.sh installs it).
@@ -83,6 +83,10 @@ async function dragOnce(page, viewer, run) {
     fullSize: still ? `${still.width}x${still.height}` : '?',
     // The drafts' linear scale of the full frame (issue 37 asks for at least half).
     linear: still ? median(duringDrag.map((f) => f.width)) / still.width : NaN,
+    // Drafts drawn from a coarser fit than the still's (the socket's draft rung) and that fit's eps.
+    coarser: still ? duringDrag.filter((f) => f.eps !== still.eps).length : 0,
+    coarserEps: still ? duringDrag.find((f) => f.eps !== still.eps)?.eps : undefined,
+    drafts: duringDrag.length,
     p50: quantile(latencies, 0.5),
     afterPause,
     p90: quantile(latencies, 0.9),
@@ -170,7 +174,8 @@ await withPage(fakeTest, async (socketPage) => {
         results[transport].push(r);
         console.log(`${transport} run ${i + 1}: ${r.fps.toFixed(1)} frames/s at ${r.width}x${r.height} ` +
           `(full ${r.fullSize}, ${r.linear.toFixed(2)} linear), release -> lossless ${r.releaseMs.toFixed(0)} ms, move -> frame p50 ` +
-          `${r.p50.toFixed(0)} ms p90 ${r.p90.toFixed(0)} ms, ${r.stillsWhileDragging} stills while dragging [${r.transport}` +
+          `${r.p50.toFixed(0)} ms p90 ${r.p90.toFixed(0)} ms, ${r.stillsWhileDragging} stills while dragging, ` +
+          `${r.coarser} of ${r.drafts} drafts from a coarser fit${r.coarserEps === undefined ? '' : ` (eps ${r.coarserEps})`} [${r.transport}` +
           `${r.stillDrawMs === undefined ? '' : `, still drawn in ${r.stillDrawMs.toFixed(0)} ms`}]` +
           (r.stillParts ? ` still: ${Object.entries(r.stillParts).map(([k, v]) => `${k} ${ms(v)}`).join(', ')} ms` : '') +
           (r.draftParts ? `; drafts: ${Object.entries(r.draftParts).map(([k, v]) => `${k} ${ms(v)}`).join(', ')} ms` : ''));
