@@ -35,11 +35,12 @@ const RETRIES = 3;
 // ?transport=render in the page's URL keeps to GET /render (the benchmark's baseline).
 const SOCKET_WANTED = new URLSearchParams(window.location.search).get('transport') !== 'render';
 
-// view: the view object the wiring owns (read at request time). banner: createBanner's object.
+// view: the view object the wiring owns (read at request time); viewSize(): its element's {width, height}
+// (watchSize). banner: createBanner's object.
 // showFacts({votCount, fitSeconds}) shows what a frame's headers say; isMoving() tells whether a drag or
 // wheel is still going (then the next frame is a draft too); onChange() runs whenever the status may differ.
 // draftCanvas: where the socket's JPEG drafts are drawn (over the image, hidden once the still is shown).
-export function createFrames({ viewEl, image, draftCanvas, view, banner, showFacts, isMoving, onChange }) {
+export function createFrames({ viewEl, viewSize, image, draftCanvas, view, banner, showFacts, isMoving, onChange }) {
   let renderEps = null; // eps used for frames: the target once its fit is done, else the previous one
   // No eps is ready yet but a fit is on its way: meanwhile frames come from the exact grid renderer,
   // which needs no fit (a study of thousands of slices shows its first image long before its Vots).
@@ -69,7 +70,7 @@ export function createFrames({ viewEl, image, draftCanvas, view, banner, showFac
   let retryTimer = 0;
 
   function frameSize(draft) {
-    const r = viewEl.getBoundingClientRect();
+    const r = viewSize();
     const dpr = window.devicePixelRatio || 1;
     let w = Math.max(1, Math.round(r.width * dpr));
     let h = Math.max(1, Math.round(r.height * dpr));

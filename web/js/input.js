@@ -4,9 +4,10 @@ import { homeCamera } from './view.js';
 
 const WHEEL_SETTLE_MS = 200; // after the last wheel event, send the full-quality frame
 
-// view: the view object the wiring owns; this sets view.cam. onDraft() runs after each move while the
+// view: the view object the wiring owns; this sets view.cam. viewSize(): the view's {width, height}
+// (watchSize). onDraft() runs after each move while the
 // pointer or wheel is busy, onCommit() once a gesture ends. Returns {isMoving()}.
-export function attachInput({ viewEl, keyTarget, view, onDraft, onCommit }) {
+export function attachInput({ viewEl, viewSize, keyTarget, view, onDraft, onCommit }) {
   let dragging = null; // {kind: 'orbit'|'pan'|'zoom', x, y, pointerId}
   let wheelTimer = 0;
 
@@ -32,7 +33,7 @@ export function attachInput({ viewEl, keyTarget, view, onDraft, onCommit }) {
     if (dx === 0 && dy === 0) return;
     dragging.x = e.clientX;
     dragging.y = e.clientY;
-    const r = viewEl.getBoundingClientRect();
+    const r = viewSize();
     if (dragging.kind === 'orbit') view.cam = orbit(view.cam, dx, dy, r.width, r.height);
     else if (dragging.kind === 'pan') view.cam = pan(view.cam, dx, dy, r.height);
     else view.cam = zoomBy(view.cam, dy * 2);

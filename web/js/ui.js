@@ -15,6 +15,7 @@ import { fmtCount, fmtSeconds } from './format.js';
 import { createFrames } from './frames.js';
 import { createHashWriter, formatHash, parseHash } from './hash.js';
 import { attachInput } from './input.js';
+import { watchSize } from './view-size.js';
 import { fitViewToDataset, isVotsDataset } from './kind.js';
 import { showOverlays } from './overlays.js';
 import { attachPacsPanels } from './pacs-panels.js';
@@ -81,8 +82,10 @@ function showFacts({ votCount, fitSeconds }) {
 const banner = createBanner({ box: el.error, text: el.errorText, closeButton: el.errorClose, onShow: updateStatus });
 const viewHash = () => formatHash(view) + tokenHashPart(); // the token stays for reloads and copied links
 const writeHash = createHashWriter(viewHash);
+const viewSize = watchSize(el.view);
 const input = attachInput({
   viewEl: el.view,
+  viewSize,
   keyTarget: document,
   view,
   onDraft() {
@@ -103,7 +106,7 @@ function draft() {
   frames.schedule({ draft: true });
 }
 const frames = createFrames({
-  viewEl: el.view, image: el.image, draftCanvas: el.draftCanvas, view, banner, showFacts, isMoving: input.isMoving, onChange: updateStatus,
+  viewEl: el.view, viewSize, image: el.image, draftCanvas: el.draftCanvas, view, banner, showFacts, isMoving: input.isMoving, onChange: updateStatus,
 });
 const fits = createFits({
   progress: { box: el.fitProgress, bar: el.progress, label: el.progressLabel },
