@@ -4,8 +4,9 @@
 //       node bench/stream_drag.mjs [dataset] [runs] [drag ms] [pages]
 // For each transport (alternating, so both see the same machine load) and run: frames/s shown while the
 // mouse moves, their median size and how many came from a coarser fit (the socket's draft rung), release
-// to the full-resolution lossless frame, and pointer move to the first frame that shows it (p50, p90). Medians over the runs. VOTS_DRAG_HOLD_MS: the hand holds the
-// button still that long after its last move before the release (default 0: a release at the next move);
+// to the full-resolution lossless frame, and pointer move to the first frame that shows it (p50, p90).
+// Medians over the runs. VOTS_DRAG_HOLD_MS: the hand holds the button still that long after its last move
+// before the release (default 0: a release at the next move);
 // VOTS_DRAG_PAUSE_MS: it stops that long halfway, and the first move after the pause is timed too
 // (bench/drag.mjs). Needs a running `vots serve` and tests/web/node_modules (tests/web/run.sh installs it).
 import { withPage, withPages } from '../tests/web/support/browser.mjs';

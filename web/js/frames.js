@@ -233,8 +233,9 @@ export function createFrames({ viewEl, viewSize, image, draftCanvas, view, banne
   // A "vots:frame" event on the image once a frame is on screen: {sentAt (when its view was asked for,
   // performance.now()), view (a copy of the view it shows), width, height, still, transport, eps (the
   // eps it was drawn at: the view's, or a socket draft's draftEps; null for the exact grid), votCount, and
-  // socket frames only the server's times (docs/API.md): waitMs, frameMs, uploadMs, encodeMs, drawMs}. The overlays follow it (ui.js);
-  // bench/stream_drag.mjs times drags, bench/eps_change.mjs refits. url: the frame's /render URL.
+  // socket frames only the server's times (docs/API.md): waitMs, frameMs, uploadMs, encodeMs, drawMs}.
+  // The overlays follow it (ui.js); bench/stream_drag.mjs times drags, bench/eps_change.mjs refits.
+  // url: the frame's /render URL.
   function announceFrame({ url, ...detail }) {
     const shownSize = draftCanvas.hidden
       ? { width: Number(image.dataset.width), height: Number(image.dataset.height) }
